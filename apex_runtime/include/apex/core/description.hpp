@@ -1,0 +1,56 @@
+// Plain data describing a graph: what the file format reads and writes and what
+// a front end shows. No behaviour, no YAML.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace apex {
+
+/** @brief One node as saved: parameter values are YAML text. */
+struct NodeDescription {
+  std::string name, type;
+  std::vector<std::pair<std::string, std::string>> parameters;  ///< name → YAML text, declaration order
+  std::vector<std::string> interactive;                         ///< parameters with ports
+  bool enabled = true;
+  std::string thread_group = "default";
+  std::string ui;                ///< free-form front-end metadata, YAML flow text ("" if none)
+  bool placeholder = false;      ///< type unknown here: kept and written back unchanged
+  std::string error;             ///< current error (state, not saved)
+  int line = 0;                  ///< where it was read from, for messages (0: not from a file)
+};
+
+/** @brief A connection "from_node/from_port → to_node/to_port": data, parameter or event. */
+struct ConnectionDescription {
+  std::string from_node, from_port, to_node, to_port;
+  int line = 0;
+  bool operator==(const ConnectionDescription& o) const {
+    return from_node == o.from_node && from_port == o.from_port && to_node == o.to_node && to_port == o.to_port;
+  }
+};
+
+struct GraphDescription {
+  std::vector<std::string> thread_groups;  ///< user groups; "default" always exists
+  std::vector<NodeDescription> nodes;
+  std::vector<ConnectionDescription> connections;
+};
+
+/** @brief Profiling of one node; times in nanoseconds. */
+struct NodeStats {
+  std::string name;
+  std::uint64_t firings = 0;
+  std::uint64_t last_ns = 0, mean_ns = 0, max_ns = 0;
+  std::string error;
+  bool enabled = true;
+};
+
+/** @brief Profiling of one thread group: busy time against wall time since start. */
+struct GroupStats {
+  std::string name;
+  std::uint64_t busy_ns = 0, wall_ns = 0, firings = 0, wakeups = 0;
+  double load() const { return wall_ns ? double(busy_ns) / double(wall_ns) : 0.0; }
+};
+
+}  // namespace apex

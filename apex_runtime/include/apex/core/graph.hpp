@@ -1,0 +1,120 @@
+// The graph: nodes, connections, thread groups and every rule about editing
+// them. All methods are thread-safe and may be called while the graph runs;
+// edits pause only the thread groups of the nodes they touch.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "apex/core/description.hpp"
+#include "apex/core/registry.hpp"
+#include "apex/core/result.hpp"
+
+namespace apex {
+
+namespace detail {
+class NodeState;
+class ThreadGroup;
+struct Edge;
+struct EventEdge;
+}  // namespace detail
+
+/** @brief What a load reports besides success: e.g. nodes kept as placeholders. */
+struct LoadReport {
+  std::vector<std::string> warnings;
+};
+
+class Graph {
+ public:
+  explicit Graph(NodeRegistry registry = NodeRegistry::fromGlobal());
+  ~Graph();
+  Graph(const Graph&) = delete;
+  Graph& operator=(const Graph&) = delete;
+
+  const NodeRegistry& registry() const { return registry_; }
+  NodeRegistry& registry() { return registry_; }
+
+  // --- edits: each returns why it was refused; a refused edit changes nothing ---
+  /** @brief Adds a node of a registered type. An empty name is generated from the
+   *  type; an empty group means "default"; a new group is created. Returns the name. */
+  Result<std::string> addNode(const std::string& type, const std::string& name = "",
+                              const std::string& thread_group = "");
+  Status removeNode(const std::string& name);
+  /** @brief Connects an output, parameter or trigger to an input, parameter or slot. */
+  Status connect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
+                 const std::string& to_port);
+  /** @brief Removes a connection; a message still pending on it is dropped. */
+  Status disconnect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
+                    const std::string& to_port);
+  /** @brief Sets a parameter from YAML text; returns the applied value as text. */
+  Result<std::string> setParameter(const std::string& node, const std::string& param, const std::string& yaml_text);
+  /** @brief Gives a parameter an input and an output port, or removes them (and their connections). */
+  Status setInteractive(const std::string& node, const std::string& param, bool interactive);
+  Status setEnabled(const std::string& node, bool enabled);
+  /** @brief Moves a node to a thread group, creating the group if new. */
+  Status setThreadGroup(const std::string& node, const std::string& group);
+  /** @brief Sends an event to a node's slot, as if a trigger fired. */
+  Status fireSlot(const std::string& node, const std::string& slot);
+  /** @brief Stores front-end metadata (YAML flow text, e.g. "{x: 10, y: 20}") with the node. */
+  Status setUi(const std::string& node, const std::string& ui_yaml);
+
+  // --- running ---
+  /** @brief Starts every thread group. Nodes that are ready fire. */
+  void start();
+  /** @brief Stops and joins every thread group. Idempotent. */
+  void stop();
+  /** @brief Holds all firing at the next firing boundary (events and edits still apply). */
+  void pause();
+  void resume();
+  bool paused() const;
+  /** @brief While paused: fires each node that is ready now, once, and returns when done. */
+  void step();
+
+  // --- reading ---
+  /** @brief The whole graph as plain data (nodes in insertion order). */
+  GraphDescription describe() const;
+  /** @brief Replaces the whole graph, all or nothing: on any error the graph is untouched. */
+  Result<LoadReport> load(const GraphDescription& description);
+  std::vector<NodeStats> nodeStats() const;
+  std::vector<GroupStats> groupStats() const;
+  /** @brief A node's type, or nullptr if there is no such node (or it is a placeholder). */
+  std::shared_ptr<const NodeType> nodeType(const std::string& node) const;
+  /** @brief The node object itself (for tests and hosts); nullptr if none. */
+  Node* nodeObject(const std::string& node) const;
+  std::size_t size() const;
+
+  /** @brief Waits until no node is ready or firing and no event is pending, or the
+   *  timeout passes; true if idle. For tests and shutdown. */
+  bool waitIdle(double timeout_s) const;
+
+ private:
+  using NodePtr = std::shared_ptr<detail::NodeState>;
+  NodePtr find(const std::string& name) const;
+  Result<NodePtr> require(const std::string& name) const;
+  detail::ThreadGroup* group(const std::string& name);  // creates
+  Result<std::string> addPlaceholder(const NodeDescription& d);
+  Status connectLocked(const ConnectionDescription& c);
+  Status applyNode(const NodeDescription& d, LoadReport& report);
+  void adoptLocked(Graph& staged, const GraphDescription& description);
+  void clearLocked();
+  void detachAll(detail::NodeState* node);
+  void removeEdge(std::shared_ptr<detail::Edge> edge);
+  void removeEvent(std::shared_ptr<detail::EventEdge> edge);
+
+  NodeRegistry registry_;
+  mutable std::mutex edit_mutex_;  // serialises edits and reads of the structure
+  std::map<std::string, NodePtr> nodes_;
+  std::map<std::uint64_t, detail::NodeState*> order_;  // insertion order
+  std::uint64_t next_seq_ = 0;
+  std::map<std::string, int> name_counters_;  // generated names: gaussian_blur_1, _2, ...
+  std::map<std::string, std::unique_ptr<detail::ThreadGroup>> groups_;
+  std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
+  bool running_ = false;
+  bool paused_ = false;
+};
+
+}  // namespace apex

@@ -1,0 +1,26 @@
+// The graph file format (versioned YAML). See docs/graph_format.md.
+#pragma once
+
+#include <string>
+
+#include "apex/core/description.hpp"
+#include "apex/core/graph.hpp"
+#include "apex/core/result.hpp"
+
+namespace apex {
+
+inline constexpr int kGraphFormatVersion = 1;
+
+/** @brief Parses graph YAML; errors name the line and what is wrong. */
+Result<GraphDescription> parseGraphText(const std::string& yaml_text);
+/** @brief The canonical text of a graph: loading it and formatting again gives the same text. */
+std::string formatGraphText(const GraphDescription& description);
+
+/** @brief Reads and loads a graph file into `graph`, all or nothing. */
+Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path);
+/** @brief Saves the graph atomically: the file is either the old one or the whole new one. */
+Status saveGraphFile(const Graph& graph, const std::string& path);
+/** @brief Writes a temporary file beside `path`, flushes it to disk, renames it over `path`. */
+Status writeFileAtomically(const std::string& path, const std::string& content);
+
+}  // namespace apex

@@ -1,0 +1,103 @@
+// Messages: immutable, shared payloads with a readable type name, or Nothing.
+// One output feeding N inputs hands the same object to all N: no copies.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <typeindex>
+#include <typeinfo>
+#include <utility>
+#include <vector>
+
+namespace apex {
+
+/** @brief A port or message type: one instance per C++ type in the process. */
+struct TypeInfo {
+  std::string name;       ///< readable, e.g. "int", "cv::Mat"
+  std::type_index index;  ///< the C++ type
+};
+
+/** @brief Marker type for ports that accept or send any message (e.g. a relay). */
+struct Any {};
+
+/** @brief Readable type names; specialise for your own types, or use APEX_TYPE_NAME. */
+template <class T>
+struct TypeName {
+  static std::string get();  // default: the demangled C++ name
+};
+
+namespace detail {
+std::string demangle(const char* mangled);
+/** Interns (type, name) in a process-wide table so types compare by pointer
+ *  even across plugin libraries. */
+const TypeInfo* internType(const std::type_info& type, const std::string& name);
+}  // namespace detail
+
+template <class T>
+std::string TypeName<T>::get() {
+  return detail::demangle(typeid(T).name());
+}
+
+/** @brief The TypeInfo of T; the same pointer everywhere in the process. */
+template <class T>
+const TypeInfo* typeOf() {
+  static const TypeInfo* info = detail::internType(typeid(T), TypeName<T>::get());
+  return info;
+}
+
+/** @brief True when an output of type `from` may feed an input of type `to`. */
+inline bool compatible(const TypeInfo* from, const TypeInfo* to) {
+  return from == to || from == typeOf<Any>() || to == typeOf<Any>();
+}
+
+/** @brief A shared, immutable payload or the Nothing token. Cheap to copy. */
+class Message {
+ public:
+  /** @brief The Nothing token: "this output sent nothing this time". */
+  Message() = default;
+  static Message nothing() { return Message(); }
+
+  template <class T>
+  static Message share(std::shared_ptr<const T> payload) {
+    return Message(std::shared_ptr<const void>(std::move(payload)), typeOf<T>());
+  }
+  template <class T>
+  static Message make(T value) {
+    return share<T>(std::make_shared<const T>(std::move(value)));
+  }
+
+  bool isNothing() const { return data_ == nullptr; }
+  /** @brief The payload's type; nullptr for Nothing. */
+  const TypeInfo* type() const { return type_; }
+  /** @brief The payload's readable type name, "Nothing" for the token. */
+  const std::string& typeName() const;
+
+  /** @brief The payload as T; nullptr when Nothing or of another type. */
+  template <class T>
+  std::shared_ptr<const T> as() const {
+    if (type_ != typeOf<T>()) return nullptr;
+    return std::static_pointer_cast<const T>(data_);
+  }
+  const void* raw() const { return data_.get(); }
+
+ private:
+  Message(std::shared_ptr<const void> d, const TypeInfo* t) : data_(std::move(d)), type_(t) {}
+  std::shared_ptr<const void> data_;
+  const TypeInfo* type_ = nullptr;
+};
+
+}  // namespace apex
+
+/** Give a type a readable name: APEX_TYPE_NAME(cv::Mat, "cv::Mat") at namespace scope. */
+#define APEX_TYPE_NAME(Type, Name)                 \
+  template <>                                      \
+  struct apex::TypeName<Type> {                    \
+    static std::string get() { return Name; }      \
+  }
+
+APEX_TYPE_NAME(bool, "bool");
+APEX_TYPE_NAME(int, "int");
+APEX_TYPE_NAME(double, "double");
+APEX_TYPE_NAME(std::string, "string");
+APEX_TYPE_NAME(std::vector<double>, "list<double>");
+APEX_TYPE_NAME(apex::Any, "any");

@@ -1,0 +1,84 @@
+// The base class of user node code. A node reads its inputs, parameters and
+// publishes outputs from process(); the runtime calls it on the node's thread
+// group, never concurrently with its slot handlers.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "apex/core/message.hpp"
+#include "apex/core/param.hpp"
+
+namespace apex {
+
+namespace detail {
+class NodeState;
+}
+
+class Node {
+ public:
+  virtual ~Node() = default;
+  Node() = default;
+  Node(const Node&) = delete;
+  Node& operator=(const Node&) = delete;
+
+  /** @brief One firing: every connected input holds a message. Throwing puts the
+   *  node in an error state for this firing; its outputs send Nothing. */
+  virtual void process() = 0;
+  /** @brief Called on the node's thread group before a firing, after a parameter changed. */
+  virtual void parameterChanged(const std::string& /*name*/) {}
+
+  /** @brief The node's name in its graph ("" before it is added to one). */
+  const std::string& name() const;
+
+  /** @brief For Driven sources: new data arrived from outside. Callable from any
+   *  thread; repeated calls before the next firing collapse into one. */
+  void notifyNewData();
+
+ protected:
+  /** @brief The message at an input this firing (Nothing if none). */
+  const Message& inputMessage(const std::string& input) const;
+  /** @brief The payload at an input as T; nullptr when it holds Nothing.
+   *  Throws std::invalid_argument for an unknown input, or a payload of another type. */
+  template <class T>
+  std::shared_ptr<const T> input(const std::string& name) const {
+    const Message& m = inputMessage(name);
+    if (m.isNothing()) return nullptr;
+    auto p = m.as<T>();
+    if (!p) throwWrongType(name, m, typeOf<T>());
+    return p;
+  }
+  /** @brief True when the input holds a message (not Nothing) this firing. */
+  bool hasInput(const std::string& name) const { return !inputMessage(name).isNothing(); }
+
+  /** @brief Sends on an output; an output not published this firing sends Nothing. */
+  void publishMessage(const std::string& output, Message message);
+  template <class T>
+  void publish(const std::string& output, std::shared_ptr<const T> payload) {
+    publishMessage(output, Message::share<T>(std::move(payload)));
+  }
+  template <class T>
+  void publish(const std::string& output, T value) {
+    publishMessage(output, Message::make<T>(std::move(value)));
+  }
+
+  /** @brief The current value of a parameter; stable for the whole firing. */
+  const ParamValue& paramValue(const std::string& name) const;
+  template <class T>
+  const T& param(const std::string& name) const {
+    const ParamValue& v = paramValue(name);
+    if (const T* p = std::get_if<T>(&v)) return *p;
+    throwWrongParamType(name);
+  }
+
+  /** @brief Sends an event on one of the node's triggers. */
+  void trigger(const std::string& name);
+
+ private:
+  friend class detail::NodeState;
+  [[noreturn]] void throwWrongType(const std::string& input, const Message& m, const TypeInfo* want) const;
+  [[noreturn]] void throwWrongParamType(const std::string& name) const;
+  detail::NodeState* state_ = nullptr;
+};
+
+}  // namespace apex

@@ -1,0 +1,347 @@
+// Graph lifecycle, node edits and reading. Connections: graph_connect.cpp;
+// describing and loading: graph_load.cpp.
+#include "apex/core/graph.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include "edit_scope.hpp"
+#include "names.hpp"
+#include "node_state.hpp"
+#include "yaml_text.hpp"
+
+namespace apex {
+
+using detail::EditScope;
+using detail::NodeState;
+using detail::ThreadGroup;
+
+namespace {
+
+constexpr const char* kDefaultGroup = "default";
+
+/** "apex_nodes/GaussianBlur" → "gaussian_blur" */
+std::string baseName(const std::string& type) {
+  std::string tail = type.substr(type.find('/') + 1), out;
+  for (std::size_t i = 0; i < tail.size(); ++i) {
+    const unsigned char c = tail[i];
+    if (std::isupper(c) && i > 0 && !std::isupper(static_cast<unsigned char>(tail[i - 1]))) out += '_';
+    out += static_cast<char>(std::tolower(c));
+  }
+  return out;
+}
+
+std::string knownTypes(const NodeRegistry& registry) {
+  auto ids = registry.ids();
+  std::string s;
+  for (std::size_t i = 0; i < ids.size() && i < 30; ++i) s += (i ? ", " : "") + ids[i];
+  if (ids.size() > 30) s += ", ... (" + std::to_string(ids.size()) + " in all)";
+  return ids.empty() ? "none registered" : s;
+}
+
+}  // namespace
+
+Graph::Graph(NodeRegistry registry) : registry_(std::move(registry)) { group(kDefaultGroup); }
+
+Graph::~Graph() {
+  stop();
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  clearLocked();
+}
+
+Graph::NodePtr Graph::find(const std::string& name) const {
+  auto it = nodes_.find(name);
+  return it == nodes_.end() ? nullptr : it->second;
+}
+
+Result<Graph::NodePtr> Graph::require(const std::string& name) const {
+  if (auto n = find(name)) return n;
+  return Status::error("no node named '" + name + "'");
+}
+
+ThreadGroup* Graph::group(const std::string& name) {
+  auto& g = groups_[name];
+  if (!g) {
+    g = std::make_unique<ThreadGroup>(name);
+    if (paused_) g->hold(true);
+    if (running_) g->start();
+  }
+  return g.get();
+}
+
+// ------------------------------------------------------------------ nodes
+
+Result<std::string> Graph::addNode(const std::string& type_id, const std::string& wanted, const std::string& group_name) {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto type = registry_.find(type_id);
+  if (!type) return Status::error("unknown node type '" + type_id + "' (known types: " + knownTypes(registry_) + ")");
+  std::string name = wanted;
+  if (name.empty()) {
+    const std::string base = baseName(type_id);
+    int& counter = name_counters_[base];
+    do name = base + "_" + std::to_string(++counter);
+    while (nodes_.count(name));
+  } else if (!validName(name)) {
+    return Status::error("node name '" + name + "' " + kNameRule);
+  } else if (nodes_.count(name)) {
+    return Status::error("a node named '" + name + "' already exists");
+  }
+  const std::string gname = group_name.empty() ? kDefaultGroup : group_name;
+  if (!validName(gname)) return Status::error("thread group name '" + gname + "' " + kNameRule);
+
+  std::unique_ptr<Node> object;
+  try {
+    object = type->create();
+  } catch (const std::exception& ex) {
+    return Status::error("node type '" + type_id + "' failed to construct: " + ex.what());
+  }
+  auto state = std::make_shared<NodeState>(name, type, next_seq_++);
+  state->attach(std::move(object));
+  state->group = group(gname);
+  EditScope scope;
+  scope.added(state.get());
+  order_[state->seq] = state.get();
+  nodes_[name] = std::move(state);
+  return name;
+}
+
+void Graph::detachAll(NodeState* n) {
+  for (std::size_t i = 0; i < n->inputs.size(); ++i)
+    if (n->inputs[i]->edge) removeEdge(n->inputs[i]->edge);
+  for (auto& o : n->outputs) while (!o.edges.empty()) removeEdge(o.edges.back());
+  for (auto& p : n->params) {
+    if (p.in_edge) removeEdge(p.in_edge);
+    while (!p.out_edges.empty()) removeEdge(p.out_edges.back());
+  }
+  for (auto& t : n->trigger_edges) while (!t.empty()) removeEvent(t.back());
+  for (auto& s : n->slot_edges) while (!s.empty()) removeEvent(s.back());
+}
+
+Status Graph::removeNode(const std::string& name) {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto node = require(name);
+  if (!node) return node.status();
+  NodeState* n = node.value().get();
+  {
+    EditScope scope;
+    scope.involveWithNeighbours(n);
+    detachAll(n);
+    scope.forget(n);
+    n->group->unqueue(n);
+    std::lock_guard<std::mutex> g(n->group_mutex);
+    n->removed = true;
+  }
+  order_.erase(n->seq);
+  nodes_.erase(name);
+  dormant_.erase(std::remove_if(dormant_.begin(), dormant_.end(),
+                                [&](const auto& c) { return c.from_node == name || c.to_node == name; }),
+                 dormant_.end());
+  return Status::ok();
+}
+
+void Graph::clearLocked() {
+  std::vector<std::string> names;
+  for (auto& [name, n] : nodes_) names.push_back(name);
+  for (auto& name : names) {
+    NodeState* n = nodes_[name].get();
+    EditScope scope;
+    scope.involveWithNeighbours(n);
+    detachAll(n);
+    scope.forget(n);
+    n->group->unqueue(n);
+    std::lock_guard<std::mutex> g(n->group_mutex);
+    n->removed = true;
+  }
+  nodes_.clear();
+  order_.clear();
+  dormant_.clear();
+}
+
+// ------------------------------------------------------------------ node settings
+
+Result<std::string> Graph::setParameter(const std::string& node, const std::string& param, const std::string& text) {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto n = require(node);
+  if (!n) return n.status();
+  NodeState& s = *n.value();
+  if (!s.type) return Status::error("node '" + node + "' has the unknown type '" + s.typeId() + "': its parameters are kept unchanged");
+  const int i = s.findParam(param);
+  if (i < 0) return Status::error("node '" + node + "' (" + s.typeId() + ") has no parameter '" + param + "' (parameters: " + s.manifest.listParams() + ")");
+  auto value = s.manifest.params[i].parse(text);
+  if (!value) return Status::error("node '" + node + "': " + value.message());
+  s.requestParam(i, value.value());
+  return toText(value.value());
+}
+
+Status Graph::setInteractive(const std::string& node, const std::string& param, bool on) {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto n = require(node);
+  if (!n) return n.status();
+  NodeState* s = n.value().get();
+  const int i = s->findParam(param);
+  if (i < 0) return Status::error("node '" + node + "' (" + s->typeId() + ") has no parameter '" + param + "' (parameters: " + s->manifest.listParams() + ")");
+  auto& p = s->params[i];
+  if (!on && (p.in_edge || !p.out_edges.empty())) {
+    EditScope scope;
+    scope.involveWithNeighbours(s);
+    if (p.in_edge) removeEdge(p.in_edge);
+    while (!p.out_edges.empty()) removeEdge(p.out_edges.back());
+  }
+  p.interactive = on;
+  return Status::ok();
+}
+
+Status Graph::setEnabled(const std::string& node, bool enabled) {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto n = require(node);
+  if (!n) return n.status();
+  NodeState& s = *n.value();
+  {
+    std::lock_guard<std::mutex> g(s.state_mutex);
+    s.enabled = enabled;
+    s.placeholder.enabled = enabled;
+  }
+  if (s.type) s.post([](NodeState& x) { x.applyEnabled(); });
+  return Status::ok();
+}
+
+Status Graph::setThreadGroup(const std::string& node, const std::string& group_name) {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto n = require(node);
+  if (!n) return n.status();
+  if (!validName(group_name)) return Status::error("thread group name '" + group_name + "' " + kNameRule);
+  NodeState* s = n.value().get();
+  ThreadGroup* target = group(group_name);
+  if (target == s->group) return Status::ok();
+  EditScope scope;
+  scope.involve(s);
+  scope.pause(target);
+  s->group->unqueue(s);
+  std::lock_guard<std::mutex> g(s->group_mutex);
+  s->group = target;
+  s->placeholder.thread_group = group_name;
+  return Status::ok();
+}
+
+Status Graph::fireSlot(const std::string& node, const std::string& slot) {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto n = require(node);
+  if (!n) return n.status();
+  NodeState& s = *n.value();
+  const auto& slots = s.manifest.slots;
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    if (slots[i].name != slot) continue;
+    const int index = static_cast<int>(i);
+    s.post([index](NodeState& x) { x.runSlot(index); });
+    return Status::ok();
+  }
+  return Status::error("node '" + node + "' (" + s.typeId() + ") has no slot '" + slot + "' (slots: " + s.manifest.listSlots() + ")");
+}
+
+Status Graph::setUi(const std::string& node, const std::string& ui) {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto n = require(node);
+  if (!n) return n.status();
+  if (auto st = detail::checkYamlText(ui); !st) return Status::error("node '" + node + "': UI metadata " + st.message());
+  std::lock_guard<std::mutex> g(n.value()->state_mutex);
+  n.value()->ui = ui;
+  return Status::ok();
+}
+
+// ------------------------------------------------------------------ running
+
+void Graph::start() {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  running_ = true;
+  for (auto& [name, g] : groups_) g->start();
+}
+
+void Graph::stop() {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  running_ = false;
+  for (auto& [name, g] : groups_) g->stop();
+}
+
+void Graph::pause() {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  paused_ = true;
+  for (auto& [name, g] : groups_) g->hold(true);
+}
+
+void Graph::resume() {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  paused_ = false;
+  for (auto& [name, g] : groups_) g->hold(false);
+}
+
+bool Graph::paused() const {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  return paused_;
+}
+
+void Graph::step() {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  if (!paused_) return;
+  for (auto& [name, g] : groups_) g->beginStep();
+  for (auto& [name, g] : groups_) g->waitStep();
+}
+
+bool Graph::waitIdle(double timeout_s) const {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                                std::chrono::duration<double>(timeout_s));
+  std::vector<ThreadGroup*> groups;
+  {
+    std::lock_guard<std::mutex> lock(edit_mutex_);
+    for (auto& [name, g] : groups_) groups.push_back(g.get());
+  }
+  // A group found idle may be given work by one checked later: idle means two
+  // passes in a row found every group idle with no work pushed or posted between.
+  std::vector<std::uint64_t> last;
+  for (;;) {
+    std::vector<std::uint64_t> seen;
+    for (ThreadGroup* g : groups) {
+      if (!g->waitIdle(deadline)) return false;
+      seen.push_back(g->activity());
+    }
+    if (seen == last) return true;
+    last = std::move(seen);
+  }
+}
+
+// ------------------------------------------------------------------ reading
+
+std::vector<NodeStats> Graph::nodeStats() const {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  std::vector<NodeStats> out;
+  for (auto& [seq, n] : order_) {
+    out.push_back(n->stats());
+    if (!n->type) out.back().error = "unknown node type '" + n->typeId() + "'";
+  }
+  return out;
+}
+
+std::vector<GroupStats> Graph::groupStats() const {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  std::vector<GroupStats> out;
+  for (auto& [name, g] : groups_) out.push_back(g->stats());
+  return out;
+}
+
+std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto n = find(node);
+  return n ? n->type : nullptr;
+}
+
+Node* Graph::nodeObject(const std::string& node) const {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto n = find(node);
+  return n ? n->node.get() : nullptr;
+}
+
+std::size_t Graph::size() const {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  return nodes_.size();
+}
+
+}  // namespace apex

@@ -1,0 +1,249 @@
+// The only code that reads and writes graph YAML (with param_text.cpp for
+// single values).
+#include "apex/core/graph_file.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <yaml-cpp/yaml.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "yaml_text.hpp"
+
+namespace apex {
+namespace {
+
+int lineOf(const YAML::Node& n) { return n.Mark().line < 0 ? 1 : n.Mark().line + 1; }  // an empty file has no mark
+
+std::string flow(const YAML::Node& n) {
+  YAML::Emitter e;
+  e << YAML::Flow << n;
+  return e.c_str();
+}
+
+struct ParseError {
+  std::string message;
+};
+
+[[noreturn]] void fail(const YAML::Node& at, const std::string& what) {
+  throw ParseError{"line " + std::to_string(lineOf(at)) + ": " + what};
+}
+
+void onlyKeys(const YAML::Node& map, const std::set<std::string>& known, const std::string& what) {
+  for (const auto& kv : map) {
+    const auto key = kv.first.as<std::string>();
+    if (known.count(key)) continue;
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    fail(kv.first, what + ": unknown key '" + key + "' (known keys: " + list + ")");
+  }
+}
+
+std::string scalar(const YAML::Node& map, const char* key, const std::string& what, bool required = true) {
+  const YAML::Node v = map[key];
+  if (!v) {
+    if (required) fail(map, what + ": '" + key + "' is missing");
+    return {};
+  }
+  if (!v.IsScalar()) fail(v, what + ": '" + key + "' must be a single value");
+  return v.as<std::string>();
+}
+
+NodeDescription parseNode(const YAML::Node& n) {
+  if (!n.IsMap()) fail(n, "a node must be a mapping with at least 'name' and 'type'");
+  NodeDescription d;
+  d.line = lineOf(n);
+  d.name = scalar(n, "name", "node");
+  const std::string what = "node '" + d.name + "'";
+  onlyKeys(n, {"name", "type", "thread_group", "enabled", "parameters", "interactive", "ui"}, what);
+  d.type = scalar(n, "type", what);
+  d.thread_group = scalar(n, "thread_group", what, false);
+  if (d.thread_group.empty()) d.thread_group = "default";
+  if (const auto e = n["enabled"]) {
+    if (!e.IsScalar() || !YAML::convert<bool>::decode(e, d.enabled)) fail(e, what + ": 'enabled' must be true or false");
+  }
+  if (const auto p = n["parameters"]) {
+    if (!p.IsMap()) fail(p, what + ": 'parameters' must be a mapping of name: value");
+    for (const auto& kv : p) d.parameters.emplace_back(kv.first.as<std::string>(), flow(kv.second));
+  }
+  if (const auto i = n["interactive"]) {
+    if (!i.IsSequence()) fail(i, what + ": 'interactive' must be a list of parameter names");
+    for (const auto& name : i) d.interactive.push_back(name.as<std::string>());
+  }
+  if (const auto ui = n["ui"]) d.ui = flow(ui);
+  return d;
+}
+
+std::pair<std::string, std::string> endpoint(const YAML::Node& c, const char* key) {
+  const std::string text = scalar(c, key, "connection");
+  const auto slash = text.find('/');
+  if (slash == std::string::npos || slash == 0 || slash + 1 == text.size())
+    fail(c[key], "connection: '" + std::string(key) + ": " + text + "' must look like node/port");
+  return {text.substr(0, slash), text.substr(slash + 1)};
+}
+
+GraphDescription parseRoot(const YAML::Node& root) {
+  if (!root.IsMap() || !root["apex_graph"])
+    fail(root, "not an APEX graph: the file must be a mapping with the key 'apex_graph: " +
+                   std::to_string(kGraphFormatVersion) + "'");
+  onlyKeys(root, {"apex_graph", "thread_groups", "nodes", "connections"}, "graph");
+  int version = 0;
+  if (!YAML::convert<int>::decode(root["apex_graph"], version)) fail(root["apex_graph"], "'apex_graph' must be a version number");
+  if (version != kGraphFormatVersion)
+    fail(root["apex_graph"], "graph format " + std::to_string(version) + " is not supported (this APEX reads format " +
+                                 std::to_string(kGraphFormatVersion) + ")");
+  GraphDescription d;
+  if (const auto g = root["thread_groups"]) {
+    if (!g.IsSequence()) fail(g, "'thread_groups' must be a list of names");
+    for (const auto& name : g) d.thread_groups.push_back(name.as<std::string>());
+  }
+  if (const auto nodes = root["nodes"]) {
+    if (!nodes.IsSequence()) fail(nodes, "'nodes' must be a list");
+    for (const auto& n : nodes) d.nodes.push_back(parseNode(n));
+  }
+  if (const auto conns = root["connections"]) {
+    if (!conns.IsSequence()) fail(conns, "'connections' must be a list");
+    for (const auto& c : conns) {
+      if (!c.IsMap()) fail(c, "a connection must be a mapping {from: node/port, to: node/port}");
+      onlyKeys(c, {"from", "to"}, "connection");
+      auto [fn, fp] = endpoint(c, "from");
+      auto [tn, tp] = endpoint(c, "to");
+      d.connections.push_back({fn, fp, tn, tp, lineOf(c)});
+    }
+  }
+  return d;
+}
+
+// The style goes on the node: YAML::Flow on the emitter would leak into what follows.
+void emitValue(YAML::Emitter& out, const std::string& text) {
+  YAML::Node value = YAML::Load(text);
+  value.SetStyle(YAML::EmitterStyle::Flow);
+  out << value;
+}
+
+std::string fileError(const std::string& verb, const std::string& path) {
+  return "cannot " + verb + " '" + path + "': " + std::strerror(errno);
+}
+
+}  // namespace
+
+namespace detail {
+Status checkYamlText(const std::string& text) {
+  try {
+    YAML::Load(text);
+    return Status::ok();
+  } catch (const YAML::Exception& e) {
+    return Status::error("is not valid YAML: " + e.msg);
+  }
+}
+}  // namespace detail
+
+Result<GraphDescription> parseGraphText(const std::string& text) {
+  try {
+    return parseRoot(YAML::Load(text));
+  } catch (const ParseError& e) {
+    return Status::error(e.message);
+  } catch (const YAML::Exception& e) {  // syntax errors carry their position
+    return Status::error("line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1) +
+                         ": " + e.msg);
+  }
+}
+
+std::string formatGraphText(const GraphDescription& d) {
+  YAML::Emitter out;
+  out << YAML::BeginMap << YAML::Key << "apex_graph" << YAML::Value << kGraphFormatVersion;
+  if (!d.thread_groups.empty()) out << YAML::Key << "thread_groups" << YAML::Value << YAML::Flow << d.thread_groups;
+  out << YAML::Key << "nodes" << YAML::Value << YAML::BeginSeq;
+  for (const auto& n : d.nodes) {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << n.name << YAML::Key << "type" << YAML::Value
+        << n.type;
+    if (n.thread_group != "default") out << YAML::Key << "thread_group" << YAML::Value << n.thread_group;
+    if (!n.enabled) out << YAML::Key << "enabled" << YAML::Value << false;
+    if (!n.parameters.empty()) {
+      out << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;
+      for (const auto& [name, text] : n.parameters) {
+        out << YAML::Key << name << YAML::Value;
+        emitValue(out, text);
+      }
+      out << YAML::EndMap;
+    }
+    if (!n.interactive.empty()) out << YAML::Key << "interactive" << YAML::Value << YAML::Flow << n.interactive;
+    if (!n.ui.empty()) {
+      out << YAML::Key << "ui" << YAML::Value;
+      emitValue(out, n.ui);
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::Key << "connections" << YAML::Value << YAML::BeginSeq;
+  for (const auto& c : d.connections) {
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "from" << YAML::Value << c.from_node + "/" + c.from_port
+        << YAML::Key << "to" << YAML::Value << c.to_node + "/" + c.to_port << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return Status::error(fileError("read", path));
+  std::stringstream text;
+  text << in.rdbuf();
+  auto description = parseGraphText(text.str());
+  if (!description) return Status::error("'" + path + "', " + description.message());
+  auto report = graph.load(description.value());
+  if (!report) return Status::error("'" + path + "', " + report.message());
+  return report;
+}
+
+Status saveGraphFile(const Graph& graph, const std::string& path) {
+  return writeFileAtomically(path, formatGraphText(graph.describe()));
+}
+
+Status writeFileAtomically(const std::string& path, const std::string& content) {
+  static std::atomic<unsigned> counter{0};
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  struct stat old {};
+  const mode_t mode = ::stat(path.c_str(), &old) == 0 ? (old.st_mode & 07777) : 0644;  // keep a file's permissions
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
+  if (fd < 0) return Status::error(fileError("write", path));
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const Status st = Status::error(fileError("write", path));
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      return st;
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  const bool synced = ::fsync(fd) == 0;
+  const bool closed = ::close(fd) == 0;
+  if (!synced || !closed) {
+    const Status st = Status::error(fileError("write", path));
+    ::unlink(tmp.c_str());
+    return st;
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const Status st = Status::error(fileError("replace", path));
+    ::unlink(tmp.c_str());
+    return st;
+  }
+  const auto slash = path.rfind('/');  // make the rename itself durable
+  const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+  return Status::ok();
+}
+
+}  // namespace apex

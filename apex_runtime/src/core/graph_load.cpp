@@ -1,0 +1,180 @@
+// Describing the graph as plain data, and replacing it all-or-nothing: a
+// description is first built into a private staged graph with the ordinary
+// edit calls (so it meets every rule, with the same messages), and only then
+// adopted by this one.
+#include <algorithm>
+#include <set>
+
+#include "apex/core/graph.hpp"
+#include "edit_scope.hpp"
+#include "names.hpp"
+#include "node_state.hpp"
+
+namespace apex {
+
+using detail::NodeState;
+using detail::ThreadGroup;
+
+namespace {
+
+std::string at(int line) { return line > 0 ? "line " + std::to_string(line) + ": " : ""; }
+
+NodeDescription describeNode(const NodeState& n) {
+  std::lock_guard<std::mutex> lock(n.state_mutex);
+  if (!n.type) {
+    NodeDescription d = n.placeholder;
+    d.name = n.name;
+    d.placeholder = true;
+    d.thread_group = n.group->name();
+    d.ui = n.ui;
+    d.error = "unknown node type '" + d.type + "'";
+    return d;
+  }
+  NodeDescription d;
+  d.name = n.name;
+  d.type = n.type->id;
+  for (std::size_t i = 0; i < n.params.size(); ++i) {
+    d.parameters.emplace_back(n.manifest.params[i].name, toText(n.params[i].requested));
+    if (n.params[i].interactive) d.interactive.push_back(n.manifest.params[i].name);
+  }
+  d.enabled = n.enabled;
+  d.thread_group = n.group->name();
+  d.ui = n.ui;
+  return d;
+}
+
+std::string targetName(const detail::Edge& e) {
+  const Manifest& m = e.to->manifest;
+  return e.to_param ? m.params[e.to_index].name : m.inputs[e.to_index].name;
+}
+
+void describeConnections(const NodeState& n, std::vector<ConnectionDescription>& out) {
+  const Manifest& m = n.manifest;
+  for (std::size_t i = 0; i < n.outputs.size(); ++i)
+    for (auto& e : n.outputs[i].edges) out.push_back({n.name, m.outputs[i].name, e->to->name, targetName(*e), 0});
+  for (std::size_t i = 0; i < n.params.size(); ++i)
+    for (auto& e : n.params[i].out_edges) out.push_back({n.name, m.params[i].name, e->to->name, targetName(*e), 0});
+  for (std::size_t i = 0; i < n.trigger_edges.size(); ++i)
+    for (auto& e : n.trigger_edges[i])
+      out.push_back({n.name, m.triggers[i].name, e->to->name, e->to->manifest.slots[e->slot].name, 0});
+}
+
+}  // namespace
+
+GraphDescription Graph::describe() const {
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  GraphDescription d;
+  for (auto& [name, g] : groups_) if (name != "default") d.thread_groups.push_back(name);
+  for (auto& [seq, n] : order_) {
+    d.nodes.push_back(describeNode(*n));
+    if (n->type) d.nodes.back().error = n->error();
+  }
+  for (auto& [seq, n] : order_) describeConnections(*n, d.connections);
+  d.connections.insert(d.connections.end(), dormant_.begin(), dormant_.end());
+  return d;
+}
+
+Result<std::string> Graph::addPlaceholder(const NodeDescription& d) {
+  if (!validName(d.name)) return Status::error("node name '" + d.name + "' " + kNameRule);
+  if (nodes_.count(d.name)) return Status::error("a node named '" + d.name + "' already exists");
+  auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++);
+  state->placeholder = d;
+  state->ui = d.ui;
+  state->enabled = d.enabled;
+  state->group = group(d.thread_group.empty() ? "default" : d.thread_group);
+  detail::EditScope scope;
+  scope.added(state.get());
+  order_[state->seq] = state.get();
+  nodes_[d.name] = std::move(state);
+  return d.name;
+}
+
+Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
+  auto fail = [&](const std::string& why) { return Status::error(at(d.line) + why); };
+  if (!d.thread_group.empty() && !validName(d.thread_group))
+    return fail("thread group name '" + d.thread_group + "' " + kNameRule);
+  if (!validTypeId(d.type)) return fail("node '" + d.name + "': type '" + d.type + "' " + kTypeIdRule);
+  if (!registry_.find(d.type)) {
+    std::lock_guard<std::mutex> lock(edit_mutex_);
+    auto added = addPlaceholder(d);
+    if (!added) return fail(added.message());
+    report.warnings.push_back(at(d.line) + "node '" + d.name + "' has the unknown type '" + d.type +
+                              "': kept as a placeholder with its settings, it does not run");
+    return Status::ok();
+  }
+  if (d.name.empty()) return fail("a node needs a name");
+  auto added = addNode(d.type, d.name, d.thread_group);
+  if (!added) return fail(added.message());
+  for (const auto& [param, text] : d.parameters)
+    if (auto r = setParameter(d.name, param, text); !r) return fail(r.message());
+  for (const auto& param : d.interactive)
+    if (auto st = setInteractive(d.name, param, true); !st) return fail(st.message());
+  if (auto st = setEnabled(d.name, d.enabled); !st) return fail(st.message());
+  if (!d.ui.empty())
+    if (auto st = setUi(d.name, d.ui); !st) return fail(st.message());
+  return Status::ok();
+}
+
+Result<LoadReport> Graph::load(const GraphDescription& description) {
+  Graph staged(registry_);
+  LoadReport report;
+  for (const auto& g : description.thread_groups) {
+    if (!validName(g)) return Status::error("thread group name '" + g + "' " + kNameRule);
+    staged.group(g);
+  }
+  for (const auto& node : description.nodes)
+    if (auto st = staged.applyNode(node, report); !st) return st;
+  for (const auto& c : description.connections) {
+    std::lock_guard<std::mutex> lock(staged.edit_mutex_);
+    if (auto st = staged.connectLocked(c); !st) return Status::error(at(c.line) + st.message());
+  }
+  std::lock_guard<std::mutex> lock(edit_mutex_);
+  adoptLocked(staged, description);
+  return report;
+}
+
+void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
+  std::vector<ThreadGroup*> paused;
+  for (auto& [name, g] : groups_) {
+    g->pause();
+    paused.push_back(g.get());
+  }
+  clearLocked();
+  // Groups neither listed nor used by a node go away with the old graph.
+  std::set<std::string> keep(description.thread_groups.begin(), description.thread_groups.end());
+  keep.insert("default");
+  for (auto& [seq, n] : staged.order_) keep.insert(n->group->name());
+  for (auto it = groups_.begin(); it != groups_.end();) {
+    if (keep.count(it->first)) {
+      ++it;
+      continue;
+    }
+    paused.erase(std::remove(paused.begin(), paused.end(), it->second.get()), paused.end());
+    it->second->stop();
+    it = groups_.erase(it);
+  }
+  for (const auto& name : keep) group(name);
+  for (auto& [seq, n] : staged.order_) {
+    n->queued = false;
+    std::lock_guard<std::mutex> g(n->group_mutex);
+    n->group = group(n->group->name());
+  }
+  nodes_ = std::move(staged.nodes_);
+  order_ = std::move(staged.order_);
+  dormant_ = std::move(staged.dormant_);
+  name_counters_ = std::move(staged.name_counters_);
+  next_seq_ = staged.next_seq_;
+  staged.nodes_.clear();
+  staged.order_.clear();
+  // Staged mail (parameter and enable changes) was never run: apply it here.
+  for (auto& [seq, n] : order_) {
+    if (n->type) n->post([](NodeState& x) {
+      x.applyParams();
+      x.applyEnabled();
+    });
+    if (n->blockers.load() == 0) n->group->push(n);
+  }
+  for (ThreadGroup* g : paused) g->resume();
+}
+
+}  // namespace apex

@@ -1,0 +1,38 @@
+#include "apex/core/message.hpp"
+
+#include <cxxabi.h>
+
+#include <cstdlib>
+#include <map>
+#include <mutex>
+
+namespace apex {
+namespace detail {
+
+std::string demangle(const char* mangled) {
+  int status = 0;
+  char* out = abi::__cxa_demangle(mangled, nullptr, nullptr, &status);
+  std::string name = (status == 0 && out) ? out : mangled;
+  std::free(out);
+  return name;
+}
+
+const TypeInfo* internType(const std::type_info& type, const std::string& name) {
+  // Types live for the whole process: plugin libraries may be unloaded, but a
+  // TypeInfo they created must stay valid for messages still in flight.
+  static std::mutex mutex;
+  static auto* table = new std::map<std::type_index, TypeInfo*>();
+  std::lock_guard<std::mutex> lock(mutex);
+  auto [it, inserted] = table->emplace(std::type_index(type), nullptr);
+  if (inserted) it->second = new TypeInfo{name, std::type_index(type)};
+  return it->second;
+}
+
+}  // namespace detail
+
+const std::string& Message::typeName() const {
+  static const std::string kNothing = "Nothing";
+  return type_ ? type_->name : kNothing;
+}
+
+}  // namespace apex

@@ -1,0 +1,75 @@
+// Node's accessors: thin lookups into the node's runtime state.
+#include "apex/core/node.hpp"
+
+#include <stdexcept>
+
+#include "node_state.hpp"
+
+namespace apex {
+namespace {
+
+[[noreturn]] void unknown(const detail::NodeState& s, const std::string& what, const std::string& name,
+                          const std::string& list) {
+  throw std::invalid_argument("node '" + s.name + "' (" + s.typeId() + ") has no " + what + " '" + name + "' (" +
+                              what + "s: " + list + ")");
+}
+
+detail::NodeState& stateOf(detail::NodeState* s) {
+  if (!s) throw std::logic_error("this apex::Node is not part of a graph yet (called from its constructor?)");
+  return *s;
+}
+
+}  // namespace
+
+const std::string& Node::name() const {
+  static const std::string kNone;
+  return state_ ? state_->name : kNone;
+}
+
+void Node::notifyNewData() {
+  if (state_) state_->notifyNewData();
+}
+
+const Message& Node::inputMessage(const std::string& input) const {
+  auto& s = stateOf(state_);
+  const int i = s.findInput(input);
+  if (i < 0) unknown(s, "input", input, s.manifest.listInputs());
+  return s.inputs[i]->current;
+}
+
+void Node::publishMessage(const std::string& output, Message message) {
+  auto& s = stateOf(state_);
+  const int i = s.findOutput(output);
+  if (i < 0) unknown(s, "output", output, s.manifest.listOutputs());
+  const TypeInfo* want = s.manifest.outputs[i].type;
+  if (!message.isNothing() && !compatible(message.type(), want)) {
+    throw std::invalid_argument("node '" + s.name + "' published a " + message.typeName() + " on output '" + output +
+                                "', which carries " + want->name);
+  }
+  s.setOutput(i, std::move(message));
+}
+
+const ParamValue& Node::paramValue(const std::string& name) const {
+  auto& s = stateOf(state_);
+  const int i = s.findParam(name);
+  if (i < 0) unknown(s, "parameter", name, s.manifest.listParams());
+  return s.params[i].active;
+}
+
+void Node::trigger(const std::string& name) {
+  auto& s = stateOf(state_);
+  const int i = s.findTrigger(name);
+  if (i < 0) unknown(s, "trigger", name, s.manifest.listTriggers());
+  s.fireTrigger(i);
+}
+
+void Node::throwWrongType(const std::string& input, const Message& m, const TypeInfo* want) const {
+  throw std::invalid_argument("node '" + name() + "': input '" + input + "' holds a " + m.typeName() + ", not a " +
+                              want->name);
+}
+
+void Node::throwWrongParamType(const std::string& n) const {
+  throw std::invalid_argument("node '" + name() + "': parameter '" + n + "' is read with the wrong C++ type");
+}
+
+}  // namespace apex

@@ -1,0 +1,129 @@
+// Parameter values to and from YAML text. With graph_file.cpp the only code
+// that includes yaml-cpp.
+#include <yaml-cpp/yaml.h>
+
+#include <charconv>
+
+#include "apex/core/param.hpp"
+
+namespace apex {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  std::string s(buf, r.ptr);
+  // keep doubles recognisable as such when read back by people and tools
+  if (s.find_first_of(".eEni") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string quoted(const std::string& s) {
+  YAML::Emitter e;
+  e << YAML::Flow << s;
+  return e.c_str();
+}
+
+struct Parser {
+  const ParamSpec& spec;
+  const YAML::Node& node;
+
+  Status fail(const std::string& what) const {
+    YAML::Emitter e;
+    e << YAML::Flow << node;
+    return Status::error("parameter '" + spec.name + "' (" + spec.kindName() + ") expects " + what + ", got '" +
+                         e.c_str() + "'");
+  }
+  template <class T>
+  bool scalar(const YAML::Node& n, T& out) const {
+    if (!n || !n.IsScalar()) return false;  // a missing map key is an invalid node
+    return YAML::convert<T>::decode(n, out);
+  }
+  Result<std::vector<double>> numbers(std::size_t count) const {
+    std::vector<double> v;
+    if (!node.IsSequence() || (count && node.size() != count)) return Status::error("");
+    for (const auto& item : node) {
+      double d;
+      if (!scalar(item, d)) return Status::error("");
+      v.push_back(d);
+    }
+    return v;
+  }
+
+  Result<ParamValue> parse() const {
+    switch (spec.kind) {
+      case ParamKind::Bool: { bool b; if (scalar(node, b)) return ParamValue(b); return fail("true or false"); }
+      case ParamKind::Int:
+      case ParamKind::IntRange: { int i; if (scalar(node, i)) return ParamValue(i); return fail("an integer"); }
+      case ParamKind::Double:
+      case ParamKind::DoubleRange:
+      case ParamKind::Angle: { double d; if (scalar(node, d)) return ParamValue(d); return fail("a number"); }
+      case ParamKind::String:
+      case ParamKind::Path:
+      case ParamKind::Set: { std::string s; if (scalar(node, s)) return ParamValue(s); return fail("a string"); }
+      case ParamKind::Interval: return pairLike<Interval>("low", "high");
+      case ParamKind::Pair: return pairLike<Pair>("first", "second");
+      case ParamKind::Color: return color();
+      case ParamKind::List: {
+        auto v = numbers(0);
+        if (!v) return fail("a list of numbers, e.g. [1, 2.5]");
+        return ParamValue(v.value());
+      }
+    }
+    return fail("a value");
+  }
+
+  template <class T>
+  Result<ParamValue> pairLike(const char* a, const char* b) const {
+    double x, y;
+    if (node.IsMap() && scalar(node[a], x) && scalar(node[b], y)) return ParamValue(T{x, y});
+    auto v = numbers(2);
+    if (v) return ParamValue(T{v.value()[0], v.value()[1]});
+    return fail(std::string("two numbers, e.g. [1, 2] or {") + a + ": 1, " + b + ": 2}");
+  }
+
+  Result<ParamValue> color() const {
+    int r, g, b;
+    if (node.IsMap() && scalar(node["r"], r) && scalar(node["g"], g) && scalar(node["b"], b)) return ParamValue(Color{r, g, b});
+    if (node.IsSequence() && node.size() == 3 && scalar(node[0], r) && scalar(node[1], g) && scalar(node[2], b))
+      return ParamValue(Color{r, g, b});
+    return fail("a colour, e.g. [255, 0, 0] or {r: 255, g: 0, b: 0}");
+  }
+};
+
+}  // namespace
+
+Result<ParamValue> ParamSpec::parse(std::string_view text) const {
+  YAML::Node node;
+  try {
+    node = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    return Status::error("parameter '" + name + "': '" + std::string(text) + "' is not valid YAML: " + e.msg);
+  }
+  auto value = Parser{*this, node}.parse();
+  if (!value) return value;
+  if (auto st = validate(value.value()); !st) return st;
+  return value;
+}
+
+std::string toText(const ParamValue& value) {
+  struct Visitor {
+    std::string operator()(bool b) const { return b ? "true" : "false"; }
+    std::string operator()(int i) const { return std::to_string(i); }
+    std::string operator()(double d) const { return number(d); }
+    std::string operator()(const std::string& s) const { return quoted(s); }
+    std::string operator()(const Interval& i) const { return "[" + number(i.low) + ", " + number(i.high) + "]"; }
+    std::string operator()(const Pair& p) const { return "[" + number(p.first) + ", " + number(p.second) + "]"; }
+    std::string operator()(const Color& c) const {
+      return "[" + std::to_string(c.r) + ", " + std::to_string(c.g) + ", " + std::to_string(c.b) + "]";
+    }
+    std::string operator()(const std::vector<double>& v) const {
+      std::string s = "[";
+      for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number(v[i]);
+      return s + "]";
+    }
+  };
+  return std::visit(Visitor{}, value);
+}
+
+}  // namespace apex

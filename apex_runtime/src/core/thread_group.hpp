@@ -1,0 +1,90 @@
+// One scheduler thread with a ready queue and a mailbox.
+// Ownership: the group's mutex guards the queue, the mailbox, the pause and
+// hold state and every NodeState::queued flag of nodes in this group. A node's
+// own state is only touched by this thread, or by an editor while this group
+// is paused (see graph.cpp).
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apex/core/description.hpp"
+
+namespace apex {
+namespace detail {
+
+class NodeState;
+
+/** An event, parameter value or other work for one node, run on its group's thread. */
+struct Mail {
+  std::shared_ptr<NodeState> node;
+  std::function<void(NodeState&)> fn;
+};
+
+class ThreadGroup {
+ public:
+  explicit ThreadGroup(std::string name) : name_(std::move(name)) {}
+  ~ThreadGroup() { stop(); }
+
+  const std::string& name() const { return name_; }
+  void start();
+  void stop();
+
+  /** @brief A node became ready; wakes the thread only if it sleeps. */
+  void push(NodeState* node);
+  /** @brief Removes a node from the ready queue (the group must be paused). */
+  void unqueue(NodeState* node);
+  /** @brief Work for a node, run between firings. */
+  void post(Mail mail);
+
+  /** @brief Returns once the thread is parked at a firing boundary; counted, so
+   *  several editors may pause at once. Cheap when the thread is idle. */
+  void pause();
+  void resume();
+
+  /** @brief Graph-wide pause: no firing (mail still runs) until released. */
+  void hold(bool on);
+  /** @brief While held: allow the nodes ready now to fire once each. */
+  void beginStep();
+  void waitStep();
+
+  /** @brief Waits until nothing is ready, queued, running or posted; false on timeout. */
+  bool waitIdle(std::chrono::steady_clock::time_point deadline);
+  /** @brief Counts pushes and posts: unchanged between two idle checks means no work moved. */
+  std::uint64_t activity() const;
+  GroupStats stats() const;
+
+ private:
+  void run();
+  void runMail(std::vector<Mail>& batch);
+  bool canFire() const { return !ready_.empty() && (!hold_ || step_budget_ > 0); }
+  bool idleLocked() const { return mail_.empty() && !canFire() && !busy_ && (waiting_ || !thread_.joinable()); }
+
+  const std::string name_;
+  mutable std::mutex m_;
+  std::condition_variable cv_;        // wakes the thread
+  std::condition_variable state_cv_;  // the thread parked, stepped or went idle
+  std::deque<NodeState*> ready_;
+  std::vector<Mail> mail_;
+  bool waiting_ = false;   // the thread waits on cv_ (at a firing boundary)
+  bool busy_ = false;      // the thread runs a firing or mail
+  bool stop_ = false;
+  int pause_requests_ = 0;
+  bool hold_ = false;
+  std::size_t step_budget_ = 0;
+  std::uint64_t activity_ = 0;
+  std::thread thread_;
+
+  std::atomic<std::uint64_t> busy_ns_{0}, firings_{0}, wakeups_{0};
+  std::chrono::steady_clock::time_point started_{};
+};
+
+}  // namespace detail
+}  // namespace apex

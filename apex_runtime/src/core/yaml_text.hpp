@@ -1,0 +1,13 @@
+// Internal: small YAML checks for code outside the file format.
+#pragma once
+
+#include <string>
+
+#include "apex/core/result.hpp"
+
+namespace apex {
+namespace detail {
+/** @brief OK if the text parses as YAML; else the parser's message. */
+Status checkYamlText(const std::string& text);
+}  // namespace detail
+}  // namespace apex

@@ -1,0 +1,109 @@
+// Node types: one registration per type, manifests listed without instances,
+// the function adapter, and refused registrations.
+#include <gmock/gmock.h>
+
+#include "apex/core/function_node.hpp"
+#include "apex_test/test_nodes.hpp"
+
+using namespace apex_test;
+using ::testing::HasSubstr;
+
+namespace {
+
+int plus(int a, int b) { return a + b; }
+
+}  // namespace
+
+TEST(Registry, ListsAWholeInterfaceWithoutCreatingANode) {
+  NodeRegistry r = testRegistry();
+  auto type = r.find("test/Counter");
+  ASSERT_TRUE(type);
+  const Manifest& m = *type->manifest;
+  ASSERT_EQ(m.inputs.size(), 1u);
+  EXPECT_EQ(m.inputs[0].type, typeOf<Any>());
+  ASSERT_EQ(m.params.size(), 1u);
+  EXPECT_EQ(m.params[0].name, "every");
+  // built-in events come first, then the type's own
+  ASSERT_EQ(m.slots.size(), 3u);
+  EXPECT_EQ(m.slots[0].name, "enable");
+  EXPECT_EQ(m.slots[1].name, "disable");
+  EXPECT_EQ(m.slots[2].name, "reset");
+  ASSERT_EQ(m.triggers.size(), 2u);
+  EXPECT_EQ(m.triggers[0].name, "processed");
+  EXPECT_EQ(m.triggers[1].name, "every_n");
+}
+
+TEST(Registry, RefusesADuplicateId) {
+  NodeRegistry r;
+  ASSERT_TRUE(r.add<Relay>("test/Relay"));
+  auto st = r.add<Relay>("test/Relay");
+  ASSERT_FALSE(st);
+  EXPECT_THAT(st.message(), HasSubstr("'test/Relay' is already registered"));
+}
+
+TEST(Registry, RefusesABadIdOrClashingNames) {
+  NodeRegistry r;
+  EXPECT_THAT(r.add<Relay>("Relay").message(), HasSubstr("must look like 'package/Name'"));
+  auto clash = r.add("test/Clash", Manifest().input<int>("x").param(param::integer("x", 0)), [] {
+    return std::unique_ptr<Node>(new Relay());
+  });
+  EXPECT_THAT(clash.message(), HasSubstr("parameter 'x' has the name of another port"));
+  auto builtin = r.add("test/Builtin", Manifest().trigger("processed"), [] { return std::unique_ptr<Node>(new Relay()); });
+  EXPECT_THAT(builtin.message(), HasSubstr("'processed'"));
+  auto bad_default = r.add("test/BadDefault", Manifest().param(param::range("block", 3, 99, 2, 10)),
+                           [] { return std::unique_ptr<Node>(new Relay()); });
+  EXPECT_THAT(bad_default.message(), HasSubstr("default value"));
+  EXPECT_THAT(bad_default.message(), HasSubstr("not on the step"));
+}
+
+TEST(Registry, UnknownTypeNamesTheKnownOnes) {
+  Graph g(testRegistry());
+  auto r = g.addNode("test/Nope");
+  ASSERT_FALSE(r);
+  EXPECT_THAT(r.message(), HasSubstr("unknown node type 'test/Nope'"));
+  EXPECT_THAT(r.message(), HasSubstr("test/Relay"));
+}
+
+TEST(Registry, GeneratesNamesAndRefusesBadOnes) {
+  Graph g(testRegistry());
+  EXPECT_EQ(g.addNode("test/OptionalSum").value(), "optional_sum_1");
+  EXPECT_EQ(g.addNode("test/OptionalSum").value(), "optional_sum_2");
+  EXPECT_THAT(g.addNode("test/Relay", "has space").message(), HasSubstr("node name 'has space'"));
+  add(g, "test/Relay", "r");
+  EXPECT_THAT(g.addNode("test/Relay", "r").message(), HasSubstr("a node named 'r' already exists"));
+}
+
+TEST(FunctionNode, DeducesPortsFromTheSignature) {
+  NodeRegistry r = testRegistry();
+  ASSERT_TRUE(registerFunction(r, "fn/Add", &plus, "adds", {"a", "b"}, {"sum"}));
+  ASSERT_TRUE(registerFunction(
+      r, "fn/DivMod", [](int a, int b) { return std::make_tuple(a / b, a % b); }, "divides", {}, {"q", "r"}));
+  auto m = r.find("fn/DivMod")->manifest;
+  ASSERT_EQ(m->inputs.size(), 2u);
+  EXPECT_EQ(m->inputs[0].name, "in0");
+  EXPECT_EQ(m->outputs[1].name, "r");
+  EXPECT_EQ(m->outputs[1].type, typeOf<int>());
+  auto wrong = registerFunction(r, "fn/Wrong", &plus, "adds", {"only_one"}, {});
+  EXPECT_THAT(wrong.message(), HasSubstr("has 2 inputs and 1 outputs"));
+
+  Graph g(std::move(r));
+  add(g, "test/Feeder", "fa");
+  add(g, "test/Feeder", "fb");
+  add(g, "fn/Add", "sum");
+  add(g, "fn/DivMod", "dm");
+  add(g, "test/Collector", "q");
+  add(g, "test/Collector", "rem");
+  link(g, "fa", "out", "sum", "a");
+  link(g, "fb", "out", "sum", "b");
+  link(g, "sum", "sum", "dm", "in0");
+  link(g, "fb", "out", "dm", "in1");
+  link(g, "dm", "q", "q", "in");
+  link(g, "dm", "r", "rem", "in");
+  g.start();
+  object<Feeder>(g, "fa")->feed(11);
+  object<Feeder>(g, "fb")->feed(3);
+  ASSERT_TRUE(object<Collector>(g, "rem")->waitFor(1));
+  ASSERT_TRUE(object<Collector>(g, "q")->waitFor(1));
+  EXPECT_EQ(object<Collector>(g, "q")->ints(), std::vector<int>{4});    // (11 + 3) / 3
+  EXPECT_EQ(object<Collector>(g, "rem")->ints(), std::vector<int>{2});  // (11 + 3) % 3
+}

@@ -1,0 +1,193 @@
+// Reusable node types for core tests, with counters a test can wait on.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <mutex>
+#include <stdexcept>
+#include <vector>
+
+#include "apex/core/graph.hpp"
+
+namespace apex_test {
+
+using namespace apex;
+using namespace std::chrono_literals;
+
+constexpr double kWait = 10.0;  // seconds: generous, a passing test never waits this long
+
+/** A driven source: feed(v) queues values; each firing publishes one. Nothing is dropped. */
+class Feeder : public Node {
+ public:
+  static Manifest manifest() { return Manifest("feeds queued ints").output<int>("out").driven(); }
+  void feed(int v) {
+    {
+      std::lock_guard<std::mutex> l(m_);
+      queue_.push_back(v);
+    }
+    notifyNewData();
+  }
+  void process() override {
+    int v;
+    bool more;
+    {
+      std::lock_guard<std::mutex> l(m_);
+      if (queue_.empty()) return;  // sends Nothing
+      v = queue_.front();
+      queue_.pop_front();
+      more = !queue_.empty();
+    }
+    publish("out", v);
+    if (more) notifyNewData();
+  }
+
+ private:
+  std::mutex m_;
+  std::deque<int> queue_;
+};
+
+/** A free-running source: 0, 1, 2, ... as fast as its receivers read. */
+class Ticker : public Node {
+ public:
+  static Manifest manifest() { return Manifest("counts up").output<int>("out"); }
+  void process() override { publish("out", n_++); }
+
+ private:
+  int n_ = 0;
+};
+
+/** Passes any message on. */
+class Relay : public Node {
+ public:
+  static Manifest manifest() { return Manifest("passes anything").input<Any>("in").output<Any>("out"); }
+  void process() override { publishMessage("out", inputMessage("in")); }
+};
+
+/** Adds `gain` (an interactive-capable parameter) times the input. */
+class Gain : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("multiplies by gain")
+        .input<int>("in")
+        .output<int>("out")
+        .param(param::range("gain", -100, 100, 1, 1).describe("factor"));
+  }
+  void process() override { publish("out", *input<int>("in") * param<int>("gain")); }
+};
+
+/** Sums a and, if present, the optional b. */
+class OptionalSum : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("a + b?").input<int>("a").optionalInput<int>("b").output<int>("sum");
+  }
+  void process() override {
+    int s = *input<int>("a");
+    if (hasInput("b")) s += *input<int>("b");
+    publish("sum", s);
+  }
+};
+
+/** Throws when the input equals `throw_on`, else passes it on. */
+class Thrower : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("throws on one value").input<int>("in").output<int>("out").param(param::integer("throw_on", -1));
+  }
+  void process() override {
+    const int v = *input<int>("in");
+    if (v == param<int>("throw_on")) throw std::runtime_error("bad value " + std::to_string(v));
+    publish("out", v);
+  }
+};
+
+/** Counts events on its own slot and fires its own trigger every `every` firings. */
+class Counter : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("counts firings")
+        .input<Any>("in")
+        .slot("reset", &Counter::reset, "sets the count to zero")
+        .trigger("every_n", "fires every `every` inputs")
+        .param(param::integer("every", 3));
+  }
+  void process() override {
+    if (++count % param<int>("every") == 0) trigger("every_n");
+  }
+  void reset() {
+    count = 0;
+    ++resets;
+  }
+  std::atomic<int> count{0}, resets{0};
+};
+
+/** Records every message it receives (including Nothing); tests wait on it. */
+class Collector : public Node {
+ public:
+  static Manifest manifest() { return Manifest("records messages, Nothing too").optionalInput<Any>("in"); }
+  void process() override {
+    std::lock_guard<std::mutex> l(m_);
+    got_.push_back(inputMessage("in"));
+    cv_.notify_all();
+  }
+  bool waitFor(std::size_t n, double timeout = kWait) {
+    std::unique_lock<std::mutex> l(m_);
+    return cv_.wait_for(l, std::chrono::duration<double>(timeout), [&] { return got_.size() >= n; });
+  }
+  std::vector<Message> messages() {
+    std::lock_guard<std::mutex> l(m_);
+    return got_;
+  }
+  /** The ints received; Nothing as -999. */
+  std::vector<int> ints() {
+    std::vector<int> out;
+    for (auto& m : messages()) out.push_back(m.isNothing() ? -999 : *m.as<int>());
+    return out;
+  }
+  std::size_t size() {
+    std::lock_guard<std::mutex> l(m_);
+    return got_.size();
+  }
+
+ private:
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::vector<Message> got_;
+};
+
+/** A registry with every test type. */
+inline NodeRegistry testRegistry() {
+  NodeRegistry r;
+  EXPECT_TRUE(r.add<Feeder>("test/Feeder"));
+  EXPECT_TRUE(r.add<Ticker>("test/Ticker"));
+  EXPECT_TRUE(r.add<Relay>("test/Relay"));
+  EXPECT_TRUE(r.add<Gain>("test/Gain"));
+  EXPECT_TRUE(r.add<OptionalSum>("test/OptionalSum"));
+  EXPECT_TRUE(r.add<Thrower>("test/Thrower"));
+  EXPECT_TRUE(r.add<Counter>("test/Counter"));
+  EXPECT_TRUE(r.add<Collector>("test/Collector"));
+  return r;
+}
+
+template <class T>
+T* object(Graph& g, const std::string& name) {
+  return dynamic_cast<T*>(g.nodeObject(name));
+}
+
+/** Adds a node and fails the test if that is refused. */
+inline std::string add(Graph& g, const std::string& type, const std::string& name, const std::string& group = "") {
+  auto r = g.addNode(type, name, group);
+  EXPECT_TRUE(r) << r.message();
+  return r ? r.value() : std::string();
+}
+
+inline void link(Graph& g, const std::string& a, const std::string& ap, const std::string& b, const std::string& bp) {
+  auto st = g.connect(a, ap, b, bp);
+  EXPECT_TRUE(st) << st.message();
+}
+
+}  // namespace apex_test
