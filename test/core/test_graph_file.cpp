@@ -1,81 +1,30 @@
-// The YAML graph format: canonical round trips, files on disk, error messages
-// with line numbers, all-or-nothing loading, placeholders for unknown types.
+// The YAML graph format: canonical round trips, files on disk, placeholders for
+// unknown types, safe saving and readable text. Error cases: test_graph_file_errors.cpp.
 #include <gtest/gtest.h>
-#include <stdlib.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "apex/core/graph.hpp"
 #include "apex/core/graph_file.hpp"
+#include "apex_test/graph_file_helpers.hpp"
 #include "apex_test/test_nodes.hpp"
 
 namespace {
 
 using namespace apex;
 using apex_test::add;
-using apex_test::link;
+using apex_test::buildRichGraph;
+using apex_test::Contains;
 using apex_test::object;
+using apex_test::readFile;
+using apex_test::TempDir;
 using apex_test::testRegistry;
+using apex_test::writeFile;
 namespace fs = std::filesystem;
-
-::testing::AssertionResult Contains(const std::string& text, const std::vector<std::string>& parts) {
-  for (const auto& p : parts)
-    if (text.find(p) == std::string::npos)
-      return ::testing::AssertionFailure() << "'" << text << "' does not contain '" << p << "'";
-  return ::testing::AssertionSuccess();
-}
-
-/** A fresh directory (mkdtemp), removed with everything in it at the end of the test. */
-struct TempDir {
-  TempDir() {
-    std::string tmpl = (fs::temp_directory_path() / "apex_graph_file_XXXXXX").string();
-    if (!::mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-    path = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  /** Every entry's file name, sorted. */
-  std::vector<std::string> entries() const {
-    std::vector<std::string> out;
-    for (const auto& e : fs::directory_iterator(path)) out.push_back(e.path().filename().string());
-    std::sort(out.begin(), out.end());
-    return out;
-  }
-  fs::path path;
-};
-
-std::string readFile(const std::string& path) {
-  std::stringstream s;
-  s << std::ifstream(path).rdbuf();
-  return s.str();
-}
-void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-/** A graph using every feature the file records. */
-void buildRichGraph(Graph& g) {
-  add(g, "test/Feeder", "feeder"), add(g, "test/Gain", "g1", "vision"), add(g, "test/Gain", "g2");
-  add(g, "test/Collector", "sink"), add(g, "test/Counter", "c1", "vision"), add(g, "test/Counter", "c2");
-  link(g, "feeder", "out", "g1", "in"), link(g, "g1", "out", "g2", "in");
-  link(g, "g2", "out", "sink", "in"), link(g, "feeder", "out", "c1", "in");
-  ASSERT_TRUE(g.setParameter("g1", "gain", "7"));
-  ASSERT_TRUE(g.setParameter("c1", "every", "2"));
-  ASSERT_TRUE(g.setInteractive("g1", "gain", true));
-  ASSERT_TRUE(g.setInteractive("g2", "gain", true));
-  link(g, "g1", "gain", "g2", "gain");
-  link(g, "c1", "every_n", "c2", "reset");
-  ASSERT_TRUE(g.setEnabled("c2", false));
-  ASSERT_TRUE(g.setUi("g1", "{x: 10, y: 20}"));
-  ASSERT_TRUE(g.setUi("sink", "{x: 300, y: 20, collapsed: true}"));
-}
 
 // ---------------------------------------------------------------- (a) round trip in memory
 
@@ -134,126 +83,6 @@ TEST(GraphFileDisk, SaveThenLoadRoundTrips) {
   auto missing = loadGraphFile(copy, dir.file("absent.yaml"));
   ASSERT_FALSE(missing);
   EXPECT_TRUE(Contains(missing.message(), {dir.file("absent.yaml")}));
-}
-
-// ---------------------------------------------------------------- (c) errors leave the graph untouched
-
-class GraphFileErrors : public ::testing::Test {
- protected:
-  void SetUp() override {
-    buildRichGraph(graph);
-    before = formatGraphText(graph.describe());
-  }
-  /** Loads `text` from a file; expects failure and an untouched graph; returns the message. */
-  std::string loadFails(const std::string& text) {
-    const std::string path = dir.file("bad.yaml");
-    writeFile(path, text);
-    auto r = loadGraphFile(graph, path);
-    EXPECT_FALSE(r) << "loaded:\n" << text;
-    EXPECT_TRUE(Contains(r.message(), {path}));
-    EXPECT_EQ(formatGraphText(graph.describe()), before);
-    EXPECT_EQ(graph.size(), 6u);
-    return r.message();
-  }
-  TempDir dir;
-  Graph graph{testRegistry()};
-  std::string before;
-};
-
-TEST_F(GraphFileErrors, MalformedYamlNamesTheLine) {
-  const std::string indent = loadFails("apex_graph: 1\nnodes:\n  - name: g\n     type: test/Gain\n");
-  EXPECT_TRUE(Contains(indent, {"line 4"})) << indent;
-  const std::string flow = loadFails(
-      "apex_graph: 1\nnodes:\n  - name: g\n    type: test/Gain\n    parameters: {gain: [1, 2}\n");
-  EXPECT_TRUE(Contains(flow, {"line 5"})) << flow;
-  const std::string open = loadFails("apex_graph: 1\nnodes: [\n  {name: a, type: test/Gain},\n  {name: b\n");
-  EXPECT_TRUE(Contains(open, {"line "})) << open;
-}
-
-TEST_F(GraphFileErrors, EmptyFileHasNoLineZero) {
-  const std::string msg = loadFails("");
-  EXPECT_TRUE(Contains(msg, {"apex_graph"}));
-  EXPECT_EQ(msg.find("line 0"), std::string::npos) << msg;  // lines count from 1
-}
-
-TEST_F(GraphFileErrors, NotAGraphFileOrWrongVersion) {
-  EXPECT_TRUE(Contains(loadFails("nodes: []\nconnections: []\n"), {"apex_graph"}));
-  EXPECT_TRUE(Contains(loadFails("- just\n- a list\n"), {"apex_graph"}));
-  const std::string msg = loadFails("apex_graph: 2\nnodes: []\n");
-  EXPECT_TRUE(Contains(msg, {"line 1", "format 2", "not supported", "format 1"})) << msg;
-  EXPECT_TRUE(Contains(loadFails("apex_graph: one\n"), {"line 1", "version number"}));
-}
-
-TEST_F(GraphFileErrors, UnknownKeyInANodeNamesKeyAndLine) {
-  const std::string msg = loadFails("apex_graph: 1\nnodes:\n  - name: g\n    type: test/Gain\n    colour: red\n");
-  EXPECT_TRUE(Contains(msg, {"line 5", "node 'g'", "unknown key 'colour'", "thread_group", "parameters"})) << msg;
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodez: []\n"), {"line 2", "unknown key 'nodez'"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain}\n"
-                                 "connections:\n  - {from: g/out, to: g/in, via: x}\n"),
-                       {"line 5", "unknown key 'via'"}));
-}
-
-TEST_F(GraphFileErrors, ConnectionToAnUnknownPortListsThePorts) {
-  const std::string msg = loadFails(
-      "apex_graph: 1\nnodes:\n  - name: f\n    type: test/Feeder\n  - name: g\n    type: test/Gain\n"
-      "connections:\n  - {from: f/out, to: g/input}\n");
-  EXPECT_TRUE(Contains(msg, {"line 8", "f/out", "g/input", "node 'g'", "inputs: in", "parameters: gain"})) << msg;
-  const std::string out = loadFails(
-      "apex_graph: 1\nnodes:\n  - {name: f, type: test/Feeder}\n  - {name: g, type: test/Gain}\n"
-      "connections:\n  - {from: f/output, to: g/in}\n");
-  EXPECT_TRUE(Contains(out, {"line 6", "'output'", "outputs: out"})) << out;
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: f, type: test/Feeder}\n"
-                                 "connections:\n  - {from: f/out, to: nobody/in}\n"),
-                       {"line 5", "no node named 'nobody'"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nconnections:\n  - {from: f, to: g/in}\n"),
-                       {"line 3", "node/port"}));
-}
-
-TEST_F(GraphFileErrors, CycleInTheFile) {
-  const std::string msg = loadFails(
-      "apex_graph: 1\nnodes:\n  - {name: a, type: test/Gain}\n  - {name: b, type: test/Gain}\n"
-      "connections:\n  - {from: a/out, to: b/in}\n  - {from: b/out, to: a/in}\n");
-  EXPECT_TRUE(Contains(msg, {"line 7", "cycle"})) << msg;
-}
-
-TEST_F(GraphFileErrors, BadNodeSettingsNameTheNodeLine) {
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - name: g\n    type: test/Gain\n"
-                                 "    parameters: {gain: 500}\n"),
-                       {"line 3", "'g'", "'gain'", "out of range"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, parameters: {gian: 1}}\n"),
-                       {"line 3", "no parameter 'gian'"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain}\n"
-                                 "  - {name: g, type: test/Gain}\n"),
-                       {"line 4", "already exists"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, enabled: perhaps}\n"),
-                       {"line 3", "'enabled'"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g}\n"), {"line 3", "'type' is missing"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, interactive: [nope]}\n"),
-                       {"line 3", "'nope'"}));
-}
-
-/** A node type with a pair parameter, for map-valued parameters in files. */
-struct Sized : Node {
-  static Manifest manifest() { return Manifest("has a size").param(param::pair("size", 1, 2)); }
-  void process() override {}
-};
-
-TEST(GraphFileErrorsMapValue, ParameterMapMissingAKeyIsAnErrorNotAnException) {
-  NodeRegistry registry = testRegistry();
-  ASSERT_TRUE(registry.add<Sized>("test/Sized"));
-  Graph g(registry);
-  add(g, "test/Sized", "before");
-  const std::string prior = formatGraphText(g.describe());
-  auto parsed = parseGraphText("apex_graph: 1\nnodes:\n  - {name: s, type: test/Sized, parameters: {size: {first: 1}}}\n");
-  ASSERT_TRUE(parsed) << parsed.message();
-  Result<LoadReport> r = Status::error("not run");
-  EXPECT_NO_THROW(r = g.load(parsed.value()));
-  EXPECT_FALSE(r);
-  EXPECT_TRUE(Contains(r.message(), {"line 3", "'size'"})) << r.message();
-  EXPECT_EQ(formatGraphText(g.describe()), prior);
-  Result<std::string> set = Status::error("not run");
-  EXPECT_NO_THROW(set = g.setParameter("before", "size", "{second: 5}"));
-  EXPECT_FALSE(set);
 }
 
 // ---------------------------------------------------------------- (d) unknown types as placeholders

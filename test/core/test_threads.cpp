@@ -129,6 +129,7 @@ TEST_F(Threads, OneWakeUpPerMessageCrossingIntoAnIdleGroup) {
   add(g, "test/Collector", "sink", "far");
   link(g, "src", "out", "sink", "in");
   g.start();
+  ASSERT_TRUE(g.waitIdle(kWait));  // both threads asleep: every message below must wake them
   for (int i = 0; i < 20; ++i) {
     src()->feed(i);
     ASSERT_TRUE(sink()->waitFor(i + 1));

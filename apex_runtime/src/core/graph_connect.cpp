@@ -23,6 +23,9 @@ struct Endpoint {
   const TypeInfo* type;  // nullptr for events
 };
 
+/** "an input", "a slot" */
+std::string withArticle(Kind k);
+
 const char* kindName(Kind k) {
   switch (k) {
     case Kind::Output: return "output";
@@ -32,6 +35,11 @@ const char* kindName(Kind k) {
     case Kind::Slot: return "slot";
   }
   return "port";
+}
+
+std::string withArticle(Kind k) {
+  const std::string n = kindName(k);
+  return (n[0] == 'i' || n[0] == 'o' ? "an " : "a ") + n;
 }
 
 template <class T>
@@ -120,7 +128,8 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
   if (!from) return fail("no node named '" + c.from_node + "'");
   if (!to) return fail("no node named '" + c.to_node + "'");
   if (!from->type || !to->type) {  // a placeholder: keep the connection as written
-    if (std::find(dormant_.begin(), dormant_.end(), c) == dormant_.end()) dormant_.push_back(c);
+    if (std::find(dormant_.begin(), dormant_.end(), c) != dormant_.end()) return fail("they are already connected");
+    dormant_.push_back(c);
     return Status::ok();
   }
   auto src = source(*from, c.from_port);
@@ -130,10 +139,9 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
   const Endpoint s = src.value(), d = dst.value();
 
   if ((s.kind == Kind::Trigger) != (d.kind == Kind::Slot)) {
-    return fail(s.kind == Kind::Trigger ? std::string("a trigger connects only to slots, and '") + c.to_port + "' is a " +
-                                              kindName(d.kind)
-                                        : std::string("a slot receives only triggers, and '") + c.from_port + "' is a " +
-                                              kindName(s.kind));
+    return fail(s.kind == Kind::Trigger
+                    ? "a trigger connects only to slots, and '" + c.to_port + "' is " + withArticle(d.kind)
+                    : "a slot receives only triggers, and '" + c.from_port + "' is " + withArticle(s.kind));
   }
   EditScope scope;
   if (s.kind == Kind::Trigger) {

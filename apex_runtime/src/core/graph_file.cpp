@@ -159,7 +159,9 @@ std::string formatGraphText(const GraphDescription& d) {
   YAML::Emitter out;
   out << YAML::BeginMap << YAML::Key << "apex_graph" << YAML::Value << kGraphFormatVersion;
   if (!d.thread_groups.empty()) out << YAML::Key << "thread_groups" << YAML::Value << YAML::Flow << d.thread_groups;
-  out << YAML::Key << "nodes" << YAML::Value << YAML::BeginSeq;
+  out << YAML::Key << "nodes" << YAML::Value;
+  if (d.nodes.empty()) out << YAML::Flow;  // "nodes: []"
+  out << YAML::BeginSeq;
   for (const auto& n : d.nodes) {
     out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << n.name << YAML::Key << "type" << YAML::Value
         << n.type;
@@ -180,7 +182,9 @@ std::string formatGraphText(const GraphDescription& d) {
     }
     out << YAML::EndMap;
   }
-  out << YAML::EndSeq << YAML::Key << "connections" << YAML::Value << YAML::BeginSeq;
+  out << YAML::EndSeq << YAML::Key << "connections" << YAML::Value;
+  if (d.connections.empty()) out << YAML::Flow;  // "connections: []"
+  out << YAML::BeginSeq;
   for (const auto& c : d.connections) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "from" << YAML::Value << c.from_node + "/" + c.from_port
         << YAML::Key << "to" << YAML::Value << c.to_node + "/" + c.to_port << YAML::EndMap;
@@ -198,7 +202,9 @@ Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path) {
   if (!description) return Status::error("'" + path + "', " + description.message());
   auto report = graph.load(description.value());
   if (!report) return Status::error("'" + path + "', " + report.message());
-  return report;
+  LoadReport named = report.value();
+  for (auto& w : named.warnings) w = "'" + path + "', " + w;
+  return named;
 }
 
 Status saveGraphFile(const Graph& graph, const std::string& path) {
@@ -212,6 +218,7 @@ Status writeFileAtomically(const std::string& path, const std::string& content) 
   const mode_t mode = ::stat(path.c_str(), &old) == 0 ? (old.st_mode & 07777) : 0644;  // keep a file's permissions
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
   if (fd < 0) return Status::error(fileError("write", path));
+  (void)::fchmod(fd, mode);  // open() applies the umask; a replaced file keeps its exact mode
   std::size_t done = 0;
   while (done < content.size()) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);

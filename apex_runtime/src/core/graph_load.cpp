@@ -107,8 +107,13 @@ Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
   if (!added) return fail(added.message());
   for (const auto& [param, text] : d.parameters)
     if (auto r = setParameter(d.name, param, text); !r) return fail(r.message());
+  // The file's list is the exact set: a parameter interactive by default but
+  // switched off before saving stays off.
   for (const auto& param : d.interactive)
     if (auto st = setInteractive(d.name, param, true); !st) return fail(st.message());
+  for (const auto& spec : registry_.find(d.type)->manifest->params)
+    if (std::find(d.interactive.begin(), d.interactive.end(), spec.name) == d.interactive.end())
+      (void)setInteractive(d.name, spec.name, false);
   if (auto st = setEnabled(d.name, d.enabled); !st) return fail(st.message());
   if (!d.ui.empty())
     if (auto st = setUi(d.name, d.ui); !st) return fail(st.message());

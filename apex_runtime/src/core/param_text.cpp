@@ -18,10 +18,21 @@ std::string number(double v) {
   return s;
 }
 
+/** A string as YAML; quoted where plain text would read back as a bool, number or null. */
 std::string quoted(const std::string& s) {
   YAML::Emitter e;
   e << YAML::Flow << s;
-  return e.c_str();
+  std::string plain = e.c_str();
+  const YAML::Node back = YAML::Load(plain);
+  bool b;
+  double d;
+  if (back.IsScalar() && back.Tag() != "!" &&
+      (YAML::convert<bool>::decode(back, b) || YAML::convert<double>::decode(back, d))) {
+    YAML::Emitter q;
+    q << YAML::DoubleQuoted << s;
+    return q.c_str();
+  }
+  return plain;
 }
 
 struct Parser {

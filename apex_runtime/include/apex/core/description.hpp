@@ -13,7 +13,7 @@ namespace apex {
 struct NodeDescription {
   std::string name, type;
   std::vector<std::pair<std::string, std::string>> parameters;  ///< name → YAML text, declaration order
-  std::vector<std::string> interactive;                         ///< parameters with ports
+  std::vector<std::string> interactive;                         ///< parameters with ports: the exact set
   bool enabled = true;
   std::string thread_group = "default";
   std::string ui;                ///< free-form front-end metadata, YAML flow text ("" if none)

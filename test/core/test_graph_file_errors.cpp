@@ -1,0 +1,142 @@
+// The YAML graph format's error cases: messages with line numbers, and
+// all-or-nothing loading that leaves the graph untouched.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "apex/core/graph.hpp"
+#include "apex/core/graph_file.hpp"
+#include "apex_test/graph_file_helpers.hpp"
+#include "apex_test/test_nodes.hpp"
+
+namespace {
+
+using namespace apex;
+using apex_test::add;
+using apex_test::buildRichGraph;
+using apex_test::Contains;
+using apex_test::TempDir;
+using apex_test::testRegistry;
+using apex_test::writeFile;
+
+// ---------------------------------------------------------------- (c) errors leave the graph untouched
+
+class GraphFileErrors : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    buildRichGraph(graph);
+    before = formatGraphText(graph.describe());
+  }
+  /** Loads `text` from a file; expects failure and an untouched graph; returns the message. */
+  std::string loadFails(const std::string& text) {
+    const std::string path = dir.file("bad.yaml");
+    writeFile(path, text);
+    auto r = loadGraphFile(graph, path);
+    EXPECT_FALSE(r) << "loaded:\n" << text;
+    EXPECT_TRUE(Contains(r.message(), {path}));
+    EXPECT_EQ(formatGraphText(graph.describe()), before);
+    EXPECT_EQ(graph.size(), 6u);
+    return r.message();
+  }
+  TempDir dir;
+  Graph graph{testRegistry()};
+  std::string before;
+};
+
+TEST_F(GraphFileErrors, MalformedYamlNamesTheLine) {
+  const std::string indent = loadFails("apex_graph: 1\nnodes:\n  - name: g\n     type: test/Gain\n");
+  EXPECT_TRUE(Contains(indent, {"line 4"})) << indent;
+  const std::string flow = loadFails(
+      "apex_graph: 1\nnodes:\n  - name: g\n    type: test/Gain\n    parameters: {gain: [1, 2}\n");
+  EXPECT_TRUE(Contains(flow, {"line 5"})) << flow;
+  const std::string open = loadFails("apex_graph: 1\nnodes: [\n  {name: a, type: test/Gain},\n  {name: b\n");
+  EXPECT_TRUE(Contains(open, {"line "})) << open;
+}
+
+TEST_F(GraphFileErrors, EmptyFileHasNoLineZero) {
+  const std::string msg = loadFails("");
+  EXPECT_TRUE(Contains(msg, {"apex_graph"}));
+  EXPECT_EQ(msg.find("line 0"), std::string::npos) << msg;  // lines count from 1
+}
+
+TEST_F(GraphFileErrors, NotAGraphFileOrWrongVersion) {
+  EXPECT_TRUE(Contains(loadFails("nodes: []\nconnections: []\n"), {"apex_graph"}));
+  EXPECT_TRUE(Contains(loadFails("- just\n- a list\n"), {"apex_graph"}));
+  const std::string msg = loadFails("apex_graph: 2\nnodes: []\n");
+  EXPECT_TRUE(Contains(msg, {"line 1", "format 2", "not supported", "format 1"})) << msg;
+  EXPECT_TRUE(Contains(loadFails("apex_graph: one\n"), {"line 1", "version number"}));
+}
+
+TEST_F(GraphFileErrors, UnknownKeyInANodeNamesKeyAndLine) {
+  const std::string msg = loadFails("apex_graph: 1\nnodes:\n  - name: g\n    type: test/Gain\n    colour: red\n");
+  EXPECT_TRUE(Contains(msg, {"line 5", "node 'g'", "unknown key 'colour'", "thread_group", "parameters"})) << msg;
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodez: []\n"), {"line 2", "unknown key 'nodez'"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain}\n"
+                                 "connections:\n  - {from: g/out, to: g/in, via: x}\n"),
+                       {"line 5", "unknown key 'via'"}));
+}
+
+TEST_F(GraphFileErrors, ConnectionToAnUnknownPortListsThePorts) {
+  const std::string msg = loadFails(
+      "apex_graph: 1\nnodes:\n  - name: f\n    type: test/Feeder\n  - name: g\n    type: test/Gain\n"
+      "connections:\n  - {from: f/out, to: g/input}\n");
+  EXPECT_TRUE(Contains(msg, {"line 8", "f/out", "g/input", "node 'g'", "inputs: in", "parameters: gain"})) << msg;
+  const std::string out = loadFails(
+      "apex_graph: 1\nnodes:\n  - {name: f, type: test/Feeder}\n  - {name: g, type: test/Gain}\n"
+      "connections:\n  - {from: f/output, to: g/in}\n");
+  EXPECT_TRUE(Contains(out, {"line 6", "'output'", "outputs: out"})) << out;
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: f, type: test/Feeder}\n"
+                                 "connections:\n  - {from: f/out, to: nobody/in}\n"),
+                       {"line 5", "no node named 'nobody'"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nconnections:\n  - {from: f, to: g/in}\n"),
+                       {"line 3", "node/port"}));
+}
+
+TEST_F(GraphFileErrors, CycleInTheFile) {
+  const std::string msg = loadFails(
+      "apex_graph: 1\nnodes:\n  - {name: a, type: test/Gain}\n  - {name: b, type: test/Gain}\n"
+      "connections:\n  - {from: a/out, to: b/in}\n  - {from: b/out, to: a/in}\n");
+  EXPECT_TRUE(Contains(msg, {"line 7", "cycle"})) << msg;
+}
+
+TEST_F(GraphFileErrors, BadNodeSettingsNameTheNodeLine) {
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - name: g\n    type: test/Gain\n"
+                                 "    parameters: {gain: 500}\n"),
+                       {"line 3", "'g'", "'gain'", "out of range"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, parameters: {gian: 1}}\n"),
+                       {"line 3", "no parameter 'gian'"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain}\n"
+                                 "  - {name: g, type: test/Gain}\n"),
+                       {"line 4", "already exists"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, enabled: perhaps}\n"),
+                       {"line 3", "'enabled'"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g}\n"), {"line 3", "'type' is missing"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, interactive: [nope]}\n"),
+                       {"line 3", "'nope'"}));
+}
+
+/** A node type with a pair parameter, for map-valued parameters in files. */
+struct Sized : Node {
+  static Manifest manifest() { return Manifest("has a size").param(param::pair("size", 1, 2)); }
+  void process() override {}
+};
+
+TEST(GraphFileErrorsMapValue, ParameterMapMissingAKeyIsAnErrorNotAnException) {
+  NodeRegistry registry = testRegistry();
+  ASSERT_TRUE(registry.add<Sized>("test/Sized"));
+  Graph g(registry);
+  add(g, "test/Sized", "before");
+  const std::string prior = formatGraphText(g.describe());
+  auto parsed = parseGraphText("apex_graph: 1\nnodes:\n  - {name: s, type: test/Sized, parameters: {size: {first: 1}}}\n");
+  ASSERT_TRUE(parsed) << parsed.message();
+  Result<LoadReport> r = Status::error("not run");
+  EXPECT_NO_THROW(r = g.load(parsed.value()));
+  EXPECT_FALSE(r);
+  EXPECT_TRUE(Contains(r.message(), {"line 3", "'size'"})) << r.message();
+  EXPECT_EQ(formatGraphText(g.describe()), prior);
+  Result<std::string> set = Status::error("not run");
+  EXPECT_NO_THROW(set = g.setParameter("before", "size", "{second: 5}"));
+  EXPECT_FALSE(set);
+}
+
+}  // namespace
