@@ -49,6 +49,15 @@ Graph::~Graph() {
   clearLocked();
 }
 
+std::unique_lock<std::mutex> Graph::lockEdits() const {
+  const ThreadGroup* caller = ThreadGroup::current();
+  if (caller && caller->owner() == this) {
+    throw std::logic_error("apex::Graph cannot be called from node code (process() or a slot handler) on thread group '" +
+                           caller->name() + "': the call would wait for that very group. Call it from another thread.");
+  }
+  return std::unique_lock<std::mutex>(edit_mutex_);
+}
+
 Graph::NodePtr Graph::find(const std::string& name) const {
   auto it = nodes_.find(name);
   return it == nodes_.end() ? nullptr : it->second;
@@ -62,7 +71,7 @@ Result<Graph::NodePtr> Graph::require(const std::string& name) const {
 ThreadGroup* Graph::group(const std::string& name) {
   auto& g = groups_[name];
   if (!g) {
-    g = std::make_unique<ThreadGroup>(name);
+    g = std::make_shared<ThreadGroup>(name, this);
     if (paused_) g->hold(true);
     if (running_) g->start();
   }
@@ -72,7 +81,7 @@ ThreadGroup* Graph::group(const std::string& name) {
 // ------------------------------------------------------------------ nodes
 
 Result<std::string> Graph::addNode(const std::string& type_id, const std::string& wanted, const std::string& group_name) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto type = registry_.find(type_id);
   if (!type) return Status::error("unknown node type '" + type_id + "' (known types: " + knownTypes(registry_) + ")");
   std::string name = wanted;
@@ -118,7 +127,7 @@ void Graph::detachAll(NodeState* n) {
 }
 
 Status Graph::removeNode(const std::string& name) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto node = require(name);
   if (!node) return node.status();
   NodeState* n = node.value().get();
@@ -127,9 +136,11 @@ Status Graph::removeNode(const std::string& name) {
     scope.involveWithNeighbours(n);
     detachAll(n);
     scope.forget(n);
+    {  // removed first: a notifyNewData() from now on cannot queue it again
+      std::lock_guard<std::mutex> g(n->group_mutex);
+      n->removed = true;
+    }
     n->group->unqueue(n);
-    std::lock_guard<std::mutex> g(n->group_mutex);
-    n->removed = true;
   }
   order_.erase(n->seq);
   nodes_.erase(name);
@@ -148,9 +159,11 @@ void Graph::clearLocked() {
     scope.involveWithNeighbours(n);
     detachAll(n);
     scope.forget(n);
+    {  // removed first: a notifyNewData() from now on cannot queue it again
+      std::lock_guard<std::mutex> g(n->group_mutex);
+      n->removed = true;
+    }
     n->group->unqueue(n);
-    std::lock_guard<std::mutex> g(n->group_mutex);
-    n->removed = true;
   }
   nodes_.clear();
   order_.clear();
@@ -160,7 +173,7 @@ void Graph::clearLocked() {
 // ------------------------------------------------------------------ node settings
 
 Result<std::string> Graph::setParameter(const std::string& node, const std::string& param, const std::string& text) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
@@ -174,7 +187,7 @@ Result<std::string> Graph::setParameter(const std::string& node, const std::stri
 }
 
 Status Graph::setInteractive(const std::string& node, const std::string& param, bool on) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto n = require(node);
   if (!n) return n.status();
   NodeState* s = n.value().get();
@@ -192,7 +205,7 @@ Status Graph::setInteractive(const std::string& node, const std::string& param, 
 }
 
 Status Graph::setEnabled(const std::string& node, bool enabled) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
@@ -206,7 +219,7 @@ Status Graph::setEnabled(const std::string& node, bool enabled) {
 }
 
 Status Graph::setThreadGroup(const std::string& node, const std::string& group_name) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto n = require(node);
   if (!n) return n.status();
   if (!validName(group_name)) return Status::error("thread group name '" + group_name + "' " + kNameRule);
@@ -216,15 +229,17 @@ Status Graph::setThreadGroup(const std::string& node, const std::string& group_n
   EditScope scope;
   scope.involve(s);
   scope.pause(target);
-  s->group->unqueue(s);
+  // Held across the switch: a notifyNewData() sees the old group with the node
+  // unqueued from it, or the new one; never queues it on the old one afterwards.
   std::lock_guard<std::mutex> g(s->group_mutex);
+  s->group->unqueue(s);
   s->group = target;
   s->placeholder.thread_group = group_name;
   return Status::ok();
 }
 
 Status Graph::fireSlot(const std::string& node, const std::string& slot) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
@@ -239,7 +254,7 @@ Status Graph::fireSlot(const std::string& node, const std::string& slot) {
 }
 
 Status Graph::setUi(const std::string& node, const std::string& ui) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto n = require(node);
   if (!n) return n.status();
   if (auto st = detail::checkYamlText(ui); !st) return Status::error("node '" + node + "': UI metadata " + st.message());
@@ -251,36 +266,36 @@ Status Graph::setUi(const std::string& node, const std::string& ui) {
 // ------------------------------------------------------------------ running
 
 void Graph::start() {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   running_ = true;
   for (auto& [name, g] : groups_) g->start();
 }
 
 void Graph::stop() {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   running_ = false;
   for (auto& [name, g] : groups_) g->stop();
 }
 
 void Graph::pause() {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   paused_ = true;
   for (auto& [name, g] : groups_) g->hold(true);
 }
 
 void Graph::resume() {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   paused_ = false;
   for (auto& [name, g] : groups_) g->hold(false);
 }
 
 bool Graph::paused() const {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   return paused_;
 }
 
 void Graph::step() {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   if (!paused_) return;
   for (auto& [name, g] : groups_) g->beginStep();
   for (auto& [name, g] : groups_) g->waitStep();
@@ -289,17 +304,17 @@ void Graph::step() {
 bool Graph::waitIdle(double timeout_s) const {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                                 std::chrono::duration<double>(timeout_s));
-  std::vector<ThreadGroup*> groups;
+  std::vector<std::shared_ptr<ThreadGroup>> groups;  // shared: a load may drop a group meanwhile
   {
-    std::lock_guard<std::mutex> lock(edit_mutex_);
-    for (auto& [name, g] : groups_) groups.push_back(g.get());
+    auto lock = lockEdits();
+    for (auto& [name, g] : groups_) groups.push_back(g);
   }
   // A group found idle may be given work by one checked later: idle means two
   // passes in a row found every group idle with no work pushed or posted between.
   std::vector<std::uint64_t> last;
   for (;;) {
     std::vector<std::uint64_t> seen;
-    for (ThreadGroup* g : groups) {
+    for (auto& g : groups) {
       if (!g->waitIdle(deadline)) return false;
       seen.push_back(g->activity());
     }
@@ -311,7 +326,7 @@ bool Graph::waitIdle(double timeout_s) const {
 // ------------------------------------------------------------------ reading
 
 std::vector<NodeStats> Graph::nodeStats() const {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   std::vector<NodeStats> out;
   for (auto& [seq, n] : order_) {
     out.push_back(n->stats());
@@ -321,26 +336,26 @@ std::vector<NodeStats> Graph::nodeStats() const {
 }
 
 std::vector<GroupStats> Graph::groupStats() const {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   std::vector<GroupStats> out;
   for (auto& [name, g] : groups_) out.push_back(g->stats());
   return out;
 }
 
 std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto n = find(node);
   return n ? n->type : nullptr;
 }
 
 Node* Graph::nodeObject(const std::string& node) const {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   auto n = find(node);
   return n ? n->node.get() : nullptr;
 }
 
 std::size_t Graph::size() const {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   return nodes_.size();
 }
 

@@ -117,7 +117,7 @@ std::shared_ptr<Edge> findEdge(NodeState& from, const Endpoint& src, NodeState& 
 }  // namespace
 
 Status Graph::connect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   return connectLocked({fn, fp, tn, tp, 0});
 }
 
@@ -190,7 +190,7 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
 }
 
 Status Graph::disconnect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   const ConnectionDescription c{fn, fp, tn, tp, 0};
   auto fail = [&](const std::string& why) { return Status::error("cannot disconnect " + label(c) + ": " + why); };
   auto dormant = std::find(dormant_.begin(), dormant_.end(), c);

@@ -62,7 +62,7 @@ void describeConnections(const NodeState& n, std::vector<ConnectionDescription>&
 }  // namespace
 
 GraphDescription Graph::describe() const {
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   GraphDescription d;
   for (auto& [name, g] : groups_) if (name != "default") d.thread_groups.push_back(name);
   for (auto& [seq, n] : order_) {
@@ -95,7 +95,7 @@ Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
     return fail("thread group name '" + d.thread_group + "' " + kNameRule);
   if (!validTypeId(d.type)) return fail("node '" + d.name + "': type '" + d.type + "' " + kTypeIdRule);
   if (!registry_.find(d.type)) {
-    std::lock_guard<std::mutex> lock(edit_mutex_);
+    auto lock = lockEdits();
     auto added = addPlaceholder(d);
     if (!added) return fail(added.message());
     report.warnings.push_back(at(d.line) + "node '" + d.name + "' has the unknown type '" + d.type +
@@ -121,6 +121,8 @@ Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
 }
 
 Result<LoadReport> Graph::load(const GraphDescription& description) {
+  auto check = lockEdits();  // refuses node code; released: building the staged graph needs no lock
+  check.unlock();
   Graph staged(registry_);
   LoadReport report;
   for (const auto& g : description.thread_groups) {
@@ -130,10 +132,10 @@ Result<LoadReport> Graph::load(const GraphDescription& description) {
   for (const auto& node : description.nodes)
     if (auto st = staged.applyNode(node, report); !st) return st;
   for (const auto& c : description.connections) {
-    std::lock_guard<std::mutex> lock(staged.edit_mutex_);
+    auto lock = staged.lockEdits();
     if (auto st = staged.connectLocked(c); !st) return Status::error(at(c.line) + st.message());
   }
-  std::lock_guard<std::mutex> lock(edit_mutex_);
+  auto lock = lockEdits();
   adoptLocked(staged, description);
   return report;
 }
@@ -171,14 +173,16 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
   next_seq_ = staged.next_seq_;
   staged.nodes_.clear();
   staged.order_.clear();
-  // Staged mail (parameter and enable changes) was never run: apply it here.
-  for (auto& [seq, n] : order_) {
+  // Staged mail (parameter and enable changes) was never run: post it for every
+  // node before any node may fire (a group runs mail before firing), so a node
+  // disabled in the file never fires enabled.
+  for (auto& [seq, n] : order_)
     if (n->type) n->post([](NodeState& x) {
       x.applyParams();
       x.applyEnabled();
     });
+  for (auto& [seq, n] : order_)
     if (n->blockers.load() == 0) n->group->push(n);
-  }
   for (ThreadGroup* g : paused) g->resume();
 }
 

@@ -23,22 +23,23 @@ detail::NodeState& stateOf(detail::NodeState* s) {
 
 const std::string& Node::name() const {
   static const std::string kNone;
-  return state_ ? state_->name : kNone;
+  auto* s = state_.load(std::memory_order_acquire);
+  return s ? s->name : kNone;
 }
 
 void Node::notifyNewData() {
-  if (state_) state_->notifyNewData();
+  if (auto* s = state_.load(std::memory_order_acquire)) s->notifyNewData();
 }
 
 const Message& Node::inputMessage(const std::string& input) const {
-  auto& s = stateOf(state_);
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findInput(input);
   if (i < 0) unknown(s, "input", input, s.manifest.listInputs());
   return s.inputs[i]->current;
 }
 
 void Node::publishMessage(const std::string& output, Message message) {
-  auto& s = stateOf(state_);
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findOutput(output);
   if (i < 0) unknown(s, "output", output, s.manifest.listOutputs());
   const TypeInfo* want = s.manifest.outputs[i].type;
@@ -50,14 +51,14 @@ void Node::publishMessage(const std::string& output, Message message) {
 }
 
 const ParamValue& Node::paramValue(const std::string& name) const {
-  auto& s = stateOf(state_);
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findParam(name);
   if (i < 0) unknown(s, "parameter", name, s.manifest.listParams());
   return s.params[i].active;
 }
 
 void Node::trigger(const std::string& name) {
-  auto& s = stateOf(state_);
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findTrigger(name);
   if (i < 0) unknown(s, "trigger", name, s.manifest.listTriggers());
   s.fireTrigger(i);

@@ -85,7 +85,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::unique_ptr<Node> node;
   void attach(std::unique_ptr<Node> object) {
     node = std::move(object);
-    node->state_ = this;
+    node->state_.store(this, std::memory_order_release);
   }
 
   std::vector<std::unique_ptr<InputState>> inputs;

@@ -9,10 +9,17 @@ namespace detail {
 
 using Clock = std::chrono::steady_clock;
 
+namespace {
+thread_local const ThreadGroup* tl_current = nullptr;
+}
+
+const ThreadGroup* ThreadGroup::current() { return tl_current; }
+
 void ThreadGroup::start() {
   std::lock_guard<std::mutex> lock(m_);
   if (thread_.joinable()) return;
   stop_ = false;
+  running_ = true;
   started_ = Clock::now();
   thread_ = std::thread([this] { run(); });
 }
@@ -27,6 +34,8 @@ void ThreadGroup::stop() {
   thread_.join();
   std::lock_guard<std::mutex> lock(m_);
   waiting_ = false;
+  running_ = false;
+  state_cv_.notify_all();  // idle waiters: a stopped group has nothing running
 }
 
 void ThreadGroup::push(NodeState* node) {
@@ -63,7 +72,7 @@ void ThreadGroup::post(Mail mail) {
 void ThreadGroup::pause() {
   std::unique_lock<std::mutex> lock(m_);
   ++pause_requests_;
-  if (!thread_.joinable()) return;  // not running: always at a boundary
+  if (!running_) return;  // not running: always at a boundary
   state_cv_.wait(lock, [this] { return !busy_; });
 }
 
@@ -87,14 +96,13 @@ void ThreadGroup::beginStep() {
 
 void ThreadGroup::waitStep() {
   std::unique_lock<std::mutex> lock(m_);
-  if (!thread_.joinable()) return;
+  if (!running_) return;
   state_cv_.wait(lock, [this] { return (step_budget_ == 0 || ready_.empty()) && !busy_; });
   step_budget_ = 0;
 }
 
 bool ThreadGroup::waitIdle(Clock::time_point deadline) {
   std::unique_lock<std::mutex> lock(m_);
-  if (!thread_.joinable()) return mail_.empty() && ready_.empty();
   return state_cv_.wait_until(lock, deadline, [this] { return idleLocked(); });
 }
 
@@ -110,7 +118,7 @@ GroupStats ThreadGroup::stats() const {
   s.firings = firings_.load(std::memory_order_relaxed);
   s.wakeups = wakeups_.load(std::memory_order_relaxed);
   std::lock_guard<std::mutex> lock(m_);
-  if (thread_.joinable())
+  if (running_)
     s.wall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started_).count();
   return s;
 }
@@ -118,9 +126,14 @@ GroupStats ThreadGroup::stats() const {
 void ThreadGroup::runMail(std::vector<Mail>& batch) {
   for (auto& mail : batch) {
     NodeState& node = *mail.node;
-    if (node.removed) continue;
-    if (node.group != this) {  // the node moved to another group: its work follows it
-      node.group->post(std::move(mail));
+    ThreadGroup* home;
+    {
+      std::lock_guard<std::mutex> lock(node.group_mutex);  // an edit may move or remove it meanwhile
+      if (node.removed) continue;
+      home = node.group;
+    }
+    if (home != this) {  // the node moved to another group: its work follows it
+      home->post(std::move(mail));
       continue;
     }
     mail.fn(node);
@@ -128,6 +141,7 @@ void ThreadGroup::runMail(std::vector<Mail>& batch) {
 }
 
 void ThreadGroup::run() {
+  tl_current = this;
   std::unique_lock<std::mutex> lock(m_);
   std::vector<Mail> batch;
   while (!stop_) {

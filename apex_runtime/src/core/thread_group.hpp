@@ -30,10 +30,14 @@ struct Mail {
 
 class ThreadGroup {
  public:
-  explicit ThreadGroup(std::string name) : name_(std::move(name)) {}
+  ThreadGroup(std::string name, const void* owner) : name_(std::move(name)), owner_(owner) {}
   ~ThreadGroup() { stop(); }
 
   const std::string& name() const { return name_; }
+  /** @brief The graph this group belongs to. */
+  const void* owner() const { return owner_; }
+  /** @brief The group whose thread is calling, or nullptr on any other thread. */
+  static const ThreadGroup* current();
   void start();
   void stop();
 
@@ -55,7 +59,7 @@ class ThreadGroup {
   void beginStep();
   void waitStep();
 
-  /** @brief Waits until nothing is ready, queued, running or posted; false on timeout. */
+  /** @brief Waits until nothing is ready, running or posted, or the group is stopped; false on timeout. */
   bool waitIdle(std::chrono::steady_clock::time_point deadline);
   /** @brief Counts pushes and posts: unchanged between two idle checks means no work moved. */
   std::uint64_t activity() const;
@@ -65,9 +69,11 @@ class ThreadGroup {
   void run();
   void runMail(std::vector<Mail>& batch);
   bool canFire() const { return !ready_.empty() && (!hold_ || step_budget_ > 0); }
-  bool idleLocked() const { return mail_.empty() && !canFire() && !busy_ && (waiting_ || !thread_.joinable()); }
+  // a stopped group counts as idle: nothing will run there until it starts again
+  bool idleLocked() const { return !running_ || (mail_.empty() && !canFire() && !busy_ && waiting_); }
 
   const std::string name_;
+  const void* const owner_;
   mutable std::mutex m_;
   std::condition_variable cv_;        // wakes the thread
   std::condition_variable state_cv_;  // the thread parked, stepped or went idle
@@ -76,6 +82,7 @@ class ThreadGroup {
   bool waiting_ = false;   // the thread waits on cv_ (at a firing boundary)
   bool busy_ = false;      // the thread runs a firing or mail
   bool stop_ = false;
+  bool running_ = false;  // the thread runs (false again once joined)
   int pause_requests_ = 0;
   bool hold_ = false;
   std::size_t step_budget_ = 0;

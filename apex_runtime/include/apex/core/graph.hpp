@@ -1,6 +1,8 @@
 // The graph: nodes, connections, thread groups and every rule about editing
 // them. All methods are thread-safe and may be called while the graph runs;
-// edits pause only the thread groups of the nodes they touch.
+// edits pause only the thread groups of the nodes they touch. They must not be
+// called from node code (process() or a slot handler) of the same graph: that
+// throws std::logic_error, since the call would wait for its own thread group.
 #pragma once
 
 #include <map>
@@ -87,12 +89,15 @@ class Graph {
   Node* nodeObject(const std::string& node) const;
   std::size_t size() const;
 
-  /** @brief Waits until no node is ready or firing and no event is pending, or the
-   *  timeout passes; true if idle. For tests and shutdown. */
+  /** @brief Waits until no node is ready or firing and no event is pending (a stopped
+   *  group counts as idle), or the timeout passes; true if idle. For tests and shutdown. */
   bool waitIdle(double timeout_s) const;
 
  private:
   using NodePtr = std::shared_ptr<detail::NodeState>;
+  /** Takes the edit mutex; throws std::logic_error when called from this graph's
+   *  own node code, where waiting for the node's thread group would deadlock. */
+  std::unique_lock<std::mutex> lockEdits() const;
   NodePtr find(const std::string& name) const;
   Result<NodePtr> require(const std::string& name) const;
   detail::ThreadGroup* group(const std::string& name);  // creates
@@ -111,7 +116,7 @@ class Graph {
   std::map<std::uint64_t, detail::NodeState*> order_;  // insertion order
   std::uint64_t next_seq_ = 0;
   std::map<std::string, int> name_counters_;  // generated names: gaussian_blur_1, _2, ...
-  std::map<std::string, std::unique_ptr<detail::ThreadGroup>> groups_;
+  std::map<std::string, std::shared_ptr<detail::ThreadGroup>> groups_;
   std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
   bool running_ = false;
   bool paused_ = false;

@@ -3,6 +3,7 @@
 // group, never concurrently with its slot handlers.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 
@@ -32,7 +33,9 @@ class Node {
   const std::string& name() const;
 
   /** @brief For Driven sources: new data arrived from outside. Callable from any
-   *  thread; repeated calls before the next firing collapse into one. */
+   *  thread once the node is in a graph (a call from its constructor is lost);
+   *  repeated calls before the next firing collapse into one. The other methods
+   *  below are for process() and slot handlers only. */
   void notifyNewData();
 
  protected:
@@ -78,7 +81,7 @@ class Node {
   friend class detail::NodeState;
   [[noreturn]] void throwWrongType(const std::string& input, const Message& m, const TypeInfo* want) const;
   [[noreturn]] void throwWrongParamType(const std::string& name) const;
-  detail::NodeState* state_ = nullptr;
+  std::atomic<detail::NodeState*> state_{nullptr};  // set when the node joins a graph
 };
 
 }  // namespace apex
