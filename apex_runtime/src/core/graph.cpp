@@ -126,23 +126,24 @@ void Graph::detachAll(NodeState* n) {
   for (auto& s : n->slot_edges) while (!s.empty()) removeEvent(s.back());
 }
 
+void Graph::retire(NodeState* n) {
+  EditScope scope;
+  scope.involveWithNeighbours(n);
+  detachAll(n);
+  scope.forget(n);
+  {  // removed first: a notifyNewData() from now on cannot queue it again
+    std::lock_guard<std::mutex> g(n->group_mutex);
+    n->removed = true;
+  }
+  n->group->unqueue(n);
+}
+
 Status Graph::removeNode(const std::string& name) {
   auto lock = lockEdits();
   auto node = require(name);
   if (!node) return node.status();
-  NodeState* n = node.value().get();
-  {
-    EditScope scope;
-    scope.involveWithNeighbours(n);
-    detachAll(n);
-    scope.forget(n);
-    {  // removed first: a notifyNewData() from now on cannot queue it again
-      std::lock_guard<std::mutex> g(n->group_mutex);
-      n->removed = true;
-    }
-    n->group->unqueue(n);
-  }
-  order_.erase(n->seq);
+  retire(node.value().get());
+  order_.erase(node.value()->seq);
   nodes_.erase(name);
   dormant_.erase(std::remove_if(dormant_.begin(), dormant_.end(),
                                 [&](const auto& c) { return c.from_node == name || c.to_node == name; }),
@@ -151,20 +152,7 @@ Status Graph::removeNode(const std::string& name) {
 }
 
 void Graph::clearLocked() {
-  std::vector<std::string> names;
-  for (auto& [name, n] : nodes_) names.push_back(name);
-  for (auto& name : names) {
-    NodeState* n = nodes_[name].get();
-    EditScope scope;
-    scope.involveWithNeighbours(n);
-    detachAll(n);
-    scope.forget(n);
-    {  // removed first: a notifyNewData() from now on cannot queue it again
-      std::lock_guard<std::mutex> g(n->group_mutex);
-      n->removed = true;
-    }
-    n->group->unqueue(n);
-  }
+  for (auto& [name, n] : nodes_) retire(n.get());
   nodes_.clear();
   order_.clear();
   dormant_.clear();

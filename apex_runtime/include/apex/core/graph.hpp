@@ -107,6 +107,8 @@ class Graph {
   void adoptLocked(Graph& staged, const GraphDescription& description);
   void clearLocked();
   void detachAll(detail::NodeState* node);
+  /** Disconnects a node and takes it off its group's queue; it never fires again. */
+  void retire(detail::NodeState* node);
   void removeEdge(std::shared_ptr<detail::Edge> edge);
   void removeEvent(std::shared_ptr<detail::EventEdge> edge);
 
