@@ -104,13 +104,38 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   } catch (const std::exception& ex) {
     return Status::error("node type '" + type_id + "' failed to construct: " + ex.what());
   }
-  auto state = std::make_shared<NodeState>(name, type, next_seq_++);
+  auto state = std::make_shared<NodeState>(name, type, next_seq_++, revision_);
   state->attach(std::move(object));
   state->group = group(gname);
   EditScope scope;
   scope.added(state.get());
   order_[state->seq] = state.get();
   nodes_[name] = std::move(state);
+  bump();
+  return name;
+}
+
+Result<std::string> Graph::addNode(const NodeDescription& d) {
+  if (!registry_.find(d.type)) return addNode(d.type, d.name, d.thread_group);  // the usual message
+  auto added = addNode(d.type, d.name, d.thread_group);
+  if (!added) return added;
+  const std::string name = added.value();
+  auto undo = [&](const std::string& why) {
+    (void)removeNode(name);
+    return Status::error(why);
+  };
+  for (const auto& [param, text] : d.parameters)
+    if (auto r = setParameter(name, param, text); !r) return undo(r.message());
+  // The description's list is the exact set: a parameter interactive by default
+  // but switched off before saving stays off.
+  for (const auto& param : d.interactive)
+    if (auto st = setInteractive(name, param, true); !st) return undo(st.message());
+  for (const auto& spec : registry_.find(d.type)->manifest->params)
+    if (std::find(d.interactive.begin(), d.interactive.end(), spec.name) == d.interactive.end())
+      (void)setInteractive(name, spec.name, false);
+  if (auto st = setEnabled(name, d.enabled); !st) return undo(st.message());
+  if (!d.ui.empty())
+    if (auto st = setUi(name, d.ui); !st) return undo(st.message());
   return name;
 }
 
@@ -145,6 +170,7 @@ Status Graph::removeNode(const std::string& name) {
   retire(node.value().get());
   order_.erase(node.value()->seq);
   nodes_.erase(name);
+  bump();
   dormant_.erase(std::remove_if(dormant_.begin(), dormant_.end(),
                                 [&](const auto& c) { return c.from_node == name || c.to_node == name; }),
                  dormant_.end());
@@ -171,6 +197,7 @@ Result<std::string> Graph::setParameter(const std::string& node, const std::stri
   auto value = s.manifest.params[i].parse(text);
   if (!value) return Status::error("node '" + node + "': " + value.message());
   s.requestParam(i, value.value());
+  bump();
   return toText(value.value());
 }
 
@@ -189,6 +216,7 @@ Status Graph::setInteractive(const std::string& node, const std::string& param, 
     while (!p.out_edges.empty()) removeEdge(p.out_edges.back());
   }
   p.interactive = on;
+  bump();
   return Status::ok();
 }
 
@@ -223,6 +251,7 @@ Status Graph::setThreadGroup(const std::string& node, const std::string& group_n
   s->group->unqueue(s);
   s->group = target;
   s->placeholder.thread_group = group_name;
+  bump();
   return Status::ok();
 }
 
@@ -246,9 +275,31 @@ Status Graph::setUi(const std::string& node, const std::string& ui) {
   auto n = require(node);
   if (!n) return n.status();
   if (auto st = detail::checkYamlText(ui); !st) return Status::error("node '" + node + "': UI metadata " + st.message());
-  std::lock_guard<std::mutex> g(n.value()->state_mutex);
-  n.value()->ui = ui;
+  {
+    std::lock_guard<std::mutex> g(n.value()->state_mutex);
+    n.value()->ui = ui;
+  }
+  bump();
   return Status::ok();
+}
+
+Status Graph::setTap(const std::string& node, const std::string& port, PortTap tap) {
+  auto lock = lockEdits();
+  auto n = require(node);
+  if (!n) return n.status();
+  NodeState* s = n.value().get();
+  EditScope scope;  // the group reads taps while firing
+  scope.involve(s);
+  if (const int i = s->findOutput(port); i >= 0) {
+    s->outputs[i].tap = std::move(tap);
+    return Status::ok();
+  }
+  if (const int i = s->findParam(port); i >= 0 && s->params[i].interactive) {
+    s->params[i].tap = std::move(tap);
+    return Status::ok();
+  }
+  return Status::error("node '" + node + "' (" + s->typeId() + ") has no output or interactive parameter '" + port +
+                       "' (outputs: " + s->manifest.listOutputs() + ")");
 }
 
 // ------------------------------------------------------------------ running
@@ -268,12 +319,14 @@ void Graph::stop() {
 void Graph::pause() {
   auto lock = lockEdits();
   paused_ = true;
+  bump();
   for (auto& [name, g] : groups_) g->hold(true);
 }
 
 void Graph::resume() {
   auto lock = lockEdits();
   paused_ = false;
+  bump();
   for (auto& [name, g] : groups_) g->hold(false);
 }
 
@@ -340,6 +393,16 @@ Node* Graph::nodeObject(const std::string& node) const {
   auto lock = lockEdits();
   auto n = find(node);
   return n ? n->node.get() : nullptr;
+}
+
+Result<ParamValue> Graph::parameterValue(const std::string& node, const std::string& param) const {
+  auto lock = lockEdits();
+  auto n = require(node);
+  if (!n) return n.status();
+  const int i = n.value()->findParam(param);
+  if (i < 0) return Status::error("node '" + node + "' has no parameter '" + param + "'");
+  std::lock_guard<std::mutex> g(n.value()->state_mutex);
+  return n.value()->params[i].requested;
 }
 
 std::size_t Graph::size() const {

@@ -118,7 +118,9 @@ std::shared_ptr<Edge> findEdge(NodeState& from, const Endpoint& src, NodeState& 
 
 Status Graph::connect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
   auto lock = lockEdits();
-  return connectLocked({fn, fp, tn, tp, 0});
+  auto st = connectLocked({fn, fp, tn, tp, 0});
+  if (st) bump();
+  return st;
 }
 
 Status Graph::connectLocked(const ConnectionDescription& c) {
@@ -196,6 +198,7 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
   auto dormant = std::find(dormant_.begin(), dormant_.end(), c);
   if (dormant != dormant_.end()) {
     dormant_.erase(dormant);
+    bump();
     return Status::ok();
   }
   auto from = find(fn);
@@ -213,6 +216,7 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
       scope.involve(from.get());
       scope.involve(to.get());
       removeEvent(e);
+      bump();
       return Status::ok();
     }
     return fail("they are not connected");
@@ -223,6 +227,7 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
   scope.involve(from.get());
   scope.involve(to.get());
   removeEdge(e);
+  bump();
   return Status::ok();
 }
 

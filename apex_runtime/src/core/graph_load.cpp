@@ -77,7 +77,7 @@ GraphDescription Graph::describe() const {
 Result<std::string> Graph::addPlaceholder(const NodeDescription& d) {
   if (!validName(d.name)) return Status::error("node name '" + d.name + "' " + kNameRule);
   if (nodes_.count(d.name)) return Status::error("a node named '" + d.name + "' already exists");
-  auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++);
+  auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revision_);
   state->placeholder = d;
   state->ui = d.ui;
   state->enabled = d.enabled;
@@ -103,20 +103,7 @@ Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
     return Status::ok();
   }
   if (d.name.empty()) return fail("a node needs a name");
-  auto added = addNode(d.type, d.name, d.thread_group);
-  if (!added) return fail(added.message());
-  for (const auto& [param, text] : d.parameters)
-    if (auto r = setParameter(d.name, param, text); !r) return fail(r.message());
-  // The file's list is the exact set: a parameter interactive by default but
-  // switched off before saving stays off.
-  for (const auto& param : d.interactive)
-    if (auto st = setInteractive(d.name, param, true); !st) return fail(st.message());
-  for (const auto& spec : registry_.find(d.type)->manifest->params)
-    if (std::find(d.interactive.begin(), d.interactive.end(), spec.name) == d.interactive.end())
-      (void)setInteractive(d.name, spec.name, false);
-  if (auto st = setEnabled(d.name, d.enabled); !st) return fail(st.message());
-  if (!d.ui.empty())
-    if (auto st = setUi(d.name, d.ui); !st) return fail(st.message());
+  if (auto added = addNode(d); !added) return fail(added.message());
   return Status::ok();
 }
 
@@ -163,6 +150,7 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
   for (const auto& name : keep) group(name);
   for (auto& [seq, n] : staged.order_) {
     n->queued = false;
+    n->revision = revision_;
     std::lock_guard<std::mutex> g(n->group_mutex);
     n->group = group(n->group->name());
   }
@@ -183,6 +171,7 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
     });
   for (auto& [seq, n] : order_)
     if (n->blockers.load() == 0) n->group->push(n);
+  bump();
   for (ThreadGroup* g : paused) g->resume();
 }
 

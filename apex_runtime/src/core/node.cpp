@@ -64,6 +64,8 @@ void Node::trigger(const std::string& name) {
   s.fireTrigger(i);
 }
 
+void Node::log(LogLevel level, const std::string& text) const { apex::log(level, name(), text); }
+
 void Node::throwWrongType(const std::string& input, const Message& m, const TypeInfo* want) const {
   throw std::invalid_argument("node '" + name() + "': input '" + input + "' holds a " + m.typeName() + ", not a " +
                               want->name);

@@ -21,8 +21,9 @@ int indexOf(const std::vector<T>& items, const std::string& n) {
 
 }  // namespace
 
-NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint64_t s)
-    : name(std::move(n)), type(std::move(t)), manifest(manifestOf(type)), seq(s) {
+NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint64_t s,
+                     std::shared_ptr<std::atomic<std::uint64_t>> r)
+    : name(std::move(n)), type(std::move(t)), manifest(manifestOf(type)), seq(s), revision(std::move(r)) {
   for (std::size_t i = 0; i < manifest.inputs.size(); ++i) inputs.push_back(std::make_unique<InputState>());
   outputs.resize(manifest.outputs.size());
   params.resize(manifest.params.size());
@@ -122,9 +123,11 @@ bool NodeState::fireIfReady() {
     if (has_error_.load(std::memory_order_relaxed))
       for (auto& out : outputs) out.pending = Message();
   }
-  for (auto& out : outputs)
+  for (auto& out : outputs) {
     for (auto& e : out.edges) deliver(e, out.pending);
-  for (std::size_t i = 0; i < params.size(); ++i) if (!params[i].out_edges.empty()) publishParam(static_cast<int>(i));
+    if (out.tap) out.tap(out.pending);
+  }
+  for (std::size_t i = 0; i < params.size(); ++i) publishParam(static_cast<int>(i));
   for (auto& in : inputs) in->current = Message();
   for (auto& out : outputs) out.pending = Message();
   if (!skip) fireTrigger(0);  // "processed"
@@ -175,15 +178,24 @@ void NodeState::deliver(const std::shared_ptr<Edge>& edge, const Message& m) {
 }
 
 void NodeState::setError(std::string text) {
-  std::lock_guard<std::mutex> lock(state_mutex);
-  error_ = std::move(text);
-  has_error_.store(true, std::memory_order_relaxed);
+  {
+    std::lock_guard<std::mutex> lock(state_mutex);
+    if (error_ == text) return;  // the same failure again: already reported
+    error_ = text;
+    has_error_.store(true, std::memory_order_relaxed);
+  }
+  revision->fetch_add(1, std::memory_order_relaxed);
+  log(LogLevel::Error, name, text);
 }
 
 void NodeState::clearError() {
-  std::lock_guard<std::mutex> lock(state_mutex);
-  error_.clear();
-  has_error_.store(false, std::memory_order_relaxed);
+  {
+    std::lock_guard<std::mutex> lock(state_mutex);
+    error_.clear();
+    has_error_.store(false, std::memory_order_relaxed);
+  }
+  revision->fetch_add(1, std::memory_order_relaxed);
+  log(LogLevel::Info, name, "recovered");
 }
 
 // ---------------------------------------------------------------- mail
@@ -229,12 +241,14 @@ void NodeState::applyParams() {
     }
     publishParam(i);  // a parameter output carries every change
   }
+  if (!changed.empty()) revision->fetch_add(1, std::memory_order_relaxed);
 }
 
 void NodeState::publishParam(int index) {
-  if (params[index].out_edges.empty()) return;
+  if (params[index].out_edges.empty() && !params[index].tap) return;
   Message m = toMessage(params[index].active);
   for (auto& e : params[index].out_edges) deliver(e, m);
+  if (params[index].tap) params[index].tap(m);
 }
 
 void NodeState::receiveParam(Edge& edge, const Message& m) {
@@ -264,6 +278,7 @@ void NodeState::applyEnabled() {
   const int before = gates();
   active_enabled_ = want;
   adjust(gates() - before);
+  revision->fetch_add(1, std::memory_order_relaxed);
 }
 
 void NodeState::runSlot(int slot) {

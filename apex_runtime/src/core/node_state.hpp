@@ -60,9 +60,13 @@ struct InputState {
   Message current;  // taken for this firing
 };
 
+/** Sees every message of a port (inspection); runs on the node's group thread. */
+using Tap = std::function<void(const Message&)>;
+
 struct OutputState {
   std::vector<std::shared_ptr<Edge>> edges;
   Message pending;
+  Tap tap;
 };
 
 struct ParamState {
@@ -71,17 +75,20 @@ struct ParamState {
   bool interactive = false;
   std::shared_ptr<Edge> in_edge;
   std::vector<std::shared_ptr<Edge>> out_edges;
+  Tap tap;
 };
 
 class NodeState : public std::enable_shared_from_this<NodeState> {
  public:
-  NodeState(std::string name, std::shared_ptr<const NodeType> type, std::uint64_t seq);
+  NodeState(std::string name, std::shared_ptr<const NodeType> type, std::uint64_t seq,
+            std::shared_ptr<std::atomic<std::uint64_t>> revision);
   ~NodeState();
 
   const std::string name;
   const std::shared_ptr<const NodeType> type;  // nullptr: placeholder
   const Manifest& manifest;
   const std::uint64_t seq;
+  std::shared_ptr<std::atomic<std::uint64_t>> revision;  // the graph's: bumped on every visible change
   std::unique_ptr<Node> node;
   void attach(std::unique_ptr<Node> object) {
     node = std::move(object);

@@ -5,6 +5,8 @@
 // throws std::logic_error, since the call would wait for its own thread group.
 #pragma once
 
+#include <atomic>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -24,6 +26,9 @@ class ThreadGroup;
 struct Edge;
 struct EventEdge;
 }  // namespace detail
+
+/** @brief Sees every message sent on one port; runs on the node's thread group, so it must be quick. */
+using PortTap = std::function<void(const Message&)>;
 
 /** @brief What a load reports besides success: e.g. nodes kept as placeholders. */
 struct LoadReport {
@@ -45,6 +50,9 @@ class Graph {
    *  type; an empty group means "default"; a new group is created. Returns the name. */
   Result<std::string> addNode(const std::string& type, const std::string& name = "",
                               const std::string& thread_group = "");
+  /** @brief Adds a node with the settings of a description (parameters, interactive set,
+   *  enabled, group, UI), all or nothing: if one setting is refused, no node is added. */
+  Result<std::string> addNode(const NodeDescription& description);
   Status removeNode(const std::string& name);
   /** @brief Connects an output, parameter or trigger to an input, parameter or slot. */
   Status connect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
@@ -63,6 +71,9 @@ class Graph {
   Status fireSlot(const std::string& node, const std::string& slot);
   /** @brief Stores front-end metadata (YAML flow text, e.g. "{x: 10, y: 20}") with the node. */
   Status setUi(const std::string& node, const std::string& ui_yaml);
+  /** @brief Installs (or, with an empty tap, removes) an observer of an output or of an
+   *  interactive parameter's output. Costs nothing on ports without one. */
+  Status setTap(const std::string& node, const std::string& port, PortTap tap);
 
   // --- running ---
   /** @brief Starts every thread group. Nodes that are ready fire. */
@@ -88,6 +99,11 @@ class Graph {
   /** @brief The node object itself (for tests and hosts); nullptr if none. */
   Node* nodeObject(const std::string& node) const;
   std::size_t size() const;
+  /** @brief A parameter's current (requested) value. */
+  Result<ParamValue> parameterValue(const std::string& node, const std::string& param) const;
+  /** @brief Grows with every visible change from any source (edits, parameter values
+   *  arriving through ports, errors, enable events): poll it to know when to republish. */
+  std::uint64_t revision() const { return revision_->load(std::memory_order_relaxed); }
 
   /** @brief Waits until no node is ready or firing and no event is pending (a stopped
    *  group counts as idle), or the timeout passes; true if idle. For tests and shutdown. */
@@ -122,6 +138,8 @@ class Graph {
   std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
   bool running_ = false;
   bool paused_ = false;
+  std::shared_ptr<std::atomic<std::uint64_t>> revision_ = std::make_shared<std::atomic<std::uint64_t>>(0);
+  void bump() { revision_->fetch_add(1, std::memory_order_relaxed); }
 };
 
 }  // namespace apex

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "apex/core/log.hpp"
 #include "apex/core/message.hpp"
 #include "apex/core/param.hpp"
 
@@ -76,6 +77,9 @@ class Node {
 
   /** @brief Sends an event on one of the node's triggers. */
   void trigger(const std::string& name);
+
+  /** @brief Logs a line named after this node (rosconsole under the ROS host). */
+  void log(LogLevel level, const std::string& text) const;
 
  private:
   friend class detail::NodeState;
