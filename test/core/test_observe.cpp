@@ -114,3 +114,41 @@ TEST(Observe, ErrorsGoToTheLogSinkOncePerChange) {
 }
 
 }  // namespace
+
+namespace {
+
+/** A source at a rate, the way a clock node is written: setup() starts it. */
+struct Tick : Node {
+  static Manifest manifest() { return Manifest().output<int>("out").driven().param(param::real("period", 0.001)); }
+  void setup() override {
+    ++setups;
+    notifyNewData();
+  }
+  void process() override {
+    publish("out", n++);
+    notifyAfter(param<double>("period"));
+  }
+  int n = 0;
+  std::atomic<int> setups{0};
+};
+
+TEST(Timers, ASourceAtARateUsesTheGroupsTimerAndSetup) {
+  Graph g(testRegistry());
+  ASSERT_TRUE(g.registry().add<Tick>("test/Tick"));
+  add(g, "test/Tick", "tick");
+  add(g, "test/Collector", "sink");
+  link(g, "tick", "out", "sink", "in");
+  g.start();
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(20));
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_GE(elapsed, 0.019);  // 20 ticks, 1 ms apart, never faster
+  EXPECT_EQ(object<Tick>(g, "tick")->setups.load(), 1);
+  ASSERT_TRUE(g.setThreadGroup("tick", "other"));  // its timer follows it
+  const auto n = object<Collector>(g, "sink")->size();
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(n + 20));
+  ASSERT_TRUE(g.removeNode("tick"));  // a pending timer for a removed node does nothing
+  EXPECT_TRUE(g.waitIdle(kWait));
+}
+
+}  // namespace

@@ -109,6 +109,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   state->group = group(gname);
   EditScope scope;
   scope.added(state.get());
+  state->post([](NodeState& n) { n.runSetup(); });
   order_[state->seq] = state.get();
   nodes_[name] = std::move(state);
   bump();

@@ -161,13 +161,13 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
   next_seq_ = staged.next_seq_;
   staged.nodes_.clear();
   staged.order_.clear();
-  // Staged mail (parameter and enable changes) was never run: post it for every
+  // Staged mail (setup, parameter and enable changes) was never run: post it for every
   // node before any node may fire (a group runs mail before firing), so a node
   // disabled in the file never fires enabled.
   for (auto& [seq, n] : order_)
     if (n->type) n->post([](NodeState& x) {
-      x.applyParams();
       x.applyEnabled();
+      x.runSetup();  // applies the parameters first
     });
   for (auto& [seq, n] : order_)
     if (n->blockers.load() == 0) n->group->push(n);

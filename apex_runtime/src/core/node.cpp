@@ -27,6 +27,10 @@ const std::string& Node::name() const {
   return s ? s->name : kNone;
 }
 
+void Node::notifyAfter(double seconds) {
+  if (auto* s = state_.load(std::memory_order_acquire)) s->notifyAfter(seconds);
+}
+
 void Node::notifyNewData() {
   if (auto* s = state_.load(std::memory_order_acquire)) s->notifyNewData();
 }

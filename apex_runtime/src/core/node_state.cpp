@@ -208,6 +208,13 @@ void NodeState::notifyNewData() {
   if (!has_data.exchange(true, std::memory_order_acq_rel)) unblock(1);
 }
 
+void NodeState::notifyAfter(double seconds) {
+  const auto when = std::chrono::steady_clock::now() +
+                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+  std::lock_guard<std::mutex> lock(group_mutex);
+  if (!removed && group) group->notifyAt(when, shared_from_this());
+}
+
 void NodeState::requestParam(int index, ParamValue v) {
   bool post_now = false;
   {
@@ -265,6 +272,15 @@ void NodeState::receiveParam(Edge& edge, const Message& m) {
   if (edge.counted()) {
     edge.unread.store(false, std::memory_order_release);
     edge.from->unblock(1);
+  }
+}
+
+void NodeState::runSetup() {
+  applyParams();  // setup() sees the values the node was added with
+  try {
+    node->setup();
+  } catch (const std::exception& ex) {
+    setError("node '" + name + "' (" + type->id + ") failed to set up: " + ex.what());
   }
 }
 

@@ -123,6 +123,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   bool fireIfReady();
   void recordFiring(std::int64_t ns);
   void applyParams();
+  /** Node::setup(), once; a throw is the node's error. */
+  void runSetup();
   void applyEnabled();
   void runSlot(int slot);
   void receiveParam(Edge& edge, const Message& m);
@@ -133,6 +135,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void unblock(int k);
   void post(std::function<void(NodeState&)> fn);
   void notifyNewData();
+  void notifyAfter(double seconds);
   /** Requested value changed: apply on the group thread before the next firing. */
   void requestParam(int index, ParamValue v);
 

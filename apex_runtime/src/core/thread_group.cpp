@@ -69,6 +69,13 @@ void ThreadGroup::post(Mail mail) {
   }
 }
 
+void ThreadGroup::notifyAt(Clock::time_point when, std::shared_ptr<NodeState> node) {
+  std::lock_guard<std::mutex> lock(m_);
+  const bool earliest = timers_.empty() || when < timers_.begin()->first;
+  timers_.emplace(when, std::move(node));
+  if (earliest && waiting_ && pause_requests_ == 0) cv_.notify_one();  // re-arm the wait
+}
+
 void ThreadGroup::pause() {
   std::unique_lock<std::mutex> lock(m_);
   ++pause_requests_;
@@ -172,9 +179,22 @@ void ThreadGroup::run() {
       busy_ = false;
       continue;
     }
+    if (pause_requests_ == 0 && !timers_.empty() && timers_.begin()->first <= Clock::now()) {
+      auto node = std::move(timers_.begin()->second);
+      timers_.erase(timers_.begin());
+      lock.unlock();
+      node->notifyNewData();  // pushes onto this or the node's current group
+      node.reset();
+      lock.lock();
+      continue;
+    }
     waiting_ = true;
     state_cv_.notify_all();  // editors waiting to pause, steppers, idle waiters
-    cv_.wait(lock);
+    if (timers_.empty()) {
+      cv_.wait(lock);
+    } else {
+      cv_.wait_until(lock, timers_.begin()->first);
+    }
     waiting_ = false;
   }
   state_cv_.notify_all();

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -47,6 +48,8 @@ class ThreadGroup {
   void unqueue(NodeState* node);
   /** @brief Work for a node, run between firings. */
   void post(Mail mail);
+  /** @brief Calls the node's notifyNewData() at `when` (a timer; pending timers do not keep the group busy). */
+  void notifyAt(std::chrono::steady_clock::time_point when, std::shared_ptr<NodeState> node);
 
   /** @brief Returns once the thread is parked at a firing boundary; counted, so
    *  several editors may pause at once. Cheap when the thread is idle. */
@@ -79,6 +82,7 @@ class ThreadGroup {
   std::condition_variable state_cv_;  // the thread parked, stepped or went idle
   std::deque<NodeState*> ready_;
   std::vector<Mail> mail_;
+  std::multimap<std::chrono::steady_clock::time_point, std::shared_ptr<NodeState>> timers_;
   bool waiting_ = false;   // the thread waits on cv_ (at a firing boundary)
   bool busy_ = false;      // the thread runs a firing or mail
   bool stop_ = false;

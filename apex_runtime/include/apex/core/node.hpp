@@ -29,6 +29,9 @@ class Node {
   virtual void process() = 0;
   /** @brief Called on the node's thread group before a firing, after a parameter changed. */
   virtual void parameterChanged(const std::string& /*name*/) {}
+  /** @brief Called once on the node's thread group when it is in a graph, before its
+   *  first firing: start subscriptions or timers here, not in the constructor. */
+  virtual void setup() {}
 
   /** @brief The node's name in its graph ("" before it is added to one). */
   const std::string& name() const;
@@ -38,6 +41,9 @@ class Node {
    *  repeated calls before the next firing collapse into one. The other methods
    *  below are for process() and slot handlers only. */
   void notifyNewData();
+  /** @brief notifyNewData() after a delay, from the node's thread group's timer (no
+   *  thread of its own): a source at a rate calls it from process(). */
+  void notifyAfter(double seconds);
 
  protected:
   /** @brief The message at an input this firing (Nothing if none). */
