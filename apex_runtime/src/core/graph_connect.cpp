@@ -103,7 +103,7 @@ bool reaches(const NodeState* from, const NodeState* goal) {
 }
 
 std::string label(const ConnectionDescription& c) {
-  return c.from_node + "/" + c.from_port + " → " + c.to_node + "/" + c.to_port;
+  return c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port;
 }
 
 /** The edge feeding `to` at `port`, if it comes from `from`/`from_port`. */

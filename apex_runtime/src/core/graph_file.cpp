@@ -144,6 +144,19 @@ Status checkYamlText(const std::string& text) {
 }
 }  // namespace detail
 
+Result<std::vector<std::pair<std::string, std::string>>> parseParameterMap(const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> out;
+  try {
+    const YAML::Node map = YAML::Load(text);
+    if (!map || map.IsNull()) return out;
+    if (!map.IsMap()) return Status::error("'" + text + "' is not a YAML mapping of parameter: value");
+    for (const auto& kv : map) out.emplace_back(kv.first.as<std::string>(), flow(kv.second));
+    return out;
+  } catch (const YAML::Exception& e) {
+    return Status::error("'" + text + "' is not valid YAML: " + e.msg);
+  }
+}
+
 Result<GraphDescription> parseGraphText(const std::string& text) {
   try {
     return parseRoot(YAML::Load(text));

@@ -16,6 +16,9 @@ Result<GraphDescription> parseGraphText(const std::string& yaml_text);
 /** @brief The canonical text of a graph: loading it and formatting again gives the same text. */
 std::string formatGraphText(const GraphDescription& description);
 
+/** @brief A YAML mapping "{gain: 2, mode: mean}" as (name, value text) pairs; "" is no pairs. */
+Result<std::vector<std::pair<std::string, std::string>>> parseParameterMap(const std::string& yaml_text);
+
 /** @brief Reads and loads a graph file into `graph`, all or nothing. */
 Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path);
 /** @brief Saves the graph atomically: the file is either the old one or the whole new one. */

@@ -29,6 +29,18 @@ struct HasManifest : std::false_type {};
 template <class T>
 struct HasManifest<T, std::void_t<decltype(T::manifest())>>
     : std::is_convertible<decltype(T::manifest()), Manifest> {};
+
+/** Compile-time checks of a node class, each saying how to fix it. */
+template <class T>
+struct NodeTypeChecks {
+  static_assert(std::is_base_of_v<Node, T>, "APEX node types must derive from apex::Node");
+  static_assert(!std::is_abstract_v<T>, "APEX node type is abstract: implement `void process() override`");
+  static_assert(std::is_default_constructible_v<T>,
+                "APEX node types need a default constructor: take settings as parameters in manifest()");
+  static_assert(HasManifest<T>::value,
+                "APEX node types declare their interface in `static apex::Manifest manifest()`");
+  static constexpr bool value = true;
+};
 }  // namespace detail
 
 class NodeRegistry {
@@ -37,12 +49,7 @@ class NodeRegistry {
    *  inconsistent manifest (clashing names, a default outside its range). */
   template <class T>
   Status add(const std::string& id) {
-    static_assert(std::is_base_of_v<Node, T>, "APEX node types must derive from apex::Node");
-    static_assert(!std::is_abstract_v<T>, "APEX node type is abstract: implement `void process() override`");
-    static_assert(std::is_default_constructible_v<T>,
-                  "APEX node types need a default constructor: take settings as parameters in manifest()");
-    static_assert(detail::HasManifest<T>::value,
-                  "APEX node types declare their interface in `static apex::Manifest manifest()`");
+    static_assert(detail::NodeTypeChecks<T>::value, "see the messages above");
     return add(id, T::manifest(), [] { return std::unique_ptr<Node>(new T()); });
   }
   /** @brief Registers a type from a manifest and a factory. */

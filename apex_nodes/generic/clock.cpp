@@ -1,0 +1,34 @@
+// Clock: a source at a rate, from its thread group's timer.
+#include <chrono>
+
+#include "apex/ros/node_plugin.hpp"
+
+namespace apex_nodes {
+
+class Clock : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Ticks at a rate: a counter and the time since it started")
+        .output<int>("count", "0, 1, 2, ...")
+        .output<double>("time", "seconds since the first tick")
+        .param(apex::param::range("rate", 0.01, 1000.0, 0.01, 10.0).describe("ticks per second"))
+        .driven();
+  }
+  void setup() override {
+    start_ = std::chrono::steady_clock::now();
+    notifyNewData();
+  }
+  void process() override {
+    publish("count", count_++);
+    publish("time", std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+    notifyAfter(1.0 / param<double>("rate"));
+  }
+
+ private:
+  int count_ = 0;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, Clock, apex_nodes::Clock);

@@ -1,0 +1,23 @@
+// Counter: counts the messages it receives; a slot resets it.
+#include "apex/ros/node_plugin.hpp"
+
+namespace apex_nodes {
+
+class Counter : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Counts the messages it receives")
+        .input<apex::Any>("in", "any message")
+        .output<int>("count", "messages received since the last reset")
+        .slot("reset", &Counter::reset, "sets the count to zero");
+  }
+  void process() override { publish("count", ++count_); }
+  void reset() { count_ = 0; }
+
+ private:
+  int count_ = 0;
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, Counter, apex_nodes::Counter);

@@ -1,0 +1,27 @@
+// Print: logs each message it receives (numbers and strings by value).
+#include "apex/ros/node_plugin.hpp"
+
+namespace apex_nodes {
+
+class Print : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Logs each message it receives")
+        .input<apex::Any>("in", "any message")
+        .param(apex::param::text("prefix", "").describe("text before each line"));
+  }
+  void process() override { log(apex::LogLevel::Info, param<std::string>("prefix") + text(inputMessage("in"))); }
+
+ private:
+  static std::string text(const apex::Message& m) {
+    if (auto v = m.as<int>()) return std::to_string(*v);
+    if (auto v = m.as<double>()) return apex::toText(*v);
+    if (auto v = m.as<bool>()) return *v ? "true" : "false";
+    if (auto v = m.as<std::string>()) return *v;
+    return "<" + m.typeName() + ">";
+  }
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, Print, apex_nodes::Print);

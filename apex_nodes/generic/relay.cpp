@@ -1,0 +1,18 @@
+// Relay: passes any message through unchanged (the same object, no copy).
+#include "apex/ros/node_plugin.hpp"
+
+namespace apex_nodes {
+
+class Relay : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Passes any message through unchanged")
+        .input<apex::Any>("in", "any message")
+        .output<apex::Any>("out", "the same message");
+  }
+  void process() override { publishMessage("out", inputMessage("in")); }
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, Relay, apex_nodes::Relay);

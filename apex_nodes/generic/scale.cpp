@@ -1,0 +1,19 @@
+// Scale: multiplies a number by a factor.
+#include "apex/ros/node_plugin.hpp"
+
+namespace apex_nodes {
+
+class Scale : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Multiplies a number by a factor")
+        .input<double>("in")
+        .output<double>("out")
+        .param(apex::param::real("factor", 1.0).describe("the factor"));
+  }
+  void process() override { publish("out", *input<double>("in") * param<double>("factor")); }
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, Scale, apex_nodes::Scale);

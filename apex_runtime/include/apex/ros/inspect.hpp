@@ -1,0 +1,37 @@
+// How a port's messages are published for inspection (~inspect): a converter per
+// message type. Numbers and strings come built in; node libraries add theirs
+// (images, clouds) with one line:
+//   static const bool ok = apex::addInspector<cv::Mat, sensor_msgs::Image>(convert);
+#pragma once
+
+#include <ros/ros.h>
+
+#include <functional>
+#include <string>
+
+#include "apex/core/message.hpp"
+
+namespace apex {
+
+struct Inspector {
+  std::string message_type;  ///< e.g. "std_msgs/Int32"
+  std::function<ros::Publisher(ros::NodeHandle&, const std::string& topic)> advertise;
+  std::function<void(const ros::Publisher&, const Message&)> publish;
+};
+
+/** @brief Registers the converter for messages of `type` (the last registration wins). */
+bool registerInspector(const TypeInfo* type, Inspector inspector);
+/** @brief The converter for `type`; a YAML-text std_msgs/String one if none is registered. */
+Inspector findInspector(const TypeInfo* type);
+
+template <class T, class RosMsg, class Convert>
+bool addInspector(Convert convert) {
+  return registerInspector(
+      typeOf<T>(), Inspector{ros::message_traits::datatype<RosMsg>(),
+                             [](ros::NodeHandle& nh, const std::string& topic) { return nh.advertise<RosMsg>(topic, 1); },
+                             [convert](const ros::Publisher& pub, const Message& m) {
+                               if (auto p = m.as<T>()) pub.publish(convert(*p));
+                             }});
+}
+
+}  // namespace apex

@@ -1,0 +1,149 @@
+#include "convert.hpp"
+
+#include <algorithm>
+
+namespace apex {
+namespace ros_host {
+namespace {
+
+PortInfo port(const std::string& name, const char* kind, const TypeInfo* type, bool optional,
+              const std::string& description) {
+  PortInfo p;
+  p.name = name;
+  p.kind = kind;
+  p.type = type ? type->name : "";
+  p.optional = optional;
+  p.description = description;
+  return p;
+}
+
+const char* pathMode(PathMode m) {
+  switch (m) {
+    case PathMode::Read: return "read";
+    case PathMode::Write: return "write";
+    case PathMode::Directory: return "directory";
+  }
+  return "";
+}
+
+ParamInfo param(const ParamSpec& s, const std::string& value, bool interactive) {
+  ParamInfo p;
+  p.name = s.name;
+  p.kind = s.kindName();
+  p.type = s.portType()->name;
+  p.default_value = toText(s.default_value);
+  p.value = value;
+  p.min = s.min;
+  p.max = s.max;
+  p.step = s.step;
+  p.options = s.options;
+  if (s.kind == ParamKind::Path) p.path_mode = pathMode(s.path_mode);
+  p.interactive = interactive;
+  p.description = s.description;
+  return p;
+}
+
+std::string state(const NodeDescription& n) {
+  if (n.placeholder) return "placeholder";
+  if (!n.error.empty()) return "error";
+  return n.enabled ? "ok" : "disabled";
+}
+
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+/** data, parameter or event, from the ports' kinds in the two manifests */
+std::string connectionKind(const Graph& graph, const ConnectionDescription& c) {
+  auto from = graph.nodeType(c.from_node);
+  auto to = graph.nodeType(c.to_node);
+  if (from && from->manifest->findTrigger(c.from_port)) return "event";
+  if ((from && from->manifest->findParam(c.from_port)) || (to && to->manifest->findParam(c.to_port))) return "parameter";
+  return "data";
+}
+
+}  // namespace
+
+NodeTypeInfo toTypeInfo(const NodeType& type) {
+  const Manifest& m = *type.manifest;
+  NodeTypeInfo t;
+  t.id = type.id;
+  t.description = m.description;
+  for (const auto& p : m.inputs) t.ports.push_back(port(p.name, "input", p.type, p.optional, p.description));
+  for (const auto& p : m.outputs) t.ports.push_back(port(p.name, "output", p.type, false, p.description));
+  for (const auto& e : m.slots) t.ports.push_back(port(e.name, "slot", nullptr, false, e.description));
+  for (const auto& e : m.triggers) t.ports.push_back(port(e.name, "trigger", nullptr, false, e.description));
+  for (const auto& s : m.params) t.parameters.push_back(param(s, toText(s.default_value), s.interactive));
+  return t;
+}
+
+NodeInfo toNodeInfo(const Graph& graph, const NodeDescription& n) {
+  NodeInfo info;
+  info.name = n.name;
+  info.type = n.type;
+  info.thread_group = n.thread_group;
+  info.enabled = n.enabled;
+  info.state = state(n);
+  info.error = n.error;
+  info.ui = n.ui;
+  auto type = graph.nodeType(n.name);
+  if (!type) return info;  // a placeholder: no ports known
+  NodeTypeInfo t = toTypeInfo(*type);
+  for (auto& p : t.ports) info.ports.push_back(p);
+  for (const auto& s : type->manifest->params) {
+    std::string value = toText(s.default_value);
+    for (const auto& [name, text] : n.parameters) if (name == s.name) value = text;
+    const bool interactive = has(n.interactive, s.name);
+    info.parameters.push_back(param(s, value, interactive));
+    if (!interactive) continue;
+    info.ports.push_back(port(s.name, "param_in", s.portType(), false, s.description));
+    info.ports.push_back(port(s.name, "param_out", s.portType(), false, s.description));
+  }
+  return info;
+}
+
+GraphState toGraphState(const Graph& graph, std::uint64_t revision) {
+  const GraphDescription d = graph.describe();
+  GraphState g;
+  g.revision = revision;
+  g.paused = graph.paused();
+  g.thread_groups.push_back("default");
+  for (const auto& name : d.thread_groups) g.thread_groups.push_back(name);
+  for (const auto& n : d.nodes) g.nodes.push_back(toNodeInfo(graph, n));
+  for (const auto& c : d.connections) {
+    Connection msg;
+    msg.from_node = c.from_node;
+    msg.from_port = c.from_port;
+    msg.to_node = c.to_node;
+    msg.to_port = c.to_port;
+    msg.kind = connectionKind(graph, c);
+    g.connections.push_back(msg);
+  }
+  return g;
+}
+
+RuntimeStatus toStatus(const Graph& graph) {
+  RuntimeStatus s;
+  s.stamp = ros::Time::now();
+  for (const auto& n : graph.nodeStats()) {
+    NodeStatus ns;
+    ns.name = n.name;
+    ns.state = !n.error.empty() ? "error" : n.enabled ? "ok" : "disabled";
+    ns.error = n.error;
+    ns.firings = n.firings;
+    ns.last_ms = n.last_ns / 1e6;
+    ns.mean_ms = n.mean_ns / 1e6;
+    ns.max_ms = n.max_ns / 1e6;
+    s.nodes.push_back(ns);
+  }
+  for (const auto& g : graph.groupStats()) {
+    GroupStatus gs;
+    gs.name = g.name;
+    gs.load = g.load();
+    gs.firings = g.firings;
+    gs.wakeups = g.wakeups;
+    s.groups.push_back(gs);
+  }
+  return s;
+}
+
+}  // namespace ros_host
+}  // namespace apex

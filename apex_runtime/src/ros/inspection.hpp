@@ -1,0 +1,36 @@
+// ~inspect: publishes one port's messages on ~inspect/<node>/<port> while
+// enabled. Costs nothing while off (no tap) or while nobody subscribes.
+#pragma once
+
+#include <ros/ros.h>
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+
+#include "apex/core/graph.hpp"
+#include "apex/ros/inspect.hpp"
+
+namespace apex {
+namespace ros_host {
+
+class Inspection {
+ public:
+  explicit Inspection(ros::NodeHandle private_nh) : nh_(private_nh) {}
+  /** @brief Enables or disables a port; returns (topic, ROS message type), empty when disabled. */
+  Result<std::pair<std::string, std::string>> set(Graph& graph, const std::string& node, const std::string& port,
+                                                  bool enable);
+  void forgetNode(const std::string& node);
+  void clear();
+
+ private:
+  struct Tap;
+  ros::NodeHandle nh_;
+  std::mutex mutex_;
+  std::map<std::string, std::shared_ptr<Tap>> taps_;  // "node/port"
+};
+
+}  // namespace ros_host
+}  // namespace apex

@@ -1,0 +1,276 @@
+// Service callbacks: request → core call → response. Publishing: ~graph
+// (latched) after every change from any source, ~status at 2 Hz, parameter
+// values mirrored on the parameter server under ~nodes/<node>/<parameter>.
+#include "apex/ros/runtime_host.hpp"
+
+#include <apex/AddNode.h>
+#include <apex/Connect.h>
+#include <apex/Control.h>
+#include <apex/FireSlot.h>
+#include <apex/GetGraph.h>
+#include <apex/Inspect.h>
+#include <apex/ListNodeTypes.h>
+#include <apex/LoadGraph.h>
+#include <apex/RemoveNode.h>
+#include <apex/SaveGraph.h>
+#include <apex/SetEnabled.h>
+#include <apex/SetInteractive.h>
+#include <apex/SetParameter.h>
+#include <apex/SetThreadGroup.h>
+#include <apex/SetUi.h>
+
+#include <map>
+#include <mutex>
+
+#include "apex/core/graph_file.hpp"
+#include "apex/core/log.hpp"
+#include "convert.hpp"
+#include "inspection.hpp"
+#include "param_mirror.hpp"
+#include "plugin_types.hpp"
+
+namespace apex {
+namespace ros_host {
+
+namespace {
+
+void installRosconsoleSink() {
+  setLogSink([](LogLevel level, const std::string& node, const std::string& text) {
+    const std::string name = std::string(ROSCONSOLE_DEFAULT_NAME) + ".apex" + (node.empty() ? "" : "." + node);
+    const std::string line = node.empty() ? text : "[" + node + "] " + text;
+    switch (level) {
+      case LogLevel::Debug: ROS_DEBUG_STREAM_NAMED(name, line); break;
+      case LogLevel::Info: ROS_INFO_STREAM_NAMED(name, line); break;
+      case LogLevel::Warn: ROS_WARN_STREAM_NAMED(name, line); break;
+      case LogLevel::Error: ROS_ERROR_STREAM_NAMED(name, line); break;
+    }
+  });
+}
+
+template <class Res>
+bool answer(Res& res, const Status& st) {
+  res.success = st.isOk();
+  res.message = st.isOk() ? "" : st.message();
+  return true;  // the call itself worked; `success` says whether the edit did
+}
+
+}  // namespace
+
+struct RuntimeHost::Impl {
+  ros::NodeHandle nh, pnh;
+  std::unique_ptr<PluginTypes> plugins;  // first: node code lives in its libraries, so they outlive the graph
+  Graph graph;
+  std::vector<std::string> load_errors;
+  Inspection inspection;
+  ParamMirror mirror;
+  ros::Publisher graph_pub, status_pub;
+  std::vector<ros::ServiceServer> services;
+  ros::WallTimer change_timer, status_timer;
+  std::mutex publish_mutex;
+  std::uint64_t published_revision = ~0ull;
+
+  Impl(ros::NodeHandle n, ros::NodeHandle p)
+      : nh(n), pnh(p), graph(NodeRegistry()), inspection(pnh), mirror(pnh) {}
+
+  // ------------------------------------------------------------ publishing
+
+  void publishIfChanged() {
+    std::lock_guard<std::mutex> lock(publish_mutex);
+    const std::uint64_t revision = graph.revision();
+    if (revision == published_revision) return;
+    published_revision = revision;
+    const GraphState state = toGraphState(graph, revision);
+    graph_pub.publish(state);
+    mirror.update(graph, state);
+  }
+
+  template <class Res>
+  bool answered(Res& res, const Status& st) {
+    answer(res, st);
+    publishIfChanged();
+    return true;
+  }
+
+  // ------------------------------------------------------------ services
+
+  bool listNodeTypes(ListNodeTypes::Request&, ListNodeTypes::Response& res) {
+    for (const auto& id : graph.registry().ids()) res.types.push_back(toTypeInfo(*graph.registry().find(id)));
+    res.load_errors = load_errors;
+    res.success = true;
+    return true;
+  }
+
+  bool addNode(AddNode::Request& req, AddNode::Response& res) {
+    NodeDescription d;
+    d.type = req.type;
+    d.name = req.name;
+    d.thread_group = req.thread_group;
+    auto params = parseParameterMap(req.parameters);
+    if (!params) return answered(res, Status::error("parameters: " + params.message()));
+    d.parameters = params.value();
+    if (auto type = graph.registry().find(req.type))
+      for (const auto& p : type->manifest->params) if (p.interactive) d.interactive.push_back(p.name);
+    auto added = graph.addNode(d);
+    if (added) {
+      res.name = added.value();
+      for (const auto& n : graph.describe().nodes)
+        if (n.name == res.name) res.node = toNodeInfo(graph, n);
+    }
+    return answered(res, added.status());
+  }
+
+  bool removeNode(RemoveNode::Request& req, RemoveNode::Response& res) {
+    auto st = graph.removeNode(req.name);
+    if (st) inspection.forgetNode(req.name);
+    return answered(res, st);
+  }
+
+  bool connect(Connect::Request& req, Connect::Response& res) {
+    return answered(res, graph.connect(req.from_node, req.from_port, req.to_node, req.to_port));
+  }
+
+  bool disconnect(Connect::Request& req, Connect::Response& res) {
+    return answered(res, graph.disconnect(req.from_node, req.from_port, req.to_node, req.to_port));
+  }
+
+  bool setParameter(SetParameter::Request& req, SetParameter::Response& res) {
+    auto applied = graph.setParameter(req.node, req.parameter, req.value);
+    if (applied) {
+      res.value = applied.value();
+    } else if (auto old = graph.parameterValue(req.node, req.parameter)) {
+      res.value = toText(old.value());  // refused: the value that stays
+    }
+    return answered(res, applied.status());
+  }
+
+  bool setInteractive(SetInteractive::Request& req, SetInteractive::Response& res) {
+    return answered(res, graph.setInteractive(req.node, req.parameter, req.interactive));
+  }
+  bool setEnabled(SetEnabled::Request& req, SetEnabled::Response& res) {
+    return answered(res, graph.setEnabled(req.node, req.enabled));
+  }
+  bool setThreadGroup(SetThreadGroup::Request& req, SetThreadGroup::Response& res) {
+    return answered(res, graph.setThreadGroup(req.node, req.group));
+  }
+  bool setUi(SetUi::Request& req, SetUi::Response& res) { return answered(res, graph.setUi(req.node, req.ui)); }
+  bool fireSlot(FireSlot::Request& req, FireSlot::Response& res) {
+    return answered(res, graph.fireSlot(req.node, req.slot));
+  }
+
+  bool getGraph(GetGraph::Request&, GetGraph::Response& res) {
+    res.graph = toGraphState(graph, graph.revision());
+    res.yaml = formatGraphText(graph.describe());
+    res.success = true;
+    return true;
+  }
+
+  bool loadGraph(LoadGraph::Request& req, LoadGraph::Response& res) {
+    auto report = loadGraphFile(graph, req.path);
+    if (report) {
+      res.warnings = report.value().warnings;
+      inspection.clear();
+      for (const auto& w : res.warnings) ROS_WARN_STREAM_NAMED("apex", w);
+    }
+    return answered(res, report.status());
+  }
+
+  bool saveGraph(SaveGraph::Request& req, SaveGraph::Response& res) {
+    return answered(res, saveGraphFile(graph, req.path));
+  }
+
+  bool control(Control::Request& req, Control::Response& res) {
+    Status st = Status::ok();
+    if (req.command == "pause") {
+      graph.pause();
+    } else if (req.command == "resume") {
+      graph.resume();
+    } else if (req.command == "step") {
+      if (graph.paused()) graph.step();
+      else st = Status::error("step: the graph is running; pause it first");
+    } else {
+      st = Status::error("unknown command '" + req.command + "' (commands: pause, resume, step)");
+    }
+    res.paused = graph.paused();
+    return answered(res, st);
+  }
+
+  bool inspect(Inspect::Request& req, Inspect::Response& res) {
+    auto topic = inspection.set(graph, req.node, req.port, req.enable);
+    if (topic) {
+      res.topic = topic.value().first;
+      res.message_type = topic.value().second;
+    }
+    return answered(res, topic.status());
+  }
+
+  // ------------------------------------------------------------ setup
+
+  template <class Req, class Res>
+  void serve(const std::string& name, bool (Impl::*fn)(Req&, Res&)) {
+    services.push_back(pnh.advertiseService<Impl, Req, Res>(name, fn, this));
+  }
+
+  void advertise() {
+    graph_pub = pnh.advertise<GraphState>("graph", 1, true);
+    status_pub = pnh.advertise<RuntimeStatus>("status", 1);
+    serve("list_node_types", &Impl::listNodeTypes);
+    serve("add_node", &Impl::addNode);
+    serve("remove_node", &Impl::removeNode);
+    serve("connect", &Impl::connect);
+    serve("disconnect", &Impl::disconnect);
+    serve("set_parameter", &Impl::setParameter);
+    serve("set_interactive", &Impl::setInteractive);
+    serve("set_enabled", &Impl::setEnabled);
+    serve("set_thread_group", &Impl::setThreadGroup);
+    serve("set_ui", &Impl::setUi);
+    serve("fire_slot", &Impl::fireSlot);
+    serve("get_graph", &Impl::getGraph);
+    serve("load_graph", &Impl::loadGraph);
+    serve("save_graph", &Impl::saveGraph);
+    serve("control", &Impl::control);
+    serve("inspect", &Impl::inspect);
+    change_timer = pnh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) { publishIfChanged(); });
+    status_timer = pnh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
+      if (status_pub.getNumSubscribers() > 0) status_pub.publish(toStatus(graph));
+    });
+  }
+
+  void loadTypes() {
+    std::vector<std::string> extra;
+    pnh.getParam("extra_plugin_xml", extra);
+    PluginTypes types(extra);
+    load_errors = types.registerAll(graph.registry());
+    for (const auto& e : load_errors) ROS_ERROR_STREAM_NAMED("apex", e);
+    ROS_INFO_STREAM_NAMED("apex", graph.registry().ids().size() << " node types available");
+    plugins = std::make_unique<PluginTypes>(std::move(types));
+  }
+
+  void loadStartupGraph() {
+    std::string path;
+    if (!pnh.getParam("graph", path) || path.empty()) return;
+    auto report = loadGraphFile(graph, path);
+    if (!report) {
+      ROS_ERROR_STREAM_NAMED("apex", "cannot load the graph: " << report.message() << "; starting with an empty graph");
+      return;
+    }
+    for (const auto& w : report.value().warnings) ROS_WARN_STREAM_NAMED("apex", w);
+    ROS_INFO_STREAM_NAMED("apex", "loaded " << path << " (" << graph.size() << " nodes)");
+  }
+};
+
+RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Impl(nh, pnh)) {
+  installRosconsoleSink();
+  impl_->loadTypes();
+  impl_->loadStartupGraph();
+  impl_->graph.start();
+  impl_->advertise();
+  impl_->publishIfChanged();
+}
+
+RuntimeHost::~RuntimeHost() {
+  impl_->graph.stop();
+  impl_->inspection.clear();
+}
+
+}  // namespace ros_host
+}  // namespace apex

@@ -1,0 +1,284 @@
+// Every service of the runtime as a client sees it: the success path, the error
+// paths with their messages, and the graph unchanged after a refused edit.
+#include <apex/AddNode.h>
+#include <apex/Connect.h>
+#include <apex/Control.h>
+#include <apex/FireSlot.h>
+#include <apex/GraphState.h>
+#include <apex/Inspect.h>
+#include <apex/ListNodeTypes.h>
+#include <apex/LoadGraph.h>
+#include <apex/RemoveNode.h>
+#include <apex/SaveGraph.h>
+#include <apex/SetEnabled.h>
+#include <apex/SetInteractive.h>
+#include <apex/SetParameter.h>
+#include <apex/SetThreadGroup.h>
+#include <apex/SetUi.h>
+#include <gmock/gmock.h>
+#include <std_msgs/Int32.h>
+
+#include <condition_variable>
+#include <fstream>
+
+#include "apex_test/ros_client.hpp"
+
+using namespace apex_test;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::string tempPath(const std::string& name) { return "/tmp/apex_test_services_" + std::to_string(getpid()) + "_" + name; }
+
+void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+apex::AddNode::Response addNode(const std::string& type, const std::string& name, const std::string& params = "") {
+  apex::AddNode::Request req;
+  req.type = type;
+  req.name = name;
+  req.parameters = params;
+  return call<apex::AddNode>("add_node", req);
+}
+
+apex::Connect::Response connectPorts(const std::string& service, const std::string& a, const std::string& ap,
+                                     const std::string& b, const std::string& bp) {
+  apex::Connect::Request req;
+  req.from_node = a, req.from_port = ap, req.to_node = b, req.to_port = bp;
+  return call<apex::Connect>(service, req);
+}
+
+struct Services : ::testing::Test {
+  void SetUp() override {  // every test starts from an empty graph
+    const std::string empty = tempPath("empty.yaml");
+    writeFile(empty, "apex_graph: 1\nnodes: []\nconnections: []\n");
+    apex::LoadGraph::Request req;
+    req.path = empty;
+    ASSERT_TRUE(call<apex::LoadGraph>("load_graph", req).success);
+  }
+  /** The call was refused with `what` in its message and the graph did not change. */
+  template <class Res>
+  void refused(const Res& res, const std::string& before, const std::string& what) {
+    EXPECT_FALSE(res.success);
+    EXPECT_THAT(res.message, HasSubstr(what));
+    EXPECT_EQ(graphText(), before);
+  }
+};
+
+TEST_F(Services, ListNodeTypesDescribesEveryTypeAndNamesLoadErrors) {
+  auto res = call<apex::ListNodeTypes>("list_node_types");
+  ASSERT_TRUE(res.success);
+  const apex::NodeTypeInfo* clock = nullptr;
+  for (const auto& t : res.types) if (t.id == "apex_nodes/Clock") clock = &t;
+  ASSERT_NE(clock, nullptr);
+  EXPECT_FALSE(clock->description.empty());
+  ASSERT_EQ(clock->parameters.size(), 1u);
+  EXPECT_EQ(clock->parameters[0].name, "rate");
+  EXPECT_EQ(clock->parameters[0].kind, "double range");
+  EXPECT_EQ(clock->parameters[0].max, 1000.0);
+  EXPECT_THAT(clock->ports[0].kind, "output");
+  std::string errors;
+  for (const auto& e : res.load_errors) errors += e + "\n";
+  EXPECT_THAT(errors, HasSubstr("node type 'apex_test/NoLibrary'"));
+  EXPECT_THAT(errors, HasSubstr("libapex_not_built"));
+  EXPECT_THAT(errors, HasSubstr("node type 'apex_test/NotExported'"));
+}
+
+TEST_F(Services, AddNodeAppliesParametersAndRefusesBadInput) {
+  auto res = addNode("apex_nodes/Clock", "", "{rate: 25}");
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_EQ(res.name, "clock_1");
+  EXPECT_EQ(res.node.parameters.at(0).value, "25.0");
+  const std::string before = graphText();
+  refused(addNode("apex_nodes/Nope", "x"), before, "unknown node type 'apex_nodes/Nope'");
+  refused(addNode("apex_nodes/Clock", "x", "{rate: 0}"), before, "parameter 'rate': 0 is out of range [0.01, 1000]");
+  refused(addNode("apex_nodes/Clock", "x", "{speed: 1}"), before, "has no parameter 'speed'");
+  refused(addNode("apex_nodes/Clock", "x", "rate: [1"), before, "not valid YAML");
+  refused(addNode("apex_nodes/Clock", "clock_1"), before, "a node named 'clock_1' already exists");
+  refused(addNode("apex_nodes/Clock", "bad name"), before, "node name 'bad name'");
+}
+
+TEST_F(Services, RemoveNode) {
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "r").success);
+  apex::RemoveNode::Request req;
+  req.name = "r";
+  EXPECT_TRUE(call<apex::RemoveNode>("remove_node", req).success);
+  const std::string before = graphText();
+  refused(call<apex::RemoveNode>("remove_node", req), before, "no node named 'r'");
+}
+
+TEST_F(Services, ConnectAndDisconnectFollowEveryRule) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "a").success);
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "b").success);
+  ASSERT_TRUE(addNode("apex_nodes/Scale", "scale").success);
+  ASSERT_TRUE(addNode("apex_nodes/Counter", "count").success);
+  EXPECT_TRUE(connectPorts("connect", "clock", "count", "a", "in").success);
+  EXPECT_TRUE(connectPorts("connect", "a", "out", "b", "in").success);
+  EXPECT_TRUE(connectPorts("connect", "clock", "processed", "count", "reset").success);  // an event
+  const std::string before = graphText();
+  refused(connectPorts("connect", "clock", "count", "scale", "in"), before, "type mismatch");
+  refused(connectPorts("connect", "b", "out", "a", "in"), before, "already connected (from clock)");
+  refused(connectPorts("connect", "clock", "cnt", "b", "in"), before, "outputs: count, time");
+  refused(connectPorts("connect", "ghost", "out", "b", "in"), before, "no node named 'ghost'");
+  refused(connectPorts("connect", "clock", "processed", "b", "in"), before, "a trigger connects only to slots");
+  ASSERT_TRUE(connectPorts("disconnect", "a", "out", "b", "in").success);
+  refused(connectPorts("connect", "b", "out", "a", "in"), graphText(), "already connected");
+  refused(connectPorts("disconnect", "a", "out", "b", "in"), graphText(), "not connected");
+}
+
+TEST_F(Services, CyclesAreRefused) {
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "a").success);
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "b").success);
+  ASSERT_TRUE(connectPorts("connect", "a", "out", "b", "in").success);
+  refused(connectPorts("connect", "b", "out", "a", "in"), graphText(), "would close a cycle");
+}
+
+TEST_F(Services, SetParameterReturnsTheAppliedValue) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
+  apex::SetParameter::Request req;
+  req.node = "clock", req.parameter = "rate", req.value = " 20 ";
+  auto res = call<apex::SetParameter>("set_parameter", req);
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_EQ(res.value, "20.0");
+  const std::string before = graphText();
+  req.value = "fast";
+  res = call<apex::SetParameter>("set_parameter", req);
+  refused(res, before, "parameter 'rate' (double range) expects a number, got 'fast'");
+  EXPECT_EQ(res.value, "20.0");  // what stays
+  req.parameter = "speed";
+  refused(call<apex::SetParameter>("set_parameter", req), before, "no parameter 'speed' (parameters: rate)");
+}
+
+TEST_F(Services, NodeSettingsServices) {
+  ASSERT_TRUE(addNode("apex_nodes/Scale", "scale").success);
+  ASSERT_TRUE(addNode("apex_nodes/Counter", "count").success);
+  apex::SetInteractive::Request inter;
+  inter.node = "scale", inter.parameter = "factor", inter.interactive = true;
+  EXPECT_TRUE(call<apex::SetInteractive>("set_interactive", inter).success);
+  inter.parameter = "gain";
+  refused(call<apex::SetInteractive>("set_interactive", inter), graphText(), "no parameter 'gain'");
+  apex::SetEnabled::Request en;
+  en.node = "scale", en.enabled = false;
+  EXPECT_TRUE(call<apex::SetEnabled>("set_enabled", en).success);
+  en.node = "ghost";
+  refused(call<apex::SetEnabled>("set_enabled", en), graphText(), "no node named 'ghost'");
+  apex::SetThreadGroup::Request grp;
+  grp.node = "scale", grp.group = "vision";
+  EXPECT_TRUE(call<apex::SetThreadGroup>("set_thread_group", grp).success);
+  grp.group = "bad-name";
+  refused(call<apex::SetThreadGroup>("set_thread_group", grp), graphText(), "thread group name 'bad-name'");
+  apex::SetUi::Request ui;
+  ui.node = "scale", ui.ui = "{x: 10, y: 20}";
+  EXPECT_TRUE(call<apex::SetUi>("set_ui", ui).success);
+  ui.ui = "{x: 1";
+  refused(call<apex::SetUi>("set_ui", ui), graphText(), "not valid YAML");
+  apex::FireSlot::Request slot;
+  slot.node = "count", slot.slot = "reset";
+  EXPECT_TRUE(call<apex::FireSlot>("fire_slot", slot).success);
+  slot.slot = "rest";
+  refused(call<apex::FireSlot>("fire_slot", slot), graphText(), "slots: enable, disable, reset");
+
+  auto graph = call<apex::GetGraph>("get_graph");
+  ASSERT_EQ(graph.graph.nodes.size(), 2u);
+  const auto& scale = graph.graph.nodes[0];
+  EXPECT_EQ(scale.thread_group, "vision");
+  EXPECT_EQ(scale.state, "disabled");
+  EXPECT_EQ(scale.ui, "{x: 10, y: 20}");
+  EXPECT_TRUE(scale.parameters[0].interactive);
+  EXPECT_THAT(graph.yaml, HasSubstr("interactive: [factor]"));
+}
+
+TEST_F(Services, SaveAndLoadAreSafe) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
+  apex::SaveGraph::Request save;
+  save.path = tempPath("saved.yaml");
+  ASSERT_TRUE(call<apex::SaveGraph>("save_graph", save).success);
+  save.path = "/nonexistent_dir/g.yaml";
+  auto res = call<apex::SaveGraph>("save_graph", save);
+  EXPECT_FALSE(res.success);
+  EXPECT_THAT(res.message, HasSubstr("/nonexistent_dir/g.yaml"));
+
+  const std::string before = graphText();
+  apex::LoadGraph::Request load;
+  load.path = tempPath("missing.yaml");
+  refused(call<apex::LoadGraph>("load_graph", load), before, "cannot read");
+  load.path = tempPath("malformed.yaml");
+  writeFile(load.path, "apex_graph: 1\nnodes:\n  - name: a\n    type: [oops\n");
+  refused(call<apex::LoadGraph>("load_graph", load), before, "line 5");
+  writeFile(load.path, "apex_graph: 1\nnodes:\n  - {name: a, type: apex_nodes/Relay}\nconnections:\n  - {from: a/out, to: a/in}\n");
+  refused(call<apex::LoadGraph>("load_graph", load), before, "line 5: cannot connect a/out -> a/in");
+
+  load.path = tempPath("unknown.yaml");
+  writeFile(load.path, "apex_graph: 1\nnodes:\n  - {name: old, type: retired/Thing, parameters: {k: 3}}\n");
+  auto loaded = call<apex::LoadGraph>("load_graph", load);
+  ASSERT_TRUE(loaded.success) << loaded.message;
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_THAT(loaded.warnings[0], HasSubstr("unknown type 'retired/Thing'"));
+  EXPECT_EQ(call<apex::GetGraph>("get_graph").graph.nodes.at(0).state, "placeholder");
+
+  load.path = tempPath("saved.yaml");
+  ASSERT_TRUE(call<apex::LoadGraph>("load_graph", load).success);
+  EXPECT_EQ(call<apex::GetGraph>("get_graph").graph.nodes.at(0).name, "clock");
+}
+
+TEST_F(Services, ControlPausesResumesSteps) {
+  apex::Control::Request req;
+  req.command = "pause";
+  EXPECT_TRUE(call<apex::Control>("control", req).paused);
+  req.command = "step";
+  EXPECT_TRUE(call<apex::Control>("control", req).success);
+  req.command = "resume";
+  EXPECT_FALSE(call<apex::Control>("control", req).paused);
+  req.command = "step";
+  EXPECT_THAT(call<apex::Control>("control", req).message, HasSubstr("pause it first"));
+  req.command = "jump";
+  EXPECT_THAT(call<apex::Control>("control", req).message, HasSubstr("unknown command 'jump'"));
+}
+
+/** Waits for a message on a topic, or the timeout. */
+template <class Msg>
+bool receive(ros::NodeHandle& nh, const std::string& topic, Msg& out, double timeout = 20) {
+  std::mutex m;
+  std::condition_variable cv;
+  bool got = false;
+  auto sub = nh.subscribe<Msg>(topic, 1, [&](const typename Msg::ConstPtr& msg) {
+    std::lock_guard<std::mutex> l(m);
+    out = *msg;
+    got = true;
+    cv.notify_all();
+  });
+  std::unique_lock<std::mutex> l(m);
+  return cv.wait_for(l, std::chrono::duration<double>(timeout), [&] { return got; });
+}
+
+TEST_F(Services, InspectPublishesAPortAndGraphIsLatched) {
+  ros::NodeHandle nh;
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock", "{rate: 200}").success);
+  apex::Inspect::Request req;
+  req.node = "clock", req.port = "count", req.enable = true;
+  auto res = call<apex::Inspect>("inspect", req);
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_EQ(res.topic, "/apex/inspect/clock/count");
+  EXPECT_EQ(res.message_type, "std_msgs/Int32");
+  std_msgs::Int32 value;
+  EXPECT_TRUE(receive(nh, res.topic, value));
+  req.port = "nope";
+  EXPECT_THAT(call<apex::Inspect>("inspect", req).message, HasSubstr("no output or interactive parameter 'nope'"));
+
+  apex::GraphState state;
+  ASSERT_TRUE(receive(nh, "/apex/graph", state));  // latched: arrives without a change
+  EXPECT_EQ(state.nodes.size(), 1u);
+  double rate = 0;
+  ASSERT_TRUE(ros::param::get("/apex/nodes/clock/rate", rate));
+  EXPECT_EQ(rate, 200.0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_ros_services");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
