@@ -18,7 +18,6 @@
 #include <gmock/gmock.h>
 #include <std_msgs/Int32.h>
 
-#include <condition_variable>
 #include <fstream>
 
 #include "apex_test/ros_client.hpp"
@@ -233,22 +232,6 @@ TEST_F(Services, ControlPausesResumesSteps) {
   EXPECT_THAT(call<apex::Control>("control", req).message, HasSubstr("pause it first"));
   req.command = "jump";
   EXPECT_THAT(call<apex::Control>("control", req).message, HasSubstr("unknown command 'jump'"));
-}
-
-/** Waits for a message on a topic, or the timeout. */
-template <class Msg>
-bool receive(ros::NodeHandle& nh, const std::string& topic, Msg& out, double timeout = 20) {
-  std::mutex m;
-  std::condition_variable cv;
-  bool got = false;
-  auto sub = nh.subscribe<Msg>(topic, 1, [&](const typename Msg::ConstPtr& msg) {
-    std::lock_guard<std::mutex> l(m);
-    out = *msg;
-    got = true;
-    cv.notify_all();
-  });
-  std::unique_lock<std::mutex> l(m);
-  return cv.wait_for(l, std::chrono::duration<double>(timeout), [&] { return got; });
 }
 
 TEST_F(Services, InspectPublishesAPortAndGraphIsLatched) {

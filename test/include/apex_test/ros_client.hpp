@@ -6,7 +6,11 @@
 #include <ros/ros.h>
 
 #include <apex/GetGraph.h>
+#include <apex/RuntimeStatus.h>
 
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
 
 namespace apex_test {
@@ -26,5 +30,36 @@ typename Srv::Response call(const std::string& name, typename Srv::Request req =
 
 /** The graph as file text: compared before and after a refused edit. */
 inline std::string graphText() { return call<apex::GetGraph>("get_graph").yaml; }
+
+/** Waits for the next message on a topic (needs a spinner running); false on timeout. */
+template <class Msg>
+bool receive(ros::NodeHandle& nh, const std::string& topic, Msg& out, double timeout = 20) {
+  std::mutex m;
+  std::condition_variable cv;
+  bool got = false;
+  auto sub = nh.subscribe<Msg>(topic, 1, [&](const typename Msg::ConstPtr& msg) {
+    std::lock_guard<std::mutex> l(m);
+    out = *msg;
+    got = true;
+    cv.notify_all();
+  });
+  std::unique_lock<std::mutex> l(m);
+  return cv.wait_for(l, std::chrono::duration<double>(timeout), [&] { return got; });
+}
+
+/** The firings of `node` in the next ~status message (0 if it is not listed). */
+inline std::uint64_t firingsOf(ros::NodeHandle& nh, const std::string& node) {
+  apex::RuntimeStatus status;
+  EXPECT_TRUE(receive(nh, "/apex/status", status)) << "no ~status";
+  for (const auto& n : status.nodes) if (n.name == node) return n.firings;
+  return 0;
+}
+
+/** Whether `node` keeps firing: a later ~status shows more firings (statuses come every 0.5 s). */
+inline bool keepsFiring(ros::NodeHandle& nh, const std::string& node) {
+  const auto first = firingsOf(nh, node);
+  for (int i = 0; i < 10; ++i) if (firingsOf(nh, node) > first) return true;
+  return false;
+}
 
 }  // namespace apex_test
