@@ -339,7 +339,11 @@ bool Graph::paused() const {
 void Graph::step() {
   auto lock = lockEdits();
   if (!paused_) return;
+  // Every group's budget is the nodes ready at one instant: groups stay paused
+  // while the budgets are taken, so no firing of this step joins it early.
+  for (auto& [name, g] : groups_) g->pause();
   for (auto& [name, g] : groups_) g->beginStep();
+  for (auto& [name, g] : groups_) g->resume();
   for (auto& [name, g] : groups_) g->waitStep();
 }
 
