@@ -255,6 +255,50 @@ struct RuntimeHost::Impl {
     }
     for (const auto& w : report.value().warnings) ROS_WARN_STREAM_NAMED("apex", w);
     ROS_INFO_STREAM_NAMED("apex", "loaded " << path << " (" << graph.size() << " nodes)");
+    applyOverrides();
+  }
+
+  /** ~overrides: {node: {parameter: value}} set after the start-up graph loads, so one
+   *  graph file serves several robots, bags or topics. */
+  void applyOverrides() {
+    XmlRpc::XmlRpcValue overrides;
+    if (!pnh.getParam("overrides", overrides)) return;
+    if (overrides.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+      ROS_ERROR_STREAM_NAMED("apex", "~overrides must be a mapping {node: {parameter: value}}");
+      return;
+    }
+    for (auto& [node, params] : overrides) {
+      if (params.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+        ROS_ERROR_STREAM_NAMED("apex", "override '" << node << "': must be a mapping {parameter: value}");
+        continue;
+      }
+      for (auto& [param, value] : params) {
+        auto applied = graph.setParameter(node, param, yamlText(value));
+        if (applied) ROS_INFO_STREAM_NAMED("apex", "override " << node << "/" << param << " = " << applied.value());
+        else ROS_ERROR_STREAM_NAMED("apex", "override " << node << "/" << param << ": " << applied.message());
+      }
+    }
+  }
+  /** A parameter-server value as YAML text. */
+  static std::string yamlText(XmlRpc::XmlRpcValue& v) {
+    switch (v.getType()) {
+      case XmlRpc::XmlRpcValue::TypeBoolean: return bool(v) ? "true" : "false";
+      case XmlRpc::XmlRpcValue::TypeInt: return std::to_string(int(v));
+      case XmlRpc::XmlRpcValue::TypeDouble: return toText(double(v));
+      case XmlRpc::XmlRpcValue::TypeString: return quoteIfNeeded(std::string(v));
+      case XmlRpc::XmlRpcValue::TypeArray: {
+        std::string out = "[";
+        for (int i = 0; i < v.size(); ++i) out += (i ? ", " : "") + yamlText(v[i]);
+        return out + "]";
+      }
+      default: return "~";
+    }
+  }
+  /** A string value as YAML text that reads back as that string. */
+  static std::string quoteIfNeeded(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
+    return q + "'";
   }
 };
 

@@ -1,0 +1,19 @@
+// Images and clouds to and from ROS messages: only at the graph's edges.
+#pragma once
+
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include "apex_nodes/types.hpp"
+
+namespace apex_nodes {
+
+/** @brief Shares the message's pixels (no copy): the Image keeps the message alive. */
+std::shared_ptr<const Image> fromRos(const sensor_msgs::ImageConstPtr& msg);
+/** @brief A ROS message of the image (its own copy of the pixels, as ROS needs). */
+sensor_msgs::ImagePtr toRos(const Image& image);
+/** @brief Converts the points (x, y, z fields are required). */
+std::shared_ptr<const Cloud> fromRos(const sensor_msgs::PointCloud2ConstPtr& msg);
+sensor_msgs::PointCloud2Ptr toRos(const Cloud& cloud);
+
+}  // namespace apex_nodes

@@ -1,0 +1,60 @@
+// What flows between APEX's perception nodes. Each keeps the ROS header (stamp,
+// frame_id) with its payload, so results match sensor time and tf2 can
+// transform them. Messages are shared and immutable: a node never changes an
+// input, it publishes a new object.
+#pragma once
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <std_msgs/Header.h>
+
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "apex/core/message.hpp"
+
+namespace apex_nodes {
+
+/** @brief An image: pixels, their encoding (sensor_msgs/image_encodings names, e.g. "bgr8",
+ *  "mono8") and the header of the frame it came from. `owner` keeps borrowed pixels
+ *  alive (e.g. the ROS message a subscriber shares without copying). */
+struct Image {
+  std_msgs::Header header;
+  std::string encoding;
+  cv::Mat mat;
+  std::shared_ptr<const void> owner;
+};
+
+using PointT = pcl::PointXYZ;
+using PclCloud = pcl::PointCloud<PointT>;
+
+/** @brief A point cloud with the header of its sensor message. */
+struct Cloud {
+  std_msgs::Header header;
+  std::shared_ptr<const PclCloud> points;
+};
+
+/** @brief One connected region of a binary image. */
+struct Region {
+  cv::Rect box;
+  double area = 0;
+  cv::Point2d centroid;
+};
+
+/** @brief Regions found in one image, with that image's header and size. */
+struct Regions {
+  std_msgs::Header header;
+  cv::Size image_size;
+  std::vector<Region> regions;
+};
+
+/** @brief The header as the next message in a chain should carry it. */
+inline const std_msgs::Header& headerOf(const Image& i) { return i.header; }
+
+}  // namespace apex_nodes
+
+APEX_TYPE_NAME(apex_nodes::Image, "apex_nodes/Image");
+APEX_TYPE_NAME(apex_nodes::Cloud, "apex_nodes/Cloud");
+APEX_TYPE_NAME(apex_nodes::Regions, "apex_nodes/Regions");

@@ -1,0 +1,51 @@
+// BlobDetection: connected components of a binary image, filtered by area.
+#include <opencv2/imgproc.hpp>
+
+#include "apex/ros/node_plugin.hpp"
+#include "apex_nodes/image_check.hpp"
+
+namespace apex_nodes {
+
+class BlobDetection : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Finds connected regions of non-zero pixels (bounding box, area, centroid)")
+        .input<Image>("image", "binary, single-channel 8-bit")
+        .output<Regions>("regions")
+        .output<int>("count", "how many regions passed the area filter")
+        .param(apex::param::range("min_area", 0, 10000000, 1, 50).describe("pixels; smaller regions are dropped"))
+        .param(apex::param::range("max_area", 0, 10000000, 1, 1000000).describe("pixels; larger regions are dropped"))
+        .param(apex::param::options("connectivity", {"4", "8"}, "8"));
+  }
+  void process() override {
+    const Image& in = *input<Image>("image");
+    requireImage(in, "1");
+    if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit binary image ('" + in.encoding + "')");
+    const int n = cv::connectedComponentsWithStats(in.mat, labels_, stats_, centroids_,
+                                                   param<std::string>("connectivity") == "4" ? 4 : 8, CV_32S,
+                                                   cv::CCL_DEFAULT);
+    auto out = std::make_shared<Regions>();
+    out->header = in.header;
+    out->image_size = in.mat.size();
+    const int lo = param<int>("min_area"), hi = param<int>("max_area");
+    for (int i = 1; i < n; ++i) {  // 0 is the background
+      const int area = stats_.at<int>(i, cv::CC_STAT_AREA);
+      if (area < lo || area > hi) continue;
+      Region r;
+      r.box = cv::Rect(stats_.at<int>(i, cv::CC_STAT_LEFT), stats_.at<int>(i, cv::CC_STAT_TOP),
+                       stats_.at<int>(i, cv::CC_STAT_WIDTH), stats_.at<int>(i, cv::CC_STAT_HEIGHT));
+      r.area = area;
+      r.centroid = cv::Point2d(centroids_.at<double>(i, 0), centroids_.at<double>(i, 1));
+      out->regions.push_back(r);
+    }
+    publish("count", static_cast<int>(out->regions.size()));
+    publish<Regions>("regions", out);
+  }
+
+ private:
+  cv::Mat labels_, stats_, centroids_;  // reused between frames
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, BlobDetection, apex_nodes::BlobDetection);

@@ -1,0 +1,65 @@
+// ColorConvert: cv::cvtColor between the common colour spaces.
+#include <map>
+#include <opencv2/imgproc.hpp>
+
+#include "apex/ros/node_plugin.hpp"
+#include "apex_nodes/image_check.hpp"
+#include "apex_nodes/output_buffer.hpp"
+
+namespace apex_nodes {
+namespace {
+
+struct Conversion {
+  int code;
+  int in_channels;
+  const char* out_encoding;
+};
+
+const std::map<std::string, Conversion>& conversions() {
+  static const std::map<std::string, Conversion> table{
+      {"BGR2GRAY", {cv::COLOR_BGR2GRAY, 3, "mono8"}}, {"RGB2GRAY", {cv::COLOR_RGB2GRAY, 3, "mono8"}},
+      {"GRAY2BGR", {cv::COLOR_GRAY2BGR, 1, "bgr8"}},  {"BGR2RGB", {cv::COLOR_BGR2RGB, 3, "rgb8"}},
+      {"RGB2BGR", {cv::COLOR_RGB2BGR, 3, "bgr8"}},    {"BGR2HSV", {cv::COLOR_BGR2HSV, 3, "8UC3"}},
+      {"RGB2HSV", {cv::COLOR_RGB2HSV, 3, "8UC3"}},    {"HSV2BGR", {cv::COLOR_HSV2BGR, 3, "bgr8"}},
+      {"BGR2YUV", {cv::COLOR_BGR2YUV, 3, "8UC3"}},    {"YUV2BGR", {cv::COLOR_YUV2BGR, 3, "bgr8"}},
+      {"BGRA2BGR", {cv::COLOR_BGRA2BGR, 4, "bgr8"}},  {"BGR2BGRA", {cv::COLOR_BGR2BGRA, 3, "bgra8"}}};
+  return table;
+}
+
+std::vector<std::string> names() {
+  std::vector<std::string> out;
+  for (const auto& [name, c] : conversions()) out.push_back(name);
+  return out;
+}
+
+}  // namespace
+
+class ColorConvert : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Converts between colour spaces (cv::cvtColor)")
+        .input<Image>("image")
+        .output<Image>("image")
+        .param(apex::param::options("conversion", names(), "BGR2GRAY").describe("source and target colour space"));
+  }
+  void process() override {
+    const Image& in = *input<Image>("image");
+    const auto& name = param<std::string>("conversion");
+    const Conversion& c = conversions().at(name);
+    requireImage(in);
+    if (in.mat.channels() != c.in_channels)
+      throw std::invalid_argument(name + " needs a " + std::to_string(c.in_channels) + "-channel image, got " +
+                                  std::to_string(in.mat.channels()) + " channels ('" + in.encoding + "')");
+    auto out = buffer_.next(in);
+    cv::cvtColor(in.mat, out->mat, c.code);
+    out->encoding = c.out_encoding;
+    publish<Image>("image", out);
+  }
+
+ private:
+  OutputBuffer buffer_;
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, ColorConvert, apex_nodes::ColorConvert);

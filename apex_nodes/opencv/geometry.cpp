@@ -1,0 +1,64 @@
+// Resize and Crop.
+#include <opencv2/imgproc.hpp>
+
+#include "apex/ros/node_plugin.hpp"
+#include "apex_nodes/image_check.hpp"
+#include "apex_nodes/output_buffer.hpp"
+
+namespace apex_nodes {
+
+class Resize : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Scales an image")
+        .input<Image>("image")
+        .output<Image>("image")
+        .param(apex::param::range("scale", 0.01, 10.0, 0.01, 0.5))
+        .param(apex::param::options("interpolation", {"nearest", "linear", "area", "cubic"}, "area"));
+  }
+  void process() override {
+    const Image& in = *input<Image>("image");
+    requireImage(in);
+    const auto& i = param<std::string>("interpolation");
+    const int interp = i == "nearest" ? cv::INTER_NEAREST : i == "linear" ? cv::INTER_LINEAR : i == "area" ? cv::INTER_AREA : cv::INTER_CUBIC;
+    const double s = param<double>("scale");
+    auto out = buffer_.next(in);
+    cv::resize(in.mat, out->mat, cv::Size(), s, s, interp);
+    if (out->mat.empty()) throw std::invalid_argument("scale " + std::to_string(s) + " leaves no pixels");
+    out->encoding = in.encoding;
+    publish<Image>("image", out);
+  }
+
+ private:
+  OutputBuffer buffer_;
+};
+
+class Crop : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Cuts out a rectangle (clipped to the image); shares the input's pixels")
+        .input<Image>("image")
+        .output<Image>("image")
+        .param(apex::param::range("x", 0, 100000, 1, 0))
+        .param(apex::param::range("y", 0, 100000, 1, 0))
+        .param(apex::param::range("width", 1, 100000, 1, 100000))
+        .param(apex::param::range("height", 1, 100000, 1, 100000));
+  }
+  void process() override {
+    auto in = input<Image>("image");
+    requireImage(*in);
+    const cv::Rect want(param<int>("x"), param<int>("y"), param<int>("width"), param<int>("height"));
+    const cv::Rect box = want & cv::Rect(0, 0, in->mat.cols, in->mat.rows);
+    if (box.empty()) throw std::invalid_argument("the crop lies outside the " + std::to_string(in->mat.cols) + "x" +
+                                                 std::to_string(in->mat.rows) + " image");
+    auto out = std::make_shared<Image>(*in);
+    out->mat = in->mat(box);  // no copy: a view, kept valid by `owner`
+    out->owner = in;
+    publish<Image>("image", out);
+  }
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, Resize, apex_nodes::Resize);
+APEX_EXPORT_NODE(apex_nodes, Crop, apex_nodes::Crop);

@@ -1,0 +1,48 @@
+// ImageExport: writes images, or the crops of regions, to a directory (e.g. training samples).
+#include <sys/stat.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "apex/ros/node_plugin.hpp"
+#include "apex_nodes/image_check.hpp"
+
+namespace apex_nodes {
+
+class ImageExport : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Writes each image, or each region's crop, as a PNG file")
+        .input<Image>("image")
+        .optionalInput<Regions>("regions", "if connected: one file per region crop")
+        .output<std::string>("path", "the last file written")
+        .param(apex::param::path("directory", "/tmp/apex_export", apex::PathMode::Directory))
+        .param(apex::param::text("prefix", "frame"));
+  }
+  void process() override {
+    const Image& in = *input<Image>("image");
+    requireImage(in);
+    const std::string dir = param<std::string>("directory");
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+      throw std::invalid_argument("directory '" + dir + "' does not exist");
+    const std::string stem = dir + "/" + param<std::string>("prefix") + "_" + std::to_string(count_++);
+    std::string last;
+    if (auto regions = input<Regions>("regions")) {
+      int i = 0;
+      for (const auto& r : regions->regions) write(last = stem + "_" + std::to_string(i++) + ".png", in.mat(r.box & cv::Rect(0, 0, in.mat.cols, in.mat.rows)));
+    } else {
+      write(last = stem + ".png", in.mat);
+    }
+    publish("path", last);
+  }
+
+ private:
+  static void write(const std::string& path, const cv::Mat& mat) {
+    if (!cv::imwrite(path, mat)) throw std::runtime_error("cannot write '" + path + "'");
+  }
+  int count_ = 0;
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, ImageExport, apex_nodes::ImageExport);
