@@ -1,0 +1,201 @@
+// Image nodes against the same OpenCV call made directly (pixel-exact), and
+// their behaviour on input they cannot handle.
+#include <gmock/gmock.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "apex_nodes/types.hpp"
+#include "apex_test/node_harness.hpp"
+
+using namespace apex_test;
+using apex_nodes::Image;
+using apex_nodes::Regions;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::shared_ptr<const Image> image(cv::Mat mat, const std::string& encoding) {
+  auto i = std::make_shared<Image>();
+  i->header.stamp = ros::Time(42, 7);
+  i->header.frame_id = "camera";
+  i->encoding = encoding;
+  i->mat = std::move(mat);
+  return i;
+}
+
+/** A deterministic textured BGR test image. */
+cv::Mat scene() {
+  cv::Mat m(120, 160, CV_8UC3);
+  cv::RNG rng(1);
+  rng.fill(m, cv::RNG::UNIFORM, 0, 255);
+  cv::GaussianBlur(m, m, cv::Size(9, 9), 0);
+  cv::rectangle(m, cv::Rect(20, 30, 40, 30), cv::Scalar::all(10), cv::FILLED);
+  cv::circle(m, cv::Point(110, 70), 20, cv::Scalar::all(240), cv::FILLED);
+  return m;
+}
+
+cv::Mat gray() {
+  cv::Mat g;
+  cv::cvtColor(scene(), g, cv::COLOR_BGR2GRAY);
+  return g;
+}
+
+/** The image a node sent, with its header checked against the input's. */
+const Image& out(const Message& m) {
+  auto i = m.as<Image>();
+  if (!i) throw std::runtime_error("expected an image, got " + m.typeName());
+  EXPECT_EQ(i->header.stamp, ros::Time(42, 7));
+  EXPECT_EQ(i->header.frame_id, "camera");
+  return *i;
+}
+
+void expectSame(const cv::Mat& a, const cv::Mat& b) {
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_EQ(a.type(), b.type());
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+}
+
+TEST(ImageNodes, AdaptiveThresholdMatchesOpenCV) {
+  NodeHarness h("apex_nodes/AdaptiveThreshold", {"image"}, "image");
+  h.set("method", "gaussian");
+  h.set("threshold_type", "binary_inv");
+  h.set("block_size", "15");
+  h.set("c", "4");
+  cv::Mat want;
+  cv::adaptiveThreshold(gray(), want, 255, cv::ADAPTIVE_THRESH_GAUSSIAN_C, cv::THRESH_BINARY_INV, 15, 4);
+  const Image& got = out(h.run(image(gray(), "mono8")));
+  expectSame(got.mat, want);
+  EXPECT_EQ(got.encoding, "mono8");
+  auto st = h.graph().setParameter("node", "block_size", "10");  // even: refused, as in the paper's Fig. 3
+  EXPECT_THAT(st.message(), HasSubstr("not on the step"));
+}
+
+TEST(ImageNodes, AdaptiveThresholdRefusesColourImages) {
+  NodeHarness h("apex_nodes/AdaptiveThreshold", {"image"}, "image");
+  EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("cannot handle 3-channel images (encoding 'bgr8')"));
+  EXPECT_FALSE(h.run(image(gray(), "mono8")).isNothing());  // keeps running, error cleared
+  EXPECT_EQ(h.error(), "");
+}
+
+TEST(ImageNodes, RotateExactAndAnyAngle) {
+  NodeHarness h("apex_nodes/Rotate", {"image"}, "image");
+  cv::Mat want;
+  cv::rotate(scene(), want, cv::ROTATE_90_COUNTERCLOCKWISE);
+  expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);  // default: 90 degrees
+  h.set("angle", "-1.5707963267948966");
+  cv::rotate(scene(), want, cv::ROTATE_90_CLOCKWISE);
+  expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);
+  h.set("angle", "0.5");
+  const cv::Mat m = cv::getRotationMatrix2D(cv::Point2f(80, 60), 0.5 * 180 / M_PI, 1.0);
+  cv::warpAffine(scene(), want, m, scene().size());
+  expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);
+}
+
+TEST(ImageNodes, ColorConvertMatchesOpenCVAndChecksChannels) {
+  NodeHarness h("apex_nodes/ColorConvert", {"image"}, "image");
+  const Image& g = out(h.run(image(scene(), "bgr8")));
+  expectSame(g.mat, gray());
+  EXPECT_EQ(g.encoding, "mono8");
+  h.set("conversion", "BGR2HSV");
+  cv::Mat hsv;
+  cv::cvtColor(scene(), hsv, cv::COLOR_BGR2HSV);
+  expectSame(out(h.run(image(scene(), "bgr8"))).mat, hsv);
+  EXPECT_TRUE(h.run(image(gray(), "mono8")).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("BGR2HSV needs a 3-channel image, got 1 channels ('mono8')"));
+  EXPECT_THAT(h.graph().setParameter("node", "conversion", "BGR2XYZ").message(), HasSubstr("not one of"));
+}
+
+TEST(ImageNodes, MorphologyMatchesOpenCV) {
+  NodeHarness h("apex_nodes/Morphology", {"image"}, "image");
+  h.set("operation", "close");
+  h.set("shape", "ellipse");
+  h.set("kernel_size", "5");
+  h.set("iterations", "2");
+  cv::Mat want;
+  cv::morphologyEx(gray(), want, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)),
+                   cv::Point(-1, -1), 2);
+  expectSame(out(h.run(image(gray(), "mono8"))).mat, want);
+}
+
+TEST(ImageNodes, SmallFiltersMatchOpenCV) {
+  cv::Mat want;
+  {
+    NodeHarness h("apex_nodes/GaussianBlur", {"image"}, "image");
+    h.set("kernel_size", "7");
+    h.set("sigma", "1.5");
+    cv::GaussianBlur(scene(), want, cv::Size(7, 7), 1.5);
+    expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);
+  }
+  {
+    NodeHarness h("apex_nodes/Threshold", {"image"}, "image");
+    h.set("otsu", "true");
+    cv::threshold(gray(), want, 128, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
+    expectSame(out(h.run(image(gray(), "mono8"))).mat, want);
+  }
+  {
+    NodeHarness h("apex_nodes/Canny", {"image"}, "edges");
+    cv::Canny(gray(), want, 50, 150);
+    expectSame(out(h.run(image(gray(), "mono8"))).mat, want);
+  }
+  {
+    NodeHarness h("apex_nodes/Resize", {"image"}, "image");
+    cv::resize(scene(), want, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+    expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);
+  }
+  {
+    NodeHarness h("apex_nodes/Crop", {"image"}, "image");
+    h.set("x", "150");
+    h.set("y", "100");
+    expectSame(out(h.run(image(scene(), "bgr8"))).mat, scene()(cv::Rect(150, 100, 10, 20)));  // clipped
+    h.set("x", "500");
+    EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
+    EXPECT_THAT(h.error(), HasSubstr("outside the 160x120 image"));
+  }
+}
+
+TEST(ImageNodes, BlobDetectionFindsRegionsWithAreaFilter) {
+  cv::Mat binary = cv::Mat::zeros(100, 200, CV_8UC1);
+  cv::rectangle(binary, cv::Rect(10, 10, 20, 10), cv::Scalar(255), cv::FILLED);   // 200 px
+  cv::rectangle(binary, cv::Rect(50, 40, 30, 30), cv::Scalar(255), cv::FILLED);   // 900 px
+  cv::rectangle(binary, cv::Rect(150, 80, 2, 2), cv::Scalar(255), cv::FILLED);    // 4 px: noise
+  NodeHarness h("apex_nodes/BlobDetection", {"image"}, "regions");
+  h.set("min_area", "50");
+  auto regions = h.run(image(binary, "mono8")).as<Regions>();
+  ASSERT_TRUE(regions);
+  ASSERT_EQ(regions->regions.size(), 2u);
+  EXPECT_EQ(regions->regions[0].box, cv::Rect(10, 10, 20, 10));
+  EXPECT_EQ(regions->regions[0].area, 200);
+  EXPECT_EQ(regions->regions[1].box, cv::Rect(50, 40, 30, 30));
+  EXPECT_NEAR(regions->regions[1].centroid.x, 64.5, 1e-9);
+  EXPECT_EQ(regions->header.stamp, ros::Time(42, 7));
+}
+
+TEST(ImageNodes, DrawRegionsDrawsTheBoxes) {
+  NodeHarness h("apex_nodes/DrawRegions", {"image", "regions"}, "image");
+  auto regions = std::make_shared<Regions>();
+  apex_nodes::Region r;
+  r.box = cv::Rect(5, 5, 30, 20);
+  regions->regions.push_back(r);
+  const Image& got = out(h.run({Message::share<Image>(image(gray(), "mono8")), Message::share<Regions>(regions)}));
+  cv::Mat want;
+  cv::cvtColor(gray(), want, cv::COLOR_GRAY2BGR);
+  cv::rectangle(want, r.box, cv::Scalar(0, 255, 0), 2);
+  expectSame(got.mat, want);
+  EXPECT_EQ(got.encoding, "bgr8");
+}
+
+TEST(ImageNodes, EmptyImagesAreAnErrorNotACrash) {
+  for (const char* type : {"apex_nodes/Rotate", "apex_nodes/GaussianBlur", "apex_nodes/Morphology"}) {
+    NodeHarness h(type, {"image"}, "image");
+    EXPECT_TRUE(h.run(image(cv::Mat(), "bgr8")).isNothing()) << type;
+    EXPECT_THAT(h.error(), HasSubstr("received an empty image")) << type;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
