@@ -11,6 +11,7 @@
 #include <gmock/gmock.h>
 
 #include <atomic>
+#include <map>
 #include <random>
 #include <set>
 #include <thread>
@@ -21,18 +22,34 @@ using namespace apex_test;
 
 namespace {
 
-/** Calls a service and reports whether an answer came back at all. */
-template <class Srv>
-bool answered(const std::string& name, typename Srv::Request req, bool& success) {
-  Srv srv;
-  srv.request = req;
-  if (!ros::service::call(service(name), srv)) return false;
-  success = srv.response.success;
-  return true;
-}
+/** One persistent connection per service, as a front end keeps them: a call
+ *  that fails can only mean the runtime did not answer. */
+struct Clients {
+  ros::NodeHandle nh;
+  std::map<std::string, ros::ServiceClient> open;
+  std::vector<std::string> failures;
+
+  template <class Srv>
+  bool answered(const std::string& name, typename Srv::Request req, bool& success) {
+    auto& c = open[name];
+    if (!c) {
+      EXPECT_TRUE(ros::service::waitForService(service(name), ros::Duration(20)));
+      c = nh.serviceClient<Srv>(service(name), true);
+    }
+    Srv srv;
+    srv.request = req;
+    if (!c.call(srv)) {
+      failures.push_back(name);
+      return false;
+    }
+    success = srv.response.success;
+    return true;
+  }
+};
 
 /** One client: 50 calls, a mix of edits on its own side path and touches of the main chain. */
 void client(int id, std::atomic<int>& answered_calls, std::atomic<int>& unanswered) {
+  Clients clients;
   std::mt19937 rng(id);
   const std::string mine = "side" + std::to_string(id);
   int made = 0;
@@ -43,54 +60,55 @@ void client(int id, std::atomic<int>& answered_calls, std::atomic<int>& unanswer
       case 0: {
         apex::AddNode::Request r;
         r.type = "apex_nodes/Counter", r.name = mine + "_" + std::to_string(++made), r.thread_group = "g" + std::to_string(rng() % 3);
-        got = answered<apex::AddNode>("add_node", r, ok);
+        got = clients.answered<apex::AddNode>("add_node", r, ok);
         break;
       }
       case 1: {
         apex::Connect::Request r;
         r.from_node = "relay", r.from_port = "out", r.to_node = node, r.to_port = "in";
-        got = answered<apex::Connect>(rng() % 2 ? "connect" : "disconnect", r, ok);
+        got = clients.answered<apex::Connect>(rng() % 2 ? "connect" : "disconnect", r, ok);
         break;
       }
       case 2: {
         apex::SetParameter::Request r;
         r.node = "clock", r.parameter = "rate", r.value = rng() % 4 ? std::to_string(50 + rng() % 100) : "-1";
-        got = answered<apex::SetParameter>("set_parameter", r, ok);
+        got = clients.answered<apex::SetParameter>("set_parameter", r, ok);
         break;
       }
       case 3: {
         apex::SetEnabled::Request r;
         r.node = node, r.enabled = rng() % 2;
-        got = answered<apex::SetEnabled>("set_enabled", r, ok);
+        got = clients.answered<apex::SetEnabled>("set_enabled", r, ok);
         break;
       }
       case 4: {
         apex::SetThreadGroup::Request r;
         r.node = rng() % 2 ? node : "relay", r.group = "g" + std::to_string(rng() % 3);
-        got = answered<apex::SetThreadGroup>("set_thread_group", r, ok);
+        got = clients.answered<apex::SetThreadGroup>("set_thread_group", r, ok);
         break;
       }
       case 5: {
         apex::FireSlot::Request r;
         r.node = "count", r.slot = "reset";
-        got = answered<apex::FireSlot>("fire_slot", r, ok);
+        got = clients.answered<apex::FireSlot>("fire_slot", r, ok);
         break;
       }
       case 6: {
         apex::Inspect::Request r;
         r.node = "count", r.port = "count", r.enable = rng() % 2;
-        got = answered<apex::Inspect>("inspect", r, ok);
+        got = clients.answered<apex::Inspect>("inspect", r, ok);
         break;
       }
       default: {
         apex::RemoveNode::Request r;
         r.name = node;
-        got = answered<apex::RemoveNode>("remove_node", r, ok);
+        got = clients.answered<apex::RemoveNode>("remove_node", r, ok);
         break;
       }
     }
     (got ? answered_calls : unanswered)++;
   }
+  for (const auto& f : clients.failures) ADD_FAILURE() << "client " << id << ": no answer from " << f;
 }
 
 TEST(Stress, MixedCallsFromFourClientsWhileDataFlows) {

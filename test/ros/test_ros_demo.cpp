@@ -1,0 +1,113 @@
+// The demo graph fed by rosbag play: every frame is processed, each published
+// overlay equals the same OpenCV calls made directly on the bag's frame, and
+// each frame's region count matches the ground truth.
+#include <apex/Inspect.h>
+#include <cv_bridge/cv_bridge.h>
+#include <gmock/gmock.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/Int32.h>
+#include <std_srvs/SetBool.h>
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <opencv2/imgproc.hpp>
+
+#include "apex_test/ros_client.hpp"
+
+using namespace apex_test;
+
+namespace {
+
+std::string g_bag, g_truth;
+
+/** The pipeline of graphs/paper_pipeline_topics.yaml, written directly with OpenCV. */
+cv::Mat expectedOverlay(const cv::Mat& frame, int* regions) {
+  cv::Mat upright, gray, binary, closed, labels, stats, centroids;
+  cv::rotate(frame, upright, cv::ROTATE_90_COUNTERCLOCKWISE);
+  cv::cvtColor(upright, gray, cv::COLOR_BGR2GRAY);
+  cv::adaptiveThreshold(gray, binary, 255, cv::ADAPTIVE_THRESH_GAUSSIAN_C, cv::THRESH_BINARY_INV, 101, 25);
+  cv::morphologyEx(binary, closed, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(7, 7)));
+  const int n = cv::connectedComponentsWithStats(closed, labels, stats, centroids, 8, CV_32S, cv::CCL_DEFAULT);
+  cv::Mat overlay = upright.clone();
+  *regions = 0;
+  for (int i = 1; i < n; ++i) {
+    const int area = stats.at<int>(i, cv::CC_STAT_AREA);
+    if (area < 1500 || area > 20000) continue;
+    ++*regions;
+    cv::rectangle(overlay, cv::Rect(stats.at<int>(i, 0), stats.at<int>(i, 1), stats.at<int>(i, 2), stats.at<int>(i, 3)),
+                  cv::Scalar(0, 255, 0), 2);
+  }
+  return overlay;
+}
+
+TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
+  std::vector<int> truth;
+  for (const auto& f : YAML::LoadFile(g_truth)["frames"]) truth.push_back(f["signs"].as<int>());
+  ASSERT_EQ(truth.size(), 40u);
+
+  std::mutex m;
+  std::condition_variable cv;
+  std::map<ros::Time, sensor_msgs::ImageConstPtr> overlays;
+  std::vector<int> counts;
+  ros::NodeHandle nh;
+  auto sub = nh.subscribe<sensor_msgs::Image>("/apex_demo/overlay", 100, [&](const sensor_msgs::ImageConstPtr& img) {
+    std::lock_guard<std::mutex> l(m);
+    overlays[img->header.stamp] = img;
+    cv.notify_all();
+  });
+  apex::Inspect::Request inspect;
+  inspect.node = "blobs", inspect.port = "count", inspect.enable = true;
+  ASSERT_TRUE(call<apex::Inspect>("inspect", inspect).success);
+  auto count_sub = nh.subscribe<std_msgs::Int32>("/apex/inspect/blobs/count", 100, [&](const std_msgs::Int32::ConstPtr& c) {
+    std::lock_guard<std::mutex> l(m);
+    counts.push_back(c->data);
+  });
+  ros::Time deadline = ros::Time::now() + ros::Duration(30);
+  while ((sub.getNumPublishers() == 0 || count_sub.getNumPublishers() == 0) && ros::Time::now() < deadline)
+    ros::WallDuration(0.01).sleep();  // until both connections stand: no frame may pass before
+  std_srvs::SetBool resume;
+  resume.request.data = false;
+  ASSERT_TRUE(ros::service::waitForService("/player/pause_playback", ros::Duration(30)));
+  ASSERT_TRUE(ros::service::call("/player/pause_playback", resume));
+
+  {
+    std::unique_lock<std::mutex> l(m);
+    ASSERT_TRUE(cv.wait_for(l, std::chrono::seconds(120), [&] { return overlays.size() >= truth.size(); }))
+        << "processed " << overlays.size() << " of " << truth.size() << " frames";
+  }
+  rosbag::Bag bag(g_bag);
+  int frame = 0;
+  for (const auto& msg : rosbag::View(bag, rosbag::TopicQuery("/camera/image_raw"))) {
+    auto image = msg.instantiate<sensor_msgs::Image>();
+    int regions = 0;
+    const cv::Mat want = expectedOverlay(cv_bridge::toCvShare(image)->image, &regions);
+    std::lock_guard<std::mutex> l(m);
+    ASSERT_TRUE(overlays.count(image->header.stamp)) << "frame " << frame << " has no overlay";
+    const cv::Mat got = cv_bridge::toCvShare(overlays[image->header.stamp])->image;
+    ASSERT_EQ(got.size(), want.size());
+    EXPECT_EQ(cv::norm(got, want, cv::NORM_INF), 0.0) << "frame " << frame;
+    EXPECT_EQ(regions, truth[frame]) << "frame " << frame;
+    if (static_cast<std::size_t>(frame) < counts.size()) EXPECT_EQ(counts[frame], truth[frame]) << "frame " << frame;
+    ++frame;
+  }
+  EXPECT_EQ(frame, 40);
+  std::lock_guard<std::mutex> l(m);
+  EXPECT_EQ(counts.size(), truth.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_ros_demo");
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: test_ros_demo BAG TRUTH\n");
+    return 2;
+  }
+  g_bag = argv[1], g_truth = argv[2];
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
