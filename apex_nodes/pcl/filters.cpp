@@ -3,22 +3,9 @@
 #include <pcl/filters/voxel_grid.h>
 
 #include "apex/ros/node_plugin.hpp"
-#include "apex_nodes/types.hpp"
+#include "apex_nodes/cloud_check.hpp"
 
 namespace apex_nodes {
-namespace {
-
-std::shared_ptr<Cloud> resultOf(const Cloud& in) {
-  auto out = std::make_shared<Cloud>();
-  out->header = in.header;
-  return out;
-}
-
-void requirePoints(const Cloud& in) {
-  if (!in.points || in.points->empty()) throw std::invalid_argument("received an empty point cloud");
-}
-
-}  // namespace
 
 class PassThrough : public apex::Node {
  public:
@@ -41,9 +28,7 @@ class PassThrough : public apex::Node {
     filter.setNegative(param<bool>("negative"));
     auto points = std::make_shared<PclCloud>();
     filter.filter(*points);
-    auto out = resultOf(*in);
-    out->points = std::move(points);
-    publish<Cloud>("cloud", out);
+    publish<Cloud>("cloud", cloudResult(*in, std::move(points)));
   }
 };
 
@@ -64,9 +49,7 @@ class VoxelGrid : public apex::Node {
     filter.setLeafSize(leaf, leaf, leaf);
     auto points = std::make_shared<PclCloud>();
     filter.filter(*points);
-    auto out = resultOf(*in);
-    out->points = std::move(points);
-    publish<Cloud>("cloud", out);
+    publish<Cloud>("cloud", cloudResult(*in, std::move(points)));
   }
 };
 

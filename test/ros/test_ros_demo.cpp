@@ -1,7 +1,8 @@
-// The demo graph fed by rosbag play: every frame is processed, each published
+// The demo graph fed by rosbag play, or by its own BagReader: every frame is processed, each published
 // overlay equals the same OpenCV calls made directly on the bag's frame, and
 // each frame's region count matches the ground truth.
 #include <apex/Inspect.h>
+#include <apex/SetParameter.h>
 #include <cv_bridge/cv_bridge.h>
 #include <gmock/gmock.h>
 #include <rosbag/bag.h>
@@ -20,7 +21,7 @@ using namespace apex_test;
 
 namespace {
 
-std::string g_bag, g_truth;
+std::string g_bag, g_truth, g_source = "topic";
 
 /** The pipeline of graphs/paper_pipeline_topics.yaml, written directly with OpenCV. */
 cv::Mat expectedOverlay(const cv::Mat& frame, int* regions) {
@@ -67,10 +68,16 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
   ros::Time deadline = ros::Time::now() + ros::Duration(30);
   while ((sub.getNumPublishers() == 0 || count_sub.getNumPublishers() == 0) && ros::Time::now() < deadline)
     ros::WallDuration(0.01).sleep();  // until both connections stand: no frame may pass before
-  std_srvs::SetBool resume;
-  resume.request.data = false;
-  ASSERT_TRUE(ros::service::waitForService("/player/pause_playback", ros::Duration(30)));
-  ASSERT_TRUE(ros::service::call("/player/pause_playback", resume));
+  if (g_source == "bag") {  // BagReader inside the graph: start it
+    apex::SetParameter::Request play;
+    play.node = "bag", play.parameter = "playing", play.value = "true";
+    ASSERT_TRUE(call<apex::SetParameter>("set_parameter", play).success);
+  } else {  // rosbag play, started paused
+    std_srvs::SetBool resume;
+    resume.request.data = false;
+    ASSERT_TRUE(ros::service::waitForService("/player/pause_playback", ros::Duration(30)));
+    ASSERT_TRUE(ros::service::call("/player/pause_playback", resume));
+  }
 
   {
     std::unique_lock<std::mutex> l(m);
@@ -103,10 +110,11 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "test_ros_demo");
   if (argc < 3) {
-    std::fprintf(stderr, "usage: test_ros_demo BAG TRUTH\n");
+    std::fprintf(stderr, "usage: test_ros_demo BAG TRUTH [topic|bag]\n");
     return 2;
   }
   g_bag = argv[1], g_truth = argv[2];
+  if (argc > 3) g_source = argv[3];
   ros::AsyncSpinner spinner(2);
   spinner.start();
   return RUN_ALL_TESTS();

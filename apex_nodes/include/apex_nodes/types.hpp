@@ -6,6 +6,7 @@
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
+#include <sensor_msgs/LaserScan.h>
 #include <std_msgs/Header.h>
 
 #include <memory>
@@ -36,6 +37,12 @@ struct Cloud {
   std::shared_ptr<const PclCloud> points;
 };
 
+/** @brief Clusters of one cloud (e.g. from EuclideanClustering), with its header. */
+struct Clusters {
+  std_msgs::Header header;
+  std::vector<std::shared_ptr<const PclCloud>> clusters;
+};
+
 /** @brief One connected region of a binary image. */
 struct Region {
   cv::Rect box;
@@ -58,3 +65,5 @@ inline const std_msgs::Header& headerOf(const Image& i) { return i.header; }
 APEX_TYPE_NAME(apex_nodes::Image, "apex_nodes/Image");
 APEX_TYPE_NAME(apex_nodes::Cloud, "apex_nodes/Cloud");
 APEX_TYPE_NAME(apex_nodes::Regions, "apex_nodes/Regions");
+APEX_TYPE_NAME(apex_nodes::Clusters, "apex_nodes/Clusters");
+APEX_TYPE_NAME(sensor_msgs::LaserScan, "sensor_msgs/LaserScan");  // scans travel as the ROS message itself

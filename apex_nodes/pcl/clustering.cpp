@@ -1,0 +1,48 @@
+// EuclideanClustering: groups points closer than a tolerance.
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+
+#include "apex/ros/node_plugin.hpp"
+#include "apex_nodes/cloud_check.hpp"
+
+namespace apex_nodes {
+
+class EuclideanClustering : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Splits a cloud into clusters of points closer than a tolerance")
+        .input<Cloud>("cloud")
+        .output<Clusters>("clusters", "largest first")
+        .output<int>("count")
+        .param(apex::param::range("tolerance", 0.001, 10.0, 0.001, 0.05).describe("metres"))
+        .param(apex::param::range("min_size", 1, 10000000, 1, 50))
+        .param(apex::param::range("max_size", 1, 10000000, 1, 1000000));
+  }
+  void process() override {
+    auto in = input<Cloud>("cloud");
+    requirePoints(*in);
+    auto tree = std::make_shared<pcl::search::KdTree<PointT>>();
+    tree->setInputCloud(in->points);
+    std::vector<pcl::PointIndices> found;
+    pcl::EuclideanClusterExtraction<PointT> ec;
+    ec.setClusterTolerance(param<double>("tolerance"));
+    ec.setMinClusterSize(param<int>("min_size"));
+    ec.setMaxClusterSize(param<int>("max_size"));
+    ec.setSearchMethod(tree);
+    ec.setInputCloud(in->points);
+    ec.extract(found);
+    auto out = std::make_shared<Clusters>();
+    out->header = in->header;
+    for (const auto& indices : found) {
+      auto c = std::make_shared<PclCloud>();
+      for (int i : indices.indices) c->push_back((*in->points)[i]);
+      out->clusters.push_back(std::move(c));
+    }
+    publish("count", static_cast<int>(out->clusters.size()));
+    publish<Clusters>("clusters", out);
+  }
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, EuclideanClustering, apex_nodes::EuclideanClustering);

@@ -1,0 +1,78 @@
+// LaserScanSubscriber and LaserScanToCloud.
+#include <ros/ros.h>
+#include <sensor_msgs/LaserScan.h>
+
+#include <cmath>
+#include <mutex>
+
+#include "apex/ros/node_plugin.hpp"
+#include "apex_nodes/types.hpp"
+
+namespace apex_nodes {
+
+class LaserScanSubscriber : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Receives sensor_msgs/LaserScan; keeps only the newest")
+        .output<sensor_msgs::LaserScan>("scan")
+        .param(apex::param::text("topic", "scan"))
+        .driven();
+  }
+  void setup() override { subscribe(); }
+  void parameterChanged(const std::string&) override { subscribe(); }
+  void process() override {
+    sensor_msgs::LaserScanConstPtr scan;
+    {
+      std::lock_guard<std::mutex> l(m_);
+      std::swap(scan, latest_);
+    }
+    if (scan)  // shared with ROS, not copied: boost to std ownership
+      publish<sensor_msgs::LaserScan>("scan", std::shared_ptr<const sensor_msgs::LaserScan>(scan.get(), [scan](auto*) {}));
+  }
+
+ private:
+  void subscribe() {
+    sub_ = ros::NodeHandle().subscribe<sensor_msgs::LaserScan>(param<std::string>("topic"), 1,
+                                                               [this](const sensor_msgs::LaserScanConstPtr& s) {
+                                                                 {
+                                                                   std::lock_guard<std::mutex> l(m_);
+                                                                   latest_ = s;
+                                                                 }
+                                                                 notifyNewData();
+                                                               });
+  }
+  std::mutex m_;
+  sensor_msgs::LaserScanConstPtr latest_;
+  ros::Subscriber sub_;
+};
+
+class LaserScanToCloud : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Turns a scan's valid ranges into points in the scan's plane (z = 0)")
+        .input<sensor_msgs::LaserScan>("scan")
+        .output<Cloud>("cloud");
+  }
+  void process() override {
+    const auto& scan = *input<sensor_msgs::LaserScan>("scan");
+    auto points = std::make_shared<PclCloud>();
+    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+      const float r = scan.ranges[i];
+      if (!std::isfinite(r) || r < scan.range_min || r > scan.range_max) continue;
+      const double a = scan.angle_min + i * static_cast<double>(scan.angle_increment);
+      points->push_back(PointT(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), 0.f));
+    }
+    if (points->empty())
+      throw std::invalid_argument("scan of " + std::to_string(scan.ranges.size()) + " ranges has none within [" +
+                                  std::to_string(scan.range_min) + ", " + std::to_string(scan.range_max) + "]");
+    auto out = std::make_shared<Cloud>();
+    out->header = scan.header;
+    out->points = std::move(points);
+    publish<Cloud>("cloud", out);
+  }
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, LaserScanSubscriber, apex_nodes::LaserScanSubscriber);
+APEX_EXPORT_NODE(apex_nodes, LaserScanToCloud, apex_nodes::LaserScanToCloud);

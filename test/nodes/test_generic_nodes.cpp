@@ -1,0 +1,62 @@
+// Generic nodes: Add, Throttle, TimeSync, Counter, Relay.
+#include <gmock/gmock.h>
+
+#include "apex_nodes/types.hpp"
+#include "apex_test/node_harness.hpp"
+
+using namespace apex_test;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::shared_ptr<const apex_nodes::Cloud> stamped(double t) {
+  auto c = std::make_shared<apex_nodes::Cloud>();
+  c->header.stamp = ros::Time(t);
+  c->points = std::make_shared<apex_nodes::PclCloud>();
+  return c;
+}
+
+TEST(GenericNodes, AddSums) {
+  NodeHarness h("apex_nodes/Add", {"a", "b"}, "sum");
+  EXPECT_EQ(*h.run({Message::make(1.5), Message::make(2.25)}).as<double>(), 3.75);
+}
+
+TEST(GenericNodes, ThrottlePassesAtMostTheRate) {
+  NodeHarness h("apex_nodes/Throttle", {"in"}, "out");
+  h.set("rate", "0.01");  // one per 100 s: only the first passes here
+  EXPECT_EQ(*h.run({Message::make(1)}).as<int>(), 1);
+  EXPECT_TRUE(h.run({Message::make(2)}).isNothing());
+  EXPECT_TRUE(h.run({Message::make(3)}).isNothing());
+}
+
+TEST(GenericNodes, TimeSyncPairsByStamp) {
+  NodeHarness h("apex_nodes/TimeSync", {"a", "b"}, "b");
+  h.set("tolerance", "0.05");
+  const auto b = stamped(10.03);
+  EXPECT_EQ(h.run({Message::share<apex_nodes::Cloud>(stamped(10.0)), Message::share<apex_nodes::Cloud>(b)}).raw(), b.get());
+  EXPECT_TRUE(h.run({Message::share<apex_nodes::Cloud>(stamped(10.0)), Message::share<apex_nodes::Cloud>(stamped(10.2))}).isNothing());
+  EXPECT_TRUE(h.run({Message::make(1), Message::share<apex_nodes::Cloud>(b)}).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("cannot read a stamp from a int"));
+}
+
+TEST(GenericNodes, CounterCountsAndResets) {
+  NodeHarness h("apex_nodes/Counter", {"in"}, "count");
+  EXPECT_EQ(*h.run({Message::make(7)}).as<int>(), 1);
+  EXPECT_EQ(*h.run({Message::make(7)}).as<int>(), 2);
+  ASSERT_TRUE(h.graph().fireSlot("node", "reset"));
+  ASSERT_TRUE(h.graph().waitIdle(kWait));
+  EXPECT_EQ(*h.run({Message::make(7)}).as<int>(), 1);
+}
+
+TEST(GenericNodes, RelayPassesTheSameObject) {
+  NodeHarness h("apex_nodes/Relay", {"in"}, "out");
+  auto payload = std::make_shared<const std::string>("x");
+  EXPECT_EQ(h.run(payload).raw(), payload.get());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
