@@ -1,13 +1,11 @@
 // Add, Throttle and TimeSync.
 #include <ros/time.h>
-#include <sensor_msgs/LaserScan.h>
 
 #include <chrono>
 #include <cmath>
-#include <optional>
 
 #include "apex/ros/node_plugin.hpp"
-#include "apex_nodes/types.hpp"
+#include "apex_nodes/stamp.hpp"
 
 namespace apex_nodes {
 
@@ -40,16 +38,6 @@ class Throttle : public apex::Node {
   std::chrono::steady_clock::time_point last_;
 };
 
-/** The header stamp of the stamped types APEX's nodes exchange. */
-std::optional<ros::Time> stampOf(const apex::Message& m) {
-  if (auto p = m.as<Image>()) return p->header.stamp;
-  if (auto p = m.as<Cloud>()) return p->header.stamp;
-  if (auto p = m.as<Regions>()) return p->header.stamp;
-  if (auto p = m.as<Clusters>()) return p->header.stamp;
-  if (auto p = m.as<sensor_msgs::LaserScan>()) return p->header.stamp;
-  return std::nullopt;
-}
-
 class TimeSync : public apex::Node {
  public:
   static apex::Manifest manifest() {
@@ -61,10 +49,10 @@ class TimeSync : public apex::Node {
         .param(apex::param::range("tolerance", 0.0, 10.0, 0.001, 0.05).describe("seconds"));
   }
   void process() override {
-    const auto a = stampOf(inputMessage("a")), b = stampOf(inputMessage("b"));
+    const auto a = headerOf(inputMessage("a")), b = headerOf(inputMessage("b"));
     if (!a || !b)
       throw std::invalid_argument("cannot read a stamp from a " + (a ? inputMessage("b") : inputMessage("a")).typeName());
-    if (std::abs((*a - *b).toSec()) > param<double>("tolerance")) return;
+    if (std::abs((a->stamp - b->stamp).toSec()) > param<double>("tolerance")) return;
     publishMessage("a", inputMessage("a"));
     publishMessage("b", inputMessage("b"));
   }

@@ -9,7 +9,9 @@
 #include <pcl/segmentation/sac_segmentation.h>
 #include <sensor_msgs/LaserScan.h>
 
-#include "apex_nodes/types.hpp"
+#include <pcl/common/transforms.h>
+
+#include "apex_nodes/stamp.hpp"
 #include "apex_test/node_harness.hpp"
 
 using namespace apex_test;
@@ -166,3 +168,30 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+namespace {
+
+TEST(CloudNodes, TransformCloudMatchesPclAndChecksFrames) {
+  NodeHarness h("apex_nodes/TransformCloud", {"cloud", "transform"}, "cloud");
+  auto t = std::make_shared<geometry_msgs::TransformStamped>();
+  t->header.frame_id = "base_link";
+  t->child_frame_id = "lidar";
+  t->transform.translation.x = 1.0;
+  t->transform.rotation.z = std::sin(M_PI / 4), t->transform.rotation.w = std::cos(M_PI / 4);  // 90 deg about z
+  const Message m_out = h.run({Message::share<Cloud>(cloud()), Message::share<geometry_msgs::TransformStamped>(t)});
+  ASSERT_TRUE(m_out.as<Cloud>());
+  const Cloud& got = *m_out.as<Cloud>();
+  EXPECT_EQ(got.header.frame_id, "base_link");
+  Eigen::Affine3f m = Eigen::Affine3f::Identity();
+  m.translate(Eigen::Vector3f(1, 0, 0));
+  m.rotate(Eigen::AngleAxisf(static_cast<float>(M_PI / 2), Eigen::Vector3f::UnitZ()));
+  PclCloud want;
+  pcl::transformPointCloud(*cloud()->points, want, m);
+  ASSERT_EQ(got.points->size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) ASSERT_NEAR((*got.points)[i].x, want[i].x, 1e-5);
+  t->child_frame_id = "camera";
+  EXPECT_TRUE(h.run({Message::share<Cloud>(cloud()), Message::share<geometry_msgs::TransformStamped>(t)}).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("the transform maps frame 'camera', the cloud is in 'lidar'"));
+}
+
+}  // namespace

@@ -1,0 +1,48 @@
+// TransformCloud: moves a cloud into another frame with a tf2 transform.
+#include <pcl/common/transforms.h>
+
+#include <Eigen/Geometry>
+
+#include "apex/ros/node_plugin.hpp"
+#include "apex_nodes/cloud_check.hpp"
+#include "apex_nodes/stamp.hpp"
+
+namespace apex_nodes {
+
+/** @brief The transform as a matrix that maps points of its child frame into its frame. */
+inline Eigen::Affine3f toEigen(const geometry_msgs::Transform& t) {
+  const Eigen::Quaternionf q(static_cast<float>(t.rotation.w), static_cast<float>(t.rotation.x),
+                             static_cast<float>(t.rotation.y), static_cast<float>(t.rotation.z));
+  Eigen::Affine3f m = Eigen::Affine3f::Identity();
+  m.translate(Eigen::Vector3f(static_cast<float>(t.translation.x), static_cast<float>(t.translation.y),
+                              static_cast<float>(t.translation.z)));
+  m.rotate(q.normalized());
+  return m;
+}
+
+class TransformCloud : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Transforms a cloud into the transform's frame (e.g. from TfLookup)")
+        .input<Cloud>("cloud")
+        .input<geometry_msgs::TransformStamped>("transform")
+        .output<Cloud>("cloud");
+  }
+  void process() override {
+    auto in = input<Cloud>("cloud");
+    const auto& t = *input<geometry_msgs::TransformStamped>("transform");
+    requirePoints(*in);
+    if (!t.child_frame_id.empty() && t.child_frame_id != in->header.frame_id)
+      throw std::invalid_argument("the transform maps frame '" + t.child_frame_id + "', the cloud is in '" +
+                                  in->header.frame_id + "'");
+    auto points = std::make_shared<PclCloud>();
+    pcl::transformPointCloud(*in->points, *points, toEigen(t.transform));
+    auto out = cloudResult(*in, std::move(points));
+    out->header.frame_id = t.header.frame_id;
+    publish<Cloud>("cloud", out);
+  }
+};
+
+}  // namespace apex_nodes
+
+APEX_EXPORT_NODE(apex_nodes, TransformCloud, apex_nodes::TransformCloud);

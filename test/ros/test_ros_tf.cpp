@@ -1,0 +1,87 @@
+// TfLookup finds the transform at each message's stamp; a missing frame is a
+// named error while the graph keeps running.
+#include <apex/AddNode.h>
+#include <apex/Connect.h>
+#include <apex/GraphState.h>
+#include <apex/Inspect.h>
+#include <apex/SetParameter.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <gmock/gmock.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+
+#include "apex_test/ros_client.hpp"
+
+using namespace apex_test;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::string g_bag;
+
+void add(const std::string& type, const std::string& name, const std::string& params) {
+  apex::AddNode::Request r;
+  r.type = type, r.name = name, r.parameters = params;
+  auto res = call<apex::AddNode>("add_node", r);
+  ASSERT_TRUE(res.success) << res.message;
+}
+
+void link(const std::string& a, const std::string& ap, const std::string& b, const std::string& bp) {
+  apex::Connect::Request r;
+  r.from_node = a, r.from_port = ap, r.to_node = b, r.to_port = bp;
+  auto res = call<apex::Connect>("connect", r);
+  ASSERT_TRUE(res.success) << res.message;
+}
+
+TEST(Tf, LookupAtTheMessageStamp) {
+  tf2_ros::StaticTransformBroadcaster broadcaster;
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = "base_link";
+  t.child_frame_id = "camera";  // the demo bag's frame
+  t.transform.translation.z = 1.25;
+  t.transform.rotation.w = 1.0;
+  broadcaster.sendTransform(t);
+
+  add("apex_nodes/BagReader", "bag", "{file: '" + g_bag + "', rate: 0, loop: true, playing: false}");
+  add("apex_nodes/TfLookup", "tf", "{target_frame: base_link, timeout: 2.0}");
+  link("bag", "image", "tf", "stamped");
+  apex::Inspect::Request inspect;
+  inspect.node = "tf", inspect.port = "transform", inspect.enable = true;
+  auto topic = call<apex::Inspect>("inspect", inspect);
+  ASSERT_TRUE(topic.success) << topic.message;
+  EXPECT_EQ(topic.message_type, "geometry_msgs/TransformStamped");
+  apex::SetParameter::Request play;
+  play.node = "bag", play.parameter = "playing", play.value = "true";
+  ASSERT_TRUE(call<apex::SetParameter>("set_parameter", play).success);
+
+  ros::NodeHandle nh;
+  geometry_msgs::TransformStamped got;
+  ASSERT_TRUE(receive(nh, topic.topic, got));
+  EXPECT_EQ(got.header.frame_id, "base_link");
+  EXPECT_EQ(got.child_frame_id, "camera");
+  EXPECT_DOUBLE_EQ(got.transform.translation.z, 1.25);
+
+  apex::SetParameter::Request missing;
+  missing.node = "tf", missing.parameter = "target_frame", missing.value = "nowhere";
+  ASSERT_TRUE(call<apex::SetParameter>("set_parameter", missing).success);
+  missing.parameter = "timeout", missing.value = "0.05";
+  ASSERT_TRUE(call<apex::SetParameter>("set_parameter", missing).success);
+  apex::GraphState graph;
+  for (int i = 0; i < 40; ++i) {  // each ~graph update; the error shows within a few frames
+    ASSERT_TRUE(receive(nh, "/apex/graph", graph));
+    if (!graph.nodes.at(1).error.empty()) break;
+  }
+  EXPECT_THAT(graph.nodes.at(1).error, HasSubstr("no transform camera -> nowhere"));
+  EXPECT_TRUE(keepsFiring(nh, "bag"));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_ros_tf");
+  if (argc < 2) return 2;
+  g_bag = argv[1];
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
