@@ -39,8 +39,8 @@ class MessageFeeder : public Node {
 inline const NodeRegistry& pluginRegistry() {
   static NodeRegistry* registry = [] {
     auto* r = new NodeRegistry(testRegistry());
-    static apex::ros_host::PluginTypes types;
-    for (const auto& e : types.registerAll(*r)) ADD_FAILURE() << e;
+    static auto* types = new apex::ros_host::PluginTypes;  // never unloaded: node code lives in its libraries
+    for (const auto& e : types->registerAll(*r)) ADD_FAILURE() << e;
     EXPECT_TRUE(r->add<MessageFeeder>("test/MessageFeeder"));
     return r;
   }();
