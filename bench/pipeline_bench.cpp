@@ -4,6 +4,7 @@
 //   apex_bench_pipeline [--quick]   (with the devel space sourced: node types come from pluginlib)
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
@@ -190,18 +191,31 @@ int main(int argc, char** argv) {
   std::printf("a Relay in the second group holds it, so rotate is free for the next frame at once (without it the\n");
   std::printf("edge rotate → overlay would serialise the two groups: no queues, by design).\n\n");
   std::printf("| OpenCV threads | variant | latency ms | vs loop | frames/s | vs loop | vs 1 group |\n|---|---|---|---|---|---|---|\n");
+  std::vector<double> apex_latency;
   for (int threads : {1, default_threads}) {
     cv::setNumThreads(threads);
     const Figures loop = loopRun(input, n);
     const Figures one = apexRun(false, input, n);
     const Figures two = apexRun(true, input, n);
     std::printf("| %d | hand-written loop | %.3f | 1.000 | %.1f | 1.00 | |\n", threads, loop.latency_ms, loop.fps);
+    apex_latency.push_back(one.latency_ms);
     std::printf("| %d | APEX, 1 group | %.3f | %.3f | %.1f | %.2f | 1.00 |\n", threads, one.latency_ms,
                 one.latency_ms / loop.latency_ms, one.fps, one.fps / loop.fps);
     std::printf("| %d | APEX, 2 groups | %.3f | %.3f | %.1f | %.2f | %.2f |\n", threads, two.latency_ms,
                 two.latency_ms / loop.latency_ms, two.fps, two.fps / loop.fps, two.fps / one.fps);
   }
   std::printf("\nTargets: 1-group latency within 2%% of the loop; 2 groups with OpenCV at 1 thread at least 1.6x\n");
-  std::printf("the frames/s of 1 group. The nodelet-chain baseline is not measured yet.\n");
+  std::printf("the frames/s of 1 group.\n");
+  // The nodelet chain ran just before, in this scripts/bench run (its own process: a manager).
+  const char* nodelet[] = {std::getenv("APEX_NODELET_LATENCY_1"), std::getenv("APEX_NODELET_LATENCY_DEFAULT")};
+  if (nodelet[0] && nodelet[1]) {
+    std::printf("\n## Against a chain of nodelets\n\n");
+    std::printf("The same chain as minimal nodelets in one manager (bench/nodelet_chain.cpp): sensor_msgs/Image\n");
+    std::printf("shared between them, cv_bridge in and out at each stage. Latency per frame, one frame in flight.\n\n");
+    std::printf("| OpenCV threads | nodelet chain ms | APEX 1 group ms | APEX / nodelets |\n|---|---|---|---|\n");
+    for (int i = 0; i < 2; ++i)
+      std::printf("| %s | %.3f | %.3f | %.3f |\n", i == 0 ? "1" : std::to_string(default_threads).c_str(),
+                  std::atof(nodelet[i]), apex_latency[i], apex_latency[i] / std::atof(nodelet[i]));
+  }
   return 0;
 }

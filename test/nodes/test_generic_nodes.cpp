@@ -60,3 +60,50 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+namespace {
+
+TEST(GenericNodes, ScaleMultiplies) {
+  NodeHarness h("apex_nodes/Scale", {"in"}, "out");
+  h.set("factor", "-2.5");
+  EXPECT_EQ(*h.run({Message::make(4.0)}).as<double>(), -10.0);
+}
+
+TEST(GenericNodes, PrintLogsNumbersAndTypeNames) {
+  std::mutex m;
+  std::vector<std::string> lines;
+  setLogSink([&](LogLevel, const std::string& node, const std::string& text) {
+    std::lock_guard<std::mutex> l(m);
+    if (node == "node") lines.push_back(text);
+  });
+  {
+    Graph g(pluginRegistry());
+    add(g, "test/MessageFeeder", "in0");
+    add(g, "apex_nodes/Print", "node");
+    link(g, "in0", "out", "node", "in");
+    ASSERT_TRUE(g.setParameter("node", "prefix", "'value: '"));
+    g.start();
+    object<MessageFeeder>(g, "in0")->feed(Message::make(42));
+    object<MessageFeeder>(g, "in0")->feed(Message::make(apex::Color{1, 2, 3}));
+    ASSERT_TRUE(g.waitIdle(kWait));
+  }
+  setLogSink(nullptr);
+  std::lock_guard<std::mutex> l(m);
+  EXPECT_THAT(lines, ::testing::ElementsAre("value: 42", "value: <color>"));
+}
+
+TEST(GenericNodes, ClockTicksAtItsRate) {
+  Graph g(pluginRegistry());
+  add(g, "apex_nodes/Clock", "clock");
+  add(g, "test/Collector", "sink");
+  link(g, "clock", "count", "sink", "in");
+  ASSERT_TRUE(g.setParameter("clock", "rate", "200"));
+  const auto t0 = std::chrono::steady_clock::now();
+  g.start();
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(10));
+  EXPECT_GE(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0.04);  // 10 ticks 5 ms apart
+  auto ticks = object<Collector>(g, "sink")->ints();
+  for (std::size_t i = 0; i < 10; ++i) EXPECT_EQ(ticks[i], static_cast<int>(i));
+}
+
+}  // namespace

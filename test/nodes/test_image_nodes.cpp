@@ -2,6 +2,10 @@
 // their behaviour on input they cannot handle.
 #include <gmock/gmock.h>
 
+#include <unistd.h>
+
+#include <cstdio>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "apex_nodes/types.hpp"
@@ -183,6 +187,21 @@ TEST(ImageNodes, DrawRegionsDrawsTheBoxes) {
   cv::rectangle(want, r.box, cv::Scalar(0, 255, 0), 2);
   expectSame(got.mat, want);
   EXPECT_EQ(got.encoding, "bgr8");
+}
+
+TEST(ImageNodes, ImageExportWritesFramesOrCrops) {
+  char dir[] = "/tmp/apex_export_XXXXXX";
+  ASSERT_NE(mkdtemp(dir), nullptr);
+  NodeHarness h("apex_nodes/ImageExport", {"image"}, "path");
+  h.set("directory", std::string("'") + dir + "'");
+  const std::string path = *h.run(image(scene(), "bgr8")).as<std::string>();
+  EXPECT_EQ(path, std::string(dir) + "/frame_0.png");
+  expectSame(cv::imread(path), scene());  // PNG: lossless
+  h.set("directory", "/nonexistent/dir");
+  EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("directory '/nonexistent/dir' does not exist"));
+  std::remove(path.c_str());
+  rmdir(dir);
 }
 
 TEST(ImageNodes, EmptyImagesAreAnErrorNotACrash) {

@@ -8,11 +8,13 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/Int32.h>
 #include <std_srvs/SetBool.h>
 #include <yaml-cpp/yaml.h>
 
 #include <map>
+#include <thread>
 #include <opencv2/imgproc.hpp>
 
 #include "apex_test/ros_client.hpp"
@@ -61,6 +63,12 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
   apex::Inspect::Request inspect;
   inspect.node = "blobs", inspect.port = "count", inspect.enable = true;
   ASSERT_TRUE(call<apex::Inspect>("inspect", inspect).success);
+  inspect.node = "voxels", inspect.port = "cloud";  // clouds are inspected as sensor_msgs/PointCloud2
+  auto cloud_topic = call<apex::Inspect>("inspect", inspect);
+  ASSERT_TRUE(cloud_topic.success) << cloud_topic.message;
+  EXPECT_EQ(cloud_topic.message_type, "sensor_msgs/PointCloud2");
+  sensor_msgs::PointCloud2 filtered;
+  std::thread cloud_waiter([&] { EXPECT_TRUE(receive(nh, cloud_topic.topic, filtered)) << "no filtered cloud"; });
   auto count_sub = nh.subscribe<std_msgs::Int32>("/apex/inspect/blobs/count", 100, [&](const std_msgs::Int32::ConstPtr& c) {
     std::lock_guard<std::mutex> l(m);
     counts.push_back(c->data);
@@ -100,6 +108,9 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
     ++frame;
   }
   EXPECT_EQ(frame, 40);
+  cloud_waiter.join();
+  EXPECT_EQ(filtered.header.frame_id, "camera");
+  EXPECT_GT(filtered.width * filtered.height, 100u);
   std::lock_guard<std::mutex> l(m);
   EXPECT_EQ(counts.size(), truth.size());
 }

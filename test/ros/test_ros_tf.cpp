@@ -6,6 +6,7 @@
 #include <apex/Inspect.h>
 #include <apex/SetParameter.h>
 #include <geometry_msgs/TransformStamped.h>
+#include <sensor_msgs/LaserScan.h>
 #include <gmock/gmock.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
@@ -72,6 +73,26 @@ TEST(Tf, LookupAtTheMessageStamp) {
   }
   EXPECT_THAT(graph.nodes.at(1).error, HasSubstr("no transform camera -> nowhere"));
   EXPECT_TRUE(keepsFiring(nh, "bag"));
+}
+
+TEST(Laser, ASubscribedScanReachesTheGraph) {
+  add("apex_nodes/LaserScanSubscriber", "laser", "{topic: /test_scan}");
+  apex::Inspect::Request inspect;
+  inspect.node = "laser", inspect.port = "scan", inspect.enable = true;
+  auto topic = call<apex::Inspect>("inspect", inspect);
+  ASSERT_TRUE(topic.success) << topic.message;
+  EXPECT_EQ(topic.message_type, "sensor_msgs/LaserScan");
+  ros::NodeHandle nh;
+  auto pub = nh.advertise<sensor_msgs::LaserScan>("/test_scan", 1);
+  sensor_msgs::LaserScan scan;
+  scan.header.frame_id = "laser";
+  scan.ranges = {1.f, 2.f, 3.f};
+  // a sensor keeps publishing; the first scans may pass before every connection stands
+  auto sensor = nh.createWallTimer(ros::WallDuration(0.05), [&](const ros::WallTimerEvent&) { pub.publish(scan); });
+  sensor_msgs::LaserScan got;
+  ASSERT_TRUE(receive(nh, topic.topic, got));
+  EXPECT_EQ(got.header.frame_id, "laser");
+  EXPECT_EQ(got.ranges, scan.ranges);
 }
 
 }  // namespace

@@ -1,0 +1,19 @@
+// ~inspect for the node library's types: images as sensor_msgs/Image, clouds
+// as sensor_msgs/PointCloud2, scans as themselves (see apex/ros/inspect.hpp).
+#include <sensor_msgs/LaserScan.h>
+
+#include "apex/ros/inspect.hpp"
+#include "apex_nodes/ros_convert.hpp"
+
+namespace apex_nodes {
+namespace {
+
+const bool kRegistered = [] {
+  apex::addInspector<Image, sensor_msgs::Image>([](const Image& i) { return *toRos(i); });
+  apex::addInspector<Cloud, sensor_msgs::PointCloud2>([](const Cloud& c) { return *toRos(c); });
+  apex::addInspector<sensor_msgs::LaserScan, sensor_msgs::LaserScan>([](const sensor_msgs::LaserScan& s) { return s; });
+  return true;
+}();
+
+}  // namespace
+}  // namespace apex_nodes
