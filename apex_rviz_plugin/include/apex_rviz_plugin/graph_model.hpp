@@ -1,0 +1,84 @@
+// The panel's model, with no display: the runtime's graph as the latched ~graph
+// topic last described it, what may connect to what (for feedback while
+// dragging), node positions, and the history of edits as the service calls that
+// undo and redo them.
+#pragma once
+
+#include <apex/AddNode.h>
+#include <apex/Connect.h>
+#include <apex/GraphState.h>
+#include <apex/RemoveNode.h>
+#include <apex/SetEnabled.h>
+#include <apex/SetInteractive.h>
+#include <apex/SetParameter.h>
+#include <apex/SetThreadGroup.h>
+#include <apex/SetUi.h>
+
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace apex_rviz_plugin {
+
+/** @brief One service call of the runtime's API, with the service's name. */
+struct Call {
+  std::string service;  ///< e.g. "add_node", "connect", "disconnect"
+  std::variant<apex::AddNode::Request, apex::RemoveNode::Request, apex::Connect::Request, apex::SetParameter::Request,
+               apex::SetEnabled::Request, apex::SetInteractive::Request, apex::SetThreadGroup::Request,
+               apex::SetUi::Request>
+      request;
+};
+
+/** @brief An edit as done, and the calls that undo it. */
+struct Edit {
+  std::string label;           ///< for a menu: "Add gaussian_blur_1"
+  std::vector<Call> apply;     ///< redo: the calls in order
+  std::vector<Call> revert;    ///< undo: the calls in order
+};
+
+class GraphModel {
+ public:
+  /** @brief Takes a ~graph message; false (and no change) if its revision is not newer. */
+  bool update(const apex::GraphState& graph);
+  const apex::GraphState& graph() const { return graph_; }
+
+  const apex::NodeInfo* node(const std::string& name) const;
+  const apex::PortInfo* port(const std::string& node, const std::string& port, const std::string& kind) const;
+  /** @brief Whether an output (or trigger, or parameter output) may feed an input (or slot,
+   *  or parameter input), with the runtime's rules; if not, why. Empty when it may. */
+  std::string whyNot(const std::string& from_node, const std::string& from_port, const std::string& to_node,
+                     const std::string& to_port) const;
+  /** @brief The node's position from its UI metadata ({x: .., y: ..}); (0, 0) if none. */
+  std::pair<double, double> position(const std::string& node) const;
+
+  // --- edits: each returns the calls to make; the model changes when ~graph says so ---
+  Edit addNode(const std::string& type, const std::string& name, double x, double y) const;
+  /** @brief Removing a node, undone by adding it back with its parameters, group, UI and connections. */
+  std::optional<Edit> removeNode(const std::string& name) const;
+  Edit connect(const apex::Connection& c) const;
+  Edit disconnect(const apex::Connection& c) const;
+  std::optional<Edit> setParameter(const std::string& node, const std::string& param, const std::string& value) const;
+  std::optional<Edit> move(const std::string& node, double x, double y) const;
+
+ private:
+  apex::GraphState graph_;
+  bool has_graph_ = false;
+};
+
+/** @brief Undo and redo of done edits. A new edit clears what could be redone. */
+class EditHistory {
+ public:
+  void done(Edit edit);
+  bool canUndo() const { return !undo_.empty(); }
+  bool canRedo() const { return !redo_.empty(); }
+  /** @brief The calls that undo the last edit (and moves it to the redo list). */
+  std::vector<Call> undo();
+  std::vector<Call> redo();
+  std::string undoLabel() const { return undo_.empty() ? "" : undo_.back().label; }
+
+ private:
+  std::vector<Edit> undo_, redo_;
+};
+
+}  // namespace apex_rviz_plugin

@@ -1,0 +1,165 @@
+#include "apex_rviz_plugin/graph_model.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+
+namespace apex_rviz_plugin {
+namespace {
+
+std::string ui(double x, double y) {
+  return "{x: " + std::to_string(static_cast<int>(x)) + ", y: " + std::to_string(static_cast<int>(y)) + "}";
+}
+
+Call connectCall(const std::string& service, const apex::Connection& c) {
+  apex::Connect::Request r;
+  r.from_node = c.from_node, r.from_port = c.from_port, r.to_node = c.to_node, r.to_port = c.to_port;
+  return {service, r};
+}
+
+Call setUi(const std::string& node, const std::string& text) {
+  apex::SetUi::Request r;
+  r.node = node, r.ui = text;
+  return {"set_ui", r};
+}
+
+bool sourceKind(const std::string& k) { return k == "output" || k == "trigger" || k == "param_out"; }
+bool targetKind(const std::string& k) { return k == "input" || k == "slot" || k == "param_in"; }
+
+}  // namespace
+
+bool GraphModel::update(const apex::GraphState& graph) {
+  if (has_graph_ && graph.revision <= graph_.revision) return false;
+  graph_ = graph;
+  has_graph_ = true;
+  return true;
+}
+
+const apex::NodeInfo* GraphModel::node(const std::string& name) const {
+  for (const auto& n : graph_.nodes) if (n.name == name) return &n;
+  return nullptr;
+}
+
+const apex::PortInfo* GraphModel::port(const std::string& node_name, const std::string& port_name,
+                                       const std::string& kind) const {
+  const apex::NodeInfo* n = node(node_name);
+  if (!n) return nullptr;
+  for (const auto& p : n->ports) if (p.name == port_name && (kind.empty() || p.kind == kind)) return &p;
+  return nullptr;
+}
+
+std::string GraphModel::whyNot(const std::string& fn, const std::string& fp, const std::string& tn,
+                               const std::string& tp) const {
+  const apex::NodeInfo* from = node(fn);
+  const apex::NodeInfo* to = node(tn);
+  if (!from || !to) return "no node named '" + (from ? tn : fn) + "'";
+  const apex::PortInfo* src = nullptr;
+  const apex::PortInfo* dst = nullptr;
+  for (const auto& p : from->ports) if (p.name == fp && sourceKind(p.kind)) src = &p;
+  for (const auto& p : to->ports) if (p.name == tp && targetKind(p.kind)) dst = &p;
+  if (!src) return "'" + fp + "' is not an output, trigger or parameter of " + fn;
+  if (!dst) return "'" + tp + "' is not an input, slot or parameter of " + tn;
+  if ((src->kind == "trigger") != (dst->kind == "slot")) return "triggers connect only to slots";
+  if (dst->kind != "slot" && src->type != dst->type && src->type != "any" && dst->type != "any")
+    return "type mismatch: " + src->type + " to " + dst->type;
+  for (const auto& c : graph_.connections)
+    if (dst->kind != "slot" && c.to_node == tn && c.to_port == tp) return "already connected (from " + c.from_node + ")";
+  return "";
+}
+
+std::pair<double, double> GraphModel::position(const std::string& name) const {
+  const apex::NodeInfo* n = node(name);
+  if (!n || n->ui.empty()) return {0, 0};
+  try {
+    const YAML::Node u = YAML::Load(n->ui);
+    return {u["x"] ? u["x"].as<double>() : 0.0, u["y"] ? u["y"].as<double>() : 0.0};
+  } catch (const YAML::Exception&) {
+    return {0, 0};  // metadata another front end wrote differently
+  }
+}
+
+Edit GraphModel::addNode(const std::string& type, const std::string& name, double x, double y) const {
+  apex::AddNode::Request add;
+  add.type = type, add.name = name;
+  apex::RemoveNode::Request remove;
+  remove.name = name;
+  return {"Add " + name, {{"add_node", add}, setUi(name, ui(x, y))}, {{"remove_node", remove}}};
+}
+
+std::optional<Edit> GraphModel::removeNode(const std::string& name) const {
+  const apex::NodeInfo* n = node(name);
+  if (!n) return std::nullopt;
+  apex::RemoveNode::Request remove;
+  remove.name = name;
+  apex::AddNode::Request add;
+  add.type = n->type, add.name = name, add.thread_group = n->thread_group;
+  std::string params;
+  for (const auto& p : n->parameters) params += (params.empty() ? "" : ", ") + p.name + ": " + p.value;
+  add.parameters = "{" + params + "}";
+  Edit e{"Remove " + name, {{"remove_node", remove}}, {{"add_node", add}}};
+  for (const auto& p : n->parameters) {
+    apex::SetInteractive::Request i;
+    i.node = name, i.parameter = p.name, i.interactive = p.interactive;
+    e.revert.push_back({"set_interactive", i});
+  }
+  if (!n->enabled) {
+    apex::SetEnabled::Request en;
+    en.node = name, en.enabled = false;
+    e.revert.push_back({"set_enabled", en});
+  }
+  if (!n->ui.empty()) e.revert.push_back(setUi(name, n->ui));
+  for (const auto& c : graph_.connections)
+    if (c.from_node == name || c.to_node == name) e.revert.push_back(connectCall("connect", c));
+  return e;
+}
+
+Edit GraphModel::connect(const apex::Connection& c) const {
+  return {"Connect " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port,
+          {connectCall("connect", c)}, {connectCall("disconnect", c)}};
+}
+
+Edit GraphModel::disconnect(const apex::Connection& c) const {
+  return {"Disconnect " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port,
+          {connectCall("disconnect", c)}, {connectCall("connect", c)}};
+}
+
+std::optional<Edit> GraphModel::setParameter(const std::string& node_name, const std::string& param,
+                                             const std::string& value) const {
+  const apex::NodeInfo* n = node(node_name);
+  if (!n) return std::nullopt;
+  auto p = std::find_if(n->parameters.begin(), n->parameters.end(), [&](const auto& x) { return x.name == param; });
+  if (p == n->parameters.end()) return std::nullopt;
+  apex::SetParameter::Request set, back;
+  set.node = back.node = node_name;
+  set.parameter = back.parameter = param;
+  set.value = value;
+  back.value = p->value;
+  return Edit{"Set " + node_name + "/" + param, {{"set_parameter", set}}, {{"set_parameter", back}}};
+}
+
+std::optional<Edit> GraphModel::move(const std::string& node_name, double x, double y) const {
+  const apex::NodeInfo* n = node(node_name);
+  if (!n) return std::nullopt;
+  return Edit{"Move " + node_name, {setUi(node_name, ui(x, y))}, {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+}
+
+void EditHistory::done(Edit edit) {
+  undo_.push_back(std::move(edit));
+  redo_.clear();
+}
+
+std::vector<Call> EditHistory::undo() {
+  if (undo_.empty()) return {};
+  redo_.push_back(std::move(undo_.back()));
+  undo_.pop_back();
+  return redo_.back().revert;
+}
+
+std::vector<Call> EditHistory::redo() {
+  if (redo_.empty()) return {};
+  undo_.push_back(std::move(redo_.back()));
+  redo_.pop_back();
+  return undo_.back().apply;
+}
+
+}  // namespace apex_rviz_plugin

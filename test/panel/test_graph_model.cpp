@@ -1,0 +1,122 @@
+// The panel's model without a display: graph state from ~graph messages, what
+// may connect, positions, and edits with their undo and redo as service calls.
+#include <gmock/gmock.h>
+
+#include "apex_rviz_plugin/graph_model.hpp"
+
+using namespace apex_rviz_plugin;
+using ::testing::HasSubstr;
+
+namespace {
+
+apex::PortInfo port(const std::string& name, const std::string& kind, const std::string& type) {
+  apex::PortInfo p;
+  p.name = name, p.kind = kind, p.type = type;
+  return p;
+}
+
+apex::ParamInfo param(const std::string& name, const std::string& value, bool interactive = false) {
+  apex::ParamInfo p;
+  p.name = name, p.value = value, p.interactive = interactive;
+  return p;
+}
+
+/** clock --count--> relay --out--> count, and clock/processed --> count/reset */
+apex::GraphState graph(std::uint64_t revision) {
+  apex::GraphState g;
+  g.revision = revision;
+  apex::NodeInfo clock, relay, count;
+  clock.name = "clock", clock.type = "apex_nodes/Clock", clock.thread_group = "default", clock.enabled = true;
+  clock.ports = {port("count", "output", "int"), port("time", "output", "double"), port("processed", "trigger", "")};
+  clock.parameters = {param("rate", "20.0", true)};
+  clock.ui = "{x: 10, y: 20}";
+  relay.name = "relay", relay.type = "apex_nodes/Relay", relay.thread_group = "vision", relay.enabled = false;
+  relay.ports = {port("in", "input", "any"), port("out", "output", "any")};
+  count.name = "count", count.type = "apex_nodes/Counter", count.enabled = true;
+  count.ports = {port("in", "input", "any"), port("count", "output", "int"), port("reset", "slot", "")};
+  g.nodes = {clock, relay, count};
+  apex::Connection a, b, e;
+  a.from_node = "clock", a.from_port = "count", a.to_node = "relay", a.to_port = "in";
+  b.from_node = "relay", b.from_port = "out", b.to_node = "count", b.to_port = "in";
+  e.from_node = "clock", e.from_port = "processed", e.to_node = "count", e.to_port = "reset";
+  g.connections = {a, b, e};
+  return g;
+}
+
+TEST(GraphModel, TakesOnlyNewerRevisions) {
+  GraphModel m;
+  EXPECT_TRUE(m.update(graph(5)));
+  auto older = graph(4);
+  older.nodes.clear();
+  EXPECT_FALSE(m.update(older));
+  EXPECT_EQ(m.graph().nodes.size(), 3u);
+  EXPECT_TRUE(m.update(graph(6)));
+}
+
+TEST(GraphModel, SaysWhyAConnectionCannotBeMade) {
+  GraphModel m;
+  m.update(graph(1));
+  EXPECT_EQ(m.whyNot("clock", "time", "count", "in"), "already connected (from relay)");
+  EXPECT_THAT(m.whyNot("clock", "processed", "relay", "in"), HasSubstr("triggers connect only to slots"));
+  EXPECT_THAT(m.whyNot("relay", "in", "count", "in"), HasSubstr("not an output"));
+  EXPECT_THAT(m.whyNot("ghost", "out", "count", "in"), HasSubstr("no node named 'ghost'"));
+  EXPECT_EQ(m.whyNot("clock", "processed", "count", "reset"), "");  // events are many-to-many
+  auto g = graph(2);
+  g.connections.erase(g.connections.begin() + 1);
+  m.update(g);
+  EXPECT_EQ(m.whyNot("clock", "time", "count", "in"), "");  // any input takes a double
+}
+
+TEST(GraphModel, PositionsComeFromUiMetadata) {
+  GraphModel m;
+  m.update(graph(1));
+  EXPECT_EQ(m.position("clock"), std::make_pair(10.0, 20.0));
+  EXPECT_EQ(m.position("relay"), std::make_pair(0.0, 0.0));
+  auto move = m.move("clock", 100, 50);
+  ASSERT_TRUE(move);
+  EXPECT_EQ(std::get<apex::SetUi::Request>(move->apply[0].request).ui, "{x: 100, y: 50}");
+  EXPECT_EQ(std::get<apex::SetUi::Request>(move->revert[0].request).ui, "{x: 10, y: 20}");
+}
+
+TEST(GraphModel, RemovingANodeIsUndoneWithItsSettingsAndConnections) {
+  GraphModel m;
+  m.update(graph(1));
+  auto e = m.removeNode("relay");
+  ASSERT_TRUE(e);
+  ASSERT_EQ(e->apply.size(), 1u);
+  EXPECT_EQ(e->apply[0].service, "remove_node");
+  std::vector<std::string> services;
+  for (const auto& c : e->revert) services.push_back(c.service);
+  EXPECT_THAT(services, ::testing::ElementsAre("add_node", "set_enabled", "connect", "connect"));
+  const auto& add = std::get<apex::AddNode::Request>(e->revert[0].request);
+  EXPECT_EQ(add.type, "apex_nodes/Relay");
+  EXPECT_EQ(add.thread_group, "vision");
+  auto clock = m.removeNode("clock");
+  ASSERT_TRUE(clock);
+  EXPECT_EQ(std::get<apex::AddNode::Request>(clock->revert[0].request).parameters, "{rate: 20.0}");
+  EXPECT_TRUE(std::get<apex::SetInteractive::Request>(clock->revert[1].request).interactive);
+  EXPECT_FALSE(m.removeNode("ghost"));
+}
+
+TEST(EditHistory, UndoRedoAndANewEditClearsRedo) {
+  GraphModel m;
+  m.update(graph(1));
+  EditHistory h;
+  EXPECT_FALSE(h.canUndo());
+  h.done(*m.setParameter("clock", "rate", "50"));
+  h.done(m.addNode("apex_nodes/Relay", "relay_2", 5, 5));
+  EXPECT_EQ(h.undoLabel(), "Add relay_2");
+  auto undo = h.undo();
+  ASSERT_EQ(undo.size(), 1u);
+  EXPECT_EQ(undo[0].service, "remove_node");
+  undo = h.undo();
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(undo[0].request).value, "20.0");  // back to what it was
+  EXPECT_FALSE(h.canUndo());
+  auto redo = h.redo();
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(redo[0].request).value, "50");
+  h.done(m.connect(graph(1).connections[0]));
+  EXPECT_FALSE(h.canRedo());
+  EXPECT_FALSE(m.setParameter("clock", "speed", "1"));
+}
+
+}  // namespace
