@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 
 namespace apex_rviz_plugin {
 namespace {
@@ -21,6 +22,12 @@ Call setUi(const std::string& node, const std::string& text) {
   apex::SetUi::Request r;
   r.node = node, r.ui = text;
   return {"set_ui", r};
+}
+
+std::string parametersText(const apex::NodeInfo& n) {
+  std::string params;
+  for (const auto& p : n.parameters) params += (params.empty() ? "" : ", ") + p.name + ": " + p.value;
+  return "{" + params + "}";
 }
 
 bool sourceKind(const std::string& k) { return k == "output" || k == "trigger" || k == "param_out"; }
@@ -93,9 +100,7 @@ std::optional<Edit> GraphModel::removeNode(const std::string& name) const {
   remove.name = name;
   apex::AddNode::Request add;
   add.type = n->type, add.name = name, add.thread_group = n->thread_group;
-  std::string params;
-  for (const auto& p : n->parameters) params += (params.empty() ? "" : ", ") + p.name + ": " + p.value;
-  add.parameters = "{" + params + "}";
+  add.parameters = parametersText(*n);
   Edit e{"Remove " + name, {{"remove_node", remove}}, {{"add_node", add}}};
   for (const auto& p : n->parameters) {
     apex::SetInteractive::Request i;
@@ -141,6 +146,66 @@ std::optional<Edit> GraphModel::move(const std::string& node_name, double x, dou
   const apex::NodeInfo* n = node(node_name);
   if (!n) return std::nullopt;
   return Edit{"Move " + node_name, {setUi(node_name, ui(x, y))}, {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+}
+
+std::string GraphModel::freshName(const std::string& type) const {
+  std::string base;
+  for (char c : type.substr(type.find('/') + 1)) {  // CamelCase -> snake_case
+    if (std::isupper(static_cast<unsigned char>(c)) && !base.empty() && base.back() != '_') base += '_';
+    base += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  for (int i = 1;; ++i) {
+    std::string name = base + "_" + std::to_string(i);
+    if (!node(name)) return name;
+  }
+}
+
+std::optional<Edit> GraphModel::duplicate(const std::string& name, double x, double y) const {
+  const apex::NodeInfo* n = node(name);
+  if (!n) return std::nullopt;
+  Edit e = addNode(n->type, freshName(n->type), x, y);
+  auto& add = std::get<apex::AddNode::Request>(e.apply.front().request);
+  add.parameters = parametersText(*n);
+  add.thread_group = n->thread_group;
+  e.label = "Duplicate " + name + " as " + add.name;
+  return e;
+}
+
+std::optional<Edit> GraphModel::setEnabled(const std::string& name, bool enabled) const {
+  const apex::NodeInfo* n = node(name);
+  if (!n) return std::nullopt;
+  apex::SetEnabled::Request set, back;
+  set.node = back.node = name;
+  set.enabled = enabled, back.enabled = n->enabled;
+  return Edit{(enabled ? "Enable " : "Disable ") + name, {{"set_enabled", set}}, {{"set_enabled", back}}};
+}
+
+std::optional<Edit> GraphModel::setThreadGroup(const std::string& name, const std::string& group) const {
+  const apex::NodeInfo* n = node(name);
+  if (!n) return std::nullopt;
+  apex::SetThreadGroup::Request set, back;
+  set.node = back.node = name;
+  set.group = group, back.group = n->thread_group;
+  return Edit{"Move " + name + " to group " + group, {{"set_thread_group", set}}, {{"set_thread_group", back}}};
+}
+
+std::optional<Edit> GraphModel::setInteractive(const std::string& name, const std::string& param,
+                                               bool interactive) const {
+  const apex::NodeInfo* n = node(name);
+  if (!n) return std::nullopt;
+  auto p = std::find_if(n->parameters.begin(), n->parameters.end(), [&](const auto& x) { return x.name == param; });
+  if (p == n->parameters.end()) return std::nullopt;
+  apex::SetInteractive::Request set, back;
+  set.node = back.node = name;
+  set.parameter = back.parameter = param;
+  set.interactive = interactive, back.interactive = p->interactive;
+  Edit e{(interactive ? "Show ports of " : "Hide ports of ") + name + "/" + param, {{"set_interactive", set}},
+         {{"set_interactive", back}}};
+  if (!interactive)  // hiding the ports drops their connections: undo restores them
+    for (const auto& c : graph_.connections)
+      if ((c.from_node == name && c.from_port == param) || (c.to_node == name && c.to_port == param))
+        e.revert.push_back(connectCall("connect", c));
+  return e;
 }
 
 void EditHistory::done(Edit edit) {

@@ -41,6 +41,9 @@ class GraphModel {
  public:
   /** @brief Takes a ~graph message; false (and no change) if its revision is not newer. */
   bool update(const apex::GraphState& graph);
+  /** @brief Forgets the graph: the next update is taken whatever its revision (a restarted runtime). */
+  void reset() { has_graph_ = false; graph_ = apex::GraphState(); }
+  bool hasGraph() const { return has_graph_; }
   const apex::GraphState& graph() const { return graph_; }
 
   const apex::NodeInfo* node(const std::string& name) const;
@@ -51,6 +54,8 @@ class GraphModel {
                      const std::string& to_port) const;
   /** @brief The node's position from its UI metadata ({x: .., y: ..}); (0, 0) if none. */
   std::pair<double, double> position(const std::string& node) const;
+  /** @brief A name for a new node of a type not used in the graph: GaussianBlur -> gaussian_blur_1. */
+  std::string freshName(const std::string& type) const;
 
   // --- edits: each returns the calls to make; the model changes when ~graph says so ---
   Edit addNode(const std::string& type, const std::string& name, double x, double y) const;
@@ -60,6 +65,11 @@ class GraphModel {
   Edit disconnect(const apex::Connection& c) const;
   std::optional<Edit> setParameter(const std::string& node, const std::string& param, const std::string& value) const;
   std::optional<Edit> move(const std::string& node, double x, double y) const;
+  /** @brief A copy of a node (type, parameters, group; not its connections) under a fresh name. */
+  std::optional<Edit> duplicate(const std::string& node, double x, double y) const;
+  std::optional<Edit> setEnabled(const std::string& node, bool enabled) const;
+  std::optional<Edit> setThreadGroup(const std::string& node, const std::string& group) const;
+  std::optional<Edit> setInteractive(const std::string& node, const std::string& param, bool interactive) const;
 
  private:
   apex::GraphState graph_;

@@ -1,0 +1,87 @@
+// The editor as a person sees it: a tool bar (runtime namespace, pause, step,
+// undo, redo, save, load), a searchable palette of node types and the graph
+// view. It draws what it is given and says what the person asked for, as
+// signals; it makes no calls itself (no ROS here).
+#pragma once
+
+#include <QWidget>
+
+#include <apex/NodeTypeInfo.h>
+
+#include <vector>
+
+#include "apex_rviz_plugin/graph_scene.hpp"
+
+class QGraphicsView;
+class QLabel;
+class QLineEdit;
+class QListWidget;
+class QToolButton;
+
+namespace apex_rviz_plugin {
+
+class GraphEditor : public QWidget {
+  Q_OBJECT
+ public:
+  explicit GraphEditor(QWidget* parent = nullptr);
+
+  GraphScene* scene() const { return scene_; }
+  QGraphicsView* view() const { return view_; }
+
+  void showGraph(const GraphModel& model);
+  void showTypes(const std::vector<apex::NodeTypeInfo>& types);
+  void showMessage(const QString& text, bool error);
+  void showConnection(bool up, const QString& text);
+  void showHistory(const QString& undo_label, bool can_undo, bool can_redo);
+  void setNamespace(const QString& ns);
+  QString message() const;
+  /** @brief Scales and scrolls the view to show the whole graph (at most 1:1, at least 40%). */
+  void fitGraph();
+  /** @brief Fits the view to the next graph shown (after connecting to a runtime). */
+  void fitNextGraph() { fit_pending_ = true; }
+
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;  ///< Ctrl + wheel zooms
+
+ signals:
+  void namespaceChanged(const QString& ns);
+  void addRequested(const QString& type, QPointF pos);
+  void removeRequested(const QString& node);
+  void duplicateRequested(const QString& node);
+  void enabledRequested(const QString& node, bool enabled);
+  void groupRequested(const QString& node, const QString& group);
+  void fireSlotRequested(const QString& node, const QString& slot);
+  void inspectRequested(const QString& node, const QString& port);
+  void controlRequested(const QString& command);
+  void undoRequested();
+  void redoRequested();
+  void saveRequested(const QString& path);
+  void loadRequested(const QString& path);
+  void typesRequested();
+
+ private:
+  QWidget* buildToolBar();
+  QWidget* buildPalette();
+  void filterPalette(const QString& text);
+  void addFromPalette();
+  void showNodeMenu(const QString& node, QPoint at);
+  void showPortMenu(const QString& node, const QString& port, QPoint at);
+  void removeSelected();
+  void duplicateSelected();
+  QPointF newNodePosition();
+
+  GraphScene* scene_;
+  QGraphicsView* view_;
+  const GraphModel* model_ = nullptr;
+  QLineEdit* namespace_;
+  QLineEdit* search_;
+  QListWidget* palette_;
+  QLabel* message_;
+  QLabel* connection_;
+  QToolButton *pause_, *undo_, *redo_;
+  int added_ = 0;
+  bool fit_pending_ = true;
+  QString last_path_;
+};
+
+}  // namespace apex_rviz_plugin

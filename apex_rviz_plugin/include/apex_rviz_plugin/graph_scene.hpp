@@ -1,0 +1,145 @@
+// The graph drawn: nodes as boxes (inputs left, outputs right, slots and
+// triggers as diamonds, parameter ports as squares, parameter widgets inside),
+// connections as curves. Dragging from an output shows which inputs would take
+// it. Everything a person does comes out as a signal; no ROS, no service calls.
+#pragma once
+
+#include <QGraphicsObject>
+#include <QGraphicsPathItem>
+#include <QGraphicsScene>
+
+#include <apex/RuntimeStatus.h>
+
+#include <map>
+#include <memory>
+
+#include "apex_rviz_plugin/graph_model.hpp"
+
+class QGraphicsProxyWidget;
+
+namespace apex_rviz_plugin {
+
+class ParamEditor;
+class NodeItem;
+
+/** @brief One port: where connections end and drags start. */
+class PortItem : public QGraphicsItem {
+ public:
+  enum class Mark { None, Accepts, Refuses };
+  static constexpr double kRadius = 5;
+
+  PortItem(const apex::PortInfo& port, NodeItem* parent);
+  const apex::PortInfo& port() const { return port_; }
+  NodeItem* node() const;
+  bool isSource() const;  ///< output, trigger or parameter output
+  void setMark(Mark m, const QString& why = {});
+
+  QRectF boundingRect() const override;
+  void paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) override;
+
+ protected:
+  void mousePressEvent(QGraphicsSceneMouseEvent* e) override;
+
+ private:
+  apex::PortInfo port_;
+  Mark mark_ = Mark::None;
+};
+
+/** @brief A node's box; moved by dragging its title. */
+class NodeItem : public QGraphicsObject {
+  Q_OBJECT
+ public:
+  static constexpr double kWidth = 230;
+
+  explicit NodeItem(const apex::NodeInfo& node);
+  const apex::NodeInfo& info() const { return info_; }
+  /** @brief Shows a newer description; rebuilds the ports and widgets only if they changed. */
+  void update(const apex::NodeInfo& node);
+  void showStatus(const apex::NodeStatus& status, double rate_hz);
+  void showValue(const QString& port, const QString& text);
+  PortItem* port(const std::string& name, bool source) const;
+  const std::vector<PortItem*>& ports() const { return ports_; }
+  ParamEditor* editor(const std::string& param) const;
+
+  QRectF boundingRect() const override;
+  void paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) override;
+
+ signals:
+  void parameterEdited(const QString& node, const QString& param, const QString& yaml);
+  void interactiveToggled(const QString& node, const QString& param, bool interactive);
+  void moved(const QString& node, QPointF pos);
+
+ protected:
+  void mouseReleaseEvent(QGraphicsSceneMouseEvent* e) override;
+  QVariant itemChange(GraphicsItemChange change, const QVariant& value) override;
+
+ private:
+  void build();
+  double portsHeight() const;
+
+  apex::NodeInfo info_;
+  std::vector<PortItem*> ports_;
+  std::map<std::string, ParamEditor*> editors_;
+  QGraphicsProxyWidget* params_ = nullptr;
+  QString timing_, values_;
+  std::map<QString, QString> scalar_values_;
+  double height_ = 60;
+  bool dragged_ = false;
+};
+
+/** @brief A connection as a curve from its output to its input. */
+class ConnectionItem : public QGraphicsPathItem {
+ public:
+  ConnectionItem(const apex::Connection& c, PortItem* from, PortItem* to);
+  const apex::Connection& connection() const { return c_; }
+  void reroute();
+
+ private:
+  apex::Connection c_;
+  PortItem* from_;
+  PortItem* to_;
+};
+
+class GraphScene : public QGraphicsScene {
+  Q_OBJECT
+ public:
+  explicit GraphScene(QObject* parent = nullptr);
+  /** @brief Draws the model's graph, keeping the items (and widgets being used) of unchanged nodes. */
+  void show(const GraphModel& model);
+  void showStatus(const apex::RuntimeStatus& status);
+  void showValue(const QString& node, const QString& port, const QString& text);
+  NodeItem* node(const std::string& name) const;
+  const std::vector<ConnectionItem*>& connections() const { return connections_; }
+
+  /** @brief Starts dragging a connection from a port (called by the port). */
+  void beginConnect(PortItem* from);
+
+ signals:
+  void connectRequested(const apex::Connection& c);
+  void disconnectRequested(const apex::Connection& c);
+  void refused(const QString& why);
+  void parameterEdited(const QString& node, const QString& param, const QString& yaml);
+  void interactiveToggled(const QString& node, const QString& param, bool interactive);
+  void nodeMoved(const QString& node, QPointF pos);
+  void nodeMenuRequested(const QString& node, QPoint screen_pos);
+  void portMenuRequested(const QString& node, const QString& port, QPoint screen_pos);
+
+ protected:
+  void mouseMoveEvent(QGraphicsSceneMouseEvent* e) override;
+  void mouseReleaseEvent(QGraphicsSceneMouseEvent* e) override;
+  void contextMenuEvent(QGraphicsSceneContextMenuEvent* e) override;
+
+ private:
+  void reroute();
+  PortItem* portAt(QPointF pos) const;
+  void endDrag();
+
+  const GraphModel* model_ = nullptr;
+  std::map<std::string, NodeItem*> nodes_;
+  std::vector<ConnectionItem*> connections_;
+  std::map<std::string, std::pair<std::uint64_t, double>> last_status_;  ///< firings at a stamp
+  PortItem* drag_from_ = nullptr;
+  QGraphicsPathItem* drag_line_ = nullptr;
+};
+
+}  // namespace apex_rviz_plugin

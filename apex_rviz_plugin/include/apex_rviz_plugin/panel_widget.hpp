@@ -1,0 +1,53 @@
+// The panel without rviz: the editor, the model and the link to a runtime,
+// joined. What a person asks for in the editor becomes an edit of the model,
+// made through the link; the history records it once the runtime accepts it.
+// GraphPanel puts this in rviz; tests drive it directly.
+#pragma once
+
+#include <QWidget>
+
+#include "apex_rviz_plugin/graph_editor.hpp"
+#include "apex_rviz_plugin/graph_model.hpp"
+#include "apex_rviz_plugin/runtime_link.hpp"
+
+namespace apex_rviz_plugin {
+
+class PanelWidget : public QWidget {
+  Q_OBJECT
+ public:
+  explicit PanelWidget(QWidget* parent = nullptr);
+
+  void setNamespace(const QString& ns);
+  QString ns() const { return QString::fromStdString(link_.ns()); }
+  GraphEditor* editor() const { return editor_; }
+  const GraphModel& model() const { return model_; }
+  const RuntimeLink& link() const { return link_; }
+  int nodeTypeCount() const { return type_count_; }
+  QSize sizeHint() const override { return QSize(1000, 650); }  ///< room for a few nodes side by side
+
+ signals:
+  void namespaceChanged(const QString& ns);
+  /** The runtime publishes a port as an image or a cloud: rviz may show it (rviz class, name, topic). */
+  void displayRequested(const QString& rviz_class, const QString& name, const QString& topic);
+  /** The graph shown changed (after a ~graph message): for tests and status. */
+  void graphShown(quint64 revision);
+  /** Timing from ~status is shown. */
+  void statusShown();
+
+ private:
+  void perform(const std::optional<Edit>& edit);
+  void replay(std::vector<Call> calls, const QString& what);
+  void onGraph(const apex::GraphState& graph);
+  void onInspect(const QString& node, const QString& port);
+  void refreshTypes();
+  void report(bool ok, const std::string& message, const QString& what);
+  void connectEditor();
+
+  GraphEditor* editor_;
+  GraphModel model_;
+  EditHistory history_;
+  RuntimeLink link_;
+  int type_count_ = 0;
+};
+
+}  // namespace apex_rviz_plugin

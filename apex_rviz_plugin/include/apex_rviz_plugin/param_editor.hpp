@@ -1,0 +1,53 @@
+// A widget for one parameter, fitting its kind: slider with spin box for
+// ranges, check box, combo box for sets, interval sliders, colour picker, file
+// chooser, angle dial. It emits the value a person sets as YAML text (throttled
+// while a slider is dragged) and shows the value the runtime applied. No ROS.
+#pragma once
+
+#include <QTimer>
+#include <QWidget>
+
+#include <apex/ParamInfo.h>
+
+#include <functional>
+
+class QCheckBox;
+
+namespace apex_rviz_plugin {
+
+class ParamEditor : public QWidget {
+  Q_OBJECT
+ public:
+  /** Milliseconds between values sent while a slider is dragged. */
+  static constexpr int kThrottleMs = 100;
+
+  explicit ParamEditor(const apex::ParamInfo& param, QWidget* parent = nullptr);
+  const apex::ParamInfo& param() const { return param_; }
+  /** @brief Shows the applied value (from ~graph) without emitting it back; kept while being edited. */
+  void showApplied(const apex::ParamInfo& param);
+
+ signals:
+  void edited(const QString& name, const QString& yaml);
+  void interactiveToggled(const QString& name, bool interactive);
+
+ private:
+  void build();
+  void buildNumber(bool integer);
+  void buildInterval();
+  void buildSet();
+  void buildAngle();
+  void buildPath();
+  void buildColor();
+  void buildText();
+  /** Sends now, or after the throttle interval while a slider is held. */
+  void send(const QString& yaml, bool dragging);
+
+  apex::ParamInfo param_;
+  std::function<void(const std::string&)> show_;  ///< puts a YAML value into the widgets
+  bool updating_ = false;                         ///< true while show_ runs: no signals out
+  QTimer throttle_;
+  QString pending_;
+  QCheckBox* interactive_ = nullptr;
+};
+
+}  // namespace apex_rviz_plugin

@@ -1,0 +1,97 @@
+// The panel's only contact with a runtime: its latched ~graph and its ~status
+// (received on a spinner of their own), and its services, called in order on a
+// worker thread. Every result comes back on the GUI thread, as a signal or a
+// callback; nothing here blocks the thread that created the link.
+#pragma once
+
+#include <QObject>
+#include <QTimer>
+
+#include <apex/GraphState.h>
+#include <apex/NodeTypeInfo.h>
+#include <apex/RuntimeStatus.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "apex_rviz_plugin/graph_model.hpp"
+
+namespace apex_rviz_plugin {
+
+/** @brief Runs jobs in order on one thread of its own. */
+class JobThread {
+ public:
+  JobThread();
+  ~JobThread();  ///< finishes the running job, drops the rest
+  void post(std::function<void()> job);
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::deque<std::function<void()>> jobs_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+class RuntimeLink : public QObject {
+  Q_OBJECT
+ public:
+  using Done = std::function<void(bool ok, const std::string& message)>;
+
+  explicit RuntimeLink(QObject* parent = nullptr);
+  ~RuntimeLink() override;
+
+  /** @brief The runtime to talk to, e.g. "/apex"; subscribes anew. */
+  void setNamespace(const std::string& ns);
+  const std::string& ns() const { return ns_; }
+  bool connected() const { return connected_; }
+
+  /** @brief Makes the calls in order, stopping at the first refused one; `done` gets its message. */
+  void run(std::vector<Call> calls, Done done);
+  void listTypes(std::function<void(bool, const std::string&, const std::vector<apex::NodeTypeInfo>&)> done);
+  void control(const std::string& command, Done done);
+  void saveGraph(const std::string& path, Done done);
+  void loadGraph(const std::string& path, Done done);
+  void fireSlot(const std::string& node, const std::string& slot, Done done);
+  /** @brief Asks the runtime to publish a port; `done` gets the topic and its message type. */
+  void inspect(const std::string& node, const std::string& port,
+               std::function<void(bool, const std::string& message, const std::string& topic,
+                                  const std::string& type)> done);
+  /** @brief Shows the values of a scalar inspection topic (std_msgs) as scalarReceived. */
+  void watchScalar(const std::string& node, const std::string& port, const std::string& topic,
+                   const std::string& type);
+
+ signals:
+  void graphReceived(const apex::GraphState& graph);
+  void statusReceived(const apex::RuntimeStatus& status);
+  /** The runtime appeared (up) or is gone; `text` says which, for the user. */
+  void connectionChanged(bool up, const QString& text);
+  void scalarReceived(const QString& node, const QString& port, const QString& text);
+
+ private:
+  /** Runs `work` on the job thread and `then` with its result on the GUI thread. */
+  template <class T>
+  void async(std::function<T()> work, std::function<void(const T&)> then);
+  void checkConnection();
+  std::string service(const std::string& name) const { return ns_ + "/" + name; }
+
+  std::string ns_;
+  bool connected_ = false;
+  ros::CallbackQueue queue_;
+  std::unique_ptr<ros::NodeHandle> nh_;
+  std::unique_ptr<ros::AsyncSpinner> spinner_;
+  ros::Subscriber graph_sub_, status_sub_;
+  std::vector<ros::Subscriber> scalar_subs_;
+  QTimer watchdog_;
+  JobThread jobs_;  // last: destroyed first, before what its jobs use
+};
+
+}  // namespace apex_rviz_plugin

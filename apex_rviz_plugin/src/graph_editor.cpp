@@ -1,0 +1,270 @@
+#include "apex_rviz_plugin/graph_editor.hpp"
+
+#include <QFileDialog>
+#include <QGraphicsView>
+#include <QHBoxLayout>
+#include <QInputDialog>
+#include <QKeyEvent>
+#include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QMenu>
+#include <QShortcut>
+#include <QSplitter>
+#include <QToolButton>
+#include <QVBoxLayout>
+#include <QWheelEvent>
+
+#include <algorithm>
+#include <cmath>
+
+namespace apex_rviz_plugin {
+namespace {
+
+QToolButton* button(const QString& name, const QString& text, const QString& tip) {
+  auto* b = new QToolButton;
+  b->setObjectName(name);
+  b->setText(text);
+  b->setToolTip(tip);
+  return b;
+}
+
+}  // namespace
+
+GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphScene(this)), view_(new QGraphicsView) {
+  view_->setObjectName("view");
+  view_->setScene(scene_);
+  view_->setRenderHint(QPainter::Antialiasing);
+  view_->setDragMode(QGraphicsView::RubberBandDrag);
+  view_->setMinimumSize(300, 200);
+  view_->setTransformationAnchor(QGraphicsView::AnchorUnderMouse);
+  view_->viewport()->installEventFilter(this);
+  auto* split = new QSplitter;
+  split->addWidget(buildPalette());
+  split->addWidget(view_);
+  split->setStretchFactor(1, 1);
+  message_ = new QLabel;
+  message_->setObjectName("message");
+  message_->setWordWrap(true);
+  message_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  auto* column = new QVBoxLayout(this);
+  column->setContentsMargins(2, 2, 2, 2);
+  column->addWidget(buildToolBar());
+  column->addWidget(split, 1);
+  column->addWidget(message_);
+
+  connect(scene_, &GraphScene::refused, this, [this](const QString& why) { showMessage(why, true); });
+  connect(scene_, &GraphScene::nodeMenuRequested, this, &GraphEditor::showNodeMenu);
+  connect(scene_, &GraphScene::portMenuRequested, this, &GraphEditor::showPortMenu);
+  auto shortcut = [this](const QKeySequence& keys, auto fn) {
+    auto* s = new QShortcut(keys, this);
+    s->setContext(Qt::WidgetWithChildrenShortcut);
+    connect(s, &QShortcut::activated, this, fn);
+  };
+  shortcut(QKeySequence::Delete, [this] { removeSelected(); });
+  shortcut(QKeySequence("Ctrl+D"), [this] { duplicateSelected(); });
+  shortcut(QKeySequence::Undo, [this] { emit undoRequested(); });
+  shortcut(QKeySequence::Redo, [this] { emit redoRequested(); });
+}
+
+QWidget* GraphEditor::buildToolBar() {
+  auto* bar = new QWidget;
+  auto* row = new QHBoxLayout(bar);
+  row->setContentsMargins(0, 0, 0, 0);
+  row->addWidget(new QLabel("Runtime:"));
+  namespace_ = new QLineEdit("/apex");
+  namespace_->setObjectName("namespace");
+  namespace_->setToolTip("the namespace of the runtime to edit, e.g. /apex");
+  namespace_->setMaximumWidth(160);
+  connect(namespace_, &QLineEdit::editingFinished, this, [this] { emit namespaceChanged(namespace_->text()); });
+  row->addWidget(namespace_);
+  connection_ = new QLabel;
+  connection_->setObjectName("connection");
+  row->addWidget(connection_, 1);
+  pause_ = button("pause", "Pause", "pause or resume every thread group");
+  pause_->setCheckable(true);
+  connect(pause_, &QToolButton::clicked, this, [this](bool on) { emit controlRequested(on ? "pause" : "resume"); });
+  auto* step = button("step", "Step", "while paused: fire each enabled node once");
+  connect(step, &QToolButton::clicked, this, [this] { emit controlRequested("step"); });
+  undo_ = button("undo", "Undo", "undo the last edit (Ctrl+Z)");
+  redo_ = button("redo", "Redo", "redo (Ctrl+Shift+Z)");
+  undo_->setEnabled(false), redo_->setEnabled(false);
+  connect(undo_, &QToolButton::clicked, this, [this] { emit undoRequested(); });
+  connect(redo_, &QToolButton::clicked, this, [this] { emit redoRequested(); });
+  auto* fit = button("fit", "Fit", "show the whole graph");
+  connect(fit, &QToolButton::clicked, this, &GraphEditor::fitGraph);
+  auto* save = button("save", "Save...", "save the graph to a file (written by the runtime)");
+  auto* load = button("load", "Load...", "load a graph file into the runtime (all or nothing)");
+  connect(save, &QToolButton::clicked, this, [this] {
+    const QString path = QFileDialog::getSaveFileName(this, "Save graph", last_path_, "APEX graphs (*.yaml)");
+    if (!path.isEmpty()) emit saveRequested(last_path_ = path);
+  });
+  connect(load, &QToolButton::clicked, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, "Load graph", last_path_, "APEX graphs (*.yaml)");
+    if (!path.isEmpty()) emit loadRequested(last_path_ = path);
+  });
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, save, load}) row->addWidget(b);
+  return bar;
+}
+
+QWidget* GraphEditor::buildPalette() {
+  auto* box = new QWidget;
+  auto* column = new QVBoxLayout(box);
+  column->setContentsMargins(0, 0, 0, 0);
+  search_ = new QLineEdit;
+  search_->setObjectName("search");
+  search_->setPlaceholderText("Search node types (Enter adds)");
+  palette_ = new QListWidget;
+  palette_->setObjectName("palette");
+  auto* refresh = button("refresh_types", "Reload types", "ask the runtime for its node types again");
+  column->addWidget(search_);
+  column->addWidget(palette_, 1);
+  column->addWidget(refresh);
+  box->setMaximumWidth(240);
+  connect(search_, &QLineEdit::textChanged, this, &GraphEditor::filterPalette);
+  connect(search_, &QLineEdit::returnPressed, this, &GraphEditor::addFromPalette);
+  connect(palette_, &QListWidget::itemActivated, this, [this](QListWidgetItem*) { addFromPalette(); });
+  connect(refresh, &QToolButton::clicked, this, [this] { emit typesRequested(); });
+  return box;
+}
+
+void GraphEditor::showTypes(const std::vector<apex::NodeTypeInfo>& types) {
+  palette_->clear();
+  for (const auto& t : types) {
+    auto* item = new QListWidgetItem(QString::fromStdString(t.id), palette_);
+    QString tip = QString::fromStdString(t.description);
+    for (const auto& p : t.ports) tip += QString::fromStdString("\n  " + p.kind + " " + p.name + (p.type.empty() ? "" : ": " + p.type));
+    item->setToolTip(tip);
+    item->setData(Qt::UserRole, QString::fromStdString(t.description));
+  }
+  filterPalette(search_->text());
+}
+
+void GraphEditor::filterPalette(const QString& text) {
+  QListWidgetItem* first = nullptr;
+  for (int i = 0; i < palette_->count(); ++i) {
+    QListWidgetItem* item = palette_->item(i);
+    const bool match = item->text().contains(text, Qt::CaseInsensitive) ||
+                       item->data(Qt::UserRole).toString().contains(text, Qt::CaseInsensitive);
+    item->setHidden(!match);
+    if (match && !first) first = item;
+  }
+  palette_->setCurrentItem(first);
+}
+
+void GraphEditor::addFromPalette() {
+  QListWidgetItem* item = palette_->currentItem();
+  if (!item || item->isHidden()) return showMessage("no node type matches '" + search_->text() + "'", true);
+  emit addRequested(item->text(), newNodePosition());
+}
+
+QPointF GraphEditor::newNodePosition() {  // the middle of the view, a little further each time
+  const QPointF c = view_->mapToScene(view_->viewport()->rect().center());
+  const double step = 30.0 * (added_++ % 8);
+  return c + QPointF(step - NodeItem::kWidth / 2, step - 40);
+}
+
+void GraphEditor::showGraph(const GraphModel& model) {
+  model_ = &model;
+  scene_->show(model);
+  if (fit_pending_ && !model.graph().nodes.empty()) {
+    fit_pending_ = false;
+    fitGraph();
+  }
+  pause_->setChecked(model.graph().paused);
+  pause_->setText(model.graph().paused ? "Resume" : "Pause");
+}
+
+void GraphEditor::fitGraph() {
+  const QRectF r = scene_->itemsBoundingRect().adjusted(-20, -20, 20, 20);
+  if (r.isEmpty()) return;
+  const QRect port = view_->viewport()->rect();
+  const double s = std::clamp(std::min(port.width() / r.width(), port.height() / r.height()), 0.4, 1.0);
+  view_->resetTransform();
+  view_->scale(s, s);
+  view_->ensureVisible(QRectF(r.topLeft(), QSizeF(1, 1)), 0, 0);  // a graph too big to fit: its start
+  if (s * r.width() <= port.width() && s * r.height() <= port.height()) view_->centerOn(r.center());
+}
+
+bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == view_->viewport() && event->type() == QEvent::Wheel) {
+    auto* wheel = static_cast<QWheelEvent*>(event);
+    if (wheel->modifiers() & Qt::ControlModifier) {
+      const double f = std::pow(1.15, wheel->angleDelta().y() / 120.0);
+      view_->scale(f, f);
+      return true;
+    }
+  }
+  return QWidget::eventFilter(watched, event);
+}
+
+void GraphEditor::showMessage(const QString& text, bool error) {
+  message_->setText(text);
+  message_->setStyleSheet(error ? "color: #e04040;" : "");
+}
+
+QString GraphEditor::message() const { return message_->text(); }
+
+void GraphEditor::showConnection(bool up, const QString& text) {
+  connection_->setText(text);
+  connection_->setStyleSheet(up ? "color: #40a040;" : "color: #d08020;");
+}
+
+void GraphEditor::showHistory(const QString& undo_label, bool can_undo, bool can_redo) {
+  undo_->setEnabled(can_undo);
+  redo_->setEnabled(can_redo);
+  undo_->setToolTip(can_undo ? "Undo: " + undo_label + " (Ctrl+Z)" : "nothing to undo");
+}
+
+void GraphEditor::setNamespace(const QString& ns) { namespace_->setText(ns); }
+
+void GraphEditor::showNodeMenu(const QString& node, QPoint at) {
+  const NodeItem* item = scene_->node(node.toStdString());
+  if (!item || !model_) return;
+  const apex::NodeInfo& info = item->info();
+  QMenu menu;
+  menu.addAction(info.enabled ? "Disable" : "Enable", this, [this, node, on = !info.enabled] { emit enabledRequested(node, on); });
+  menu.addAction("Duplicate", this, [this, node] { emit duplicateRequested(node); });
+  menu.addAction("Remove", this, [this, node] { emit removeRequested(node); });
+  QMenu* groups = menu.addMenu("Thread group");
+  for (const auto& g : model_->graph().thread_groups) {
+    QAction* a = groups->addAction(QString::fromStdString(g), this, [this, node, g] { emit groupRequested(node, QString::fromStdString(g)); });
+    a->setCheckable(true);
+    a->setChecked(g == info.thread_group);
+  }
+  groups->addAction("New group...", this, [this, node] {
+    const QString g = QInputDialog::getText(this, "Thread group", "Name of the new thread group:");
+    if (!g.isEmpty()) emit groupRequested(node, g);
+  });
+  QMenu* slot_menu = menu.addMenu("Fire slot");
+  QMenu* inspect = menu.addMenu("Inspect");
+  for (const auto& p : info.ports) {
+    const QString port = QString::fromStdString(p.name);
+    if (p.kind == "slot") slot_menu->addAction(port, this, [this, node, port] { emit fireSlotRequested(node, port); });
+    if (p.kind == "output" || p.kind == "param_out")
+      inspect->addAction(port, this, [this, node, port] { emit inspectRequested(node, port); });
+  }
+  menu.exec(at);
+}
+
+void GraphEditor::showPortMenu(const QString& node, const QString& port, QPoint at) {
+  const NodeItem* item = scene_->node(node.toStdString());
+  const PortItem* p = item ? item->port(port.toStdString(), true) : nullptr;
+  QMenu menu;
+  if (p) menu.addAction("Inspect " + port, this, [this, node, port] { emit inspectRequested(node, port); });
+  else if (item && item->port(port.toStdString(), false) && item->port(port.toStdString(), false)->port().kind == "slot")
+    menu.addAction("Fire " + port, this, [this, node, port] { emit fireSlotRequested(node, port); });
+  if (!menu.isEmpty()) menu.exec(at);
+}
+
+void GraphEditor::removeSelected() {
+  for (QGraphicsItem* i : scene_->selectedItems())
+    if (auto* n = dynamic_cast<NodeItem*>(i)) emit removeRequested(QString::fromStdString(n->info().name));
+}
+
+void GraphEditor::duplicateSelected() {
+  for (QGraphicsItem* i : scene_->selectedItems())
+    if (auto* n = dynamic_cast<NodeItem*>(i)) emit duplicateRequested(QString::fromStdString(n->info().name));
+}
+
+}  // namespace apex_rviz_plugin

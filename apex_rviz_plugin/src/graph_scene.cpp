@@ -1,0 +1,175 @@
+#include "apex_rviz_plugin/graph_scene.hpp"
+
+#include <QGraphicsSceneContextMenuEvent>
+#include <QGraphicsSceneMouseEvent>
+#include <QGraphicsView>
+#include <QPen>
+
+#include <set>
+
+namespace apex_rviz_plugin {
+namespace {
+
+QPainterPath curve(QPointF a, QPointF b) {
+  const double dx = std::max(40.0, std::abs(b.x() - a.x()) / 2);
+  QPainterPath path(a);
+  path.cubicTo(a + QPointF(dx, 0), b - QPointF(dx, 0), b);
+  return path;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------ ConnectionItem
+
+ConnectionItem::ConnectionItem(const apex::Connection& c, PortItem* from, PortItem* to) : c_(c), from_(from), to_(to) {
+  QPen pen(c.kind == "event" ? QColor(230, 160, 40) : c.kind == "parameter" ? QColor(150, 110, 200) : QColor(140, 190, 230),
+           c.kind == "data" ? 2.5 : 1.8);
+  if (c.kind == "event") pen.setStyle(Qt::DashLine);
+  setPen(pen);
+  setZValue(0);
+  setToolTip(QString::fromStdString(c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port +
+                                    "\n(right-click to disconnect)"));
+  reroute();
+}
+
+void ConnectionItem::reroute() { setPath(curve(from_->scenePos(), to_->scenePos())); }
+
+// ---------------------------------------------------------------- GraphScene
+
+GraphScene::GraphScene(QObject* parent) : QGraphicsScene(parent) { setBackgroundBrush(QColor(30, 32, 36)); }
+
+NodeItem* GraphScene::node(const std::string& name) const {
+  auto it = nodes_.find(name);
+  return it == nodes_.end() ? nullptr : it->second;
+}
+
+void GraphScene::show(const GraphModel& model) {
+  model_ = &model;
+  endDrag();
+  for (auto* c : connections_) delete c;  // first: they point at ports that may be rebuilt
+  connections_.clear();
+  std::set<std::string> seen;
+  for (const auto& n : model.graph().nodes) {
+    seen.insert(n.name);
+    NodeItem* item = node(n.name);
+    if (!item) {
+      item = new NodeItem(n);
+      addItem(item);
+      nodes_[n.name] = item;
+      connect(item, &NodeItem::parameterEdited, this, &GraphScene::parameterEdited);
+      connect(item, &NodeItem::interactiveToggled, this, &GraphScene::interactiveToggled);
+      connect(item, &NodeItem::moved, this, &GraphScene::nodeMoved);
+      connect(item, &QGraphicsObject::xChanged, this, &GraphScene::reroute);
+      connect(item, &QGraphicsObject::yChanged, this, &GraphScene::reroute);
+    } else {
+      item->update(n);
+    }
+    const auto [x, y] = model.position(n.name);
+    if (mouseGrabberItem() != item) item->setPos(x, y);
+  }
+  for (auto it = nodes_.begin(); it != nodes_.end();) {
+    if (seen.count(it->first)) { ++it; continue; }
+    delete it->second;
+    it = nodes_.erase(it);
+  }
+  for (const auto& c : model.graph().connections) {
+    NodeItem* from = node(c.from_node);
+    NodeItem* to = node(c.to_node);
+    PortItem* a = from ? from->port(c.from_port, true) : nullptr;
+    PortItem* b = to ? to->port(c.to_port, false) : nullptr;
+    if (!a || !b) continue;  // a placeholder's ports are unknown here
+    connections_.push_back(new ConnectionItem(c, a, b));
+    addItem(connections_.back());
+  }
+}
+
+void GraphScene::showStatus(const apex::RuntimeStatus& status) {
+  const double now = status.stamp.toSec();
+  for (const auto& s : status.nodes) {
+    NodeItem* item = node(s.name);
+    if (!item) continue;
+    double rate = 0;  // from the firings since the last status
+    auto it = last_status_.find(s.name);
+    if (it != last_status_.end() && now > it->second.second && s.firings >= it->second.first)
+      rate = (s.firings - it->second.first) / (now - it->second.second);
+    last_status_[s.name] = {s.firings, now};
+    item->showStatus(s, rate);
+  }
+}
+
+void GraphScene::showValue(const QString& node_name, const QString& port, const QString& text) {
+  if (NodeItem* item = node(node_name.toStdString())) item->showValue(port, text);
+}
+
+void GraphScene::reroute() {
+  for (auto* c : connections_) c->reroute();
+}
+
+PortItem* GraphScene::portAt(QPointF pos) const {
+  for (QGraphicsItem* i : items(pos))
+    if (auto* p = dynamic_cast<PortItem*>(i)) return p;
+  return nullptr;
+}
+
+void GraphScene::beginConnect(PortItem* from) {
+  endDrag();
+  drag_from_ = from;
+  drag_line_ = addPath(QPainterPath(), QPen(QColor(255, 255, 255), 2, Qt::DotLine));
+  drag_line_->setZValue(5);
+  const auto& src = from->port();
+  for (const auto& [name, item] : nodes_) {
+    for (PortItem* p : item->ports()) {
+      if (p->isSource()) continue;
+      const std::string why = model_ ? model_->whyNot(from->node()->info().name, src.name, name, p->port().name) : "";
+      p->setMark(why.empty() ? PortItem::Mark::Accepts : PortItem::Mark::Refuses, QString::fromStdString(why));
+    }
+  }
+}
+
+void GraphScene::mouseMoveEvent(QGraphicsSceneMouseEvent* e) {
+  if (!drag_from_) return QGraphicsScene::mouseMoveEvent(e);
+  drag_line_->setPath(curve(drag_from_->scenePos(), e->scenePos()));
+}
+
+void GraphScene::mouseReleaseEvent(QGraphicsSceneMouseEvent* e) {
+  if (!drag_from_) return QGraphicsScene::mouseReleaseEvent(e);
+  PortItem* target = portAt(e->scenePos());
+  apex::Connection c;
+  c.from_node = drag_from_->node()->info().name, c.from_port = drag_from_->port().name;
+  endDrag();
+  if (!target || target->isSource()) return;
+  c.to_node = target->node()->info().name, c.to_port = target->port().name;
+  const std::string why = model_ ? model_->whyNot(c.from_node, c.from_port, c.to_node, c.to_port) : "";
+  if (!why.empty()) emit refused(QString::fromStdString("cannot connect: " + why));
+  else emit connectRequested(c);
+}
+
+void GraphScene::endDrag() {
+  if (!drag_from_) return;
+  drag_from_ = nullptr;
+  delete drag_line_;
+  drag_line_ = nullptr;
+  for (const auto& [name, item] : nodes_)
+    for (PortItem* p : item->ports()) p->setMark(PortItem::Mark::None);
+}
+
+void GraphScene::contextMenuEvent(QGraphicsSceneContextMenuEvent* e) {
+  QGraphicsScene::contextMenuEvent(e);  // proxied widgets first
+  if (e->isAccepted()) return;
+  for (QGraphicsItem* i : items(e->scenePos())) {
+    if (auto* p = dynamic_cast<PortItem*>(i)) {
+      emit portMenuRequested(QString::fromStdString(p->node()->info().name), QString::fromStdString(p->port().name), e->screenPos());
+      return e->accept();
+    }
+    if (auto* c = dynamic_cast<ConnectionItem*>(i)) {
+      emit disconnectRequested(c->connection());
+      return e->accept();
+    }
+    if (auto* n = dynamic_cast<NodeItem*>(i)) {
+      emit nodeMenuRequested(QString::fromStdString(n->info().name), e->screenPos());
+      return e->accept();
+    }
+  }
+}
+
+}  // namespace apex_rviz_plugin

@@ -1,0 +1,230 @@
+#include <QGraphicsProxyWidget>
+#include <QGraphicsSceneMouseEvent>
+#include <QPainter>
+#include <QVBoxLayout>
+#include <QWidget>
+
+#include "apex_rviz_plugin/graph_scene.hpp"
+#include "apex_rviz_plugin/param_editor.hpp"
+
+namespace apex_rviz_plugin {
+namespace {
+
+constexpr double kTitle = 38, kRow = 18, kPad = 6;
+
+bool sourceKind(const std::string& k) { return k == "output" || k == "trigger" || k == "param_out"; }
+bool eventKind(const std::string& k) { return k == "slot" || k == "trigger"; }
+bool paramKind(const std::string& k) { return k == "param_in" || k == "param_out"; }
+
+/** Same ports and parameters (by name and kind): the widgets can stay. */
+bool sameShape(const apex::NodeInfo& a, const apex::NodeInfo& b) {
+  if (a.ports.size() != b.ports.size() || a.parameters.size() != b.parameters.size() || a.type != b.type) return false;
+  for (std::size_t i = 0; i < a.ports.size(); ++i)
+    if (a.ports[i].name != b.ports[i].name || a.ports[i].kind != b.ports[i].kind) return false;
+  for (std::size_t i = 0; i < a.parameters.size(); ++i)
+    if (a.parameters[i].name != b.parameters[i].name || a.parameters[i].kind != b.parameters[i].kind) return false;
+  return true;
+}
+
+QColor groupColor(const std::string& group) {
+  if (group.empty() || group == "default") return QColor(70, 90, 120);
+  return QColor::fromHsv(static_cast<int>(std::hash<std::string>()(group) % 360), 110, 150);
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------ PortItem
+
+PortItem::PortItem(const apex::PortInfo& port, NodeItem* parent) : QGraphicsItem(parent), port_(port) {
+  setToolTip(QString::fromStdString(port.name + " (" + port.kind + (port.type.empty() ? "" : ", " + port.type) +
+                                    (port.optional ? ", optional" : "") + ")" +
+                                    (port.description.empty() ? "" : "\n" + port.description)));
+  setAcceptedMouseButtons(Qt::LeftButton);
+}
+
+NodeItem* PortItem::node() const { return static_cast<NodeItem*>(parentItem()); }
+bool PortItem::isSource() const { return sourceKind(port_.kind); }
+
+void PortItem::setMark(Mark m, const QString& why) {
+  mark_ = m;
+  setToolTip(why.isEmpty() ? QString::fromStdString(port_.name + " (" + port_.kind + ", " + port_.type + ")") : why);
+  update();
+}
+
+QRectF PortItem::boundingRect() const {
+  const double w = NodeItem::kWidth / 2;
+  return isSource() ? QRectF(-w, -kRow / 2, w + kRadius + 1, kRow) : QRectF(-kRadius - 1, -kRow / 2, w, kRow);
+}
+
+void PortItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
+  p->setRenderHint(QPainter::Antialiasing);
+  QColor fill = eventKind(port_.kind) ? QColor(230, 160, 40) : paramKind(port_.kind) ? QColor(150, 110, 200)
+                                                                                      : QColor(80, 160, 220);
+  if (mark_ == Mark::Accepts) fill = QColor(60, 200, 60);
+  if (mark_ == Mark::Refuses) fill = QColor(210, 50, 50);
+  p->setBrush(fill);
+  p->setPen(QPen(Qt::black, 1));
+  const double r = kRadius;
+  if (eventKind(port_.kind)) {  // slots and triggers: diamonds
+    p->drawPolygon(QPolygonF({QPointF(0, -r - 1), QPointF(r + 1, 0), QPointF(0, r + 1), QPointF(-r - 1, 0)}));
+  } else if (paramKind(port_.kind)) {  // parameter ports: squares
+    p->drawRect(QRectF(-r + 1, -r + 1, 2 * r - 2, 2 * r - 2));
+  } else {
+    p->drawEllipse(QPointF(0, 0), r, r);
+  }
+  p->setPen(Qt::white);
+  QFont f = p->font();
+  f.setPointSizeF(8);
+  f.setItalic(port_.optional);
+  p->setFont(f);
+  const QString label = QString::fromStdString(port_.name);
+  if (isSource()) p->drawText(QRectF(-NodeItem::kWidth / 2, -kRow / 2, NodeItem::kWidth / 2 - 10, kRow), Qt::AlignRight | Qt::AlignVCenter, label);
+  else p->drawText(QRectF(10, -kRow / 2, NodeItem::kWidth / 2 - 12, kRow), Qt::AlignLeft | Qt::AlignVCenter, label);
+}
+
+void PortItem::mousePressEvent(QGraphicsSceneMouseEvent* e) {
+  if (!isSource()) return e->ignore();
+  if (auto* s = qobject_cast<GraphScene*>(scene())) s->beginConnect(this);
+  e->accept();
+}
+
+// ------------------------------------------------------------------ NodeItem
+
+NodeItem::NodeItem(const apex::NodeInfo& node) : info_(node) {
+  setFlags(ItemIsMovable | ItemIsSelectable | ItemSendsGeometryChanges);
+  setZValue(1);
+  build();
+}
+
+void NodeItem::update(const apex::NodeInfo& node) {
+  const bool rebuild = !sameShape(info_, node);
+  info_ = node;
+  if (rebuild) return build();
+  for (const auto& p : info_.parameters)
+    if (auto* e = editor(p.name)) e->showApplied(p);
+  setToolTip(QString::fromStdString(info_.error));
+  QGraphicsObject::update();
+}
+
+void NodeItem::build() {
+  prepareGeometryChange();
+  for (auto* p : ports_) delete p;
+  ports_.clear();
+  if (params_) delete params_;  // deletes its widget and the editors in it
+  params_ = nullptr;
+  editors_.clear();
+  double left = kTitle + kRow / 2, right = left;
+  for (const auto& p : info_.ports) {
+    auto* item = new PortItem(p, this);
+    const bool src = item->isSource();
+    item->setPos(src ? kWidth : 0, src ? right : left);
+    (src ? right : left) += kRow;
+    ports_.push_back(item);
+  }
+  height_ = std::max(left, right) - kRow / 2 + kPad;
+  if (!info_.parameters.empty()) {
+    auto* box = new QWidget;
+    box->setObjectName(QString::fromStdString("params_" + info_.name));
+    auto* column = new QVBoxLayout(box);
+    column->setContentsMargins(4, 2, 4, 2);
+    column->setSpacing(2);
+    const QString node = QString::fromStdString(info_.name);
+    for (const auto& p : info_.parameters) {
+      auto* e = new ParamEditor(p);
+      editors_[p.name] = e;
+      column->addWidget(e);
+      connect(e, &ParamEditor::edited, this, [this, node](const QString& n, const QString& v) { emit parameterEdited(node, n, v); });
+      connect(e, &ParamEditor::interactiveToggled, this,
+              [this, node](const QString& n, bool on) { emit interactiveToggled(node, n, on); });
+    }
+    box->setFixedWidth(static_cast<int>(kWidth - 2 * kPad));
+    box->adjustSize();
+    params_ = new QGraphicsProxyWidget(this);
+    params_->setWidget(box);
+    params_->setPos(kPad, height_);
+    height_ += box->height() + kPad;
+  }
+  height_ += 2 * kRow;  // timing and error lines
+  setToolTip(QString::fromStdString(info_.error));
+}
+
+double NodeItem::portsHeight() const { return height_; }
+
+void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
+  timing_ = QString("%1 ms (max %2) · %3 Hz · %4 firings")
+                .arg(s.mean_ms, 0, 'f', 2)
+                .arg(s.max_ms, 0, 'f', 2)
+                .arg(rate_hz, 0, 'f', 1)
+                .arg(s.firings);
+  info_.state = s.state;
+  info_.error = s.error;
+  setToolTip(QString::fromStdString(s.error));
+  QGraphicsObject::update();
+}
+
+void NodeItem::showValue(const QString& port, const QString& text) {
+  scalar_values_[port] = text;
+  values_.clear();
+  for (const auto& [p, v] : scalar_values_) values_ += (values_.isEmpty() ? "" : "  ") + p + " = " + v;
+  QGraphicsObject::update();
+}
+
+PortItem* NodeItem::port(const std::string& name, bool source) const {
+  for (auto* p : ports_) if (p->port().name == name && p->isSource() == source) return p;
+  return nullptr;
+}
+
+ParamEditor* NodeItem::editor(const std::string& param) const {
+  auto it = editors_.find(param);
+  return it == editors_.end() ? nullptr : it->second;
+}
+
+QRectF NodeItem::boundingRect() const { return QRectF(-1, -1, kWidth + 2, height_ + 2); }
+
+void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
+  p->setRenderHint(QPainter::Antialiasing);
+  const bool error = info_.state == "error", off = !info_.enabled || info_.state == "placeholder";
+  p->setPen(QPen(error ? QColor(230, 40, 40) : isSelected() ? QColor(255, 220, 80) : QColor(20, 20, 20), error ? 3 : 1.5));
+  p->setBrush(off ? QColor(70, 70, 70) : QColor(45, 48, 55));
+  p->drawRoundedRect(QRectF(0, 0, kWidth, height_), 6, 6);
+  p->setBrush(groupColor(info_.thread_group));
+  p->setPen(Qt::NoPen);
+  p->drawRoundedRect(QRectF(1, 1, kWidth - 2, kTitle - 4), 5, 5);
+  p->setPen(Qt::white);
+  QFont f = p->font();
+  f.setBold(true);
+  f.setPointSizeF(9.5);
+  p->setFont(f);
+  QString title = QString::fromStdString(info_.name);
+  if (!info_.enabled) title += "  (disabled)";
+  p->drawText(QRectF(kPad, 2, kWidth - 2 * kPad, 18), Qt::AlignLeft | Qt::AlignVCenter, title);
+  f.setBold(false);
+  f.setPointSizeF(7.5);
+  p->setFont(f);
+  p->drawText(QRectF(kPad, 18, kWidth - 2 * kPad, 14), Qt::AlignLeft | Qt::AlignVCenter,
+              QString::fromStdString(info_.type + "  [" + (info_.thread_group.empty() ? "default" : info_.thread_group) + "]"));
+  const double bottom = height_ - 2 * kRow;
+  p->setPen(QColor(200, 200, 200));
+  p->drawText(QRectF(kPad, bottom, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
+              values_.isEmpty() ? timing_ : values_);
+  if (error) {
+    p->setPen(QColor(255, 90, 90));
+    p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
+                p->fontMetrics().elidedText(QString::fromStdString(info_.error), Qt::ElideRight, static_cast<int>(kWidth - 2 * kPad)));
+  } else if (!values_.isEmpty()) {
+    p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter, timing_);
+  }
+}
+
+QVariant NodeItem::itemChange(GraphicsItemChange change, const QVariant& value) {
+  if (change == ItemPositionHasChanged && scene() && scene()->mouseGrabberItem() == this) dragged_ = true;
+  return QGraphicsObject::itemChange(change, value);
+}
+
+void NodeItem::mouseReleaseEvent(QGraphicsSceneMouseEvent* e) {
+  QGraphicsObject::mouseReleaseEvent(e);
+  if (dragged_) emit moved(QString::fromStdString(info_.name), pos());
+  dragged_ = false;
+}
+
+}  // namespace apex_rviz_plugin

@@ -1,0 +1,131 @@
+#include "apex_rviz_plugin/panel_widget.hpp"
+
+#include <QVBoxLayout>
+
+namespace apex_rviz_plugin {
+
+PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEditor) {
+  auto* column = new QVBoxLayout(this);
+  column->setContentsMargins(0, 0, 0, 0);
+  column->addWidget(editor_);
+  connect(&link_, &RuntimeLink::graphReceived, this, &PanelWidget::onGraph);
+  connect(&link_, &RuntimeLink::statusReceived, this, [this](const apex::RuntimeStatus& s) {
+    editor_->scene()->showStatus(s);
+    emit statusShown();
+  });
+  connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
+  connect(&link_, &RuntimeLink::connectionChanged, this, [this](bool up, const QString& text) {
+    editor_->showConnection(up, text);
+    if (!up) model_.reset();  // a runtime that comes back starts its revisions anew
+    if (up) refreshTypes(), editor_->fitNextGraph();
+  });
+  connectEditor();
+}
+
+void PanelWidget::setNamespace(const QString& ns) {
+  model_.reset();
+  link_.setNamespace(ns.toStdString());
+  editor_->setNamespace(QString::fromStdString(link_.ns()));
+  editor_->showGraph(model_);
+  emit namespaceChanged(QString::fromStdString(link_.ns()));
+}
+
+void PanelWidget::connectEditor() {
+  GraphEditor* e = editor_;
+  GraphScene* s = e->scene();
+  auto str = [](const QString& q) { return q.toStdString(); };
+  connect(e, &GraphEditor::namespaceChanged, this, [this](const QString& ns) {
+    if (ns.toStdString() != link_.ns()) setNamespace(ns);
+  });
+  connect(e, &GraphEditor::addRequested, this, [this, str](const QString& type, QPointF at) {
+    perform(model_.addNode(str(type), model_.freshName(str(type)), at.x(), at.y()));
+  });
+  connect(e, &GraphEditor::removeRequested, this, [this, str](const QString& n) { perform(model_.removeNode(str(n))); });
+  connect(e, &GraphEditor::duplicateRequested, this, [this, str](const QString& n) {
+    const auto [x, y] = model_.position(str(n));
+    perform(model_.duplicate(str(n), x + 40, y + 40));
+  });
+  connect(e, &GraphEditor::enabledRequested, this, [this, str](const QString& n, bool on) { perform(model_.setEnabled(str(n), on)); });
+  connect(e, &GraphEditor::groupRequested, this, [this, str](const QString& n, const QString& g) {
+    perform(model_.setThreadGroup(str(n), str(g)));
+  });
+  connect(s, &GraphScene::connectRequested, this, [this](const apex::Connection& c) { perform(model_.connect(c)); });
+  connect(s, &GraphScene::disconnectRequested, this, [this](const apex::Connection& c) { perform(model_.disconnect(c)); });
+  connect(s, &GraphScene::parameterEdited, this, [this, str](const QString& n, const QString& p, const QString& v) {
+    perform(model_.setParameter(str(n), str(p), str(v)));
+  });
+  connect(s, &GraphScene::interactiveToggled, this, [this, str](const QString& n, const QString& p, bool on) {
+    perform(model_.setInteractive(str(n), str(p), on));
+  });
+  connect(s, &GraphScene::nodeMoved, this, [this, str](const QString& n, QPointF at) { perform(model_.move(str(n), at.x(), at.y())); });
+  connect(e, &GraphEditor::undoRequested, this, [this] { replay(history_.undo(), "undo"); });
+  connect(e, &GraphEditor::redoRequested, this, [this] { replay(history_.redo(), "redo"); });
+  connect(e, &GraphEditor::controlRequested, this, [this](const QString& cmd) {
+    link_.control(cmd.toStdString(), [this, cmd](bool ok, const std::string& m) { report(ok, m, cmd); });
+  });
+  connect(e, &GraphEditor::fireSlotRequested, this, [this](const QString& n, const QString& slot) {
+    link_.fireSlot(n.toStdString(), slot.toStdString(),
+                   [this, n, slot](bool ok, const std::string& m) { report(ok, m, "fire " + n + "/" + slot); });
+  });
+  connect(e, &GraphEditor::saveRequested, this, [this](const QString& path) {
+    link_.saveGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "saved " + path); });
+  });
+  connect(e, &GraphEditor::loadRequested, this, [this](const QString& path) {
+    link_.loadGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "loaded " + path); });
+  });
+  connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
+  connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
+}
+
+void PanelWidget::perform(const std::optional<Edit>& edit) {
+  if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
+  link_.run(edit->apply, [this, edit = *edit](bool ok, const std::string& message) {
+    if (ok) history_.done(edit);
+    editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
+    report(ok, message, QString::fromStdString(edit.label));
+    if (!ok) editor_->showGraph(model_);  // widgets back to the values the runtime holds
+  });
+}
+
+void PanelWidget::replay(std::vector<Call> calls, const QString& what) {
+  editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
+  if (calls.empty()) return;
+  link_.run(std::move(calls), [this, what](bool ok, const std::string& m) { report(ok, m, what); });
+}
+
+void PanelWidget::report(bool ok, const std::string& message, const QString& what) {
+  editor_->showMessage(ok ? what : what + " refused: " + QString::fromStdString(message), !ok);
+}
+
+void PanelWidget::onGraph(const apex::GraphState& graph) {
+  if (!model_.update(graph)) {
+    if (graph.revision >= model_.graph().revision) return;
+    model_.reset();  // older than what is shown: a restarted runtime
+    model_.update(graph);
+  }
+  editor_->showGraph(model_);
+  emit graphShown(graph.revision);
+}
+
+void PanelWidget::refreshTypes() {
+  link_.listTypes([this](bool ok, const std::string& message, const std::vector<apex::NodeTypeInfo>& types) {
+    if (!ok) return report(false, message, "list node types");
+    type_count_ = static_cast<int>(types.size());
+    editor_->showTypes(types);
+    if (!message.empty()) editor_->showMessage(QString::fromStdString("some node types are missing: " + message), true);
+  });
+}
+
+void PanelWidget::onInspect(const QString& node, const QString& port) {
+  link_.inspect(node.toStdString(), port.toStdString(),
+                [this, node, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
+                  if (!ok) return report(false, m, "inspect " + node + "/" + port);
+                  const QString t = QString::fromStdString(topic), name = node + "/" + port;
+                  if (type == "sensor_msgs/Image") emit displayRequested("rviz/Image", name, t);
+                  else if (type == "sensor_msgs/PointCloud2") emit displayRequested("rviz/PointCloud2", name, t);
+                  else link_.watchScalar(node.toStdString(), port.toStdString(), topic, type);
+                  report(true, "", "inspecting " + name + " on " + t + (type.empty() ? "" : " (" + QString::fromStdString(type) + ")"));
+                });
+}
+
+}  // namespace apex_rviz_plugin

@@ -1,0 +1,304 @@
+#include "apex_rviz_plugin/param_editor.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <QCheckBox>
+#include <QColorDialog>
+#include <QComboBox>
+#include <QDial>
+#include <QDoubleSpinBox>
+#include <QFileDialog>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSlider>
+#include <QSpinBox>
+
+#include <cmath>
+
+namespace apex_rviz_plugin {
+namespace {
+
+YAML::Node parse(const std::string& text) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception&) {
+    return YAML::Node();
+  }
+}
+
+template <class T>
+T as(const YAML::Node& n, T fallback) {
+  try {
+    return n ? n.as<T>() : fallback;
+  } catch (const YAML::Exception&) {
+    return fallback;
+  }
+}
+
+QString number(double v) { return QString::number(v, 'g', 10); }
+
+/** A YAML single-quoted string: reads back as exactly `s`. */
+QString quoted(const QString& s) { return "'" + QString(s).replace("'", "''") + "'"; }
+
+/** A slider over [min, max] in at most 1000 steps, for a double value. */
+struct SliderScale {
+  double min, max, step;
+  int steps() const { return std::max(1, std::min(1000, static_cast<int>(std::lround((max - min) / step)))); }
+  int toSlider(double v) const { return static_cast<int>(std::lround((v - min) / (max - min) * steps())); }
+  double fromSlider(int i) const { return min + (max - min) * i / steps(); }
+};
+
+QSlider* makeSlider(const SliderScale& s) {
+  auto* slider = new QSlider(Qt::Horizontal);
+  slider->setRange(0, s.steps());
+  slider->setMinimumWidth(80);
+  return slider;
+}
+
+}  // namespace
+
+ParamEditor::ParamEditor(const apex::ParamInfo& param, QWidget* parent) : QWidget(parent), param_(param) {
+  setObjectName(QString::fromStdString("param_" + param.name));
+  setToolTip(QString::fromStdString(param.name + " (" + param.kind + "): " + param.description));
+  throttle_.setSingleShot(true);
+  connect(&throttle_, &QTimer::timeout, this, [this] {
+    if (!pending_.isEmpty()) emit edited(QString::fromStdString(param_.name), pending_);
+    pending_.clear();
+  });
+  auto* row = new QHBoxLayout(this);
+  row->setContentsMargins(0, 0, 0, 0);
+  row->setSpacing(4);
+  auto* label = new QLabel(QString::fromStdString(param.name));
+  label->setMinimumWidth(70);
+  row->addWidget(label);
+  build();
+  if (!param.type.empty()) {  // a parameter with a port type can be linked: show its ports
+    interactive_ = new QCheckBox;
+    interactive_->setObjectName("interactive");
+    interactive_->setToolTip("interactive: give this parameter an input and an output port");
+    interactive_->setChecked(param.interactive);
+    connect(interactive_, &QCheckBox::toggled, this, [this](bool on) {
+      if (!updating_) emit interactiveToggled(QString::fromStdString(param_.name), on);
+    });
+    row->addWidget(interactive_);
+  }
+  showApplied(param);
+}
+
+void ParamEditor::showApplied(const apex::ParamInfo& param) {
+  param_ = param;
+  if (throttle_.isActive()) return;  // a value is on its way: the next graph shows it
+  updating_ = true;
+  show_(param.value);
+  if (interactive_) interactive_->setChecked(param.interactive);
+  updating_ = false;
+}
+
+void ParamEditor::send(const QString& yaml, bool dragging) {
+  if (updating_) return;
+  if (!dragging) {
+    if (yaml.toStdString() == param_.value && !throttle_.isActive()) return;  // unchanged: no edit
+    throttle_.stop();
+    pending_.clear();
+    emit edited(QString::fromStdString(param_.name), yaml);
+    return;
+  }
+  pending_ = yaml;
+  if (!throttle_.isActive()) throttle_.start(kThrottleMs);
+}
+
+void ParamEditor::build() {
+  const std::string& k = param_.kind;
+  if (k == "bool") {
+    auto* box = new QCheckBox;
+    layout()->addWidget(box);
+    connect(box, &QCheckBox::toggled, this, [this](bool on) { send(on ? "true" : "false", false); });
+    show_ = [box](const std::string& v) { box->setChecked(as<bool>(parse(v), false)); };
+  } else if (k == "int" || k == "int range") {
+    buildNumber(true);
+  } else if (k == "double" || k == "double range") {
+    buildNumber(false);
+  } else if (k == "interval") {
+    buildInterval();
+  } else if (k == "set") {
+    buildSet();
+  } else if (k == "angle") {
+    buildAngle();
+  } else if (k == "path") {
+    buildPath();
+  } else if (k == "color") {
+    buildColor();
+  } else {
+    buildText();
+  }
+}
+
+void ParamEditor::buildNumber(bool integer) {
+  const bool ranged = param_.kind.find("range") != std::string::npos;
+  const double lo = ranged ? param_.min : -1e9, hi = ranged ? param_.max : 1e9;
+  const double step = param_.step > 0 ? param_.step : (integer ? 1 : 0.01);
+  auto* spin = new QDoubleSpinBox;
+  spin->setObjectName("spin");
+  spin->setDecimals(integer ? 0 : 4);
+  spin->setRange(lo, hi);
+  spin->setSingleStep(step);
+  spin->setKeyboardTracking(false);  // typed digits go out on Enter or focus loss
+  auto text = [integer](double v) { return integer ? QString::number(std::lround(v)) : number(v); };
+  QSlider* slider = nullptr;
+  const SliderScale scale{lo, hi, step};
+  if (ranged && hi > lo) {
+    slider = makeSlider(scale);
+    layout()->addWidget(slider);
+    connect(slider, &QSlider::valueChanged, this, [this, spin, slider, scale, text](int i) {
+      const double v = scale.fromSlider(i);
+      QSignalBlocker block(spin);
+      spin->setValue(v);
+      send(text(v), slider->isSliderDown());
+    });
+    connect(slider, &QSlider::sliderReleased, this,
+            [this, slider, scale, text] { send(text(scale.fromSlider(slider->value())), false); });
+  }
+  layout()->addWidget(spin);
+  connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, slider, scale, text](double v) {
+    if (slider) {
+      QSignalBlocker block(slider);
+      slider->setValue(scale.toSlider(v));
+    }
+    send(text(v), false);
+  });
+  show_ = [spin, slider, scale](const std::string& v) {
+    const double d = as<double>(parse(v), 0.0);
+    QSignalBlocker b1(spin);
+    spin->setValue(d);
+    if (slider) {
+      QSignalBlocker b2(slider);
+      slider->setValue(scale.toSlider(d));
+    }
+  };
+}
+
+void ParamEditor::buildInterval() {
+  const SliderScale scale{param_.min, param_.max, param_.step > 0 ? param_.step : 0.01};
+  QSlider* low = makeSlider(scale);
+  QSlider* high = makeSlider(scale);
+  low->setObjectName("low"), high->setObjectName("high");
+  auto* values = new QLabel;
+  layout()->addWidget(low), layout()->addWidget(high), layout()->addWidget(values);
+  auto value = [scale, low, high] {
+    return "[" + number(scale.fromSlider(low->value())) + ", " + number(scale.fromSlider(high->value())) + "]";
+  };
+  for (QSlider* s : {low, high}) {
+    connect(s, &QSlider::valueChanged, this, [this, low, high, s, values, value] {
+      if (low->value() > high->value()) (s == low ? high : low)->setValue(s->value());  // keep low <= high
+      values->setText(value());
+      send(value(), s->isSliderDown());
+    });
+    connect(s, &QSlider::sliderReleased, this, [this, value] { send(value(), false); });
+  }
+  show_ = [scale, low, high, values](const std::string& v) {
+    const YAML::Node n = parse(v);
+    QSignalBlocker b1(low), b2(high);
+    low->setValue(scale.toSlider(as<double>(n.IsSequence() ? n[0] : n["low"], scale.min)));
+    high->setValue(scale.toSlider(as<double>(n.IsSequence() ? n[1] : n["high"], scale.max)));
+    values->setText(QString::fromStdString(v));
+  };
+}
+
+void ParamEditor::buildSet() {
+  auto* combo = new QComboBox;
+  for (const auto& o : param_.options) combo->addItem(QString::fromStdString(o));
+  layout()->addWidget(combo);
+  connect(combo, QOverload<int>::of(&QComboBox::activated), this,
+          [this, combo](int) { send(quoted(combo->currentText()), false); });
+  show_ = [combo](const std::string& v) {
+    QSignalBlocker block(combo);
+    combo->setCurrentText(QString::fromStdString(as<std::string>(parse(v), v)));
+  };
+}
+
+void ParamEditor::buildAngle() {
+  auto* dial = new QDial;
+  dial->setRange(-180, 180);
+  dial->setWrapping(true);
+  dial->setFixedSize(40, 40);
+  auto* spin = new QDoubleSpinBox;
+  spin->setObjectName("spin");
+  spin->setSuffix(QString::fromUtf8("\u00b0"));
+  spin->setRange(param_.max > param_.min ? param_.min * 180 / M_PI : -360, param_.max > param_.min ? param_.max * 180 / M_PI : 360);
+  spin->setKeyboardTracking(false);
+  layout()->addWidget(dial), layout()->addWidget(spin);
+  auto radians = [](double deg) { return number(deg * M_PI / 180); };
+  connect(dial, &QDial::valueChanged, this, [this, dial, spin, radians](int deg) {
+    QSignalBlocker block(spin);
+    spin->setValue(deg);
+    send(radians(deg), dial->isSliderDown());
+  });
+  connect(dial, &QDial::sliderReleased, this, [this, dial, radians] { send(radians(dial->value()), false); });
+  connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, dial, radians](double deg) {
+    QSignalBlocker block(dial);
+    dial->setValue(static_cast<int>(std::lround(deg)));
+    send(radians(deg), false);
+  });
+  show_ = [dial, spin](const std::string& v) {
+    const double deg = as<double>(parse(v), 0.0) * 180 / M_PI;
+    QSignalBlocker b1(dial), b2(spin);
+    dial->setValue(static_cast<int>(std::lround(deg)));
+    spin->setValue(deg);
+  };
+}
+
+void ParamEditor::buildPath() {
+  auto* line = new QLineEdit;
+  auto* browse = new QPushButton("...");
+  browse->setFixedWidth(28);
+  layout()->addWidget(line), layout()->addWidget(browse);
+  connect(line, &QLineEdit::editingFinished, this, [this, line] { send(quoted(line->text()), false); });
+  connect(browse, &QPushButton::clicked, this, [this, line] {
+    const QString mode = QString::fromStdString(param_.path_mode);
+    const QString path = mode == "directory" ? QFileDialog::getExistingDirectory(this, "Directory", line->text())
+                         : mode == "write"   ? QFileDialog::getSaveFileName(this, "File", line->text())
+                                             : QFileDialog::getOpenFileName(this, "File", line->text());
+    if (path.isEmpty()) return;
+    line->setText(path);
+    send(quoted(path), false);
+  });
+  show_ = [line](const std::string& v) { line->setText(QString::fromStdString(as<std::string>(parse(v), v))); };
+}
+
+void ParamEditor::buildColor() {
+  auto* button = new QPushButton;
+  button->setFixedWidth(48);
+  layout()->addWidget(button);
+  auto paint = [button](const QColor& c) { button->setStyleSheet("background-color: " + c.name()); };
+  auto current = std::make_shared<QColor>();
+  connect(button, &QPushButton::clicked, this, [this, current, paint] {
+    const QColor c = QColorDialog::getColor(*current, this, QString::fromStdString(param_.name));
+    if (!c.isValid()) return;
+    *current = c;
+    paint(c);
+    send(QString("[%1, %2, %3]").arg(c.red()).arg(c.green()).arg(c.blue()), false);
+  });
+  show_ = [current, paint](const std::string& v) {
+    const YAML::Node n = parse(v);
+    if (n.IsSequence() && n.size() == 3) *current = QColor(as<int>(n[0], 0), as<int>(n[1], 0), as<int>(n[2], 0));
+    else if (n.IsMap()) *current = QColor(as<int>(n["r"], 0), as<int>(n["g"], 0), as<int>(n["b"], 0));
+    paint(*current);
+  };
+}
+
+void ParamEditor::buildText() {  // strings as text; pairs and lists as their YAML
+  const bool is_string = param_.kind == "string";
+  auto* line = new QLineEdit;
+  layout()->addWidget(line);
+  connect(line, &QLineEdit::editingFinished, this, [this, line, is_string] {
+    send(is_string ? quoted(line->text()) : line->text(), false);
+  });
+  show_ = [line, is_string](const std::string& v) {
+    if (line->hasFocus()) return;  // being typed into
+    line->setText(QString::fromStdString(is_string ? as<std::string>(parse(v), v) : v));
+  };
+}
+
+}  // namespace apex_rviz_plugin

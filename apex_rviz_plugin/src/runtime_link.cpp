@@ -1,0 +1,238 @@
+#include "apex_rviz_plugin/runtime_link.hpp"
+
+#include <apex/Control.h>
+#include <apex/FireSlot.h>
+#include <apex/Inspect.h>
+#include <apex/ListNodeTypes.h>
+#include <apex/LoadGraph.h>
+#include <apex/SaveGraph.h>
+#include <std_msgs/Bool.h>
+#include <std_msgs/Float64.h>
+#include <std_msgs/Int32.h>
+#include <std_msgs/String.h>
+
+#include <QMetaObject>
+
+namespace apex_rviz_plugin {
+namespace {
+
+template <class Req> struct ServiceOf;
+template <> struct ServiceOf<apex::AddNode::Request> { using type = apex::AddNode; };
+template <> struct ServiceOf<apex::RemoveNode::Request> { using type = apex::RemoveNode; };
+template <> struct ServiceOf<apex::Connect::Request> { using type = apex::Connect; };
+template <> struct ServiceOf<apex::SetParameter::Request> { using type = apex::SetParameter; };
+template <> struct ServiceOf<apex::SetEnabled::Request> { using type = apex::SetEnabled; };
+template <> struct ServiceOf<apex::SetInteractive::Request> { using type = apex::SetInteractive; };
+template <> struct ServiceOf<apex::SetThreadGroup::Request> { using type = apex::SetThreadGroup; };
+template <> struct ServiceOf<apex::SetUi::Request> { using type = apex::SetUi; };
+
+/** Calls a service; the response, and in `message` why it failed if it did. */
+template <class Srv>
+std::pair<bool, typename Srv::Response> callService(const std::string& name, const typename Srv::Request& req,
+                                                    std::string* message) {
+  Srv srv;
+  srv.request = req;
+  if (!ros::service::call(name, srv)) {
+    *message = "no answer from " + name + ": is the runtime running?";
+    return {false, srv.response};
+  }
+  *message = srv.response.message;
+  return {srv.response.success, srv.response};
+}
+
+using Result = std::pair<bool, std::string>;
+
+}  // namespace
+
+// ------------------------------------------------------------------ JobThread
+
+JobThread::JobThread() : thread_([this] {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      cv_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
+      if (stop_) return;
+      auto job = std::move(jobs_.front());
+      jobs_.pop_front();
+      lock.unlock();
+      job();
+      lock.lock();
+    }
+  }) {}
+
+JobThread::~JobThread() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+}
+
+void JobThread::post(std::function<void()> job) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    jobs_.push_back(std::move(job));
+  }
+  cv_.notify_all();
+}
+
+// ---------------------------------------------------------------- RuntimeLink
+
+RuntimeLink::RuntimeLink(QObject* parent) : QObject(parent) {
+  connect(&watchdog_, &QTimer::timeout, this, &RuntimeLink::checkConnection);
+  watchdog_.start(500);
+}
+
+RuntimeLink::~RuntimeLink() {
+  if (spinner_) spinner_->stop();
+}
+
+template <class T>
+void RuntimeLink::async(std::function<T()> work, std::function<void(const T&)> then) {
+  jobs_.post([this, work = std::move(work), then = std::move(then)] {
+    T result = work();
+    // queued to this object's thread; dropped by Qt if the link is gone by then
+    QMetaObject::invokeMethod(this, [then, result] { then(result); }, Qt::QueuedConnection);
+  });
+}
+
+void RuntimeLink::setNamespace(const std::string& ns) {
+  std::string clean = ns.empty() || ns.front() != '/' ? "/" + ns : ns;
+  while (clean.size() > 1 && clean.back() == '/') clean.pop_back();
+  if (spinner_) spinner_->stop();
+  graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear();
+  ns_ = clean;
+  if (!nh_) {
+    nh_ = std::make_unique<ros::NodeHandle>();
+    nh_->setCallbackQueue(&queue_);
+    spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
+  }
+  queue_.clear();
+  graph_sub_ = nh_->subscribe<apex::GraphState>(service("graph"), 1, [this](const apex::GraphState::ConstPtr& g) {
+    QMetaObject::invokeMethod(this, [this, g] { emit graphReceived(*g); }, Qt::QueuedConnection);
+  });
+  status_sub_ = nh_->subscribe<apex::RuntimeStatus>(service("status"), 1, [this](const apex::RuntimeStatus::ConstPtr& s) {
+    QMetaObject::invokeMethod(this, [this, s] { emit statusReceived(*s); }, Qt::QueuedConnection);
+  });
+  spinner_->start();
+  connected_ = false;
+  emit connectionChanged(false, QString("waiting for the runtime at %1").arg(QString::fromStdString(ns_)));
+}
+
+void RuntimeLink::checkConnection() {
+  if (!nh_) return;
+  const bool up = graph_sub_.getNumPublishers() > 0;
+  if (up == connected_) return;
+  connected_ = up;
+  const QString ns = QString::fromStdString(ns_);
+  emit connectionChanged(up, up ? QString("connected to %1").arg(ns)
+                                : QString("the runtime at %1 is gone; reconnecting when it is back").arg(ns));
+}
+
+void RuntimeLink::run(std::vector<Call> calls, Done done) {
+  const std::string ns = ns_;
+  async<Result>(
+      [calls = std::move(calls), ns] {
+        std::string message;
+        for (const auto& c : calls) {
+          const bool ok = std::visit(
+              [&](const auto& req) {
+                using Srv = typename ServiceOf<std::decay_t<decltype(req)>>::type;
+                return callService<Srv>(ns + "/" + c.service, req, &message).first;
+              },
+              c.request);
+          if (!ok) return Result{false, c.service + ": " + message};
+        }
+        return Result{true, message};
+      },
+      [done](const Result& r) { done(r.first, r.second); });
+}
+
+void RuntimeLink::listTypes(std::function<void(bool, const std::string&, const std::vector<apex::NodeTypeInfo>&)> done) {
+  const std::string name = service("list_node_types");
+  using Out = std::tuple<bool, std::string, std::vector<apex::NodeTypeInfo>>;
+  async<Out>(
+      [name] {
+        std::string message;
+        auto [ok, res] = callService<apex::ListNodeTypes>(name, {}, &message);
+        for (const auto& e : res.load_errors) message += (message.empty() ? "" : "; ") + e;
+        return Out{ok, message, res.types};
+      },
+      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
+}
+
+void RuntimeLink::control(const std::string& command, Done done) {
+  apex::Control::Request req;
+  req.command = command;
+  const std::string name = service("control");
+  async<Result>([name, req] { std::string m; bool ok = callService<apex::Control>(name, req, &m).first; return Result{ok, m}; },
+                [done](const Result& r) { done(r.first, r.second); });
+}
+
+void RuntimeLink::saveGraph(const std::string& path, Done done) {
+  apex::SaveGraph::Request req;
+  req.path = path;
+  const std::string name = service("save_graph");
+  async<Result>([name, req] { std::string m; bool ok = callService<apex::SaveGraph>(name, req, &m).first; return Result{ok, m}; },
+                [done](const Result& r) { done(r.first, r.second); });
+}
+
+void RuntimeLink::loadGraph(const std::string& path, Done done) {
+  apex::LoadGraph::Request req;
+  req.path = path;
+  const std::string name = service("load_graph");
+  async<Result>(
+      [name, req] {
+        std::string m;
+        auto [ok, res] = callService<apex::LoadGraph>(name, req, &m);
+        for (const auto& w : res.warnings) m += (m.empty() ? "" : "; ") + w;
+        return Result{ok, m};
+      },
+      [done](const Result& r) { done(r.first, r.second); });
+}
+
+void RuntimeLink::fireSlot(const std::string& node, const std::string& slot, Done done) {
+  apex::FireSlot::Request req;
+  req.node = node, req.slot = slot;
+  const std::string name = service("fire_slot");
+  async<Result>([name, req] { std::string m; bool ok = callService<apex::FireSlot>(name, req, &m).first; return Result{ok, m}; },
+                [done](const Result& r) { done(r.first, r.second); });
+}
+
+void RuntimeLink::inspect(const std::string& node, const std::string& port,
+                          std::function<void(bool, const std::string&, const std::string&, const std::string&)> done) {
+  apex::Inspect::Request req;
+  req.node = node, req.port = port, req.enable = true;
+  const std::string name = service("inspect");
+  using Out = std::tuple<bool, std::string, std::string, std::string>;
+  async<Out>(
+      [name, req] {
+        std::string m;
+        auto [ok, res] = callService<apex::Inspect>(name, req, &m);
+        return Out{ok, m, res.topic, res.message_type};
+      },
+      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r), std::get<3>(r)); });
+}
+
+void RuntimeLink::watchScalar(const std::string& node, const std::string& port, const std::string& topic,
+                              const std::string& type) {
+  if (!nh_) return;
+  const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
+  auto show = [this, n, p](const QString& text) {
+    QMetaObject::invokeMethod(this, [this, n, p, text] { emit scalarReceived(n, p, text); }, Qt::QueuedConnection);
+  };
+  ros::Subscriber sub;
+  if (type == "std_msgs/Int32")
+    sub = nh_->subscribe<std_msgs::Int32>(topic, 1, [show](const std_msgs::Int32::ConstPtr& m) { show(QString::number(m->data)); });
+  else if (type == "std_msgs/Float64")
+    sub = nh_->subscribe<std_msgs::Float64>(topic, 1, [show](const std_msgs::Float64::ConstPtr& m) { show(QString::number(m->data, 'g', 6)); });
+  else if (type == "std_msgs/Bool")
+    sub = nh_->subscribe<std_msgs::Bool>(topic, 1, [show](const std_msgs::Bool::ConstPtr& m) { show(m->data ? "true" : "false"); });
+  else  // strings, and everything the runtime publishes as its YAML text
+    sub = nh_->subscribe<std_msgs::String>(topic, 1, [show](const std_msgs::String::ConstPtr& m) {
+      show(QString::fromStdString(m->data).left(200));
+    });
+  scalar_subs_.push_back(sub);
+}
+
+}  // namespace apex_rviz_plugin
