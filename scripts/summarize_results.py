@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Counts test cases in gtest/JUnit XML result files and prints failures.
 
-Usage: summarize_results.py [--extra-failure TEXT ...] DIR [DIR ...]
+Usage: summarize_results.py [--extra-failure TEXT ...] [--log FILE ...] DIR [DIR ...]
 Prints every failed case, then 'N passed, N failed'; exits 1 on any failure
-or when no test ran at all."""
+or when no test ran at all. With failures, the lines of each --log FILE that
+tell of a crash or an error (a node that died, an exception) come before the
+count, so that a CI log's tail says why."""
 import glob
 import os
 import sys
@@ -29,12 +31,30 @@ def cases(path):
             yield (name, (bad.get("message") or bad.text or "failed").strip())
 
 
+SIGNS = ("process has died", "[FATAL]", "[ERROR]", "terminate called", "Segmentation fault",
+         "Aborted", "what():", "never appeared", "time limit")
+
+
+def print_diagnostics(path, limit=25):
+    try:
+        with open(path, errors="replace") as f:
+            lines = [l.rstrip() for l in f if any(s in l for s in SIGNS)]
+    except OSError:
+        return
+    if lines:
+        print("--- from %s (errors and crashes, last %d):" % (path, limit))
+        for l in lines[-limit:]:
+            print("  " + l[:300])
+
+
 def main(argv):
-    extra, dirs = [], []
+    extra, dirs, logs = [], [], []
     it = iter(argv)
     for a in it:
         if a == "--extra-failure":
             extra.append(next(it))
+        elif a == "--log":
+            logs.append(next(it))
         else:
             dirs.append(a)
     passed, failed = 0, []
@@ -48,6 +68,9 @@ def main(argv):
     failed += [(e, "") for e in extra]
     for name, why in failed:
         print("FAILED %s\n  %s" % (name, why.replace("\n", "\n  ")[:2000]))
+    if failed:
+        for log in logs:
+            print_diagnostics(log)
     print("%d passed, %d failed" % (passed, len(failed)))
     return 1 if failed or passed == 0 else 0
 

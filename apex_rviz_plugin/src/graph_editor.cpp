@@ -39,6 +39,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   view_->setMinimumSize(300, 200);
   view_->setTransformationAnchor(QGraphicsView::AnchorUnderMouse);
   view_->viewport()->installEventFilter(this);
+  view_->installEventFilter(this);  // Delete and Ctrl+D on the selected nodes
   auto* split = new QSplitter;
   split->addWidget(buildPalette());
   split->addWidget(view_);
@@ -56,13 +57,12 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   connect(scene_, &GraphScene::refused, this, [this](const QString& why) { showMessage(why, true); });
   connect(scene_, &GraphScene::nodeMenuRequested, this, &GraphEditor::showNodeMenu);
   connect(scene_, &GraphScene::portMenuRequested, this, &GraphEditor::showPortMenu);
+  connect(scene_, &GraphScene::inspectRequested, this, &GraphEditor::inspectRequested);
   auto shortcut = [this](const QKeySequence& keys, auto fn) {
     auto* s = new QShortcut(keys, this);
     s->setContext(Qt::WidgetWithChildrenShortcut);
     connect(s, &QShortcut::activated, this, fn);
   };
-  shortcut(QKeySequence::Delete, [this] { removeSelected(); });
-  shortcut(QKeySequence("Ctrl+D"), [this] { duplicateSelected(); });
   shortcut(QKeySequence::Undo, [this] { emit undoRequested(); });
   shortcut(QKeySequence::Redo, [this] { emit redoRequested(); });
 }
@@ -141,15 +141,17 @@ void GraphEditor::showTypes(const std::vector<apex::NodeTypeInfo>& types) {
 }
 
 void GraphEditor::filterPalette(const QString& text) {
-  QListWidgetItem* first = nullptr;
+  QListWidgetItem* by_name = nullptr;  // a type whose name matches comes before one whose description does
+  QListWidgetItem* by_description = nullptr;
   for (int i = 0; i < palette_->count(); ++i) {
     QListWidgetItem* item = palette_->item(i);
-    const bool match = item->text().contains(text, Qt::CaseInsensitive) ||
-                       item->data(Qt::UserRole).toString().contains(text, Qt::CaseInsensitive);
-    item->setHidden(!match);
-    if (match && !first) first = item;
+    const bool name = item->text().contains(text, Qt::CaseInsensitive);
+    const bool description = item->data(Qt::UserRole).toString().contains(text, Qt::CaseInsensitive);
+    item->setHidden(!name && !description);
+    if (name && !by_name) by_name = item;
+    if (description && !by_description) by_description = item;
   }
-  palette_->setCurrentItem(first);
+  palette_->setCurrentItem(by_name ? by_name : by_description);
 }
 
 void GraphEditor::addFromPalette() {
@@ -187,6 +189,11 @@ void GraphEditor::fitGraph() {
 }
 
 bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == view_ && event->type() == QEvent::KeyPress && !scene_->focusItem()) {  // not while typing in a widget
+    auto* key = static_cast<QKeyEvent*>(event);
+    if (key->key() == Qt::Key_Delete || key->key() == Qt::Key_Backspace) return removeSelected(), true;
+    if (key->key() == Qt::Key_D && key->modifiers() & Qt::ControlModifier) return duplicateSelected(), true;
+  }
   if (watched == view_->viewport() && event->type() == QEvent::Wheel) {
     auto* wheel = static_cast<QWheelEvent*>(event);
     if (wheel->modifiers() & Qt::ControlModifier) {

@@ -134,6 +134,7 @@ void GraphScene::mouseMoveEvent(QGraphicsSceneMouseEvent* e) {
 void GraphScene::mouseReleaseEvent(QGraphicsSceneMouseEvent* e) {
   if (!drag_from_) return QGraphicsScene::mouseReleaseEvent(e);
   PortItem* target = portAt(e->scenePos());
+  QGraphicsScene::mouseReleaseEvent(e);  // the port that started the drag lets go of the mouse
   apex::Connection c;
   c.from_node = drag_from_->node()->info().name, c.from_port = drag_from_->port().name;
   endDrag();

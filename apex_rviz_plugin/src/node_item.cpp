@@ -38,7 +38,8 @@ QColor groupColor(const std::string& group) {
 PortItem::PortItem(const apex::PortInfo& port, NodeItem* parent) : QGraphicsItem(parent), port_(port) {
   setToolTip(QString::fromStdString(port.name + " (" + port.kind + (port.type.empty() ? "" : ", " + port.type) +
                                     (port.optional ? ", optional" : "") + ")" +
-                                    (port.description.empty() ? "" : "\n" + port.description)));
+                                    (port.description.empty() ? "" : "\n" + port.description) +
+                                    (port.kind == "output" ? "\n(drag to an input to connect; double-click to inspect)" : "")));
   setAcceptedMouseButtons(Qt::LeftButton);
 }
 
@@ -85,6 +86,13 @@ void PortItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
 void PortItem::mousePressEvent(QGraphicsSceneMouseEvent* e) {
   if (!isSource()) return e->ignore();
   if (auto* s = qobject_cast<GraphScene*>(scene())) s->beginConnect(this);
+  e->accept();
+}
+
+void PortItem::mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) {
+  if (port_.kind != "output" && port_.kind != "param_out") return e->ignore();
+  if (auto* s = qobject_cast<GraphScene*>(scene()))
+    emit s->inspectRequested(QString::fromStdString(node()->info().name), QString::fromStdString(port_.name));
   e->accept();
 }
 
@@ -156,6 +164,7 @@ void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
                 .arg(s.max_ms, 0, 'f', 2)
                 .arg(rate_hz, 0, 'f', 1)
                 .arg(s.firings);
+  firings_ = s.firings;
   info_.state = s.state;
   info_.error = s.error;
   setToolTip(QString::fromStdString(s.error));

@@ -145,6 +145,7 @@ void ParamEditor::buildNumber(bool integer) {
   spin->setRange(lo, hi);
   spin->setSingleStep(step);
   spin->setKeyboardTracking(false);  // typed digits go out on Enter or focus loss
+  spin->setMinimumWidth(72);
   auto text = [integer](double v) { return integer ? QString::number(std::lround(v)) : number(v); };
   QSlider* slider = nullptr;
   const SliderScale scale{lo, hi, step};

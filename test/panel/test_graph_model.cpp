@@ -98,6 +98,68 @@ TEST(GraphModel, RemovingANodeIsUndoneWithItsSettingsAndConnections) {
   EXPECT_FALSE(m.removeNode("ghost"));
 }
 
+TEST(GraphModel, ARestartedRuntimeIsTakenAfterReset) {
+  GraphModel m;
+  m.update(graph(40));
+  EXPECT_FALSE(m.update(graph(2)));  // a new runtime process counts from the start again
+  m.reset();
+  EXPECT_FALSE(m.hasGraph());
+  EXPECT_TRUE(m.update(graph(2)));
+  EXPECT_EQ(m.graph().revision, 2u);
+}
+
+TEST(GraphModel, FreshNamesFollowTheTypeAndAreUnused) {
+  GraphModel m;
+  m.update(graph(1));
+  EXPECT_EQ(m.freshName("apex_nodes/GaussianBlur"), "gaussian_blur_1");
+  auto g = graph(2);
+  g.nodes[0].name = "clock_1";
+  m.update(g);
+  EXPECT_EQ(m.freshName("apex_nodes/Clock"), "clock_2");
+}
+
+TEST(GraphModel, DuplicateCopiesTypeParametersAndGroupNotConnections) {
+  GraphModel m;
+  m.update(graph(1));
+  auto e = m.duplicate("relay", 50, 60);
+  ASSERT_TRUE(e);
+  ASSERT_EQ(e->apply.size(), 2u);
+  const auto& add = std::get<apex::AddNode::Request>(e->apply[0].request);
+  EXPECT_EQ(add.type, "apex_nodes/Relay");
+  EXPECT_EQ(add.name, "relay_1");
+  EXPECT_EQ(add.thread_group, "vision");
+  EXPECT_EQ(std::get<apex::SetUi::Request>(e->apply[1].request).ui, "{x: 50, y: 60}");
+  ASSERT_EQ(e->revert.size(), 1u);
+  EXPECT_EQ(e->revert[0].service, "remove_node");
+  EXPECT_FALSE(m.duplicate("nobody", 0, 0));
+}
+
+TEST(GraphModel, EnableGroupAndInteractiveEditsAreUndoneToTheOldState) {
+  GraphModel m;
+  m.update(graph(1));
+  auto en = m.setEnabled("relay", true);
+  ASSERT_TRUE(en);
+  EXPECT_TRUE(std::get<apex::SetEnabled::Request>(en->apply[0].request).enabled);
+  EXPECT_FALSE(std::get<apex::SetEnabled::Request>(en->revert[0].request).enabled);
+  auto group = m.setThreadGroup("relay", "fast");
+  ASSERT_TRUE(group);
+  EXPECT_EQ(std::get<apex::SetThreadGroup::Request>(group->apply[0].request).group, "fast");
+  EXPECT_EQ(std::get<apex::SetThreadGroup::Request>(group->revert[0].request).group, "vision");
+  // hiding a linked parameter's ports drops its connection: undo brings it back
+  auto g = graph(2);
+  apex::Connection link;
+  link.from_node = "count", link.from_port = "count", link.to_node = "clock", link.to_port = "rate";
+  g.connections.push_back(link);
+  m.update(g);
+  auto hide = m.setInteractive("clock", "rate", false);
+  ASSERT_TRUE(hide);
+  ASSERT_EQ(hide->revert.size(), 2u);
+  EXPECT_TRUE(std::get<apex::SetInteractive::Request>(hide->revert[0].request).interactive);
+  EXPECT_EQ(hide->revert[1].service, "connect");
+  EXPECT_EQ(std::get<apex::Connect::Request>(hide->revert[1].request).to_port, "rate");
+  EXPECT_FALSE(m.setInteractive("clock", "nothing", true));
+}
+
 TEST(EditHistory, UndoRedoAndANewEditClearsRedo) {
   GraphModel m;
   m.update(graph(1));

@@ -39,6 +39,7 @@ class PortItem : public QGraphicsItem {
 
  protected:
   void mousePressEvent(QGraphicsSceneMouseEvent* e) override;
+  void mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) override;  ///< on an output: inspect it
 
  private:
   apex::PortInfo port_;
@@ -60,6 +61,11 @@ class NodeItem : public QGraphicsObject {
   PortItem* port(const std::string& name, bool source) const;
   const std::vector<PortItem*>& ports() const { return ports_; }
   ParamEditor* editor(const std::string& param) const;
+  /** @brief What the box shows from ~status, e.g. "0.12 ms (max 0.50) · 10.0 Hz · 42 firings". */
+  const QString& timing() const { return timing_; }
+  std::uint64_t firings() const { return firings_; }
+  /** @brief Inspected scalar values shown in the box, e.g. "count = 42". */
+  const QString& values() const { return values_; }
 
   QRectF boundingRect() const override;
   void paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) override;
@@ -82,6 +88,7 @@ class NodeItem : public QGraphicsObject {
   std::map<std::string, ParamEditor*> editors_;
   QGraphicsProxyWidget* params_ = nullptr;
   QString timing_, values_;
+  std::uint64_t firings_ = 0;
   std::map<QString, QString> scalar_values_;
   double height_ = 60;
   bool dragged_ = false;
@@ -123,6 +130,7 @@ class GraphScene : public QGraphicsScene {
   void nodeMoved(const QString& node, QPointF pos);
   void nodeMenuRequested(const QString& node, QPoint screen_pos);
   void portMenuRequested(const QString& node, const QString& port, QPoint screen_pos);
+  void inspectRequested(const QString& node, const QString& port);
 
  protected:
   void mouseMoveEvent(QGraphicsSceneMouseEvent* e) override;

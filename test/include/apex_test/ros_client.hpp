@@ -23,7 +23,7 @@ typename Srv::Response call(const std::string& name, typename Srv::Request req =
   Srv srv;
   srv.request = req;
   const std::string full = service(name);
-  if (!ros::service::waitForService(full, ros::Duration(20))) ADD_FAILURE() << full << " never appeared";
+  if (!ros::service::waitForService(full, ros::Duration(60))) ADD_FAILURE() << full << " never appeared";
   if (!ros::service::call(full, srv)) ADD_FAILURE() << "calling " << full << " failed";
   return srv.response;
 }

@@ -1,0 +1,224 @@
+// The panel widget (what GraphPanel shows in rviz) driven by simulated mouse and
+// keyboard input against a real runtime, offscreen. Each step is checked in the
+// runtime's own graph (~get_graph), not in the panel. A screenshot is written.
+//   test_panel_widget SCREENSHOT.png
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QDoubleSpinBox>
+#include <QGraphicsView>
+#include <QLineEdit>
+#include <QMouseEvent>
+#include <QTest>
+#include <QToolButton>
+
+#include <apex/GetGraph.h>
+#include <ros/ros.h>
+#include <yaml-cpp/yaml.h>
+
+#include "apex_rviz_plugin/panel_widget.hpp"
+#include "apex_rviz_plugin/param_editor.hpp"
+
+using namespace apex_rviz_plugin;
+
+namespace {
+
+std::string g_shot;
+constexpr int kWaitMs = 20000;
+
+apex::GraphState runtimeGraph() {
+  apex::GetGraph srv;
+  EXPECT_TRUE(ros::service::call("/apex/get_graph", srv)) << "get_graph did not answer";
+  return srv.response.graph;
+}
+
+const apex::NodeInfo* find(const apex::GraphState& g, const std::string& name) {
+  for (const auto& n : g.nodes) if (n.name == name) return &n;
+  return nullptr;
+}
+
+std::string param(const apex::GraphState& g, const std::string& node, const std::string& name) {
+  if (const auto* n = find(g, node))
+    for (const auto& p : n->parameters) if (p.name == name) return p.value;
+  return "";
+}
+
+double number(const apex::GraphState& g, const std::string& node, const std::string& name) {
+  const std::string v = param(g, node, name);
+  return v.empty() ? -1 : std::stod(v);
+}
+
+bool connected(const apex::GraphState& g, const std::string& a, const std::string& ap, const std::string& b,
+               const std::string& bp) {
+  for (const auto& c : g.connections)
+    if (c.from_node == a && c.from_port == ap && c.to_node == b && c.to_port == bp) return true;
+  return false;
+}
+
+/** A mouse event as the window system would deliver it to the view. */
+void mouse(QGraphicsView* view, QEvent::Type type, QPointF scene_pos, Qt::MouseButtons held) {
+  const QPoint at = view->mapFromScene(scene_pos);
+  QMouseEvent e(type, at, view->viewport()->mapToGlobal(at), type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton,
+                held, Qt::NoModifier);
+  QApplication::sendEvent(view->viewport(), &e);
+}
+
+/** Presses at `from`, moves in steps, releases at `to`: a drag. */
+void drag(QGraphicsView* view, QPointF from, QPointF to) {
+  mouse(view, QEvent::MouseButtonPress, from, Qt::LeftButton);
+  for (int i = 1; i <= 10; ++i) mouse(view, QEvent::MouseMove, from + (to - from) * (i / 10.0), Qt::LeftButton);
+  mouse(view, QEvent::MouseButtonRelease, to, Qt::NoButton);
+}
+
+class PanelWidgetTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    panel.resize(1400, 900);
+    panel.show();
+    panel.setNamespace("/apex");
+    ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.nodeTypeCount() > 0; }, kWaitMs))
+        << "the panel did not connect to /apex or list its node types";
+    view = panel.editor()->view();
+    search = panel.editor()->findChild<QLineEdit*>("search");
+    ASSERT_TRUE(search);
+  }
+
+  /** Types into the palette's search field and presses Enter: adds the first match. */
+  std::string addByKeyboard(const QString& type, const std::string& expected_name) {
+    search->setFocus();
+    search->selectAll();
+    QTest::keyClicks(search, type);
+    QTest::keyClick(search, Qt::Key_Return);
+    EXPECT_TRUE(QTest::qWaitFor([&] { return panel.editor()->scene()->node(expected_name) != nullptr; }, kWaitMs))
+        << expected_name << " not shown; message: " << panel.editor()->message().toStdString();
+    return expected_name;
+  }
+
+  QPointF portAt(const std::string& node, const std::string& port, bool source) {
+    NodeItem* n = panel.editor()->scene()->node(node);
+    PortItem* p = n ? n->port(port, source) : nullptr;
+    EXPECT_TRUE(p) << node << "/" << port;
+    return p ? p->scenePos() : QPointF();
+  }
+
+  PanelWidget panel;
+  QGraphicsView* view = nullptr;
+  QLineEdit* search = nullptr;
+};
+
+TEST_F(PanelWidgetTest, AddMoveConnectTuneAndUndoByMouseAndKeyboard) {
+  // add two nodes from the palette with the keyboard
+  addByKeyboard("Clock", "clock_1");
+  addByKeyboard("Counter", "counter_1");
+  addByKeyboard("apex_nodes/Scale", "scale_1");
+  auto g = runtimeGraph();
+  ASSERT_TRUE(find(g, "clock_1") && find(g, "counter_1") && find(g, "scale_1"));
+
+  // move them apart by dragging their titles; the positions reach the graph's UI metadata
+  NodeItem* counter = panel.editor()->scene()->node("counter_1");
+  NodeItem* scale = panel.editor()->scene()->node("scale_1");
+  NodeItem* clock = panel.editor()->scene()->node("clock_1");
+  clock->setZValue(0), counter->setZValue(2), scale->setZValue(3);  // the titles to grab are on top
+  drag(view, scale->scenePos() + QPointF(60, 10), scale->scenePos() + QPointF(60 + 300, 10 + 260));
+  drag(view, counter->scenePos() + QPointF(60, 10), counter->scenePos() + QPointF(60 + 300, 10 - 30));
+  const auto counter_ui = counter->scenePos();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.model().position("counter_1").first == int(counter_ui.x()); }, kWaitMs));
+  const YAML::Node ui = YAML::Load(find(runtimeGraph(), "counter_1")->ui);
+  EXPECT_EQ(ui["x"].as<int>(), int(counter_ui.x()));
+  EXPECT_EQ(ui["y"].as<int>(), int(counter_ui.y()));
+
+  // connect clock/count -> counter/in by dragging from the output to the input
+  panel.editor()->fitGraph();
+  drag(view, portAt("clock_1", "count", true), portAt("counter_1", "in", false));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return connected(panel.model().graph(), "clock_1", "count", "counter_1", "in"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_TRUE(connected(runtimeGraph(), "clock_1", "count", "counter_1", "in"));
+
+  // an int output onto a double input is refused in the panel, with the reason, and nothing is sent
+  drag(view, portAt("clock_1", "count", true), portAt("scale_1", "in", false));
+  EXPECT_NE(panel.editor()->message().toStdString().find("type mismatch"), std::string::npos)
+      << panel.editor()->message().toStdString();
+  EXPECT_FALSE(connected(runtimeGraph(), "clock_1", "count", "scale_1", "in"));
+
+  // type a new rate into the clock's spin box: the runtime applies it, the widget shows it
+  ParamEditor* rate = clock->editor("rate");
+  ASSERT_TRUE(rate);
+  auto* spin = rate->findChild<QDoubleSpinBox*>("spin");
+  ASSERT_TRUE(spin);
+  spin->setFocus();
+  spin->selectAll();
+  QTest::keyClicks(spin, "25");
+  QTest::keyClick(spin, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "clock_1", "rate") == 25; }, kWaitMs))
+      << "rate is " << param(panel.model().graph(), "clock_1", "rate") << "; " << panel.editor()->message().toStdString();
+  EXPECT_EQ(number(runtimeGraph(), "clock_1", "rate"), 25);
+  EXPECT_DOUBLE_EQ(spin->value(), 25.0);
+
+  // undo (button) restores the rate; redo sets it again
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  auto* redo = panel.editor()->findChild<QToolButton*>("redo");
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "clock_1", "rate") == 10; }, kWaitMs));
+  EXPECT_EQ(number(runtimeGraph(), "clock_1", "rate"), 10);
+  EXPECT_DOUBLE_EQ(spin->value(), 10.0);
+  QTest::mouseClick(redo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "clock_1", "rate") == 25; }, kWaitMs));
+
+  // the spin box keeps to the declared range: the digit that would leave it (max 1000) is not taken
+  spin->setFocus();
+  spin->selectAll();
+  QTest::keyClicks(spin, "5000");
+  QTest::keyClick(spin, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "clock_1", "rate") == 500; }, kWaitMs))
+      << "rate is " << param(panel.model().graph(), "clock_1", "rate");
+
+  // data flows: the boxes show firings, rate and timing from ~status as they grow
+  ASSERT_TRUE(QTest::qWaitFor([&] { return counter->firings() > 100 && clock->firings() > 100; }, kWaitMs))
+      << counter->timing().toStdString();
+  EXPECT_TRUE(counter->timing().contains(" Hz")) << counter->timing().toStdString();
+
+  // a double click on an output inspects it: a scalar's value is shown in the node
+  const QPointF count_port = portAt("counter_1", "count", true);
+  mouse(view, QEvent::MouseButtonPress, count_port, Qt::LeftButton);
+  mouse(view, QEvent::MouseButtonRelease, count_port, Qt::NoButton);
+  mouse(view, QEvent::MouseButtonDblClick, count_port, Qt::LeftButton);
+  mouse(view, QEvent::MouseButtonRelease, count_port, Qt::NoButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return counter->values().startsWith("count = "); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+
+  // a click on its title selects a node; Delete removes it
+  const QPointF title = scale->scenePos() + QPointF(60, 10);
+  mouse(view, QEvent::MouseButtonPress, title, Qt::LeftButton);
+  mouse(view, QEvent::MouseButtonRelease, title, Qt::NoButton);
+  ASSERT_TRUE(scale->isSelected());
+  EXPECT_FALSE(counter->isSelected() || clock->isSelected());
+  view->setFocus();
+  QTest::keyClick(view, Qt::Key_Delete);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.model().node("scale_1"); }, kWaitMs));
+  EXPECT_FALSE(find(runtimeGraph(), "scale_1"));
+
+  panel.editor()->fitGraph();
+  QApplication::processEvents();
+  ASSERT_TRUE(panel.grab().save(QString::fromStdString(g_shot))) << "cannot write " << g_shot;
+}
+
+TEST_F(PanelWidgetTest, ARefusedEditShowsTheRuntimesMessage) {
+  addByKeyboard("Clock", "clock_2");
+  // a value the runtime refuses (the widget cannot: use the model's edit as a script would)
+  ParamEditor* rate = panel.editor()->scene()->node("clock_2")->editor("rate");
+  emit rate->edited("rate", "fast");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editor()->message().contains("refused"); }, kWaitMs));
+  EXPECT_TRUE(panel.editor()->message().contains("rate")) << panel.editor()->message().toStdString();
+  EXPECT_EQ(number(runtimeGraph(), "clock_2", "rate"), 10);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_panel_widget");
+  g_shot = argc > 1 ? argv[1] : "panel_widget.png";
+  qputenv("QT_QPA_PLATFORM", "offscreen");
+  QApplication app(argc, argv);
+  return RUN_ALL_TESTS();
+}
