@@ -47,6 +47,13 @@ const apex::NodeInfo* GraphModel::node(const std::string& name) const {
   return nullptr;
 }
 
+const apex::ParamInfo* GraphModel::parameter(const std::string& node_name, const std::string& name) const {
+  const apex::NodeInfo* n = node(node_name);
+  if (!n) return nullptr;
+  for (const auto& p : n->parameters) if (p.name == name) return &p;
+  return nullptr;
+}
+
 const apex::PortInfo* GraphModel::port(const std::string& node_name, const std::string& port_name,
                                        const std::string& kind) const {
   const apex::NodeInfo* n = node(node_name);
@@ -130,10 +137,8 @@ Edit GraphModel::disconnect(const apex::Connection& c) const {
 
 std::optional<Edit> GraphModel::setParameter(const std::string& node_name, const std::string& param,
                                              const std::string& value) const {
-  const apex::NodeInfo* n = node(node_name);
-  if (!n) return std::nullopt;
-  auto p = std::find_if(n->parameters.begin(), n->parameters.end(), [&](const auto& x) { return x.name == param; });
-  if (p == n->parameters.end()) return std::nullopt;
+  const apex::ParamInfo* p = parameter(node_name, param);
+  if (!p) return std::nullopt;
   apex::SetParameter::Request set, back;
   set.node = back.node = node_name;
   set.parameter = back.parameter = param;
@@ -191,10 +196,8 @@ std::optional<Edit> GraphModel::setThreadGroup(const std::string& name, const st
 
 std::optional<Edit> GraphModel::setInteractive(const std::string& name, const std::string& param,
                                                bool interactive) const {
-  const apex::NodeInfo* n = node(name);
-  if (!n) return std::nullopt;
-  auto p = std::find_if(n->parameters.begin(), n->parameters.end(), [&](const auto& x) { return x.name == param; });
-  if (p == n->parameters.end()) return std::nullopt;
+  const apex::ParamInfo* p = parameter(name, param);
+  if (!p) return std::nullopt;
   apex::SetInteractive::Request set, back;
   set.node = back.node = name;
   set.parameter = back.parameter = param;

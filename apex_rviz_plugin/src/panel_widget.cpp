@@ -23,9 +23,10 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
 }
 
 void PanelWidget::setNamespace(const QString& ns) {
+  const bool changed = link_.setNamespace(ns.toStdString());
+  editor_->setNamespace(QString::fromStdString(link_.ns()));  // a refused one goes back to the current
+  if (!changed) return;
   model_.reset();
-  link_.setNamespace(ns.toStdString());
-  editor_->setNamespace(QString::fromStdString(link_.ns()));
   editor_->showGraph(model_);
   emit namespaceChanged(QString::fromStdString(link_.ns()));
 }
@@ -123,6 +124,9 @@ void PanelWidget::onInspect(const QString& node, const QString& port) {
                   const QString t = QString::fromStdString(topic), name = node + "/" + port;
                   if (type == "sensor_msgs/Image") emit displayRequested("rviz/Image", name, t);
                   else if (type == "sensor_msgs/PointCloud2") emit displayRequested("rviz/PointCloud2", name, t);
+                  else if (type.empty())  // a port of any type: its first message decides
+                    return report(true, "", node + "/" + port + " is published on " + t +
+                                                " from its first message on; inspect it again then to see it here");
                   else link_.watchScalar(node.toStdString(), port.toStdString(), topic, type);
                   report(true, "", "inspecting " + name + " on " + t + (type.empty() ? "" : " (" + QString::fromStdString(type) + ")"));
                 });

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <QAbstractSlider>
 #include <QCheckBox>
 #include <QColorDialog>
 #include <QComboBox>
@@ -90,6 +91,8 @@ ParamEditor::ParamEditor(const apex::ParamInfo& param, QWidget* parent) : QWidge
 void ParamEditor::showApplied(const apex::ParamInfo& param) {
   param_ = param;
   if (throttle_.isActive()) return;  // a value is on its way: the next graph shows it
+  for (auto* s : findChildren<QAbstractSlider*>())
+    if (s->isSliderDown()) return;  // being dragged: not moved under the mouse
   updating_ = true;
   show_(param.value);
   if (interactive_) interactive_->setChecked(param.interactive);

@@ -13,6 +13,8 @@
 
 #include <QMetaObject>
 
+#include <ros/names.h>
+
 namespace apex_rviz_plugin {
 namespace {
 
@@ -96,9 +98,15 @@ void RuntimeLink::async(std::function<T()> work, std::function<void(const T&)> t
   });
 }
 
-void RuntimeLink::setNamespace(const std::string& ns) {
+bool RuntimeLink::setNamespace(const std::string& ns) {
   std::string clean = ns.empty() || ns.front() != '/' ? "/" + ns : ns;
   while (clean.size() > 1 && clean.back() == '/') clean.pop_back();
+  if (nh_ && clean == ns_) return false;
+  std::string why;
+  if (!ros::names::validate(clean, why)) {
+    emit connectionChanged(connected_, QString::fromStdString("'" + ns + "' is not a valid namespace: " + why));
+    return false;
+  }
   if (spinner_) spinner_->stop();
   graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear();
   ns_ = clean;
@@ -117,6 +125,7 @@ void RuntimeLink::setNamespace(const std::string& ns) {
   spinner_->start();
   connected_ = false;
   emit connectionChanged(false, QString("waiting for the runtime at %1").arg(QString::fromStdString(ns_)));
+  return true;
 }
 
 void RuntimeLink::checkConnection() {
@@ -161,20 +170,28 @@ void RuntimeLink::listTypes(std::function<void(bool, const std::string&, const s
       [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
 }
 
+template <class Srv>
+void RuntimeLink::callOne(const std::string& name, const typename Srv::Request& req, Done done) {
+  const std::string full = service(name);
+  async<Result>(
+      [full, req] {
+        std::string m;
+        const bool ok = callService<Srv>(full, req, &m).first;
+        return Result{ok, m};
+      },
+      [done](const Result& r) { done(r.first, r.second); });
+}
+
 void RuntimeLink::control(const std::string& command, Done done) {
   apex::Control::Request req;
   req.command = command;
-  const std::string name = service("control");
-  async<Result>([name, req] { std::string m; bool ok = callService<apex::Control>(name, req, &m).first; return Result{ok, m}; },
-                [done](const Result& r) { done(r.first, r.second); });
+  callOne<apex::Control>("control", req, std::move(done));
 }
 
 void RuntimeLink::saveGraph(const std::string& path, Done done) {
   apex::SaveGraph::Request req;
   req.path = path;
-  const std::string name = service("save_graph");
-  async<Result>([name, req] { std::string m; bool ok = callService<apex::SaveGraph>(name, req, &m).first; return Result{ok, m}; },
-                [done](const Result& r) { done(r.first, r.second); });
+  callOne<apex::SaveGraph>("save_graph", req, std::move(done));
 }
 
 void RuntimeLink::loadGraph(const std::string& path, Done done) {
@@ -194,9 +211,7 @@ void RuntimeLink::loadGraph(const std::string& path, Done done) {
 void RuntimeLink::fireSlot(const std::string& node, const std::string& slot, Done done) {
   apex::FireSlot::Request req;
   req.node = node, req.slot = slot;
-  const std::string name = service("fire_slot");
-  async<Result>([name, req] { std::string m; bool ok = callService<apex::FireSlot>(name, req, &m).first; return Result{ok, m}; },
-                [done](const Result& r) { done(r.first, r.second); });
+  callOne<apex::FireSlot>("fire_slot", req, std::move(done));
 }
 
 void RuntimeLink::inspect(const std::string& node, const std::string& port,

@@ -4,7 +4,12 @@
 //   test_panel_widget SCREENSHOT.png
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <QApplication>
+#include <QLabel>
 #include <QDoubleSpinBox>
 #include <QGraphicsView>
 #include <QLineEdit>
@@ -210,6 +215,61 @@ TEST_F(PanelWidgetTest, ARefusedEditShowsTheRuntimesMessage) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editor()->message().contains("refused"); }, kWaitMs));
   EXPECT_TRUE(panel.editor()->message().contains("rate")) << panel.editor()->message().toStdString();
   EXPECT_EQ(number(runtimeGraph(), "clock_2", "rate"), 10);
+}
+
+/** A runtime of its own, in another namespace, that a test can stop and start again. */
+class OwnRuntime {
+ public:
+  explicit OwnRuntime(const char* name) : name_(name) {}
+  ~OwnRuntime() { stop(); }
+  void start() {
+    pid_ = fork();
+    if (pid_ == 0) {
+      const std::string arg = std::string("__name:=") + name_;
+      execlp("rosrun", "rosrun", "apex", "apex_runtime_node", arg.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+  }
+  void stop() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGINT);
+    waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+
+ private:
+  const char* name_;
+  pid_t pid_ = -1;
+};
+
+TEST(PanelWidgetReconnect, SaysWhenTheRuntimeIsGoneAndPicksItUpWhenItIsBack) {
+  PanelWidget panel;
+  panel.show();
+  auto* field = panel.editor()->findChild<QLineEdit*>("namespace");
+  auto* status = panel.editor()->findChild<QLabel*>("connection");
+  ASSERT_TRUE(field && status);
+  // a name that is not a ROS namespace is refused with the reason; the panel stays where it was
+  panel.setNamespace("/apex");
+  field->setFocus();
+  field->selectAll();
+  QTest::keyClicks(field, "not a namespace!");
+  QTest::keyClick(field, Qt::Key_Return);
+  EXPECT_EQ(panel.ns().toStdString(), "/apex");
+  EXPECT_TRUE(status->text().contains("not a valid namespace")) << status->text().toStdString();
+
+  OwnRuntime runtime("apex_b");
+  runtime.start();
+  panel.setNamespace("/apex_b");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs))
+      << status->text().toStdString();
+  runtime.stop();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.link().connected(); }, kWaitMs));
+  EXPECT_TRUE(status->text().contains("gone")) << status->text().toStdString();
+  EXPECT_FALSE(panel.model().hasGraph());
+  runtime.start();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs))
+      << status->text().toStdString();
+  EXPECT_GT(panel.nodeTypeCount(), 0);
 }
 
 }  // namespace

@@ -47,6 +47,7 @@ class GraphModel {
   const apex::GraphState& graph() const { return graph_; }
 
   const apex::NodeInfo* node(const std::string& name) const;
+  const apex::ParamInfo* parameter(const std::string& node, const std::string& name) const;
   const apex::PortInfo* port(const std::string& node, const std::string& port, const std::string& kind) const;
   /** @brief Whether an output (or trigger, or parameter output) may feed an input (or slot,
    *  or parameter input), with the runtime's rules; if not, why. Empty when it may. */

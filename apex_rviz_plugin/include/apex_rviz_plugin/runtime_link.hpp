@@ -49,8 +49,8 @@ class RuntimeLink : public QObject {
   explicit RuntimeLink(QObject* parent = nullptr);
   ~RuntimeLink() override;
 
-  /** @brief The runtime to talk to, e.g. "/apex"; subscribes anew. */
-  void setNamespace(const std::string& ns);
+  /** @brief The runtime to talk to, e.g. "/apex"; subscribes anew. False if it is the current one. */
+  bool setNamespace(const std::string& ns);
   const std::string& ns() const { return ns_; }
   bool connected() const { return connected_; }
 
@@ -80,6 +80,9 @@ class RuntimeLink : public QObject {
   /** Runs `work` on the job thread and `then` with its result on the GUI thread. */
   template <class T>
   void async(std::function<T()> work, std::function<void(const T&)> then);
+  /** Calls one service off the GUI thread; `done` gets success and message. */
+  template <class Srv>
+  void callOne(const std::string& name, const typename Srv::Request& req, Done done);
   void checkConnection();
   std::string service(const std::string& name) const { return ns_ + "/" + name; }
 
