@@ -156,8 +156,6 @@ void NodeItem::build() {
   setToolTip(QString::fromStdString(info_.error));
 }
 
-double NodeItem::portsHeight() const { return height_; }
-
 void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
   timing_ = QString("%1 ms (max %2) · %3 Hz · %4 firings")
                 .arg(s.mean_ms, 0, 'f', 2)

@@ -11,7 +11,6 @@
 #include <apex/RuntimeStatus.h>
 
 #include <map>
-#include <memory>
 
 #include "apex_rviz_plugin/graph_model.hpp"
 
@@ -81,7 +80,6 @@ class NodeItem : public QGraphicsObject {
 
  private:
   void build();
-  double portsHeight() const;
 
   apex::NodeInfo info_;
   std::vector<PortItem*> ports_;
