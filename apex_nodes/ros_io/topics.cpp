@@ -2,13 +2,13 @@
 // Subscribers are driven sources that keep only the newest message: a busy
 // graph drops frames instead of queueing them. Publishers convert only while
 // someone subscribes.
-#include <image_transport/image_transport.h>
 #include <ros/ros.h>
 
 #include <mutex>
 
 #include "apex/ros/node_plugin.hpp"
 #include "apex_nodes/ros_convert.hpp"
+#include "shared_image_transport.hpp"
 
 namespace apex_nodes {
 namespace {
@@ -52,13 +52,12 @@ class ImageSubscriber : public apex::Node {
 
  private:
   void subscribe() {
-    image_transport::ImageTransport it{ros::NodeHandle()};
-    sub_ = it.subscribe(param<std::string>("topic"), 1,
-                        [this](const sensor_msgs::ImageConstPtr& msg) {
-                          latest_.put(msg);
-                          notifyNewData();
-                        },
-                        ros::VoidPtr(), image_transport::TransportHints(param<std::string>("transport")));
+    sub_ = subscribeImage(param<std::string>("topic"), 1,
+                          [this](const sensor_msgs::ImageConstPtr& msg) {
+                            latest_.put(msg);
+                            notifyNewData();
+                          },
+                          param<std::string>("transport"));
   }
   Latest<sensor_msgs::ImageConstPtr> latest_;
   image_transport::Subscriber sub_;
@@ -79,8 +78,7 @@ class ImagePublisher : public apex::Node {
 
  private:
   void advertise() {
-    image_transport::ImageTransport it{ros::NodeHandle()};
-    pub_ = it.advertise(param<std::string>("topic"), 1);
+    pub_ = advertiseImage(param<std::string>("topic"), 1);
   }
   image_transport::Publisher pub_;
 };

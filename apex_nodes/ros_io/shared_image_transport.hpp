@@ -1,0 +1,25 @@
+// One image_transport for every image node in the process.
+//
+// pluginlib and class_loader are not thread-safe: two ImageTransport objects
+// made at once on two thread groups run rospack at once ("No plugins found!")
+// and load or unload libimage_transport_plugins at once (a crash: "Could not
+// unload library"). So every image node advertises and subscribes through one
+// ImageTransport that lives as long as the process, one call at a time: its
+// plugin loaders are made once and never unloaded.
+#pragma once
+
+#include <image_transport/image_transport.h>
+
+#include <string>
+
+namespace apex_nodes {
+
+using ImageCallback = boost::function<void(const sensor_msgs::ImageConstPtr&)>;
+
+image_transport::Publisher advertiseImage(const std::string& topic, uint32_t queue_size);
+
+image_transport::Subscriber subscribeImage(const std::string& topic, uint32_t queue_size,
+                                           const ImageCallback& callback,
+                                           const std::string& transport);
+
+}  // namespace apex_nodes
