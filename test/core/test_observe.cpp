@@ -113,6 +113,35 @@ TEST(Observe, ErrorsGoToTheLogSinkOncePerChange) {
   EXPECT_THAT(lines[1], HasSubstr("1 t: recovered"));
 }
 
+TEST(Observe, AnErrorThatChangesEveryFiringIsLoggedOnceButShownNewest) {
+  std::mutex m;
+  std::vector<std::string> lines;
+  setLogSink([&](LogLevel, const std::string&, const std::string& text) {
+    std::lock_guard<std::mutex> l(m);
+    lines.push_back(text);
+  });
+  {
+    Graph g(testRegistry());
+    add(g, "test/Feeder", "src");
+    add(g, "test/Thrower", "t");
+    link(g, "src", "out", "t", "in");
+    ASSERT_TRUE(g.setParameter("t", "throw_always", "true"));
+    g.start();
+    for (int v = 1; v <= 50; ++v) {
+      object<Feeder>(g, "src")->feed(v);
+      ASSERT_TRUE(g.waitIdle(kWait));
+    }
+    for (const auto& n : g.nodeStats())  // the state is the newest failure
+      if (n.name == "t") {
+        EXPECT_THAT(n.error, HasSubstr("bad value 50"));
+      }
+  }
+  setLogSink(nullptr);
+  std::lock_guard<std::mutex> l(m);
+  ASSERT_EQ(lines.size(), 1u) << "a failure at every firing floods the log";
+  EXPECT_THAT(lines[0], HasSubstr("bad value 1"));
+}
+
 }  // namespace
 
 namespace {

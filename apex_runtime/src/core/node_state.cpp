@@ -178,14 +178,21 @@ void NodeState::deliver(const std::shared_ptr<Edge>& edge, const Message& m) {
 }
 
 void NodeState::setError(std::string text) {
+  bool report = false;
   {
     std::lock_guard<std::mutex> lock(state_mutex);
     if (error_ == text) return;  // the same failure again: already reported
+    // A failure that names its input (a stamp, a value) differs at every firing: the state always
+    // shows the newest, the log takes the first and then one every kErrorLogInterval, so a node
+    // failing at camera rate does not flood the console.
+    const auto now = std::chrono::steady_clock::now();
+    report = !has_error_.load(std::memory_order_relaxed) || now - error_logged_ >= kErrorLogInterval;
+    if (report) error_logged_ = now;
     error_ = text;
     has_error_.store(true, std::memory_order_relaxed);
   }
   revision->fetch_add(1, std::memory_order_relaxed);
-  log(LogLevel::Error, name, text);
+  if (report) log(LogLevel::Error, name, text);
 }
 
 void NodeState::clearError() {

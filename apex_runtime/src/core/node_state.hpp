@@ -16,6 +16,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -164,6 +165,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   bool apply_posted_ = false;  // state_mutex
   std::atomic<bool> has_error_{false};
   std::string error_;  // state_mutex
+  std::chrono::steady_clock::time_point error_logged_;  // state_mutex
+  static constexpr std::chrono::seconds kErrorLogInterval{5};
   std::atomic<std::uint64_t> firings_{0}, last_ns_{0}, total_ns_{0}, max_ns_{0};
 };
 

@@ -96,11 +96,15 @@ class OptionalSum : public Node {
 class Thrower : public Node {
  public:
   static Manifest manifest() {
-    return Manifest("throws on one value").input<int>("in").output<int>("out").param(param::integer("throw_on", -1));
+    return Manifest("throws on one value, or on all")
+        .input<int>("in")
+        .output<int>("out")
+        .param(param::integer("throw_on", -1))
+        .param(param::boolean("throw_always", false));
   }
   void process() override {
     const int v = *input<int>("in");
-    if (v == param<int>("throw_on")) throw std::runtime_error("bad value " + std::to_string(v));
+    if (v == param<int>("throw_on") || param<bool>("throw_always")) throw std::runtime_error("bad value " + std::to_string(v));
     publish("out", v);
   }
 };
