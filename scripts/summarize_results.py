@@ -8,6 +8,7 @@ tell of a crash or an error (a node that died, an exception) come before the
 count, so that a CI log's tail says why."""
 import glob
 import os
+import re
 import sys
 import xml.etree.ElementTree as ET
 
@@ -32,19 +33,64 @@ def cases(path):
 
 
 SIGNS = ("process has died", "[FATAL]", "[ERROR]", "terminate called", "Segmentation fault",
-         "Aborted", "what():", "never appeared", "time limit")
+         "Aborted", "what():", "never appeared", "time limit", "FAILURE", "[  FAILED  ]")
+ANSI = re.compile(r"\x1b\[[0-9;]*m")
 
 
-def print_diagnostics(path, limit=25):
+def log_sections(path):
+    """The log split at each test command that catkin's run_tests prints."""
     try:
         with open(path, errors="replace") as f:
-            lines = [l.rstrip() for l in f if any(s in l for s in SIGNS)]
+            lines = [ANSI.sub("", l.rstrip()) for l in f]
     except OSError:
-        return
-    if lines:
-        print("--- from %s (errors and crashes, last %d):" % (path, limit))
-        for l in lines[-limit:]:
-            print("  " + l[:300])
+        return []
+    sections = [[]]
+    for line in lines:
+        if line.startswith("-- run_tests.py: execute commands"):
+            sections.append([])
+        sections[-1].append(line)
+    return sections
+
+
+def telling_lines(lines, limit):
+    """Crash and error lines, each kind once (numbers ignored) with how often it came."""
+    seen, order = {}, []
+    for line in lines:
+        if not any(s in line for s in SIGNS):
+            continue
+        key = re.sub(r"\d+", "#", line)
+        if key not in seen:
+            seen[key] = [line, 0]
+            order.append(key)
+        seen[key][1] += 1
+    out = []
+    for key in order[-limit:]:
+        line, n = seen[key]
+        out.append(line[:300] + ("  (%d times)" % n if n > 1 else ""))
+    return out
+
+
+def print_diagnostics(path, failed_files, limit=12):
+    """For each failed result file, the error lines of the test run that wrote it."""
+    sections = log_sections(path)
+    shown = False
+    for result in sorted(set(failed_files)):
+        stem = os.path.splitext(os.path.basename(result))[0]
+        for section in sections:
+            if not any(stem in l for l in section):
+                continue
+            command = next((l.strip() for l in section[1:3] if l.strip()), "?")
+            print("--- %s, from %s:" % (stem, path))
+            print("  ran: " + command[-200:])
+            for line in telling_lines(section, limit):
+                print("  " + line)
+            shown = True
+    if not shown and sections:
+        lines = telling_lines([l for s in sections for l in s], limit)
+        if lines:
+            print("--- from %s (errors and crashes):" % path)
+            for line in lines:
+                print("  " + line)
 
 
 def main(argv):
@@ -57,20 +103,21 @@ def main(argv):
             logs.append(next(it))
         else:
             dirs.append(a)
-    passed, failed = 0, []
+    passed, failed, failed_files = 0, [], []
     for d in dirs:
         for path in sorted(glob.glob(os.path.join(d, "**", "*.xml"), recursive=True)):
             for name, why in cases(path):
                 if why is None:
                     passed += 1
                 else:
-                    failed.append((name, why))
+                    failed.append(("%s (%s)" % (name, os.path.basename(path)), why))
+                    failed_files.append(path)
     failed += [(e, "") for e in extra]
     for name, why in failed:
         print("FAILED %s\n  %s" % (name, why.replace("\n", "\n  ")[:2000]))
     if failed:
         for log in logs:
-            print_diagnostics(log)
+            print_diagnostics(log, failed_files)
     print("%d passed, %d failed" % (passed, len(failed)))
     return 1 if failed or passed == 0 else 0
 
