@@ -33,7 +33,7 @@ def cases(path):
 
 
 SIGNS = ("process has died", "[FATAL]", "[ERROR]", "terminate called", "Segmentation fault",
-         "Aborted", "what():", "never appeared", "time limit", "FAILURE", "[  FAILED  ]")
+         "Aborted", "what():", "never appeared", "time limit", "][FAILURE]", "[  FAILED  ]")
 ANSI = re.compile(r"\x1b\[[0-9;]*m")
 
 
@@ -54,20 +54,11 @@ def log_sections(path):
 
 def telling_lines(lines, limit):
     """Crash and error lines, each kind once (numbers ignored) with how often it came."""
-    seen, order = {}, []
+    seen = {}  # first line of each kind and its count, in order of first appearance
     for line in lines:
-        if not any(s in line for s in SIGNS):
-            continue
-        key = re.sub(r"\d+", "#", line)
-        if key not in seen:
-            seen[key] = [line, 0]
-            order.append(key)
-        seen[key][1] += 1
-    out = []
-    for key in order[-limit:]:
-        line, n = seen[key]
-        out.append(line[:300] + ("  (%d times)" % n if n > 1 else ""))
-    return out
+        if any(s in line for s in SIGNS):
+            seen.setdefault(re.sub(r"\d+", "#", line), [line, 0])[1] += 1
+    return [line[:300] + ("  (%d times)" % n if n > 1 else "") for line, n in list(seen.values())[-limit:]]
 
 
 def print_diagnostics(path, failed_files, limit=12):

@@ -77,9 +77,7 @@ class ImagePublisher : public apex::Node {
   }
 
  private:
-  void advertise() {
-    pub_ = advertiseImage(param<std::string>("topic"), 1);
-  }
+  void advertise() { pub_ = advertiseImage(param<std::string>("topic"), 1); }
   image_transport::Publisher pub_;
 };
 
