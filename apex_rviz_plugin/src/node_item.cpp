@@ -165,7 +165,8 @@ void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
   firings_ = s.firings;
   info_.state = s.state;
   info_.error = s.error;
-  setToolTip(QString::fromStdString(s.error));
+  waiting_ = QString::fromStdString(s.waiting_for);
+  setToolTip(QString::fromStdString(s.error.empty() ? s.waiting_for : s.error));
   QGraphicsObject::update();
 }
 
@@ -218,6 +219,10 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
     p->setPen(QColor(255, 90, 90));
     p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
                 p->fontMetrics().elidedText(QString::fromStdString(info_.error), Qt::ElideRight, static_cast<int>(kWidth - 2 * kPad)));
+  } else if (!waiting_.isEmpty()) {  // stalled: what it waits for, from the runtime
+    p->setPen(QColor(255, 190, 60));
+    p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
+                p->fontMetrics().elidedText(waiting_, Qt::ElideRight, static_cast<int>(kWidth - 2 * kPad)));
   } else if (!values_.isEmpty()) {
     p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter, timing_);
   }

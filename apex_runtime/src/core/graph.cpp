@@ -6,6 +6,7 @@
 #include <cctype>
 
 #include "edit_scope.hpp"
+#include "live.hpp"
 #include "names.hpp"
 #include "node_state.hpp"
 #include "yaml_text.hpp"
@@ -13,6 +14,7 @@
 namespace apex {
 
 using detail::EditScope;
+using detail::Restructure;
 using detail::NodeState;
 using detail::ThreadGroup;
 
@@ -107,6 +109,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   auto state = std::make_shared<NodeState>(name, type, next_seq_++, revision_);
   state->attach(std::move(object));
   state->group = group(gname);
+  detail::initLiveness(state.get());
   EditScope scope;
   scope.added(state.get());
   state->post([](NodeState& n) { n.runSetup(); });
@@ -152,11 +155,19 @@ void Graph::detachAll(NodeState* n) {
   for (auto& s : n->slot_edges) while (!s.empty()) removeEvent(s.back());
 }
 
-void Graph::retire(NodeState* n) {
-  EditScope scope;
-  scope.involveWithNeighbours(n);
+std::vector<NodeState*> Graph::dataReceivers(NodeState* n) {
+  std::vector<NodeState*> out;
+  for (auto& o : n->outputs) for (auto& e : o.edges) if (!e->to_param) out.push_back(e->to);
+  for (auto& p : n->params) for (auto& e : p.out_edges) if (!e->to_param) out.push_back(e->to);
+  return out;
+}
+
+void Graph::retire(NodeState* n, bool restructure) {
+  std::vector<NodeState*> others = EditScope::neighbours(n);
+  others.push_back(n);
+  Restructure change(restructure ? dataReceivers(n) : std::vector<NodeState*>{}, others, restructure && ran_);
   detachAll(n);
-  scope.forget(n);
+  change.scope().forget(n);
   {  // removed first: a notifyNewData() from now on cannot queue it again
     std::lock_guard<std::mutex> g(n->group_mutex);
     n->removed = true;
@@ -179,7 +190,7 @@ Status Graph::removeNode(const std::string& name) {
 }
 
 void Graph::clearLocked() {
-  for (auto& [name, n] : nodes_) retire(n.get());
+  for (auto& [name, n] : nodes_) retire(n.get(), false);  // all go: nothing left to keep alive
   nodes_.clear();
   order_.clear();
   dormant_.clear();
@@ -211,8 +222,11 @@ Status Graph::setInteractive(const std::string& node, const std::string& param, 
   if (i < 0) return Status::error("node '" + node + "' (" + s->typeId() + ") has no parameter '" + param + "' (parameters: " + s->manifest.listParams() + ")");
   auto& p = s->params[i];
   if (!on && (p.in_edge || !p.out_edges.empty())) {
-    EditScope scope;
-    scope.involveWithNeighbours(s);
+    std::vector<NodeState*> receivers;
+    for (auto& e : p.out_edges) if (!e->to_param) receivers.push_back(e->to);
+    std::vector<NodeState*> others = EditScope::neighbours(s);
+    others.push_back(s);
+    detail::Restructure change(receivers, others, ran_);
     if (p.in_edge) removeEdge(p.in_edge);
     while (!p.out_edges.empty()) removeEdge(p.out_edges.back());
   }
@@ -308,6 +322,7 @@ Status Graph::setTap(const std::string& node, const std::string& port, PortTap t
 void Graph::start() {
   auto lock = lockEdits();
   running_ = true;
+  ran_ = true;
   for (auto& [name, g] : groups_) g->start();
 }
 
@@ -371,12 +386,29 @@ bool Graph::waitIdle(double timeout_s) const {
 
 // ------------------------------------------------------------------ reading
 
-std::vector<NodeStats> Graph::nodeStats() const {
+std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const {
   auto lock = lockEdits();
+  std::vector<NodeState*> all;
+  for (auto& [seq, n] : order_) all.push_back(n);
+  // The newest firing anywhere upstream of each node: data went in after it last fired.
+  std::map<const NodeState*, std::int64_t> upstream;
+  for (NodeState* n : detail::topological(all)) {
+    std::int64_t newest = 0;
+    for (auto& in : n->inputs)
+      if (in->edge) newest = std::max({newest, in->edge->from->lastFired(), upstream[in->edge->from]});
+    upstream[n] = newest;
+  }
+  const std::int64_t now = detail::ticks();
+  const double ns_per_tick = detail::nsPerTick();
   std::vector<NodeStats> out;
-  for (auto& [seq, n] : order_) {
+  for (NodeState* n : all) {
     out.push_back(n->stats());
-    if (!n->type) out.back().error = "unknown node type '" + n->typeId() + "'";
+    NodeStats& s = out.back();
+    if (!n->type) s.error = "unknown node type '" + n->typeId() + "'";
+    const std::int64_t last = n->lastFired();
+    s.idle_s = double(now - last) * ns_per_tick * 1e-9;
+    const bool stalled = s.idle_s > stall_after_s && (upstream[n] > last || !n->live);
+    if ((stalled && !paused_) || stall_after_s == 0) s.waiting_for = n->waitingFor();
   }
   return out;
 }

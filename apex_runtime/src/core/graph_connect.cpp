@@ -4,6 +4,7 @@
 
 #include "apex/core/graph.hpp"
 #include "edit_scope.hpp"
+#include "live.hpp"
 #include "node_state.hpp"
 
 namespace apex {
@@ -12,6 +13,7 @@ using detail::Edge;
 using detail::EditScope;
 using detail::EventEdge;
 using detail::NodeState;
+using detail::Restructure;
 
 namespace {
 
@@ -145,10 +147,10 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
                     ? "a trigger connects only to slots, and '" + c.to_port + "' is " + withArticle(d.kind)
                     : "a slot receives only triggers, and '" + c.from_port + "' is " + withArticle(s.kind));
   }
-  EditScope scope;
   if (s.kind == Kind::Trigger) {
     for (auto& e : from->trigger_edges[s.index])
       if (e->to == to.get() && e->slot == d.index) return fail("they are already connected");
+    EditScope scope;
     scope.involve(from.get());
     scope.involve(to.get());
     auto e = std::make_shared<EventEdge>(EventEdge{from.get(), s.index, to.get(), d.index});
@@ -167,8 +169,7 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
     return fail("it would close a cycle (" + c.to_node + " already feeds " + c.from_node +
                 "); a data cycle can never fire");
 
-  scope.involve(from.get());
-  scope.involve(to.get());
+  Restructure change = restructure(from.get(), to.get(), d.kind == Kind::Input);
   auto e = std::make_shared<Edge>();
   e->from = from.get();
   e->from_param = s.kind == Kind::ParamOut;
@@ -209,10 +210,10 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
   if (!src) return fail(src.message());
   auto dst = target(*to, tp);
   if (!dst) return fail(dst.message());
-  EditScope scope;
   if (src->kind == Kind::Trigger && dst->kind == Kind::Slot) {
     for (auto& e : from->trigger_edges[src->index]) {
       if (e->to != to.get() || e->slot != dst->index) continue;
+      EditScope scope;
       scope.involve(from.get());
       scope.involve(to.get());
       removeEvent(e);
@@ -224,11 +225,17 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
   if (dst->kind == Kind::Slot || src->kind == Kind::Trigger) return fail("they are not connected");
   auto e = findEdge(*from, src.value(), *to, dst.value());
   if (!e) return fail("they are not connected");
-  scope.involve(from.get());
-  scope.involve(to.get());
-  removeEdge(e);
+  {
+    Restructure change = restructure(from.get(), to.get(), dst->kind == Kind::Input);
+    removeEdge(e);
+  }
   bump();
   return Status::ok();
+}
+
+Restructure Graph::restructure(NodeState* from, NodeState* to, bool into_data_input) const {
+  if (into_data_input) return Restructure({to}, {from}, ran_);
+  return Restructure({}, {from, to}, false);  // a parameter input: no data path changes
 }
 
 void Graph::removeEdge(std::shared_ptr<Edge> e) {
@@ -248,7 +255,7 @@ void Graph::removeEdge(std::shared_ptr<Edge> e) {
     auto& in = *to->inputs[e->to_index];
     std::lock_guard<std::mutex> lock(in.m);
     in.msg = Message();  // a pending message is dropped with its connection
-    in.full = false;
+    in.full.store(false, std::memory_order_relaxed);
     in.edge.reset();
     --to->connected_inputs;
   }

@@ -34,6 +34,7 @@ NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint
   trigger_edges.resize(manifest.triggers.size());
   slot_edges.resize(manifest.slots.size());
   blockers.store(driven() ? 1 : 0);  // a driven source waits for its first notifyNewData()
+  last_fired_.store(ticks());  // idle since added
 }
 
 NodeState::~NodeState() = default;
@@ -50,11 +51,16 @@ std::string NodeState::error() const {
 
 // ---------------------------------------------------------------- counting
 
+bool NodeState::isSource() const {
+  if (connected_inputs > 0) return false;
+  for (const auto& in : manifest.inputs)
+    if (!in.optional) return false;
+  return true;
+}
+
 int NodeState::gates() const {
-  if (!type) return 1;  // a placeholder never fires
-  for (std::size_t i = 0; i < inputs.size(); ++i)
-    if (!inputs[i]->edge && !manifest.inputs[i].optional) return 1;  // waits for a source
-  if (connected_inputs > 0) return 0;
+  if (!type || !live) return 1;  // a placeholder, or a node cut off from every source, never fires
+  if (live_inputs > 0) return 0;
   if (!active_enabled_) return 1;                    // a disabled source stays quiet
   if (!driven() && counted_out == 0) return 1;       // a free-running source with no receiver
   return 0;
@@ -62,18 +68,53 @@ int NodeState::gates() const {
 
 int NodeState::structuralBlockers() {
   int p = gates();
-  for (auto& in : inputs) {
-    if (!in->edge) continue;
-    std::lock_guard<std::mutex> lock(in->m);
-    p += in->full ? 0 : 1;
-  }
+  for (auto& in : inputs)
+    if (in->edge && in->edge->live && !in->full.load(std::memory_order_acquire)) ++p;
   for (auto& out : outputs)
     for (auto& e : out.edges) p += e->unread.load(std::memory_order_acquire) ? 1 : 0;
   return p;
 }
 
-void NodeState::unblock(int k) {
-  if (blockers.fetch_sub(k, std::memory_order_acq_rel) == k) group->push(this);
+void NodeState::flushPorts() {
+  for (auto& in : inputs) {
+    std::lock_guard<std::mutex> lock(in->m);
+    in->msg = Message();
+    in->full.store(false, std::memory_order_release);
+    if (in->edge) in->edge->unread.store(false, std::memory_order_release);
+  }
+  for (auto& out : outputs)
+    for (auto& e : out.edges) e->unread.store(false, std::memory_order_release);
+}
+
+std::string NodeState::waitingFor() const {
+  if (!type) return "";
+  if (!live) {
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+      if (!manifest.inputs[i].optional && !inputs[i]->edge)
+        return "cut off: input '" + manifest.inputs[i].name + "' is not connected";
+    return "cut off: no source reaches its inputs";
+  }
+  // An unread output blocks whatever the inputs hold: say it first.
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    for (auto& e : outputs[i].edges)
+      if (e->unread.load(std::memory_order_acquire))
+        return "waiting for '" + e->to->name + "' to read '" + manifest.outputs[i].name + "'";
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const Edge* e = inputs[i]->edge.get();
+    if (e && e->live && !inputs[i]->full.load(std::memory_order_acquire))
+      return "waiting for input '" + manifest.inputs[i].name + "' from '" + e->from->name + "'";
+  }
+  if (driven() && !has_data.load(std::memory_order_acquire)) return "waiting for new data";
+  return "";
+}
+
+void NodeState::unblock(int k, ThreadGroup* here) {
+  if (blockers.fetch_sub(k, std::memory_order_acq_rel) != k) return;
+  if (here == group) {
+    here->runNext(this);  // made ready by a firing on its own group's thread: runs next, no queue
+  } else {
+    group->push(this);
+  }
 }
 
 void NodeState::adjust(int delta) {
@@ -83,34 +124,37 @@ void NodeState::adjust(int delta) {
 
 // ---------------------------------------------------------------- firing
 
+void NodeState::take(InputState& in, bool optional, bool& skip) {
+  Edge* e = in.edge.get();
+  if (!e || !e->live) {  // unconnected or cut off: Nothing
+    in.current = Message();
+  } else if (e->counted()) {  // exclusive by the firing rule: no lock
+    in.current = std::move(in.msg);
+    in.msg = Message();
+    in.full.store(false, std::memory_order_relaxed);
+    e->unread.store(false, std::memory_order_relaxed);
+    e->from->unblock(1, group);  // the source may fire again while we work
+  } else {
+    std::lock_guard<std::mutex> lock(in.m);
+    in.current = std::move(in.msg);
+    in.msg = Message();
+    in.full.store(false, std::memory_order_relaxed);
+  }
+  if (in.current.isNothing() && !optional) skip = true;
+}
+
 bool NodeState::fireIfReady() {
   if (blockers.load(std::memory_order_acquire) != 0 || removed) return false;
   if (params_dirty_.load(std::memory_order_acquire)) applyParams();
   // Reserve every condition this firing consumes: inputs become empty, receivers
-  // get an unread message, a driven source uses up its data.
-  blockers.fetch_add(connected_inputs + counted_out + (driven() ? 1 : 0), std::memory_order_acq_rel);
+  // get an unread message, a driven source uses up its data. has_data is cleared
+  // first: a notifyNewData() arriving meanwhile then counts for the next firing.
   if (driven()) has_data.store(false, std::memory_order_release);
+  blockers.fetch_add(live_inputs + counted_out + (driven() ? 1 : 0), std::memory_order_acq_rel);
 
   bool skip = !active_enabled_;
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    InputState& in = *inputs[i];
-    if (!in.edge) {
-      in.current = Message();
-      continue;
-    }
-    Edge* e = in.edge.get();
-    {
-      std::lock_guard<std::mutex> lock(in.m);
-      in.current = std::move(in.msg);
-      in.msg = Message();
-      in.full = false;
-      e->unread.store(false, std::memory_order_release);
-    }
-    if (e->counted()) e->from->unblock(1);  // the source may fire again while we work
-    if (in.current.isNothing() && !manifest.inputs[i].optional) skip = true;
-  }
+  for (std::size_t i = 0; i < inputs.size(); ++i) take(*inputs[i], manifest.inputs[i].optional, skip);
 
-  for (auto& out : outputs) out.pending = Message();
   if (!skip) {
     try {
       node->process();
@@ -124,31 +168,36 @@ bool NodeState::fireIfReady() {
       for (auto& out : outputs) out.pending = Message();
   }
   for (auto& out : outputs) {
-    for (auto& e : out.edges) deliver(e, out.pending);
     if (out.tap) out.tap(out.pending);
+    const std::size_t n = out.edges.size();
+    for (std::size_t k = 0; k + 1 < n; ++k) deliver(out.edges[k], out.pending, group);
+    if (n > 0) deliver(out.edges[n - 1], std::move(out.pending), group);
+    out.pending = Message();
   }
-  for (std::size_t i = 0; i < params.size(); ++i) publishParam(static_cast<int>(i));
+  for (std::size_t i = 0; i < params.size(); ++i)
+    if (!params[i].out_edges.empty() || params[i].tap) publishParam(static_cast<int>(i), group);
   for (auto& in : inputs) in->current = Message();
-  for (auto& out : outputs) out.pending = Message();
-  if (!skip) fireTrigger(0);  // "processed"
+  if (!skip) fireTrigger(kProcessedIndex);
   return true;
 }
 
-void NodeState::recordFiring(std::int64_t ns) {
-  const auto n = firings_.fetch_add(1, std::memory_order_relaxed) + 1;
-  (void)n;
-  last_ns_.store(ns, std::memory_order_relaxed);
-  total_ns_.fetch_add(ns, std::memory_order_relaxed);
-  if (static_cast<std::uint64_t>(ns) > max_ns_.load(std::memory_order_relaxed)) max_ns_.store(ns, std::memory_order_relaxed);
+void NodeState::recordFiring(std::int64_t t, std::int64_t end) {
+  // One writer (the group thread): plain loads and stores, no locked instructions.
+  const auto relaxed = std::memory_order_relaxed;
+  firings_.store(firings_.load(relaxed) + 1, relaxed);
+  last_t_.store(t, relaxed);
+  total_t_.store(total_t_.load(relaxed) + t, relaxed);
+  if (t > max_t_.load(relaxed)) max_t_.store(t, relaxed);
+  last_fired_.store(end, relaxed);
 }
 
 NodeStats NodeState::stats() const {
   NodeStats s;
   s.name = name;
   s.firings = firings_.load(std::memory_order_relaxed);
-  s.last_ns = last_ns_.load(std::memory_order_relaxed);
-  s.max_ns = max_ns_.load(std::memory_order_relaxed);
-  s.mean_ns = s.firings ? total_ns_.load(std::memory_order_relaxed) / s.firings : 0;
+  s.last_ns = ticksToNs(last_t_.load(std::memory_order_relaxed));
+  s.max_ns = ticksToNs(max_t_.load(std::memory_order_relaxed));
+  s.mean_ns = s.firings ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / s.firings : 0;
   std::lock_guard<std::mutex> lock(state_mutex);
   s.error = error_;
   s.enabled = enabled;
@@ -157,24 +206,30 @@ NodeStats NodeState::stats() const {
 
 void NodeState::setOutput(int index, Message m) { outputs[index].pending = std::move(m); }
 
-void NodeState::deliver(const std::shared_ptr<Edge>& edge, const Message& m) {
+void NodeState::deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGroup* here) {
   Edge& e = *edge;
   NodeState* to = e.to;
   if (e.to_param) {  // the mail holds the edge: a disconnect marks it dead, never frees it under us
     if (e.counted()) e.unread.store(true, std::memory_order_release);
-    to->post([edge, m](NodeState& n) { n.receiveParam(*edge, m); });
+    to->post([edge, m = std::move(m)](NodeState& n) { n.receiveParam(*edge, m); });
     return;
   }
   InputState& in = *to->inputs[e.to_index];
+  if (e.counted()) {  // the receiver took the last one: the slot is ours
+    in.msg = std::move(m);
+    in.full.store(true, std::memory_order_relaxed);
+    e.unread.store(true, std::memory_order_relaxed);
+    to->unblock(1, here);  // releases the writes above to whoever fires `to`
+    return;
+  }
   bool was_full;
   {
     std::lock_guard<std::mutex> lock(in.m);
-    was_full = in.full;
-    in.msg = m;
-    in.full = true;
-    if (e.counted()) e.unread.store(true, std::memory_order_release);
+    was_full = in.full.load(std::memory_order_relaxed);
+    in.msg = std::move(m);
+    in.full.store(true, std::memory_order_relaxed);
   }
-  if (!was_full) to->unblock(1);  // a parameter output may overwrite a value not yet read
+  if (!was_full) to->unblock(1, here);  // a parameter output may overwrite a value not yet read
 }
 
 void NodeState::setError(std::string text) {
@@ -258,10 +313,10 @@ void NodeState::applyParams() {
   if (!changed.empty()) revision->fetch_add(1, std::memory_order_relaxed);
 }
 
-void NodeState::publishParam(int index) {
+void NodeState::publishParam(int index, ThreadGroup* here) {
   if (params[index].out_edges.empty() && !params[index].tap) return;
   Message m = toMessage(params[index].active);
-  for (auto& e : params[index].out_edges) deliver(e, m);
+  for (auto& e : params[index].out_edges) deliver(e, m, here);
   if (params[index].tap) params[index].tap(m);
 }
 
@@ -276,10 +331,8 @@ void NodeState::receiveParam(Edge& edge, const Message& m) {
       setError("node '" + name + "': parameter input refused a value: " + value.message());
     }
   }
-  if (edge.counted()) {
-    edge.unread.store(false, std::memory_order_release);
-    edge.from->unblock(1);
-  }
+  // A flush (an edit) may have cleared the mark already: release the sender once.
+  if (edge.counted() && edge.unread.exchange(false, std::memory_order_acq_rel)) edge.from->unblock(1);
 }
 
 void NodeState::runSetup() {
@@ -305,10 +358,10 @@ void NodeState::applyEnabled() {
 }
 
 void NodeState::runSlot(int slot) {
-  if (slot == 0 || slot == 1) {  // built-in enable / disable
+  if (slot == kEnableIndex || slot == kDisableIndex) {  // built-in
     {
       std::lock_guard<std::mutex> lock(state_mutex);
-      enabled = slot == 0;
+      enabled = slot == kEnableIndex;
     }
     applyEnabled();
     return;

@@ -7,10 +7,16 @@
 //    the node is paused.
 //  - Firing state (current inputs, pending outputs, active parameters,
 //    active_enabled) belongs to the node's group thread.
-//  - An input slot (msg, full) is the one handoff between threads: its mutex.
-//  - `blockers` counts what keeps the node from firing: empty connected inputs,
+//  - An input slot (msg, full) is the one handoff between threads. On a counted
+//    edge the firing rule itself makes it exclusive (the sender writes only once
+//    the receiver took the last message; the receiver takes only when full), so
+//    the `blockers` atomics order it; an uncounted edge (from a parameter output,
+//    which overwrites) uses the slot's mutex.
+//  - `blockers` counts what keeps the node from firing: empty live inputs,
 //    receivers that have not read its last message, and gates. Whoever brings
 //    it to zero pushes the node onto its group's ready queue: exactly once.
+//  - Liveness (`live`, `Edge::live`, `live_inputs`) is structure: only edits
+//    change it (graph_live.cpp), with the groups of every node it touches paused.
 //  - state_mutex guards what other threads read: requested parameter values,
 //    the error text, the enabled flag, UI metadata.
 #pragma once
@@ -25,11 +31,16 @@
 #include "apex/core/description.hpp"
 #include "apex/core/registry.hpp"
 #include "thread_group.hpp"
+#include "ticks.hpp"
 
 namespace apex {
 namespace detail {
 
 class NodeState;
+
+/** Where the registry puts the built-in events (registry.cpp): first in every manifest. */
+constexpr int kEnableIndex = 0, kDisableIndex = 1;  // slots
+constexpr int kProcessedIndex = 0;                  // trigger
 
 /** A data or parameter connection. `from_param`: from a parameter output;
  *  `to_param`: into a parameter input. */
@@ -42,6 +53,7 @@ struct Edge {
   int to_index = 0;
   std::atomic<bool> unread{false};  // counted edges: the receiver has not taken the last message
   bool dead = false;                // removed; pending mail on it is ignored
+  bool live = false;                // its sender can fire (edits only): a dead input is treated as Nothing
   /** Data outputs wait for their receivers; parameter outputs never hold a node back. */
   bool counted() const { return !from_param; }
 };
@@ -54,9 +66,9 @@ struct EventEdge {
 };
 
 struct InputState {
-  std::mutex m;
-  Message msg;  // delivered, not yet taken
-  bool full = false;
+  std::mutex m;  // only for edges that are not counted (see the top of this file)
+  Message msg;   // delivered, not yet taken
+  std::atomic<bool> full{false};
   std::shared_ptr<Edge> edge;
   Message current;  // taken for this firing
 };
@@ -101,8 +113,14 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::vector<ParamState> params;
   std::vector<std::vector<std::shared_ptr<EventEdge>>> trigger_edges;  // per trigger
   std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;     // per slot, incoming
-  int connected_inputs = 0;
+  int connected_inputs = 0;  // data inputs with an edge
+  int live_inputs = 0;       // ... whose edge is live
   int counted_out = 0;
+  /** Can fire at all (edits only): a source, or fed by a live input. A node cut
+   *  off from every source never fires and holds no other path hostage. */
+  bool live = false;
+  /** A source by structure: no data input connected, and none mandatory. */
+  bool isSource() const;
 
   // scheduling
   std::atomic<int> blockers{0};
@@ -122,7 +140,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // --- group thread ---
   /** Fires if nothing blocks it (an edit may have blocked it since it was queued). */
   bool fireIfReady();
-  void recordFiring(std::int64_t ns);
+  /** A firing took `t` ticks and ended at tick `end`. */
+  void recordFiring(std::int64_t t, std::int64_t end);
   void applyParams();
   /** Node::setup(), once; a throw is the node's error. */
   void runSetup();
@@ -133,7 +152,9 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void setOutput(int index, Message m);
 
   // --- any thread ---
-  void unblock(int k);
+  /** Releases k blockers; at zero the node is queued. `here`: the group whose thread is
+   *  firing now (nullptr elsewhere); a node of that group then runs next on it. */
+  void unblock(int k, ThreadGroup* here = nullptr);
   void post(std::function<void(NodeState&)> fn);
   void notifyNewData();
   void notifyAfter(double seconds);
@@ -145,6 +166,12 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   int structuralBlockers();
   bool driven() const { return manifest.source_mode == SourceMode::Driven; }
   NodeStats stats() const;
+  /** When the node last fired, or was made if never (ticks.hpp). */
+  std::int64_t lastFired() const { return last_fired_.load(std::memory_order_relaxed); }
+  /** What keeps it from firing now, as a sentence ("" if nothing). Any thread. */
+  std::string waitingFor() const;
+  /** Drops every message on its inputs and every unread mark on its outputs (groups paused). */
+  void flushPorts();
 
   int findInput(const std::string& n) const;
   int findOutput(const std::string& n) const;
@@ -155,8 +182,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
  private:
   int gates() const;
   void adjust(int delta);
-  void deliver(const std::shared_ptr<Edge>& edge, const Message& m);
-  void publishParam(int index);
+  void deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGroup* here = nullptr);
+  void publishParam(int index, ThreadGroup* here = nullptr);
   void setError(std::string text);
   void clearError();
 
@@ -167,7 +194,10 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::string error_;  // state_mutex
   std::chrono::steady_clock::time_point error_logged_;  // state_mutex
   static constexpr std::chrono::seconds kErrorLogInterval{5};
-  std::atomic<std::uint64_t> firings_{0}, last_ns_{0}, total_ns_{0}, max_ns_{0};
+  // written by the group thread only (load + store, no read-modify-write), read by anyone
+  std::atomic<std::uint64_t> firings_{0};
+  std::atomic<std::int64_t> last_t_{0}, total_t_{0}, max_t_{0}, last_fired_{0};  // in ticks (ticks.hpp)
+  void take(InputState& in, bool optional, bool& skip);
 };
 
 }  // namespace detail

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "node_state.hpp"
+#include "ticks.hpp"
 
 namespace apex {
 namespace detail {
@@ -19,6 +20,7 @@ void ThreadGroup::start() {
   std::lock_guard<std::mutex> lock(m_);
   if (thread_.joinable()) return;
   stop_ = false;
+  updateAttention();
   running_ = true;
   started_ = Clock::now();
   thread_ = std::thread([this] { run(); });
@@ -29,6 +31,7 @@ void ThreadGroup::stop() {
     std::lock_guard<std::mutex> lock(m_);
     if (!thread_.joinable()) return;
     stop_ = true;
+    updateAttention();
     cv_.notify_all();
   }
   thread_.join();
@@ -38,12 +41,25 @@ void ThreadGroup::stop() {
   state_cv_.notify_all();  // idle waiters: a stopped group has nothing running
 }
 
-void ThreadGroup::push(NodeState* node) {
-  std::lock_guard<std::mutex> lock(m_);
+void ThreadGroup::queueLocked(NodeState* node) {
   if (node->queued) return;
   node->queued = true;
   ready_.push_back(node);
   ++activity_;
+}
+
+void ThreadGroup::runNext(NodeState* node) {
+  if (inline_next_) {  // the last one made ready runs next; earlier ones queue
+    std::lock_guard<std::mutex> lock(m_);
+    queueLocked(inline_next_);
+  }
+  inline_next_ = node;
+}
+
+void ThreadGroup::push(NodeState* node) {
+  std::lock_guard<std::mutex> lock(m_);
+  if (node->queued) return;
+  queueLocked(node);
   if (waiting_ && pause_requests_ == 0 && canFire()) {
     waiting_ = false;  // one wake-up is enough: later pushes find the thread awake
     wakeups_.fetch_add(1, std::memory_order_relaxed);
@@ -61,6 +77,7 @@ void ThreadGroup::unqueue(NodeState* node) {
 void ThreadGroup::post(Mail mail) {
   std::lock_guard<std::mutex> lock(m_);
   mail_.push_back(std::move(mail));
+  updateAttention();
   ++activity_;
   if (waiting_ && pause_requests_ == 0) {
     waiting_ = false;
@@ -79,18 +96,22 @@ void ThreadGroup::notifyAt(Clock::time_point when, std::shared_ptr<NodeState> no
 void ThreadGroup::pause() {
   std::unique_lock<std::mutex> lock(m_);
   ++pause_requests_;
+  updateAttention();
   if (!running_) return;  // not running: always at a boundary
   state_cv_.wait(lock, [this] { return !busy_; });
 }
 
 void ThreadGroup::resume() {
   std::lock_guard<std::mutex> lock(m_);
-  if (--pause_requests_ == 0 && (canFire() || !mail_.empty())) cv_.notify_one();
+  --pause_requests_;
+  updateAttention();
+  if (pause_requests_ == 0 && (canFire() || !mail_.empty())) cv_.notify_one();
 }
 
 void ThreadGroup::hold(bool on) {
   std::lock_guard<std::mutex> lock(m_);
   hold_ = on;
+  updateAttention();
   step_budget_ = 0;
   if (!on) cv_.notify_one();
 }
@@ -121,7 +142,7 @@ std::uint64_t ThreadGroup::activity() const {
 GroupStats ThreadGroup::stats() const {
   GroupStats s;
   s.name = name_;
-  s.busy_ns = busy_ns_.load(std::memory_order_relaxed);
+  s.busy_ns = ticksToNs(busy_t_.load(std::memory_order_relaxed));
   s.firings = firings_.load(std::memory_order_relaxed);
   s.wakeups = wakeups_.load(std::memory_order_relaxed);
   std::lock_guard<std::mutex> lock(m_);
@@ -147,6 +168,33 @@ void ThreadGroup::runMail(std::vector<Mail>& batch) {
   }
 }
 
+void ThreadGroup::runFirings(NodeState* node) {
+  // One clock read per firing: a firing ends where the next one starts.
+  const std::int64_t start = ticks();
+  std::int64_t t0 = start;
+  const auto relaxed = std::memory_order_relaxed;
+  std::uint64_t fired = 0;
+  for (int run = 0; node; ++run) {
+    const bool ok = node->fireIfReady();
+    const std::int64_t t1 = ticks();
+    if (ok) {
+      node->recordFiring(t1 - t0, t1);
+      ++fired;
+    }
+    t0 = t1;
+    node = inline_next_;
+    inline_next_ = nullptr;
+    if (node && (run >= kInlineRun || attention_.load(relaxed))) {
+      std::lock_guard<std::mutex> lock(m_);
+      queueLocked(node);  // behind the others: a busy chain must not starve them
+      node = nullptr;
+    }
+  }
+  // one writer: no read-modify-write
+  firings_.store(firings_.load(relaxed) + fired, relaxed);
+  busy_t_.store(busy_t_.load(relaxed) + (t0 - start), relaxed);
+}
+
 void ThreadGroup::run() {
   tl_current = this;
   std::unique_lock<std::mutex> lock(m_);
@@ -154,12 +202,23 @@ void ThreadGroup::run() {
   while (!stop_) {
     if (pause_requests_ == 0 && !mail_.empty()) {
       batch.swap(mail_);
+      updateAttention();
       busy_ = true;
       lock.unlock();
       runMail(batch);
       batch.clear();  // drops node references outside the lock
       lock.lock();
       busy_ = false;
+      continue;
+    }
+    // Due timers before firings: a group kept busy by a free-running source must not starve them.
+    if (pause_requests_ == 0 && !timers_.empty() && timers_.begin()->first <= Clock::now()) {
+      auto node = std::move(timers_.begin()->second);
+      timers_.erase(timers_.begin());
+      lock.unlock();
+      node->notifyNewData();  // pushes onto this or the node's current group
+      node.reset();
+      lock.lock();
       continue;
     }
     if (pause_requests_ == 0 && canFire()) {
@@ -169,23 +228,9 @@ void ThreadGroup::run() {
       if (hold_) --step_budget_;
       busy_ = true;
       lock.unlock();
-      const auto t0 = Clock::now();
-      const bool fired = node->fireIfReady();
-      const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count();
-      if (fired) node->recordFiring(ns);
-      busy_ns_.fetch_add(ns, std::memory_order_relaxed);
-      firings_.fetch_add(fired, std::memory_order_relaxed);
+      runFirings(node);
       lock.lock();
       busy_ = false;
-      continue;
-    }
-    if (pause_requests_ == 0 && !timers_.empty() && timers_.begin()->first <= Clock::now()) {
-      auto node = std::move(timers_.begin()->second);
-      timers_.erase(timers_.begin());
-      lock.unlock();
-      node->notifyNewData();  // pushes onto this or the node's current group
-      node.reset();
-      lock.lock();
       continue;
     }
     waiting_ = true;

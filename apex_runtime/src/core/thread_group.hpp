@@ -2,7 +2,10 @@
 // Ownership: the group's mutex guards the queue, the mailbox, the pause and
 // hold state and every NodeState::queued flag of nodes in this group. A node's
 // own state is only touched by this thread, or by an editor while this group
-// is paused (see graph.cpp).
+// is paused (see graph.cpp). `inline_next_` belongs to the thread alone: a node
+// that one of its firings made ready runs next without a trip through the
+// queue (taskflow's executor does the same); it is back in the queue before
+// the thread parks, so an editor never sees it.
 #pragma once
 
 #include <atomic>
@@ -44,6 +47,8 @@ class ThreadGroup {
 
   /** @brief A node became ready; wakes the thread only if it sleeps. */
   void push(NodeState* node);
+  /** @brief From a firing on this group's thread: `node` (of this group) became ready and runs next. */
+  void runNext(NodeState* node);
   /** @brief Removes a node from the ready queue (the group must be paused). */
   void unqueue(NodeState* node);
   /** @brief Work for a node, run between firings. */
@@ -71,6 +76,13 @@ class ThreadGroup {
  private:
   void run();
   void runMail(std::vector<Mail>& batch);
+  /** Fires `node`, then the successors it made ready here, while nothing else needs the thread. */
+  void runFirings(NodeState* node);
+  void queueLocked(NodeState* node);
+  /** Something besides firing needs the thread: a pause, mail, a hold or stop (under m_). */
+  void updateAttention() {
+    attention_.store(pause_requests_ > 0 || !mail_.empty() || hold_ || stop_, std::memory_order_relaxed);
+  }
   bool canFire() const { return !ready_.empty() && (!hold_ || step_budget_ > 0); }
   // a stopped group counts as idle: nothing will run there until it starts again
   bool idleLocked() const { return !running_ || (mail_.empty() && !canFire() && !busy_ && waiting_); }
@@ -92,8 +104,12 @@ class ThreadGroup {
   std::size_t step_budget_ = 0;
   std::uint64_t activity_ = 0;
   std::thread thread_;
+  std::atomic<bool> attention_{false};
+  NodeState* inline_next_ = nullptr;    // made ready by that firing, runs next (thread only)
+  static constexpr int kInlineRun = 256;  // then the queue gets a turn
 
-  std::atomic<std::uint64_t> busy_ns_{0}, firings_{0}, wakeups_{0};
+  std::atomic<std::uint64_t> firings_{0}, wakeups_{0};
+  std::atomic<std::int64_t> busy_t_{0};  // ticks (ticks.hpp)
   std::chrono::steady_clock::time_point started_{};
 };
 

@@ -132,6 +132,8 @@ RuntimeStatus toStatus(const Graph& graph) {
     ns.last_ms = n.last_ns / 1e6;
     ns.mean_ms = n.mean_ns / 1e6;
     ns.max_ms = n.max_ns / 1e6;
+    ns.waiting_for = n.waiting_for;
+    ns.idle_s = n.idle_s;
     s.nodes.push_back(ns);
   }
   for (const auto& g : graph.groupStats()) {

@@ -62,6 +62,7 @@ class NodeItem : public QGraphicsObject {
   ParamEditor* editor(const std::string& param) const;
   /** @brief What the box shows from ~status, e.g. "0.12 ms (max 0.50) · 10.0 Hz · 42 firings". */
   const QString& timing() const { return timing_; }
+  const QString& waiting() const { return waiting_; }
   std::uint64_t firings() const { return firings_; }
   /** @brief Inspected scalar values shown in the box, e.g. "count = 42". */
   const QString& values() const { return values_; }
@@ -86,6 +87,7 @@ class NodeItem : public QGraphicsObject {
   std::map<std::string, ParamEditor*> editors_;
   QGraphicsProxyWidget* params_ = nullptr;
   QString timing_, values_;
+  QString waiting_;  // what a stalled node waits for (the runtime says)
   std::uint64_t firings_ = 0;
   std::map<QString, QString> scalar_values_;
   double height_ = 60;

@@ -44,6 +44,11 @@ struct NodeStats {
   std::uint64_t last_ns = 0, mean_ns = 0, max_ns = 0;
   std::string error;
   bool enabled = true;
+  /** Set when the node is stalled: it has not fired for a while although data
+   *  reached something upstream of it since; says what it waits for, e.g.
+   *  "waiting for input 'regions' from 'blobs'". */
+  std::string waiting_for;
+  double idle_s = 0;  ///< seconds since it last fired (or since it was added)
 };
 
 /** @brief Profiling of one thread group: busy time against wall time since start. */

@@ -25,6 +25,7 @@ class NodeState;
 class ThreadGroup;
 struct Edge;
 struct EventEdge;
+class Restructure;
 }  // namespace detail
 
 /** @brief Sees every message sent on one port; runs on the node's thread group, so it must be quick. */
@@ -92,7 +93,10 @@ class Graph {
   GraphDescription describe() const;
   /** @brief Replaces the whole graph, all or nothing: on any error the graph is untouched. */
   Result<LoadReport> load(const GraphDescription& description);
-  std::vector<NodeStats> nodeStats() const;
+  /** @brief Every node's profile and state. A node that has not fired for `stall_after_s`
+   *  although data reached something upstream of it since (or that is cut off from every
+   *  source) says what it waits for in `waiting_for`; 0 says it for every node. */
+  std::vector<NodeStats> nodeStats(double stall_after_s = 1.0) const;
   std::vector<GroupStats> groupStats() const;
   /** @brief A node's type, or nullptr if there is no such node (or it is a placeholder). */
   std::shared_ptr<const NodeType> nodeType(const std::string& node) const;
@@ -123,8 +127,12 @@ class Graph {
   void adoptLocked(Graph& staged, const GraphDescription& description);
   void clearLocked();
   void detachAll(detail::NodeState* node);
-  /** Disconnects a node and takes it off its group's queue; it never fires again. */
-  void retire(detail::NodeState* node);
+  /** Disconnects a node and takes it off its group's queue; it never fires again.
+   *  `restructure`: keep the rest of the graph consistent (false when all nodes go). */
+  void retire(detail::NodeState* node, bool restructure = true);
+  static std::vector<detail::NodeState*> dataReceivers(detail::NodeState* node);
+  /** The edit of one data or parameter connection between two nodes (see live.hpp). */
+  detail::Restructure restructure(detail::NodeState* from, detail::NodeState* to, bool into_data_input) const;
   void removeEdge(std::shared_ptr<detail::Edge> edge);
   void removeEvent(std::shared_ptr<detail::EventEdge> edge);
 
@@ -137,6 +145,7 @@ class Graph {
   std::map<std::string, std::shared_ptr<detail::ThreadGroup>> groups_;
   std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
   bool running_ = false;
+  bool ran_ = false;  // started at least once: messages may be in flight
   bool paused_ = false;
   std::shared_ptr<std::atomic<std::uint64_t>> revision_ = std::make_shared<std::atomic<std::uint64_t>>(0);
   void bump() { revision_->fetch_add(1, std::memory_order_relaxed); }

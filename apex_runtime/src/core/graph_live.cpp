@@ -1,0 +1,112 @@
+// Liveness and flushing: see live.hpp.
+#include "live.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace apex {
+namespace detail {
+namespace {
+
+/** Calls f(edge) for each edge from `n` into a data input. */
+template <class F>
+void forDataOut(NodeState* n, F f) {
+  for (auto& o : n->outputs)
+    for (auto& e : o.edges)
+      if (!e->to_param) f(*e);
+  for (auto& p : n->params)
+    for (auto& e : p.out_edges)
+      if (!e->to_param) f(*e);
+}
+
+}  // namespace
+
+std::vector<NodeState*> topological(const std::vector<NodeState*>& region) {
+  std::map<NodeState*, int> pending;  // inputs from inside the region not yet ordered
+  for (NodeState* n : region) pending[n];
+  for (NodeState* n : region)
+    forDataOut(n, [&](Edge& e) {
+      if (auto it = pending.find(e.to); it != pending.end()) ++it->second;
+    });
+  std::vector<NodeState*> order;
+  for (NodeState* n : region)
+    if (pending[n] == 0) order.push_back(n);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    forDataOut(order[i], [&](Edge& e) {
+      auto it = pending.find(e.to);
+      if (it != pending.end() && --it->second == 0) order.push_back(e.to);
+    });
+  return order;  // data edges never form a cycle (connect refuses them), so this is all of region
+}
+
+namespace {
+
+void updateLiveness(const std::vector<NodeState*>& region) {
+  for (NodeState* n : topological(region)) {
+    n->live_inputs = 0;
+    for (auto& in : n->inputs) {
+      if (!in->edge) continue;
+      in->edge->live = in->edge->from->live;
+      n->live_inputs += in->edge->live ? 1 : 0;
+    }
+    n->live = n->type && (n->isSource() || n->live_inputs > 0);
+  }
+}
+
+bool hasJoin(const std::vector<NodeState*>& nodes) {
+  return std::any_of(nodes.begin(), nodes.end(), [](NodeState* n) { return n->inputs.size() >= 2; });
+}
+
+}  // namespace
+
+std::vector<NodeState*> downstreamOf(const std::vector<NodeState*>& roots) {
+  std::set<NodeState*> seen(roots.begin(), roots.end());
+  std::vector<NodeState*> out(seen.begin(), seen.end());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    forDataOut(out[i], [&](Edge& e) {
+      if (seen.insert(e.to).second) out.push_back(e.to);
+    });
+  return out;
+}
+
+std::vector<NodeState*> componentOf(const std::vector<NodeState*>& roots) {
+  std::set<NodeState*> seen(roots.begin(), roots.end());
+  std::vector<NodeState*> out(seen.begin(), seen.end());
+  auto visit = [&](NodeState* m) {
+    if (seen.insert(m).second) out.push_back(m);
+  };
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    NodeState* n = out[i];
+    for (auto& in : n->inputs) if (in->edge) visit(in->edge->from);
+    for (auto& o : n->outputs) for (auto& e : o.edges) visit(e->to);
+    for (auto& p : n->params) {
+      if (p.in_edge) visit(p.in_edge->from);
+      for (auto& e : p.out_edges) visit(e->to);
+    }
+  }
+  return out;
+}
+
+Restructure::Restructure(const std::vector<NodeState*>& targets, const std::vector<NodeState*>& others,
+                         bool flush_allowed)
+    : region_(downstreamOf(targets)) {
+  for (NodeState* n : region_) scope_.involve(n);
+  for (NodeState* n : others) scope_.involve(n);
+  if (flush_allowed && hasJoin(region_)) {
+    std::vector<NodeState*> roots = region_;
+    roots.insert(roots.end(), others.begin(), others.end());
+    flushed_ = componentOf(roots);
+    for (NodeState* n : flushed_) scope_.involve(n);
+  }
+}
+
+Restructure::~Restructure() {
+  updateLiveness(region_);
+  for (NodeState* n : flushed_) n->flushPorts();
+}
+
+void initLiveness(NodeState* node) { node->live = node->type && node->isSource(); }
+
+}  // namespace detail
+}  // namespace apex

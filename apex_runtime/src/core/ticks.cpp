@@ -1,0 +1,34 @@
+#include "ticks.hpp"
+
+#include <thread>
+
+namespace apex {
+namespace detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Origin {
+  Clock::time_point time = Clock::now();
+  std::int64_t tick = ticks();
+};
+const Origin kOrigin;  // at load time
+
+}  // namespace
+
+double nsPerTick() {
+#if defined(__x86_64__) || defined(__i386__)
+  // The longer since the origin, the more exact; the first 10 ms are waited out once.
+  auto elapsed = Clock::now() - kOrigin.time;
+  if (elapsed < std::chrono::milliseconds(10)) std::this_thread::sleep_for(std::chrono::milliseconds(10) - elapsed);
+  const std::int64_t t = ticks();
+  elapsed = Clock::now() - kOrigin.time;
+  const double ns = double(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count());
+  return t > kOrigin.tick ? ns / double(t - kOrigin.tick) : 1.0;
+#else
+  return 1.0;
+#endif
+}
+
+}  // namespace detail
+}  // namespace apex
