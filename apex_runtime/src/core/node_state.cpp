@@ -148,9 +148,13 @@ bool NodeState::fireIfReady() {
   if (params_dirty_.load(std::memory_order_acquire)) applyParams();
   // Reserve every condition this firing consumes: inputs become empty, receivers
   // get an unread message, a driven source uses up its data. has_data is cleared
-  // first: a notifyNewData() arriving meanwhile then counts for the next firing.
+  // first: a notifyNewData() arriving meanwhile then counts for the next firing
+  // (its unblock finds the count at zero, so the reservation brings it back to zero).
   if (driven()) has_data.store(false, std::memory_order_release);
-  blockers.fetch_add(live_inputs + counted_out + (driven() ? 1 : 0), std::memory_order_acq_rel);
+  const int reserved = live_inputs + counted_out + (driven() ? 1 : 0);
+  if (blockers.fetch_add(reserved, std::memory_order_acq_rel) + reserved == 0) {
+    group->runNext(this);  // new data came between the two lines above: its release found nothing to release yet
+  }
 
   bool skip = !active_enabled_;
   for (std::size_t i = 0; i < inputs.size(); ++i) take(*inputs[i], manifest.inputs[i].optional, skip);
