@@ -17,6 +17,11 @@
 #include "apex/core/graph.hpp"
 #include "apex/core/graph_file.hpp"
 
+#ifdef APEX_BENCH_TBB
+#include <tbb/flow_graph.h>
+#include <tbb/global_control.h>
+#endif
+
 using namespace apex;
 using Clock = std::chrono::steady_clock;
 
@@ -109,6 +114,56 @@ double baselineHopNs(int k, long messages) {
   if (sum == 42) std::puts("");  // keep the loop
   return seconds(t0, t1) * 1e9 / double(messages) / k;
 }
+
+#ifdef APEX_BENCH_TBB
+/** The same chain in TBB's flow_graph: an input_node and k serial function_nodes, one thread. */
+double tbbHopNs(int k, long messages) {
+  using Msg = std::shared_ptr<const int>;
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  tbb::flow::graph g;
+  long produced = 0, sum = 0;
+  tbb::flow::input_node<Msg> src(g, [&](tbb::flow_control& fc) -> Msg {
+    if (produced == messages) {
+      fc.stop();
+      return nullptr;
+    }
+    return std::make_shared<const int>(static_cast<int>(produced++));
+  });
+  std::vector<std::unique_ptr<tbb::flow::function_node<Msg, Msg>>> relays;
+  for (int i = 0; i < k; ++i) {
+    relays.push_back(std::make_unique<tbb::flow::function_node<Msg, Msg>>(g, tbb::flow::serial, [](Msg m) { return m; }));
+    if (i == 0) tbb::flow::make_edge(src, *relays[0]);
+    else tbb::flow::make_edge(*relays[i - 1], *relays[i]);
+  }
+  tbb::flow::function_node<Msg> sink(g, tbb::flow::serial, [&](Msg m) { sum += *m; });
+  tbb::flow::make_edge(*relays.back(), sink);
+  const auto t0 = Clock::now();
+  src.activate();
+  g.wait_for_all();
+  const auto t1 = Clock::now();
+  if (sum == 42) std::puts("");
+  return seconds(t0, t1) * 1e9 / double(messages) / k;
+}
+#endif
+
+/** Median and range of repeated measurements. */
+struct Spread {
+  std::vector<double> v;
+  double median() const {
+    auto s = v;
+    std::sort(s.begin(), s.end());
+    return s.empty() ? 0 : s[s.size() / 2];
+  }
+  double min() const { return v.empty() ? 0 : *std::min_element(v.begin(), v.end()); }
+  double max() const { return v.empty() ? 0 : *std::max_element(v.begin(), v.end()); }
+  std::string text(const char* fmt = "%.0f") const {
+    char a[32], b[32], c[32];
+    std::snprintf(a, sizeof a, fmt, median());
+    std::snprintf(b, sizeof b, fmt, min());
+    std::snprintf(c, sizeof c, fmt, max());
+    return std::string(a) + " (" + b + "–" + c + ")";
+  }
+};
 
 double apexHopNs(int k, long messages) {
   Graph g(registry());
@@ -215,16 +270,27 @@ int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
   const long hop_messages = quick ? 20000 : 200000;
 
+  const int reps = quick ? 5 : 7;
   std::printf("## Overhead per hop, one thread group\n\n");
   std::printf("A free-running source feeds k relays and a sink, all in one thread group; time per message\n");
-  std::printf("end to end divided by k. Baseline: the same k calls through `std::function` passing a\n");
-  std::printf("`shared_ptr` message in a plain loop (a new message per iteration), in the same run.\n\n");
-  std::printf("| k | APEX ns/hop | std::function ns/hop | ratio |\n|---|---|---|---|\n");
+  std::printf("end to end divided by k. Baselines in the same run: the same k calls through `std::function`\n");
+  std::printf("passing a `shared_ptr` message in a plain loop, and the same chain in TBB's `flow_graph`\n");
+  std::printf("(input_node, k serial function_nodes, a sink; one thread, like one group). The variants run\n");
+  std::printf("interleaved, %d repetitions each: median (min–max) ns per hop; ratios of the medians.\n\n", reps);
+  std::printf("| k | APEX | TBB flow_graph | std::function | APEX / TBB | APEX / std::function |\n|---|---|---|---|---|---|\n");
   for (int k : {1, 4, 16, 64}) {
     const long m = std::max<long>(2000, hop_messages / k);
-    const double base = baselineHopNs(k, m * 10);
-    const double apex_ns = apexHopNs(k, m);
-    std::printf("| %d | %.0f | %.1f | %.0fx |\n", k, apex_ns, base, apex_ns / base);
+    Spread base, tbb, apex_ns;
+    for (int r = 0; r < reps; ++r) {
+      base.v.push_back(baselineHopNs(k, m * 10));
+#ifdef APEX_BENCH_TBB
+      tbb.v.push_back(tbbHopNs(k, m));
+#endif
+      apex_ns.v.push_back(apexHopNs(k, m));
+    }
+    std::printf("| %d | %s | %s | %s | %.2fx | %.0fx |\n", k, apex_ns.text().c_str(),
+                tbb.v.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(),
+                tbb.v.empty() ? 0.0 : apex_ns.median() / tbb.median(), apex_ns.median() / base.median());
   }
 
   std::printf("\n## Thread wake-ups per group boundary\n\n");
