@@ -148,3 +148,30 @@ TEST(LiveEdits, StatusSaysWhatAStalledNodeWaitsFor) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(LiveEdits, ACutOffParameterOutputNeitherFiresItsReceiverNorUnbalancesIt) {
+  Graph g(registry());
+  add(g, "test/Feeder", "src");
+  add(g, "test/Gain", "gain");
+  add(g, "test/Collector", "values");
+  ASSERT_TRUE(g.setInteractive("gain", "gain", true));
+  link(g, "src", "out", "gain", "in");
+  link(g, "gain", "gain", "values", "in");
+  g.start();
+  object<Feeder>(g, "src")->feed(1);
+  ASSERT_TRUE(object<Collector>(g, "values")->waitFor(1));
+  ASSERT_TRUE(g.disconnect("src", "out", "gain", "in"));  // gain and values are cut off
+  ASSERT_TRUE(g.setParameter("gain", "gain", "5"));        // published to a receiver that cannot fire
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(object<Collector>(g, "values")->size(), 1u) << "a cut-off node fired";
+  link(g, "src", "out", "gain", "in");
+  for (int i = 2; i <= 4; ++i) {
+    object<Feeder>(g, "src")->feed(i);
+    ASSERT_TRUE(object<Collector>(g, "values")->waitFor(static_cast<std::size_t>(i))) << "values stalled after frame " << i;
+  }
+  EXPECT_EQ(object<Collector>(g, "values")->ints().back(), 5);
+}
+
+}  // namespace

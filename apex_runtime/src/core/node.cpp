@@ -8,9 +8,9 @@
 namespace apex {
 namespace {
 
-[[noreturn]] void unknown(const detail::NodeState& s, const std::string& what, const std::string& name,
+[[noreturn]] void unknown(const detail::NodeState& s, const std::string& what, std::string_view name,
                           const std::string& list) {
-  throw std::invalid_argument("node '" + s.name + "' (" + s.typeId() + ") has no " + what + " '" + name + "' (" +
+  throw std::invalid_argument("node '" + s.name + "' (" + s.typeId() + ") has no " + what + " '" + std::string(name) + "' (" +
                               what + "s: " + list + ")");
 }
 
@@ -35,33 +35,33 @@ void Node::notifyNewData() {
   if (auto* s = state_.load(std::memory_order_acquire)) s->notifyNewData();
 }
 
-const Message& Node::inputMessage(const std::string& input) const {
+const Message& Node::inputMessage(std::string_view input) const {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findInput(input);
   if (i < 0) unknown(s, "input", input, s.manifest.listInputs());
   return s.inputs[i]->current;
 }
 
-void Node::publishMessage(const std::string& output, Message message) {
+void Node::publishMessage(std::string_view output, Message message) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findOutput(output);
   if (i < 0) unknown(s, "output", output, s.manifest.listOutputs());
   const TypeInfo* want = s.manifest.outputs[i].type;
   if (!message.isNothing() && !compatible(message.type(), want)) {
-    throw std::invalid_argument("node '" + s.name + "' published a " + message.typeName() + " on output '" + output +
+    throw std::invalid_argument("node '" + s.name + "' published a " + message.typeName() + " on output '" + std::string(output) +
                                 "', which carries " + want->name);
   }
   s.setOutput(i, std::move(message));
 }
 
-const ParamValue& Node::paramValue(const std::string& name) const {
+const ParamValue& Node::paramValue(std::string_view name) const {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findParam(name);
   if (i < 0) unknown(s, "parameter", name, s.manifest.listParams());
   return s.params[i].active;
 }
 
-void Node::trigger(const std::string& name) {
+void Node::trigger(std::string_view name) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findTrigger(name);
   if (i < 0) unknown(s, "trigger", name, s.manifest.listTriggers());
@@ -70,13 +70,13 @@ void Node::trigger(const std::string& name) {
 
 void Node::log(LogLevel level, const std::string& text) const { apex::log(level, name(), text); }
 
-void Node::throwWrongType(const std::string& input, const Message& m, const TypeInfo* want) const {
-  throw std::invalid_argument("node '" + name() + "': input '" + input + "' holds a " + m.typeName() + ", not a " +
+void Node::throwWrongType(std::string_view input, const Message& m, const TypeInfo* want) const {
+  throw std::invalid_argument("node '" + name() + "': input '" + std::string(input) + "' holds a " + m.typeName() + ", not a " +
                               want->name);
 }
 
-void Node::throwWrongParamType(const std::string& n) const {
-  throw std::invalid_argument("node '" + name() + "': parameter '" + n + "' is read with the wrong C++ type");
+void Node::throwWrongParamType(std::string_view n) const {
+  throw std::invalid_argument("node '" + name() + "': parameter '" + std::string(n) + "' is read with the wrong C++ type");
 }
 
 }  // namespace apex

@@ -14,7 +14,7 @@ const Manifest& manifestOf(const std::shared_ptr<const NodeType>& type) {
 }
 
 template <class T>
-int indexOf(const std::vector<T>& items, const std::string& n) {
+int indexOf(const std::vector<T>& items, std::string_view n) {
   for (std::size_t i = 0; i < items.size(); ++i) if (items[i].name == n) return static_cast<int>(i);
   return -1;
 }
@@ -39,10 +39,10 @@ NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint
 
 NodeState::~NodeState() = default;
 
-int NodeState::findInput(const std::string& n) const { return indexOf(manifest.inputs, n); }
-int NodeState::findOutput(const std::string& n) const { return indexOf(manifest.outputs, n); }
-int NodeState::findParam(const std::string& n) const { return indexOf(manifest.params, n); }
-int NodeState::findTrigger(const std::string& n) const { return indexOf(manifest.triggers, n); }
+int NodeState::findInput(std::string_view n) const { return indexOf(manifest.inputs, n); }
+int NodeState::findOutput(std::string_view n) const { return indexOf(manifest.outputs, n); }
+int NodeState::findParam(std::string_view n) const { return indexOf(manifest.params, n); }
+int NodeState::findTrigger(std::string_view n) const { return indexOf(manifest.triggers, n); }
 
 std::string NodeState::error() const {
   std::lock_guard<std::mutex> lock(state_mutex);
@@ -77,6 +77,8 @@ int NodeState::structuralBlockers() {
 
 void NodeState::flushPorts() {
   for (auto& in : inputs) {
+    // A value from a parameter output is a setting, not a frame: it stays until replaced.
+    if (in->edge && !in->edge->counted()) continue;
     std::lock_guard<std::mutex> lock(in->m);
     in->msg = Message();
     in->full.store(false, std::memory_order_release);
@@ -144,12 +146,13 @@ void NodeState::take(InputState& in, bool optional, bool& skip) {
 }
 
 bool NodeState::fireIfReady() {
-  if (blockers.load(std::memory_order_acquire) != 0 || removed) return false;
+  if (blockers.load(std::memory_order_acquire) != 0 || removed || !live) return false;
   if (params_dirty_.load(std::memory_order_acquire)) applyParams();
   // Reserve every condition this firing consumes: inputs become empty, receivers
   // get an unread message, a driven source uses up its data. has_data is cleared
   // first: a notifyNewData() arriving meanwhile then counts for the next firing
-  // (its unblock finds the count at zero, so the reservation brings it back to zero).
+  // (its release finds nothing to release yet and drives the count below zero; the
+  // reservation then lands on zero exactly when that release was the only thing missing).
   if (driven()) has_data.store(false, std::memory_order_release);
   const int reserved = live_inputs + counted_out + (driven() ? 1 : 0);
   if (blockers.fetch_add(reserved, std::memory_order_acq_rel) + reserved == 0) {
@@ -233,7 +236,9 @@ void NodeState::deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGrou
     in.msg = std::move(m);
     in.full.store(true, std::memory_order_relaxed);
   }
-  if (!was_full) to->unblock(1, here);  // a parameter output may overwrite a value not yet read
+  // A parameter output may overwrite a value not yet read. A dead edge is not counted
+  // (a cut-off sender publishes on parameter changes): it must not release anything.
+  if (!was_full && e.live) to->unblock(1, here);
 }
 
 void NodeState::setError(std::string text) {

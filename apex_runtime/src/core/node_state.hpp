@@ -26,6 +26,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "apex/core/description.hpp"
@@ -66,7 +67,7 @@ struct EventEdge {
 };
 
 struct InputState {
-  std::mutex m;  // only for edges that are not counted (see the top of this file)
+  std::mutex m;  // on the data path only for edges that are not counted; edits take it too
   Message msg;   // delivered, not yet taken
   std::atomic<bool> full{false};
   std::shared_ptr<Edge> edge;
@@ -173,10 +174,10 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Drops every message on its inputs and every unread mark on its outputs (groups paused). */
   void flushPorts();
 
-  int findInput(const std::string& n) const;
-  int findOutput(const std::string& n) const;
-  int findParam(const std::string& n) const;
-  int findTrigger(const std::string& n) const;
+  int findInput(std::string_view n) const;
+  int findOutput(std::string_view n) const;
+  int findParam(std::string_view n) const;
+  int findTrigger(std::string_view n) const;
   std::string typeId() const { return type ? type->id : placeholder.type; }
 
  private:

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "apex/core/log.hpp"
 #include "apex/core/message.hpp"
@@ -47,11 +48,11 @@ class Node {
 
  protected:
   /** @brief The message at an input this firing (Nothing if none). */
-  const Message& inputMessage(const std::string& input) const;
+  const Message& inputMessage(std::string_view input) const;
   /** @brief The payload at an input as T; nullptr when it holds Nothing.
    *  Throws std::invalid_argument for an unknown input, or a payload of another type. */
   template <class T>
-  std::shared_ptr<const T> input(const std::string& name) const {
+  std::shared_ptr<const T> input(std::string_view name) const {
     const Message& m = inputMessage(name);
     if (m.isNothing()) return nullptr;
     auto p = m.as<T>();
@@ -59,38 +60,38 @@ class Node {
     return p;
   }
   /** @brief True when the input holds a message (not Nothing) this firing. */
-  bool hasInput(const std::string& name) const { return !inputMessage(name).isNothing(); }
+  bool hasInput(std::string_view name) const { return !inputMessage(name).isNothing(); }
 
   /** @brief Sends on an output; an output not published this firing sends Nothing. */
-  void publishMessage(const std::string& output, Message message);
+  void publishMessage(std::string_view output, Message message);
   template <class T>
-  void publish(const std::string& output, std::shared_ptr<const T> payload) {
+  void publish(std::string_view output, std::shared_ptr<const T> payload) {
     publishMessage(output, Message::share<T>(std::move(payload)));
   }
   template <class T>
-  void publish(const std::string& output, T value) {
+  void publish(std::string_view output, T value) {
     publishMessage(output, Message::make<T>(std::move(value)));
   }
 
   /** @brief The current value of a parameter; stable for the whole firing. */
-  const ParamValue& paramValue(const std::string& name) const;
+  const ParamValue& paramValue(std::string_view name) const;
   template <class T>
-  const T& param(const std::string& name) const {
+  const T& param(std::string_view name) const {
     const ParamValue& v = paramValue(name);
     if (const T* p = std::get_if<T>(&v)) return *p;
     throwWrongParamType(name);
   }
 
   /** @brief Sends an event on one of the node's triggers. */
-  void trigger(const std::string& name);
+  void trigger(std::string_view name);
 
   /** @brief Logs a line named after this node (rosconsole under the ROS host). */
   void log(LogLevel level, const std::string& text) const;
 
  private:
   friend class detail::NodeState;
-  [[noreturn]] void throwWrongType(const std::string& input, const Message& m, const TypeInfo* want) const;
-  [[noreturn]] void throwWrongParamType(const std::string& name) const;
+  [[noreturn]] void throwWrongType(std::string_view input, const Message& m, const TypeInfo* want) const;
+  [[noreturn]] void throwWrongParamType(std::string_view name) const;
   std::atomic<detail::NodeState*> state_{nullptr};  // set when the node joins a graph
 };
 
