@@ -217,6 +217,15 @@ TEST_F(PanelWidgetTest, ARefusedEditShowsTheRuntimesMessage) {
   EXPECT_EQ(number(runtimeGraph(), "clock_2", "rate"), 10);
 }
 
+TEST_F(PanelWidgetTest, ANodeThatCannotFireSaysWhatItWaitsFor) {
+  addByKeyboard("Counter", "counter_2");  // its input is not connected: cut off from every source
+  NodeItem* counter = panel.editor()->scene()->node("counter_2");
+  ASSERT_TRUE(counter);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !counter->waiting().isEmpty(); }, kWaitMs)) << "no waiting_for from ~status";
+  EXPECT_EQ(counter->waiting().toStdString(), "cut off: input 'in' is not connected");
+  EXPECT_EQ(counter->toolTip(), counter->waiting());
+}
+
 /** A runtime of its own, in another namespace, that a test can stop and start again. */
 class OwnRuntime {
  public:

@@ -13,7 +13,6 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 
-#include <atomic>
 #include <thread>
 
 #include "apex_test/ros_client.hpp"
@@ -21,28 +20,6 @@
 using namespace apex_test;
 
 namespace {
-
-/** Counts the messages arriving on a topic. */
-template <class Msg>
-class Counter {
- public:
-  Counter(ros::NodeHandle& nh, const std::string& topic)
-      : sub_(nh.subscribe<Msg>(topic, 5, [this](const typename Msg::ConstPtr&) { ++count_; })) {}
-  /** At least `n` more messages arrive within `timeout` seconds. */
-  bool flows(long n = 3, double timeout = 20) {
-    const long start = count_;
-    const auto deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::WallTime::now() < deadline) {
-      if (count_ >= start + n) return true;
-      ros::WallDuration(0.01).sleep();  // the subscriber counts on the spinner's thread
-    }
-    return false;
-  }
-
- private:
-  std::atomic<long> count_{0};
-  ros::Subscriber sub_;
-};
 
 apex::Connect::Request link(const std::string& a, const std::string& ap, const std::string& b, const std::string& bp) {
   apex::Connect::Request r;
@@ -67,8 +44,8 @@ std::string waitingFor(ros::NodeHandle& nh, const std::string& node) {
 
 TEST(LiveEdit, TheOverlayKeepsFlowingThroughReconnectsRemovalsAndUndo) {
   ros::NodeHandle nh;
-  Counter<sensor_msgs::Image> overlay(nh, "/apex_demo/overlay");
-  Counter<sensor_msgs::PointCloud2> cloud(nh, "/apex_demo/points");
+  TopicCounter<sensor_msgs::Image> overlay(nh, "/apex_demo/overlay");
+  TopicCounter<sensor_msgs::PointCloud2> cloud(nh, "/apex_demo/points");
   ASSERT_TRUE(overlay.flows()) << "the demo graph never published an overlay";
 
   // Disconnect and connect again a link in the middle of the chain, several times.

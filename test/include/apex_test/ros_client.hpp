@@ -8,6 +8,7 @@
 #include <apex/GetGraph.h>
 #include <apex/RuntimeStatus.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -61,5 +62,27 @@ inline bool keepsFiring(ros::NodeHandle& nh, const std::string& node) {
   for (int i = 0; i < 10; ++i) if (firingsOf(nh, node) > first) return true;
   return false;
 }
+
+/** Counts the messages arriving on a topic (counted on the spinner's threads). */
+template <class Msg>
+class TopicCounter {
+ public:
+  TopicCounter(ros::NodeHandle& nh, const std::string& topic)
+      : sub_(nh.subscribe<Msg>(topic, 5, [this](const typename Msg::ConstPtr&) { ++count_; })) {}
+  /** At least `n` more messages arrive within `timeout` seconds. */
+  bool flows(long n = 3, double timeout = 20) {
+    const long start = count_;
+    const auto deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::WallTime::now() < deadline) {
+      if (count_ >= start + n) return true;
+      ros::WallDuration(0.01).sleep();  // roscpp gives no event to wait on across callbacks
+    }
+    return false;
+  }
+
+ private:
+  std::atomic<long> count_{0};
+  ros::Subscriber sub_;
+};
 
 }  // namespace apex_test
