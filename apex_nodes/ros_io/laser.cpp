@@ -55,6 +55,11 @@ class LaserScanToCloud : public apex::Node {
   }
   void process() override {
     const auto& scan = *input<sensor_msgs::LaserScan>("scan");
+    if (!scan.intensities.empty() && scan.intensities.size() != scan.ranges.size())
+      throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has " + std::to_string(scan.ranges.size()) +
+                                  " ranges but " + std::to_string(scan.intensities.size()) + " intensities");
+    if (!std::isfinite(scan.angle_min) || !std::isfinite(scan.angle_increment))
+      throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has a non-finite angle_min or angle_increment");
     auto points = std::make_shared<PclCloud>();
     for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
       const float r = scan.ranges[i];

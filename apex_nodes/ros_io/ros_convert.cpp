@@ -2,10 +2,79 @@
 
 #include <cv_bridge/cv_bridge.h>
 #include <pcl_conversions/pcl_conversions.h>
+#include <sensor_msgs/image_encodings.h>
 
 namespace apex_nodes {
+namespace {
+
+// Sizes from the network are checked in 64 bits before any pixel or point is read:
+// a height x step that overflows 32 bits could otherwise match a small buffer.
+using Size = std::uint64_t;
+constexpr Size kMaxSide = 1 << 16;  // pixels or points per row or column: far beyond any sensor
+
+std::string imageName(const sensor_msgs::Image& m) {
+  return "image " + std::to_string(m.width) + "x" + std::to_string(m.height) + " '" + m.encoding + "' on frame '" +
+         m.header.frame_id + "'";
+}
+
+void checkImage(const sensor_msgs::Image& m) {
+  auto bad = [&](const std::string& why) { throw std::invalid_argument(imageName(m) + ": " + why); };
+  if (m.width == 0 || m.height == 0) bad("it has no pixels");
+  if (m.width > kMaxSide || m.height > kMaxSide) bad("a side is over " + std::to_string(kMaxSide) + " pixels");
+  Size pixel = 0;
+  try {
+    namespace enc = sensor_msgs::image_encodings;
+    pixel = Size(enc::numChannels(m.encoding)) * Size(enc::bitDepth(m.encoding)) / 8;
+  } catch (const std::exception&) {
+    bad("unknown encoding");
+  }
+  if (Size(m.step) < Size(m.width) * pixel)
+    bad("step " + std::to_string(m.step) + " is shorter than a row (" + std::to_string(Size(m.width) * pixel) + " bytes)");
+  if (Size(m.step) * Size(m.height) > Size(m.data.size()))
+    bad("data has " + std::to_string(m.data.size()) + " bytes, step x height needs " +
+        std::to_string(Size(m.step) * Size(m.height)));
+}
+
+/** Bytes of one value of a sensor_msgs/PointField datatype; 0 if unknown. */
+Size fieldSize(std::uint8_t datatype) {
+  using F = sensor_msgs::PointField;
+  switch (datatype) {
+    case F::INT8: case F::UINT8: return 1;
+    case F::INT16: case F::UINT16: return 2;
+    case F::INT32: case F::UINT32: case F::FLOAT32: return 4;
+    case F::FLOAT64: return 8;
+    default: return 0;
+  }
+}
+
+void checkCloud(const sensor_msgs::PointCloud2& m) {
+  auto bad = [&](const std::string& why) {
+    throw std::invalid_argument("point cloud " + std::to_string(m.width) + "x" + std::to_string(m.height) + " on frame '" +
+                                m.header.frame_id + "': " + why);
+  };
+  if (m.width > kMaxSide * kMaxSide || m.height > kMaxSide) bad("absurd size");
+  if (m.point_step == 0) bad("point_step is 0");
+  bool x = false, y = false, z = false;
+  for (const auto& f : m.fields) {
+    const Size size = fieldSize(f.datatype);
+    if (size == 0) bad("field '" + f.name + "' has the unknown datatype " + std::to_string(f.datatype));
+    if (Size(f.offset) + size * std::max<Size>(1, f.count) > Size(m.point_step))
+      bad("field '" + f.name + "' (offset " + std::to_string(f.offset) + ") does not fit in point_step " +
+          std::to_string(m.point_step));
+    x |= f.name == "x", y |= f.name == "y", z |= f.name == "z";
+  }
+  if (!(x && y && z)) bad("it has no x, y, z fields");
+  if (Size(m.row_step) < Size(m.width) * Size(m.point_step))
+    bad("row_step " + std::to_string(m.row_step) + " is shorter than width x point_step");
+  if (Size(m.row_step) * Size(m.height) > Size(m.data.size()))
+    bad("data has " + std::to_string(m.data.size()) + " bytes, row_step x height needs " +
+        std::to_string(Size(m.row_step) * Size(m.height)));
+}
+
+}  // namespace
 
 std::shared_ptr<const Image> fromRos(const sensor_msgs::ImageConstPtr& msg) {
+  checkImage(*msg);
   cv_bridge::CvImageConstPtr shared;
   try {
     shared = cv_bridge::toCvShare(msg);
@@ -25,9 +94,7 @@ sensor_msgs::ImagePtr toRos(const Image& image) {
 }
 
 std::shared_ptr<const Cloud> fromRos(const sensor_msgs::PointCloud2ConstPtr& msg) {
-  bool x = false, y = false, z = false;
-  for (const auto& f : msg->fields) x |= f.name == "x", y |= f.name == "y", z |= f.name == "z";
-  if (!(x && y && z)) throw std::invalid_argument("point cloud on frame '" + msg->header.frame_id + "' has no x, y, z fields");
+  checkCloud(*msg);
   auto points = std::make_shared<PclCloud>();
   pcl::fromROSMsg(*msg, *points);
   auto cloud = std::make_shared<Cloud>();

@@ -18,6 +18,9 @@
 #include <gmock/gmock.h>
 #include <std_msgs/Int32.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fstream>
 
 #include "apex_test/ros_client.hpp"
@@ -218,6 +221,34 @@ TEST_F(Services, SaveAndLoadAreSafe) {
   load.path = tempPath("saved.yaml");
   ASSERT_TRUE(call<apex::LoadGraph>("load_graph", load).success);
   EXPECT_EQ(call<apex::GetGraph>("get_graph").graph.nodes.at(0).name, "clock");
+}
+
+TEST_F(Services, SaveAndLoadTouchOnlyRegularFiles) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
+  const std::string before = graphText();
+  apex::LoadGraph::Request load;
+  load.path = tempPath("pipe.yaml");
+  ASSERT_EQ(::mkfifo(load.path.c_str(), 0644), 0);
+  const auto t0 = ros::WallTime::now();
+  refused(call<apex::LoadGraph>("load_graph", load), before, "not a regular file");  // waited for a writer forever
+  load.path = "/dev/zero";                                                             // read without end
+  refused(call<apex::LoadGraph>("load_graph", load), before, "not a regular file");
+  EXPECT_LT((ros::WallTime::now() - t0).toSec(), 2.0);
+  EXPECT_EQ(call<apex::GetGraph>("get_graph").graph.nodes.size(), 1u) << "the service threads are free";
+
+  apex::SaveGraph::Request save;
+  save.path = tempPath("pipe.yaml");
+  auto res = call<apex::SaveGraph>("save_graph", save);
+  EXPECT_FALSE(res.success);
+  EXPECT_THAT(res.message, HasSubstr("not a regular file"));
+  save.path = tempPath("locked.yaml");
+  writeFile(save.path, "kept");
+  ASSERT_EQ(::chmod(save.path.c_str(), 0444), 0);
+  res = call<apex::SaveGraph>("save_graph", save);
+  EXPECT_FALSE(res.success);
+  EXPECT_THAT(res.message, HasSubstr("read-only"));
+  ::unlink(tempPath("pipe.yaml").c_str());
+  ::unlink(tempPath("locked.yaml").c_str());
 }
 
 TEST_F(Services, ControlPausesResumesSteps) {

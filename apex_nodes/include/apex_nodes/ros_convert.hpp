@@ -8,11 +8,14 @@
 
 namespace apex_nodes {
 
-/** @brief Shares the message's pixels (no copy): the Image keeps the message alive. */
+/** @brief Shares the message's pixels (no copy): the Image keeps the message alive.
+ *  Throws std::invalid_argument naming what is wrong for a message whose sizes, step or
+ *  encoding do not add up (checked in 64 bits before any pixel is read). */
 std::shared_ptr<const Image> fromRos(const sensor_msgs::ImageConstPtr& msg);
 /** @brief A ROS message of the image (its own copy of the pixels, as ROS needs). */
 sensor_msgs::ImagePtr toRos(const Image& image);
-/** @brief Converts the points (x, y, z fields are required). */
+/** @brief Converts the points (x, y, z fields are required). Throws std::invalid_argument
+ *  for unknown datatypes, fields outside point_step, or data shorter than row_step x height. */
 std::shared_ptr<const Cloud> fromRos(const sensor_msgs::PointCloud2ConstPtr& msg);
 sensor_msgs::PointCloud2Ptr toRos(const Cloud& cloud);
 

@@ -2,7 +2,9 @@
 // single values).
 #include "apex/core/graph_file.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
@@ -206,11 +208,38 @@ std::string formatGraphText(const GraphDescription& d) {
   return std::string(out.c_str()) + "\n";
 }
 
+Result<std::string> readGraphFile(const std::string& path) {
+  // O_NONBLOCK: opening a FIFO must not wait for a writer; only regular files are read.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return Status::error(fileError("read", path));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return Status::error("cannot read '" + path + "': not a regular file");
+  }
+  if (st.st_size > kMaxGraphFileBytes) {
+    ::close(fd);
+    return Status::error("cannot read '" + path + "': " + std::to_string(st.st_size) + " bytes, over the limit of " +
+                         std::to_string(kMaxGraphFileBytes) + " for a graph file");
+  }
+  std::string text(static_cast<std::size_t>(st.st_size), '\0');
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::read(fd, &text[done], text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // the file shrank meanwhile: parse what is there
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  text.resize(done);
+  return text;
+}
+
 Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return Status::error(fileError("read", path));
+  auto read = readGraphFile(path);
+  if (!read) return read.status();
   std::stringstream text;
-  text << in.rdbuf();
+  text << read.value();
   auto description = parseGraphText(text.str());
   if (!description) return Status::error("'" + path + "', " + description.message());
   auto report = graph.load(description.value());
@@ -224,11 +253,43 @@ Status saveGraphFile(const Graph& graph, const std::string& path) {
   return writeFileAtomically(path, formatGraphText(graph.describe()));
 }
 
+namespace {
+
+std::string directoryOf(const std::string& path) {
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+}
+
+/** Removes `<path>.tmp.<pid>.<n>` files left by saves that died (their process is gone). */
+void removeStaleTemporaries(const std::string& path) {
+  const std::string dir = directoryOf(path);
+  const std::string prefix = path.substr(path.rfind('/') == std::string::npos ? 0 : path.rfind('/') + 1) + ".tmp.";
+  DIR* d = ::opendir(dir.c_str());
+  if (!d) return;
+  while (const dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    char* end = nullptr;
+    const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
+    const bool named_by_a_save = pid > 0 && end && *end == '.';
+    const bool gone = ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+    if (named_by_a_save && pid != ::getpid() && gone) ::unlink((dir + "/" + name).c_str());
+  }
+  ::closedir(d);
+}
+
+}  // namespace
+
 Status writeFileAtomically(const std::string& path, const std::string& content) {
   static std::atomic<unsigned> counter{0};
   const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
   struct stat old {};
-  const mode_t mode = ::stat(path.c_str(), &old) == 0 ? (old.st_mode & 07777) : 0644;  // keep a file's permissions
+  const bool exists = ::stat(path.c_str(), &old) == 0;
+  // The rename would replace anything, even as root: refuse what a careful user would not overwrite.
+  if (exists && !S_ISREG(old.st_mode)) return Status::error("cannot write '" + path + "': not a regular file");
+  if (exists && (old.st_mode & 0222) == 0) return Status::error("cannot write '" + path + "': the file is read-only");
+  const mode_t mode = exists ? (old.st_mode & 07777) : 0644;  // keep a file's permissions
+  removeStaleTemporaries(path);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
   if (fd < 0) return Status::error(fileError("write", path));
   (void)::fchmod(fd, mode);  // open() applies the umask; a replaced file keeps its exact mode
@@ -256,9 +317,7 @@ Status writeFileAtomically(const std::string& path, const std::string& content) 
     ::unlink(tmp.c_str());
     return st;
   }
-  const auto slash = path.rfind('/');  // make the rename itself durable
-  const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
-  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  const int dfd = ::open(directoryOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);  // the rename, durable
   if (dfd >= 0) {
     ::fsync(dfd);
     ::close(dfd);
