@@ -16,6 +16,7 @@
 
 #include "apex/core/graph.hpp"
 #include "apex/core/graph_file.hpp"
+#include "spread.hpp"
 
 #ifdef APEX_BENCH_TBB
 #include <tbb/flow_graph.h>
@@ -24,6 +25,7 @@
 
 using namespace apex;
 using Clock = std::chrono::steady_clock;
+using apex_bench::Spread;
 
 namespace {
 
@@ -146,25 +148,6 @@ double tbbHopNs(int k, long messages) {
 }
 #endif
 
-/** Median and range of repeated measurements. */
-struct Spread {
-  std::vector<double> v;
-  double median() const {
-    auto s = v;
-    std::sort(s.begin(), s.end());
-    return s.empty() ? 0 : s[s.size() / 2];
-  }
-  double min() const { return v.empty() ? 0 : *std::min_element(v.begin(), v.end()); }
-  double max() const { return v.empty() ? 0 : *std::max_element(v.begin(), v.end()); }
-  std::string text(const char* fmt = "%.0f") const {
-    char a[32], b[32], c[32];
-    std::snprintf(a, sizeof a, fmt, median());
-    std::snprintf(b, sizeof b, fmt, min());
-    std::snprintf(c, sizeof c, fmt, max());
-    return std::string(a) + " (" + b + "–" + c + ")";
-  }
-};
-
 double apexHopNs(int k, long messages) {
   Graph g(registry());
   chain(g, "bench/Source", k);
@@ -282,15 +265,15 @@ int main(int argc, char** argv) {
     const long m = std::max<long>(2000, hop_messages / k);
     Spread base, tbb, apex_ns;
     for (int r = 0; r < reps; ++r) {
-      base.v.push_back(baselineHopNs(k, m * 10));
+      base.add(baselineHopNs(k, m * 10));
 #ifdef APEX_BENCH_TBB
-      tbb.v.push_back(tbbHopNs(k, m));
+      tbb.add(tbbHopNs(k, m));
 #endif
-      apex_ns.v.push_back(apexHopNs(k, m));
+      apex_ns.add(apexHopNs(k, m));
     }
     std::printf("| %d | %s | %s | %s | %.2fx | %.0fx |\n", k, apex_ns.text().c_str(),
-                tbb.v.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(),
-                tbb.v.empty() ? 0.0 : apex_ns.median() / tbb.median(), apex_ns.median() / base.median());
+                tbb.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(),
+                tbb.empty() ? 0.0 : apex_ns.median() / tbb.median(), apex_ns.median() / base.median());
   }
 
   std::printf("\n## Thread wake-ups per group boundary\n\n");
@@ -299,30 +282,47 @@ int main(int argc, char** argv) {
   std::printf("A wake-up is counted each time a sleeping group thread is notified. With one group the thread\n");
   std::printf("is usually still finishing when the next feed comes, so it rarely sleeps; with two, group\n");
   std::printf("`default` sleeps while b works, so the feed wakes it too.\n\n");
+  std::printf("Interleaved, %d repetitions: median (min–max).\n\n", reps);
   std::printf("| layout | latency µs/message | wake-ups of `default` per message | wake-ups of b per message (boundary crossings) |\n|---|---|---|---|\n");
   const int lat_messages = quick ? 300 : 3000;
-  const Latency one = oneAtATime(8, 1 << 30, lat_messages);
-  const Latency two = oneAtATime(8, 4, lat_messages);
-  std::printf("| 1 group | %.1f | %.2f | - |\n", one.us_per_message, one.feed_wakeups);
-  std::printf("| 2 groups | %.1f | %.2f | %.2f |\n", two.us_per_message, two.feed_wakeups, two.cross_wakeups);
+  Spread one_us, one_feed, two_us, two_feed, two_cross;
+  for (int r = 0; r < reps; ++r) {
+    const Latency one = oneAtATime(8, 1 << 30, lat_messages);
+    const Latency two = oneAtATime(8, 4, lat_messages);
+    one_us.add(one.us_per_message), one_feed.add(one.feed_wakeups);
+    two_us.add(two.us_per_message), two_feed.add(two.feed_wakeups), two_cross.add(two.cross_wakeups);
+  }
+  std::printf("| 1 group | %s | %s | - |\n", one_us.text("%.1f").c_str(), one_feed.text("%.2f").c_str());
+  std::printf("| 2 groups | %s | %s | %s |\n", two_us.text("%.1f").c_str(), two_feed.text("%.2f").c_str(),
+              two_cross.text("%.2f").c_str());
 
   std::printf("\n## Pipelining across thread groups\n\n");
   std::printf("Source → work (2 ms busy) → work (2 ms busy) → sink; both works in one group, or the second\n");
-  std::printf("work and the sink in a second group. Target: at least 1.8x.\n\n");
+  std::printf("work and the sink in a second group. Target: at least 1.8x. Interleaved, %d repetitions:\n", reps);
+  std::printf("median (min–max); the ratio is of the medians.\n\n");
   const int pipe_messages = quick ? 100 : 500;
-  const double r1 = pipelineRate(false, pipe_messages);
-  const double r2 = pipelineRate(true, pipe_messages);
-  std::printf("| layout | messages/s | ratio |\n|---|---|---|\n| 1 group | %.1f | 1.00x |\n| 2 groups | %.1f | %.2fx |\n", r1,
-              r2, r2 / r1);
+  Spread r1, r2;
+  for (int r = 0; r < reps; ++r) {
+    r1.add(pipelineRate(false, pipe_messages));
+    r2.add(pipelineRate(true, pipe_messages));
+  }
+  std::printf("| layout | messages/s | ratio |\n|---|---|---|\n| 1 group | %s | 1.00x |\n| 2 groups | %s | %.2fx |\n",
+              r1.text("%.1f").c_str(), r2.text("%.1f").c_str(), r2.median() / r1.median());
 
   std::printf("\n## Graph size\n\n");
   std::printf("A chain of n relays edited on a started (idle) graph: time per edit, the whole build, and\n");
-  std::printf("saving/loading the file. Targets: ≤ 10 µs per edit, 10,000 nodes built in ≤ 100 ms, ≤ 50 µs per node saved or loaded.\n\n");
+  std::printf("saving/loading the file. Targets: ≤ 10 µs per edit, 10,000 nodes built in ≤ 100 ms, ≤ 50 µs per node saved or loaded.\n");
+  std::printf("Medians of 3 repetitions.\n\n");
   std::printf("| n | add µs | connect µs | remove µs | build ms | save µs/node | load µs/node |\n|---|---|---|---|---|---|---|\n");
   for (int n : {100, 1000, 10000}) {
-    const SizeRow r = graphSize(n);
-    std::printf("| %d | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f |\n", r.n, r.add_us, r.connect_us, r.remove_us, r.build_ms,
-                r.save_us, r.load_us);
+    Spread add, con, rem, build, save, load;
+    for (int r = 0; r < 3; ++r) {
+      const SizeRow row = graphSize(n);
+      add.add(row.add_us), con.add(row.connect_us), rem.add(row.remove_us);
+      build.add(row.build_ms), save.add(row.save_us), load.add(row.load_us);
+    }
+    std::printf("| %d | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f |\n", n, add.median(), con.median(), rem.median(),
+                build.median(), save.median(), load.median());
   }
   return 0;
 }

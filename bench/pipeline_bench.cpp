@@ -12,10 +12,12 @@
 #include "apex/core/graph.hpp"
 #include "apex_nodes/types.hpp"
 #include "plugin_types.hpp"
+#include "spread.hpp"
 
 using namespace apex;
 using apex_nodes::Image;
 using Clock = std::chrono::steady_clock;
+using apex_bench::Spread;
 
 namespace {
 
@@ -180,7 +182,7 @@ Figures loopRun(const std::vector<cv::Mat>& input, int n) {
 
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
-  const int n = quick ? 60 : 300;
+  const int n = quick ? 60 : 200;
   const auto input = frames(8);
   const int default_threads = cv::getNumThreads();
   std::printf("## The demo pipeline (Fig. 2 chain), 640x480\n\n");
@@ -190,19 +192,30 @@ int main(int argc, char** argv) {
   std::printf("In two groups the second group starts at the morphology. The overlay needs the rotated frame too:\n");
   std::printf("a Relay in the second group holds it, so rotate is free for the next frame at once (without it the\n");
   std::printf("edge rotate → overlay would serialise the two groups: no queues, by design).\n\n");
+  const int reps = quick ? 3 : 5;
+  std::printf("Variants interleaved (loop, 1 group, 2 groups, loop, ...), %d repetitions each: median\n", reps);
+  std::printf("(min–max); ratios are of the medians.\n\n");
   std::printf("| OpenCV threads | variant | latency ms | vs loop | frames/s | vs loop | vs 1 group |\n|---|---|---|---|---|---|---|\n");
   std::vector<double> apex_latency;
   for (int threads : {1, default_threads}) {
     cv::setNumThreads(threads);
-    const Figures loop = loopRun(input, n);
-    const Figures one = apexRun(false, input, n);
-    const Figures two = apexRun(true, input, n);
-    std::printf("| %d | hand-written loop | %.3f | 1.000 | %.1f | 1.00 | |\n", threads, loop.latency_ms, loop.fps);
-    apex_latency.push_back(one.latency_ms);
-    std::printf("| %d | APEX, 1 group | %.3f | %.3f | %.1f | %.2f | 1.00 |\n", threads, one.latency_ms,
-                one.latency_ms / loop.latency_ms, one.fps, one.fps / loop.fps);
-    std::printf("| %d | APEX, 2 groups | %.3f | %.3f | %.1f | %.2f | %.2f |\n", threads, two.latency_ms,
-                two.latency_ms / loop.latency_ms, two.fps, two.fps / loop.fps, two.fps / one.fps);
+    Spread loop_ms, loop_fps, one_ms, one_fps, two_ms, two_fps;
+    for (int r = 0; r < reps; ++r) {
+      const Figures loop = loopRun(input, n);
+      const Figures one = apexRun(false, input, n);
+      const Figures two = apexRun(true, input, n);
+      loop_ms.add(loop.latency_ms), loop_fps.add(loop.fps);
+      one_ms.add(one.latency_ms), one_fps.add(one.fps);
+      two_ms.add(two.latency_ms), two_fps.add(two.fps);
+    }
+    std::printf("| %d | hand-written loop | %s | 1.000 | %s | 1.00 | |\n", threads, loop_ms.text("%.3f").c_str(),
+                loop_fps.text("%.1f").c_str());
+    apex_latency.push_back(one_ms.median());
+    std::printf("| %d | APEX, 1 group | %s | %.3f | %s | %.2f | 1.00 |\n", threads, one_ms.text("%.3f").c_str(),
+                one_ms.median() / loop_ms.median(), one_fps.text("%.1f").c_str(), one_fps.median() / loop_fps.median());
+    std::printf("| %d | APEX, 2 groups | %s | %.3f | %s | %.2f | %.2f |\n", threads, two_ms.text("%.3f").c_str(),
+                two_ms.median() / loop_ms.median(), two_fps.text("%.1f").c_str(), two_fps.median() / loop_fps.median(),
+                two_fps.median() / one_fps.median());
   }
   std::printf("\nTargets: 1-group latency within 2%% of the loop; 2 groups with OpenCV at 1 thread at least 1.6x\n");
   std::printf("the frames/s of 1 group.\n");
