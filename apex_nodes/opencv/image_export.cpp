@@ -16,7 +16,7 @@ class ImageExport : public apex::Node {
         .optionalInput<Regions>("regions", "if connected: one file per region crop")
         .output<std::string>("path", "the last file written")
         .param(apex::param::path("directory", "/tmp/apex_export", apex::PathMode::Directory))
-        .param(apex::param::text("prefix", "frame"));
+        .param(apex::param::text("prefix", "frame").fileName().describe("the start of each file's name"));
   }
   void process() override {
     const Image& in = *input<Image>("image");

@@ -274,4 +274,9 @@ void GraphEditor::duplicateSelected() {
     if (auto* n = dynamic_cast<NodeItem*>(i)) emit duplicateRequested(QString::fromStdString(n->info().name));
 }
 
+QString GraphEditor::defaultGraphFolder() {
+  const QByteArray ros_home = qgetenv("ROS_HOME");
+  return (ros_home.isEmpty() ? QString::fromLocal8Bit(qgetenv("HOME")) + "/.ros" : QString::fromLocal8Bit(ros_home)) + "/apex/";
+}
+
 }  // namespace apex_rviz_plugin

@@ -121,6 +121,37 @@ struct Sized : Node {
   void process() override {}
 };
 
+TEST_F(GraphFileErrors, WhatTheFormatDoesNotUseIsRefused) {
+  const std::string head = "apex_graph: 1\nnodes:\n";
+  EXPECT_TRUE(Contains(loadFails(head + "  - name: a\n    type: test/Relay\n    parameters: {x: 1}\n    parameters: {x: 2}\n"),
+                       {"line 6", "node 'a': the key 'parameters' appears twice"}));
+  EXPECT_TRUE(Contains(loadFails(head + "  - {name: a, type: test/Gain, parameters: {gain: 1, gain: 2}}\n"),
+                       {"the parameter 'gain' appears twice"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\napex_graph: 1\nnodes: []\n"), {"the key 'apex_graph' appears twice"}));
+  EXPECT_TRUE(Contains(loadFails(head + "  - {name: a, type: test/Relay}\n---\napex_graph: 1\nnodes: []\n"),
+                       {"one YAML document, and this is a second one"}));
+  EXPECT_TRUE(Contains(loadFails(head + "  - {name: a, type: test/Relay, ui: !!binary aGVsbG8=}\n"),
+                       {"line 3", "the tag 'tag:yaml.org,2002:binary' is not part of the graph format"}));
+  EXPECT_TRUE(Contains(loadFails(head + "  - {name: !custom a, type: test/Relay}\n"), {"the tag '!custom'"}));
+}
+
+TEST_F(GraphFileErrors, SizesBeyondTheLimitsAreRefusedNotRunOutOfMemory) {
+  std::string bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n";  // ten to the ninth values through aliases
+  for (char c = 'b'; c <= 'j'; ++c)
+    bomb += std::string(1, c) + ": &" + c + " [*" + char(c - 1) + ", *" + char(c - 1) + ", *" + char(c - 1) + ", *" +
+            char(c - 1) + ", *" + char(c - 1) + ", *" + char(c - 1) + ", *" + char(c - 1) + ", *" + char(c - 1) + ", *" +
+            char(c - 1) + ", *" + char(c - 1) + "]\n";
+  EXPECT_TRUE(Contains(loadFails(bomb), {"more than " + std::to_string(apex::kMaxYamlNodes) + " values"}));
+  const std::string deep = std::string(10000, '[') + std::string(10000, ']');
+  EXPECT_FALSE(loadFails("apex_graph: 1\nnodes:\n  - {name: a, type: test/Relay, ui: " + deep + "}\n").empty());
+  std::string many = "apex_graph: 1\nnodes: [";
+  for (int i = 0; i < 30000; ++i) many += "{}, ";
+  EXPECT_TRUE(Contains(loadFails(many + "]\n"), {"30000 nodes, over the limit of 20000"}));
+  const std::string lots(100000, 'x');
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: a, type: test/Relay, ui: " + lots + "}\n"),
+                       {"a value of 100000 characters, over the limit of 65536"}));
+}
+
 TEST(GraphFileErrorsMapValue, ParameterMapMissingAKeyIsAnErrorNotAnException) {
   NodeRegistry registry = testRegistry();
   ASSERT_TRUE(registry.add<Sized>("test/Sized"));

@@ -27,6 +27,7 @@
 
 using namespace apex_test;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace {
 
@@ -231,8 +232,8 @@ TEST_F(Services, SaveAndLoadTouchOnlyRegularFiles) {
   ASSERT_EQ(::mkfifo(load.path.c_str(), 0644), 0);
   const auto t0 = ros::WallTime::now();
   refused(call<apex::LoadGraph>("load_graph", load), before, "not a regular file");  // waited for a writer forever
-  load.path = "/dev/zero";                                                             // read without end
-  refused(call<apex::LoadGraph>("load_graph", load), before, "not a regular file");
+  load.path = "/dev/zero";  // read without end; now outside the roots as well
+  refused(call<apex::LoadGraph>("load_graph", load), before, "'/dev/zero'");
   EXPECT_LT((ros::WallTime::now() - t0).toSec(), 2.0);
   EXPECT_EQ(call<apex::GetGraph>("get_graph").graph.nodes.size(), 1u) << "the service threads are free";
 
@@ -249,6 +250,60 @@ TEST_F(Services, SaveAndLoadTouchOnlyRegularFiles) {
   EXPECT_THAT(res.message, HasSubstr("read-only"));
   ::unlink(tempPath("pipe.yaml").c_str());
   ::unlink(tempPath("locked.yaml").c_str());
+}
+
+TEST_F(Services, PathsFromServicesStayInTheRoots) {  // services.test: ~file_roots [/tmp]
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
+  const std::string before = graphText();
+  apex::SaveGraph::Request save;
+  for (const std::string path : {"/etc/apex_probe.yaml", "/tmp/../etc/apex_probe.yaml", "/root/apex_probe.yaml"}) {
+    save.path = path;
+    auto res = call<apex::SaveGraph>("save_graph", save);
+    EXPECT_FALSE(res.success) << path;
+    EXPECT_THAT(res.message, HasSubstr("is outside the folders files may be read or written in (/tmp)")) << path;
+  }
+  const std::string link = tempPath("etc_link");
+  ASSERT_EQ(::symlink("/etc", link.c_str()), 0);
+  save.path = link + "/apex_probe.yaml";
+  EXPECT_THAT(call<apex::SaveGraph>("save_graph", save).message, HasSubstr("'/etc/apex_probe.yaml'"));
+  struct stat st {};
+  EXPECT_NE(::stat("/etc/apex_probe.yaml", &st), 0) << "created outside the roots";
+  ::unlink(link.c_str());
+
+  apex::LoadGraph::Request load;
+  load.path = "/etc/passwd";
+  auto loaded = call<apex::LoadGraph>("load_graph", load);
+  EXPECT_FALSE(loaded.success);
+  EXPECT_THAT(loaded.message, HasSubstr("outside"));
+  EXPECT_THAT(loaded.message, Not(HasSubstr("root:")));  // nothing of the file is echoed
+  EXPECT_EQ(graphText(), before);
+
+  // path parameters: through set_parameter, add_node and the files load_graph reads
+  ASSERT_TRUE(addNode("apex_nodes/ImageExport", "export").success);
+  apex::SetParameter::Request set;
+  set.node = "export", set.parameter = "directory", set.value = "/etc";
+  auto res = call<apex::SetParameter>("set_parameter", set);
+  EXPECT_FALSE(res.success);
+  EXPECT_THAT(res.message, HasSubstr("node 'export': parameter 'directory': path '/etc' is outside"));
+  EXPECT_EQ(res.value, "/tmp/apex_export");
+  set.value = "/tmp/apex_export/../apex_other";
+  res = call<apex::SetParameter>("set_parameter", set);
+  EXPECT_TRUE(res.success) << res.message;
+  EXPECT_EQ(res.value, "/tmp/apex_other") << "passed on resolved";
+  set.parameter = "prefix", set.value = "../../../../tmp/x/trav";
+  EXPECT_THAT(call<apex::SetParameter>("set_parameter", set).message, HasSubstr("is a file name, not a path"));
+  auto bag = addNode("apex_nodes/BagReader", "bag", "{file: /etc/shadow}");
+  EXPECT_FALSE(bag.success);
+  EXPECT_THAT(bag.message, HasSubstr("parameter 'file': path '/etc/shadow' is outside"));
+  ASSERT_TRUE(addNode("apex_nodes/BagReader", "bag", "").success);
+  set.node = "bag", set.parameter = "file", set.value = tempPath("no_such.bag");
+  EXPECT_THAT(call<apex::SetParameter>("set_parameter", set).message, HasSubstr("no such file"));
+  load.path = tempPath("reads_shadow.yaml");
+  writeFile(load.path, "apex_graph: 1\nnodes:\n  - {name: b, type: apex_nodes/BagReader, parameters: {file: /etc/shadow}}\n");
+  loaded = call<apex::LoadGraph>("load_graph", load);
+  EXPECT_FALSE(loaded.success);
+  EXPECT_THAT(loaded.message, HasSubstr("line 3: node 'b': parameter 'file': path '/etc/shadow' is outside"));
+  ::unlink(load.path.c_str());
 }
 
 TEST_F(Services, ControlPausesResumesSteps) {

@@ -38,8 +38,10 @@ struct ParseError {
 }
 
 void onlyKeys(const YAML::Node& map, const std::set<std::string>& known, const std::string& what) {
+  std::set<std::string> seen;
   for (const auto& kv : map) {
     const auto key = kv.first.as<std::string>();
+    if (!seen.insert(key).second) fail(kv.first, what + ": the key '" + key + "' appears twice");
     if (known.count(key)) continue;
     std::string list;
     for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
@@ -72,7 +74,12 @@ NodeDescription parseNode(const YAML::Node& n) {
   }
   if (const auto p = n["parameters"]) {
     if (!p.IsMap()) fail(p, what + ": 'parameters' must be a mapping of name: value");
-    for (const auto& kv : p) d.parameters.emplace_back(kv.first.as<std::string>(), flow(kv.second));
+    std::set<std::string> seen;
+    for (const auto& kv : p) {
+      const auto name = kv.first.as<std::string>();
+      if (!seen.insert(name).second) fail(kv.first, what + ": the parameter '" + name + "' appears twice");
+      d.parameters.emplace_back(name, flow(kv.second));
+    }
   }
   if (const auto i = n["interactive"]) {
     if (!i.IsSequence()) fail(i, what + ": 'interactive' must be a list of parameter names");
@@ -90,7 +97,39 @@ std::pair<std::string, std::string> endpoint(const YAML::Node& c, const char* ke
   return {text.substr(0, slash), text.substr(slash + 1)};
 }
 
+std::string tooMany(std::size_t n, const char* what, std::size_t limit) {
+  return std::to_string(n) + " " + what + ", over the limit of " + std::to_string(limit);
+}
+
+/** Everything the format does not use is refused before it is read: tags (!!binary, !custom),
+ *  nesting deeper than kMaxYamlDepth, long strings, and more than kMaxYamlNodes values counted
+ *  through aliases (an alias bomb expands exponentially). */
+void checkTree(const YAML::Node& root) {
+  std::vector<std::pair<YAML::Node, int>> stack{{root, 0}};
+  std::size_t visited = 0;
+  while (!stack.empty()) {
+    auto [n, depth] = stack.back();
+    stack.pop_back();
+    if (++visited > kMaxYamlNodes) fail(root, "more than " + std::to_string(kMaxYamlNodes) + " values (aliases included)");
+    if (depth > kMaxYamlDepth) fail(n, "nested deeper than " + std::to_string(kMaxYamlDepth) + " levels");
+    const std::string& tag = n.Tag();
+    if (!tag.empty() && tag != "?" && tag != "!") fail(n, "the tag '" + tag + "' is not part of the graph format");
+    if (n.IsScalar() && n.Scalar().size() > kMaxYamlString)
+      fail(n, "a value of " + std::to_string(n.Scalar().size()) + " characters, over the limit of " +
+                  std::to_string(kMaxYamlString));
+    if (n.IsSequence()) {
+      for (const auto& item : n) stack.push_back({item, depth + 1});
+    } else if (n.IsMap()) {
+      for (const auto& kv : n) {
+        stack.push_back({kv.first, depth + 1});
+        stack.push_back({kv.second, depth + 1});
+      }
+    }
+  }
+}
+
 GraphDescription parseRoot(const YAML::Node& root) {
+  checkTree(root);
   if (!root.IsMap() || !root["apex_graph"])
     fail(root, "not an APEX graph: the file must be a mapping with the key 'apex_graph: " +
                    std::to_string(kGraphFormatVersion) + "'");
@@ -103,14 +142,17 @@ GraphDescription parseRoot(const YAML::Node& root) {
   GraphDescription d;
   if (const auto g = root["thread_groups"]) {
     if (!g.IsSequence()) fail(g, "'thread_groups' must be a list of names");
+    if (g.size() > kMaxGraphGroups) fail(g, tooMany(g.size(), "thread groups", kMaxGraphGroups));
     for (const auto& name : g) d.thread_groups.push_back(name.as<std::string>());
   }
   if (const auto nodes = root["nodes"]) {
     if (!nodes.IsSequence()) fail(nodes, "'nodes' must be a list");
+    if (nodes.size() > kMaxGraphNodes) fail(nodes, tooMany(nodes.size(), "nodes", kMaxGraphNodes));
     for (const auto& n : nodes) d.nodes.push_back(parseNode(n));
   }
   if (const auto conns = root["connections"]) {
     if (!conns.IsSequence()) fail(conns, "'connections' must be a list");
+    if (conns.size() > kMaxGraphConnections) fail(conns, tooMany(conns.size(), "connections", kMaxGraphConnections));
     for (const auto& c : conns) {
       if (!c.IsMap()) fail(c, "a connection must be a mapping {from: node/port, to: node/port}");
       onlyKeys(c, {"from", "to"}, "connection");
@@ -161,7 +203,9 @@ Result<std::vector<std::pair<std::string, std::string>>> parseParameterMap(const
 
 Result<GraphDescription> parseGraphText(const std::string& text) {
   try {
-    return parseRoot(YAML::Load(text));
+    const auto documents = YAML::LoadAll(text);
+    if (documents.size() > 1) fail(documents[1], "a graph file holds one YAML document, and this is a second one");
+    return parseRoot(documents.empty() ? YAML::Node() : documents[0]);
   } catch (const ParseError& e) {
     return Status::error(e.message);
   } catch (const YAML::Exception& e) {  // syntax errors carry their position
@@ -235,13 +279,16 @@ Result<std::string> readGraphFile(const std::string& path) {
   return text;
 }
 
-Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path) {
+Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path,
+                                 const std::function<Status(NodeDescription&)>& check) {
   auto read = readGraphFile(path);
   if (!read) return read.status();
-  std::stringstream text;
-  text << read.value();
-  auto description = parseGraphText(text.str());
+  auto description = parseGraphText(read.value());
   if (!description) return Status::error("'" + path + "', " + description.message());
+  if (check)
+    for (auto& node : description.value().nodes)
+      if (auto st = check(node); !st)
+        return Status::error("'" + path + "', " + (node.line ? "line " + std::to_string(node.line) + ": " : "") + st.message());
   auto report = graph.load(description.value());
   if (!report) return Status::error("'" + path + "', " + report.message());
   LoadReport named = report.value();

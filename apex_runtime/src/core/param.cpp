@@ -70,6 +70,11 @@ ParamSpec make(std::string name, ParamKind kind, ParamValue def) {
   return s;
 }
 
+Status checkFileName(const ParamSpec& s, const std::string& v) {
+  if (v.find('/') == std::string::npos && v.find('\0') == std::string::npos && v != "." && v != "..") return Status::ok();
+  return Status::error("parameter '" + s.name + "' is a file name, not a path: '" + v + "' (no '/', not '.' or '..')");
+}
+
 }  // namespace
 
 Status ParamSpec::validate(const ParamValue& v) const {
@@ -81,6 +86,8 @@ Status ParamSpec::validate(const ParamValue& v) const {
       return std::isfinite(std::get<double>(v)) ? Status::ok()
                                                  : Status::error("parameter '" + name + "' is not a finite number");
     case ParamKind::String:
+      if (!holds<std::string>(v)) return wrongType(*this, v);
+      return file_name ? checkFileName(*this, std::get<std::string>(v)) : Status::ok();
     case ParamKind::Path: return holds<std::string>(v) ? Status::ok() : wrongType(*this, v);
     case ParamKind::IntRange: return holds<int>(v) ? checkIntRange(*this, std::get<int>(v)) : wrongType(*this, v);
     case ParamKind::DoubleRange:

@@ -19,9 +19,14 @@
 #include <apex/SetThreadGroup.h>
 #include <apex/SetUi.h>
 
+#include <ros/package.h>
+
+#include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <mutex>
 
+#include "apex/core/file_roots.hpp"
 #include "apex/core/graph_file.hpp"
 #include "apex/core/log.hpp"
 #include "convert.hpp"
@@ -60,6 +65,7 @@ struct RuntimeHost::Impl {
   ros::NodeHandle nh, pnh;
   std::unique_ptr<PluginTypes> plugins;  // first: node code lives in its libraries, so they outlive the graph
   Graph graph;
+  FileRoots roots;  // what paths from services may name (~file_roots)
   std::vector<std::string> load_errors;
   Inspection inspection;
   ParamMirror mirror;
@@ -108,6 +114,7 @@ struct RuntimeHost::Impl {
     auto params = parseParameterMap(req.parameters);
     if (!params) return answered(res, Status::error("parameters: " + params.message()));
     d.parameters = params.value();
+    if (auto st = confine(d); !st) return answered(res, st);
     if (auto type = graph.registry().find(req.type))
       for (const auto& p : type->manifest->params) if (p.interactive) d.interactive.push_back(p.name);
     auto added = graph.addNode(d);
@@ -134,7 +141,8 @@ struct RuntimeHost::Impl {
   }
 
   bool setParameter(SetParameter::Request& req, SetParameter::Response& res) {
-    auto applied = graph.setParameter(req.node, req.parameter, req.value);
+    auto value = confinedValue(graph.nodeType(req.node), req.node, req.parameter, req.value);
+    auto applied = value ? graph.setParameter(req.node, req.parameter, value.value()) : Result<std::string>(value.status());
     if (applied) {
       res.value = applied.value();
     } else if (auto old = graph.parameterValue(req.node, req.parameter)) {
@@ -165,7 +173,9 @@ struct RuntimeHost::Impl {
   }
 
   bool loadGraph(LoadGraph::Request& req, LoadGraph::Response& res) {
-    auto report = loadGraphFile(graph, req.path);
+    auto path = roots.resolve(req.path);
+    if (!path) return answered(res, path.status());
+    auto report = loadGraphFile(graph, path.value(), [this](NodeDescription& d) { return confine(d); });
     if (report) {
       res.warnings = report.value().warnings;
       inspection.clear();
@@ -175,7 +185,57 @@ struct RuntimeHost::Impl {
   }
 
   bool saveGraph(SaveGraph::Request& req, SaveGraph::Response& res) {
-    return answered(res, saveGraphFile(graph, req.path));
+    auto path = roots.resolve(req.path);
+    return answered(res, path ? saveGraphFile(graph, path.value()) : path.status());
+  }
+
+  // ------------------------------------------------------------ paths from outside
+
+  /** A parameter value from a service: a path parameter's value must lie in the roots and be
+   *  what its mode needs (a bag to read must exist); it is passed on resolved. */
+  Result<std::string> confinedValue(const std::shared_ptr<const NodeType>& type, const std::string& node,
+                                    const std::string& param, const std::string& text) {
+    if (!type) return text;  // the graph names the unknown node or type
+    for (const auto& spec : type->manifest->params) {
+      if (spec.name != param || spec.kind != ParamKind::Path) continue;
+      auto value = spec.parse(text);
+      if (!value || std::get<std::string>(value.value()).empty()) return text;  // the graph says why / nothing to open
+      auto path = roots.check(std::get<std::string>(value.value()), spec.path_mode);
+      if (!path) return Status::error("node '" + node + "': parameter '" + param + "': " + path.message());
+      return quoteIfNeeded(path.value());
+    }
+    return text;
+  }
+
+  Status confine(NodeDescription& d) {
+    const auto type = graph.registry().find(d.type);
+    for (auto& [param, text] : d.parameters) {
+      auto value = confinedValue(type, d.name, param, text);
+      if (!value) return value.status();
+      text = value.value();
+    }
+    return Status::ok();
+  }
+
+  /** ~file_roots, or: the package's graphs/, $ROS_HOME/apex (made if missing) and the
+   *  folder of the graph loaded at start. */
+  void loadRoots() {
+    std::vector<std::string> list;
+    if (!pnh.getParam("file_roots", list)) {
+      const std::string package = ros::package::getPath("apex");
+      if (!package.empty()) list.push_back(package + "/graphs");
+      const char* ros_home = std::getenv("ROS_HOME");
+      const char* home = std::getenv("HOME");
+      const std::string own = ros_home && *ros_home ? std::string(ros_home) : std::string(home ? home : "") + "/.ros";
+      std::error_code ec;
+      std::filesystem::create_directories(own + "/apex", ec);
+      list.push_back(own + "/apex");
+      std::string startup;
+      if (pnh.getParam("graph", startup) && !startup.empty())
+        list.push_back(std::filesystem::absolute(startup).parent_path().string());
+    }
+    roots = FileRoots(list, [](const std::string& pkg) { return ros::package::getPath(pkg); });
+    ROS_INFO_STREAM_NAMED("apex", "paths from services may name files in: " << roots.list());
   }
 
   bool control(Control::Request& req, Control::Response& res) {
@@ -305,7 +365,8 @@ struct RuntimeHost::Impl {
 RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Impl(nh, pnh)) {
   installRosconsoleSink();
   impl_->loadTypes();
-  impl_->loadStartupGraph();
+  impl_->loadRoots();
+  impl_->loadStartupGraph();  // trusted, like ~overrides: the operator's own launch file
   impl_->graph.start();
   impl_->advertise();
   impl_->publishIfChanged();

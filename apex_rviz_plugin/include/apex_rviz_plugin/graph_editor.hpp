@@ -81,7 +81,8 @@ class GraphEditor : public QWidget {
   QToolButton *pause_, *undo_, *redo_;
   int added_ = 0;
   bool fit_pending_ = true;
-  QString last_path_;
+  QString last_path_ = defaultGraphFolder();  // where a runtime saves and loads by default (~file_roots)
+  static QString defaultGraphFolder();
 };
 
 }  // namespace apex_rviz_plugin

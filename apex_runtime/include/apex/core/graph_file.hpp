@@ -1,6 +1,8 @@
 // The graph file format (versioned YAML). See docs/graph_format.md.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <string>
 
 #include "apex/core/description.hpp"
@@ -10,8 +12,15 @@
 namespace apex {
 
 inline constexpr int kGraphFormatVersion = 1;
-/** A graph file larger than this is refused before it is read (a real graph is a few hundred KiB). */
-inline constexpr long kMaxGraphFileBytes = 16L << 20;
+/** Limits of a graph file, far above real graphs (the demo has 12 nodes); beyond them a file
+ *  is refused with a message naming the limit, before it is built. */
+inline constexpr long kMaxGraphFileBytes = 16L << 20;       ///< checked before reading
+inline constexpr std::size_t kMaxGraphNodes = 20000;
+inline constexpr std::size_t kMaxGraphConnections = 100000;
+inline constexpr std::size_t kMaxGraphGroups = 256;
+inline constexpr int kMaxYamlDepth = 32;                     ///< nesting, e.g. inside a node's `ui`
+inline constexpr std::size_t kMaxYamlNodes = 2000000;        ///< values, counted through aliases
+inline constexpr std::size_t kMaxYamlString = 1 << 16;       ///< characters in one value
 
 /** @brief Parses graph YAML; errors name the line and what is wrong. */
 Result<GraphDescription> parseGraphText(const std::string& yaml_text);
@@ -24,8 +33,11 @@ Result<std::vector<std::pair<std::string, std::string>>> parseParameterMap(const
 /** @brief The text of a graph file: only a regular file of at most kMaxGraphFileBytes
  *  (a FIFO or a device is refused at once, never waited on). */
 Result<std::string> readGraphFile(const std::string& path);
-/** @brief Reads and loads a graph file into `graph`, all or nothing. */
-Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path);
+/** @brief Reads and loads a graph file into `graph`, all or nothing. `check`, if given, sees
+ *  each node's description first and may refuse it (the load is then refused, naming the
+ *  line) or rewrite its parameters (e.g. resolve paths). */
+Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path,
+                                 const std::function<Status(NodeDescription&)>& check = {});
 /** @brief Saves the graph atomically: the file is either the old one or the whole new one. */
 Status saveGraphFile(const Graph& graph, const std::string& path);
 /** @brief Writes a temporary file beside `path`, flushes it to disk, renames it over `path`.

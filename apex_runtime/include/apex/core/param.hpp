@@ -45,9 +45,12 @@ struct ParamSpec {
   std::vector<std::string> options;    ///< sets
   PathMode path_mode = PathMode::Read; ///< paths
   bool interactive = false;            ///< gets ports by default
+  bool file_name = false;              ///< strings: a single file name, never a path (no '/', not "." or "..")
 
   ParamSpec& describe(std::string text) { description = std::move(text); return *this; }
   ParamSpec& makeInteractive(bool on = true) { interactive = on; return *this; }
+  /** @brief A string that names a file inside a folder given elsewhere: it cannot carry a path out of it. */
+  ParamSpec& fileName() { file_name = true; return *this; }
 
   /** @brief Checks a value's type and bounds; the message names the parameter. */
   Status validate(const ParamValue& value) const;
