@@ -8,6 +8,7 @@
 
 #include "apex/ros/node_plugin.hpp"
 #include "apex_nodes/ros_convert.hpp"
+#include "shared_image_transport.hpp"
 
 namespace apex_nodes {
 
@@ -27,6 +28,7 @@ class BagReader : public apex::Node {
         .param(apex::param::boolean("playing", true))
         .driven();
   }
+  ~BagReader() override { close(); }
   void setup() override { open(); }
   void parameterChanged(const std::string& name) override {
     if (name == "file" || name == "image_topic" || name == "cloud_topic") open();
@@ -50,17 +52,27 @@ class BagReader : public apex::Node {
   }
 
  private:
-  void open() {
+  /** rosbag loads and unloads its encryptor plugins through pluginlib when a bag opens and
+   *  closes: under the node library's plugin lock, or another thread group's image_transport
+   *  set-up crashes the process ("Could not unload library"). */
+  void close() {
+    std::lock_guard<std::mutex> lock(pluginLoaderMutex());
     view_.reset();
     bag_.reset();
+  }
+  void open() {
+    close();
     const std::string file = param<std::string>("file");
     if (file.empty()) return;
-    bag_ = std::make_unique<rosbag::Bag>();
-    try {
-      bag_->open(file, rosbag::bagmode::Read);
-    } catch (const rosbag::BagException& e) {
-      bag_.reset();
-      throw std::invalid_argument("cannot open bag '" + file + "': " + e.what());
+    {
+      std::lock_guard<std::mutex> lock(pluginLoaderMutex());
+      bag_ = std::make_unique<rosbag::Bag>();
+      try {
+        bag_->open(file, rosbag::bagmode::Read);
+      } catch (const rosbag::BagException& e) {
+        bag_.reset();
+        throw std::invalid_argument("cannot open bag '" + file + "': " + e.what());
+      }
     }
     view_ = std::make_unique<rosbag::View>(
         *bag_, rosbag::TopicQuery({param<std::string>("image_topic"), param<std::string>("cloud_topic")}));

@@ -3,12 +3,13 @@
 #include <mutex>
 
 namespace apex_nodes {
-namespace {
 
-std::mutex& loaderMutex() {
+std::mutex& pluginLoaderMutex() {
   static std::mutex m;
   return m;
 }
+
+namespace {
 
 /** Made on first use, after ros::init; never destroyed, so its plugin libraries are never unloaded
  *  while another thread loads them (and not at exit, after class_loader's own statics are gone). */
@@ -20,14 +21,14 @@ image_transport::ImageTransport& transport() {
 }  // namespace
 
 image_transport::Publisher advertiseImage(const std::string& topic, uint32_t queue_size) {
-  std::lock_guard<std::mutex> lock(loaderMutex());
+  std::lock_guard<std::mutex> lock(pluginLoaderMutex());
   return transport().advertise(topic, queue_size);
 }
 
 image_transport::Subscriber subscribeImage(const std::string& topic, uint32_t queue_size,
                                            const ImageCallback& callback,
                                            const std::string& transport_name) {
-  std::lock_guard<std::mutex> lock(loaderMutex());
+  std::lock_guard<std::mutex> lock(pluginLoaderMutex());
   return transport().subscribe(topic, queue_size, callback, ros::VoidPtr(),
                                image_transport::TransportHints(transport_name));
 }

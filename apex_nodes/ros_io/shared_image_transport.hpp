@@ -10,9 +10,14 @@
 
 #include <image_transport/image_transport.h>
 
+#include <mutex>
 #include <string>
 
 namespace apex_nodes {
+
+/** @brief Held by every use of pluginlib/class_loader in the node library (image_transport,
+ *  rosbag's encryptor plugins when a bag is opened or closed), so no two load or unload at once. */
+std::mutex& pluginLoaderMutex();
 
 using ImageCallback = boost::function<void(const sensor_msgs::ImageConstPtr&)>;
 

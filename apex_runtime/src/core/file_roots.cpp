@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -30,7 +31,8 @@ FileRoots::FileRoots(const std::vector<std::string>& roots, PackageResolver pack
     if (!expanded) continue;
     std::error_code ec;
     const fs::path canonical = fs::weakly_canonical(fs::absolute(expanded.value()), ec);
-    if (!ec) roots_.push_back(canonical.string());
+    if (!ec && std::find(roots_.begin(), roots_.end(), canonical.string()) == roots_.end())
+      roots_.push_back(canonical.string());
   }
 }
 

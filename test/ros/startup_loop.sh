@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Start-up without races: the runtime starts with the demo graph (BagReader opening
+# its bag while the image nodes set up image_transport on other thread groups, all
+# through pluginlib) and is stopped again, N times in a row (default 50); each
+# start must reach its first overlay frame and exit 0. Writes a JUnit result.
+#   startup_loop.sh RESULT_XML BAG [N]   (with the devel space sourced)
+set -u
+out=$1 bag=$2 rounds=${3:-50}
+port=$((20000 + RANDOM % 20000))
+export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
+graph=$(rospack find apex)/graphs/paper_pipeline.yaml
+failure=""
+
+roscore -p "$port" >/dev/null 2>&1 &
+core=$!
+timeout 30 bash -c 'until rostopic list >/dev/null 2>&1; do sleep 0.2; done' || failure="the master never started"
+rosparam set /apex/graph "$graph"
+rosparam set /apex/overrides "{bag: {file: '$bag', loop: true, rate: 0.0}}"
+
+for ((i = 1; i <= rounds && ${#failure} == 0; i++)); do
+  log="$ROS_HOME/startup_$i.log"
+  rosrun apex apex_runtime_node >"$log" 2>&1 &
+  node=$!
+  if ! timeout 30 rostopic echo -n 1 --noarr /apex_demo/overlay >/dev/null 2>&1; then
+    failure="start $i: no overlay frame within 30 s ($(grep -m1 -E 'terminate|Segmentation|unload|No plugins' "$log"))"
+  fi
+  kill -INT "$node" 2>/dev/null
+  timeout 10 tail --pid="$node" -s 0.02 -f /dev/null
+  if kill -0 "$node" 2>/dev/null; then
+    [ -n "$failure" ] || failure="start $i: still running 10 s after SIGINT"
+    kill -9 "$node"
+  fi
+  wait "$node"; rc=$?
+  [ -n "$failure" ] || [ "$rc" -eq 0 ] || failure="start $i: exited with $rc ($(grep -m1 -E 'terminate|Segmentation|unload|No plugins' "$log"))"
+done
+kill -TERM "$core" 2>/dev/null
+wait "$core" 2>/dev/null
+
+mkdir -p "$(dirname "$out")"
+{
+  echo '<?xml version="1.0" encoding="UTF-8"?>'
+  echo "<testsuite name=\"startup_loop\" tests=\"1\" failures=\"$([ -z "$failure" ] && echo 0 || echo 1)\">"
+  echo "  <testcase classname=\"Startup\" name=\"TheDemoGraphStarts${rounds}TimesWithoutACrash\">"
+  [ -z "$failure" ] || echo "    <failure message=\"${failure//\"/\'}\"/>"
+  echo '  </testcase>'
+  echo '</testsuite>'
+} >"$out"
+[ -z "$failure" ] && echo "startup loop: $rounds starts, ok" || { echo "startup loop: $failure"; exit 1; }
