@@ -150,6 +150,7 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
   for (const auto& name : keep) group(name);
   for (auto& [seq, n] : staged.order_) {
     n->queued = false;
+    n->queued_from_outside = false;  // the staged groups and their counts go away
     n->revision = revision_;
     std::lock_guard<std::mutex> g(n->group_mutex);
     n->group = group(n->group->name());

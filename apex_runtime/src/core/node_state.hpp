@@ -125,7 +125,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 
   // scheduling
   std::atomic<int> blockers{0};
-  bool queued = false;  // group mutex
+  bool queued = false;               // group mutex
+  bool queued_from_outside = false;  // group mutex: by push(), not by this group's own firing
   std::atomic<bool> has_data{false};
   ThreadGroup* group = nullptr;
   std::mutex group_mutex;  // for readers of `group` outside edits (notifyNewData)

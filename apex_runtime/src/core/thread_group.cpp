@@ -60,6 +60,9 @@ void ThreadGroup::push(NodeState* node) {
   std::lock_guard<std::mutex> lock(m_);
   if (node->queued) return;
   queueLocked(node);
+  node->queued_from_outside = true;
+  ++queued_from_outside_;
+  updateAttention();
   if (waiting_ && pause_requests_ == 0 && canFire()) {
     waiting_ = false;  // one wake-up is enough: later pushes find the thread awake
     wakeups_.fetch_add(1, std::memory_order_relaxed);
@@ -72,6 +75,11 @@ void ThreadGroup::unqueue(NodeState* node) {
   if (!node->queued) return;
   ready_.erase(std::remove(ready_.begin(), ready_.end(), node), ready_.end());
   node->queued = false;
+  if (node->queued_from_outside) {
+    node->queued_from_outside = false;
+    --queued_from_outside_;
+    updateAttention();
+  }
 }
 
 void ThreadGroup::post(Mail mail) {
@@ -226,6 +234,11 @@ void ThreadGroup::run() {
       ready_.pop_front();
       node->queued = false;
       if (hold_) --step_budget_;
+      if (node->queued_from_outside) {
+        node->queued_from_outside = false;
+        --queued_from_outside_;
+        updateAttention();
+      }
       busy_ = true;
       lock.unlock();
       runFirings(node);

@@ -79,9 +79,12 @@ class ThreadGroup {
   /** Fires `node`, then the successors it made ready here, while nothing else needs the thread. */
   void runFirings(NodeState* node);
   void queueLocked(NodeState* node);
-  /** Something besides firing needs the thread: a pause, mail, a hold or stop (under m_). */
+  /** Something besides the inline chain needs the thread: a pause, mail, a hold, stop, or a
+   *  node another thread made ready (often one that frees a sender in another group: it must
+   *  not wait behind this group's whole chain, or two groups stop overlapping). Under m_. */
   void updateAttention() {
-    attention_.store(pause_requests_ > 0 || !mail_.empty() || hold_ || stop_, std::memory_order_relaxed);
+    attention_.store(pause_requests_ > 0 || !mail_.empty() || hold_ || stop_ || queued_from_outside_ > 0,
+                     std::memory_order_relaxed);
   }
   bool canFire() const { return !ready_.empty() && (!hold_ || step_budget_ > 0); }
   // a stopped group counts as idle: nothing will run there until it starts again
@@ -106,6 +109,7 @@ class ThreadGroup {
   std::thread thread_;
   std::atomic<bool> attention_{false};
   NodeState* inline_next_ = nullptr;    // made ready by that firing, runs next (thread only)
+  int queued_from_outside_ = 0;         // nodes in ready_ that push() put there (m_)
   static constexpr int kInlineRun = 256;  // then the queue gets a turn
 
   std::atomic<std::uint64_t> firings_{0}, wakeups_{0};
