@@ -69,6 +69,7 @@ class TopicCounter {
  public:
   TopicCounter(ros::NodeHandle& nh, const std::string& topic)
       : sub_(nh.subscribe<Msg>(topic, 5, [this](const typename Msg::ConstPtr&) { ++count_; })) {}
+  long count() const { return count_; }
   /** At least `n` more messages arrive within `timeout` seconds. */
   bool flows(long n = 3, double timeout = 20) {
     const long start = count_;

@@ -1,0 +1,103 @@
+// Malformed messages published to the running demo graph (topic mode): each puts the
+// receiving node in an error state on ~status naming what is wrong, and the next valid
+// frame comes out as usual. Before, the image below crashed the runtime (its height x
+// step wraps around 32 bits and so matched its small buffer).
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <sensor_msgs/image_encodings.h>
+
+#include <cstring>
+
+#include <apex/RuntimeStatus.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include "apex_test/ros_client.hpp"
+
+using namespace apex_test;
+
+namespace {
+
+sensor_msgs::Image image(std::uint32_t width, std::uint32_t height, std::uint32_t step, std::size_t bytes) {
+  sensor_msgs::Image m;
+  m.header.frame_id = "camera";
+  m.header.stamp = ros::Time::now();
+  m.width = width, m.height = height, m.step = step, m.encoding = sensor_msgs::image_encodings::BGR8;
+  m.data.assign(bytes, 128);
+  return m;
+}
+
+sensor_msgs::PointCloud2 cloud(std::uint32_t points) {
+  sensor_msgs::PointCloud2 m;
+  m.header.frame_id = "camera";
+  m.header.stamp = ros::Time::now();
+  m.width = points, m.height = 1, m.point_step = 16, m.row_step = 16 * points, m.is_dense = true;
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    sensor_msgs::PointField f;
+    f.name = std::string(1, char('x' + i)), f.offset = 4 * i, f.datatype = sensor_msgs::PointField::FLOAT32, f.count = 1;
+    m.fields.push_back(f);
+  }
+  m.data.resize(16 * points);
+  for (std::uint32_t p = 0; p < points; ++p) {
+    const float xyz[3] = {0.01f * (p % 100), 0.01f * (p / 100), 1.0f};
+    std::memcpy(&m.data[16 * p], xyz, sizeof xyz);
+  }
+  return m;
+}
+
+/** The error ~status shows for `node` (waits up to a few statuses for one). */
+std::string errorOf(ros::NodeHandle& nh, const std::string& node) {
+  for (int i = 0; i < 10; ++i) {
+    apex::RuntimeStatus status;
+    if (!receive(nh, "/apex/status", status, 3.0)) return "(no ~status: the runtime is gone?)";
+    for (const auto& n : status.nodes)
+      if (n.name == node && !n.error.empty()) return n.error;
+  }
+  return "";
+}
+
+template <class Msg>
+void publishUntilSubscribed(ros::Publisher& pub, const Msg& m) {
+  for (int i = 0; i < 200 && pub.getNumSubscribers() == 0; ++i) ros::WallDuration(0.05).sleep();
+  pub.publish(m);
+}
+
+TEST(BadMessages, AMalformedFrameIsANamedErrorAndTheNextFrameFlows) {
+  ros::NodeHandle nh;
+  ros::Publisher images = nh.advertise<sensor_msgs::Image>("/camera/image_raw", 1);
+  ros::Publisher clouds = nh.advertise<sensor_msgs::PointCloud2>("/camera/points", 1);
+  TopicCounter<sensor_msgs::Image> overlay(nh, "/apex_demo/overlay");
+  TopicCounter<sensor_msgs::PointCloud2> points(nh, "/apex_demo/points");
+  // Valid frames, one every 100 ms (no queues: one published while another is in flight is
+  // dropped), until both outputs have shown one, or 20 s.
+  auto valid = [&] {
+    const long seen_images = overlay.count(), seen_points = points.count();
+    for (int i = 0; i < 200 && (overlay.count() == seen_images || points.count() == seen_points); ++i) {
+      publishUntilSubscribed(images, image(640, 480, 640 * 3, 640 * 480 * 3));
+      publishUntilSubscribed(clouds, cloud(2000));
+      ros::WallDuration(0.1).sleep();
+    }
+    return overlay.count() > seen_images && points.count() > seen_points;
+  };
+  ASSERT_TRUE(valid()) << "no overlay or no cloud from valid frames";
+
+  publishUntilSubscribed(images, image(21845, 65536, 65537, 65536));  // 65536 x 65537 wraps to 65536 in 32 bits
+  EXPECT_NE(errorOf(nh, "camera").find("step x height needs 4295032832"), std::string::npos) << errorOf(nh, "camera");
+  auto far = cloud(100);
+  far.fields[1].offset = 1u << 30;
+  publishUntilSubscribed(clouds, far);
+  EXPECT_NE(errorOf(nh, "lidar").find("field 'y' (offset 1073741824) does not fit"), std::string::npos)
+      << errorOf(nh, "lidar");
+
+  EXPECT_TRUE(valid()) << "the overlay or the clouds stopped after the malformed frames";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_ros_bad_messages");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
