@@ -56,36 +56,56 @@ std::string errorOf(ros::NodeHandle& nh, const std::string& node) {
   return "";
 }
 
+/** A publisher that knows when the graph's subscriber has connected (roscpp tells it). */
 template <class Msg>
-void publishUntilSubscribed(ros::Publisher& pub, const Msg& m) {
-  for (int i = 0; i < 200 && pub.getNumSubscribers() == 0; ++i) ros::WallDuration(0.05).sleep();
-  pub.publish(m);
-}
+class Source {
+ public:
+  Source(ros::NodeHandle& nh, const std::string& topic)
+      : pub_(nh.advertise<Msg>(topic, 1, [this](const ros::SingleSubscriberPublisher&) {
+          std::lock_guard<std::mutex> l(m_);
+          connected_ = true;
+          cv_.notify_all();
+        })) {}
+  /** Publishes once a subscriber is connected (at most 10 s). */
+  void publish(const Msg& m) {
+    std::unique_lock<std::mutex> l(m_);
+    EXPECT_TRUE(cv_.wait_for(l, std::chrono::seconds(10), [&] { return connected_; })) << pub_.getTopic();
+    l.unlock();
+    pub_.publish(m);
+  }
+
+ private:
+  std::mutex m_;
+  std::condition_variable cv_;
+  bool connected_ = false;
+  ros::Publisher pub_;  // last: its callback uses the members above
+};
 
 TEST(BadMessages, AMalformedFrameIsANamedErrorAndTheNextFrameFlows) {
   ros::NodeHandle nh;
-  ros::Publisher images = nh.advertise<sensor_msgs::Image>("/camera/image_raw", 1);
-  ros::Publisher clouds = nh.advertise<sensor_msgs::PointCloud2>("/camera/points", 1);
+  Source<sensor_msgs::Image> images(nh, "/camera/image_raw");
+  Source<sensor_msgs::PointCloud2> clouds(nh, "/camera/points");
   TopicCounter<sensor_msgs::Image> overlay(nh, "/apex_demo/overlay");
   TopicCounter<sensor_msgs::PointCloud2> points(nh, "/apex_demo/points");
-  // Valid frames, one every 100 ms (no queues: one published while another is in flight is
-  // dropped), until both outputs have shown one, or 20 s.
+  // Valid frames until both outputs have shown one (or 20 s). No queues: a frame published
+  // while another is in flight is dropped, so each waits for its output (at most 0.5 s).
   auto valid = [&] {
     const long seen_images = overlay.count(), seen_points = points.count();
-    for (int i = 0; i < 200 && (overlay.count() == seen_images || points.count() == seen_points); ++i) {
-      publishUntilSubscribed(images, image(640, 480, 640 * 3, 640 * 480 * 3));
-      publishUntilSubscribed(clouds, cloud(2000));
-      ros::WallDuration(0.1).sleep();
+    for (int i = 0; i < 40 && (overlay.count() == seen_images || points.count() == seen_points); ++i) {
+      images.publish(image(640, 480, 640 * 3, 640 * 480 * 3));
+      clouds.publish(cloud(2000));
+      overlay.waitBeyond(seen_images, 1, 0.5);
+      points.waitBeyond(seen_points, 1, 0.5);
     }
     return overlay.count() > seen_images && points.count() > seen_points;
   };
   ASSERT_TRUE(valid()) << "no overlay or no cloud from valid frames";
 
-  publishUntilSubscribed(images, image(21845, 65536, 65537, 65536));  // 65536 x 65537 wraps to 65536 in 32 bits
+  images.publish(image(21845, 65536, 65537, 65536));  // 65536 x 65537 wraps to 65536 in 32 bits
   EXPECT_NE(errorOf(nh, "camera").find("step x height needs 4295032832"), std::string::npos) << errorOf(nh, "camera");
   auto far = cloud(100);
   far.fields[1].offset = 1u << 30;
-  publishUntilSubscribed(clouds, far);
+  clouds.publish(far);
   EXPECT_NE(errorOf(nh, "lidar").find("field 'y' (offset 1073741824) does not fit"), std::string::npos)
       << errorOf(nh, "lidar");
 

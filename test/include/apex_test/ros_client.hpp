@@ -8,7 +8,6 @@
 #include <apex/GetGraph.h>
 #include <apex/RuntimeStatus.h>
 
-#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -68,22 +67,28 @@ template <class Msg>
 class TopicCounter {
  public:
   TopicCounter(ros::NodeHandle& nh, const std::string& topic)
-      : sub_(nh.subscribe<Msg>(topic, 5, [this](const typename Msg::ConstPtr&) { ++count_; })) {}
-  long count() const { return count_; }
-  /** At least `n` more messages arrive within `timeout` seconds. */
-  bool flows(long n = 3, double timeout = 20) {
-    const long start = count_;
-    const auto deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::WallTime::now() < deadline) {
-      if (count_ >= start + n) return true;
-      ros::WallDuration(0.01).sleep();  // roscpp gives no event to wait on across callbacks
-    }
-    return false;
+      : sub_(nh.subscribe<Msg>(topic, 5, [this](const typename Msg::ConstPtr&) {
+          std::lock_guard<std::mutex> l(m_);
+          ++count_;
+          cv_.notify_all();
+        })) {}
+  long count() {
+    std::lock_guard<std::mutex> l(m_);
+    return count_;
   }
+  /** At least `n` more messages than `since` arrive within `timeout` seconds. */
+  bool waitBeyond(long since, long n, double timeout) {
+    std::unique_lock<std::mutex> l(m_);
+    return cv_.wait_for(l, std::chrono::duration<double>(timeout), [&] { return count_ >= since + n; });
+  }
+  /** At least `n` more messages arrive within `timeout` seconds. */
+  bool flows(long n = 3, double timeout = 20) { return waitBeyond(count(), n, timeout); }
 
  private:
-  std::atomic<long> count_{0};
-  ros::Subscriber sub_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  long count_ = 0;
+  ros::Subscriber sub_;  // last: its callback uses the members above
 };
 
 }  // namespace apex_test
