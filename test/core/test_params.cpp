@@ -152,6 +152,16 @@ TEST(ParamParse, ListOfNumbers) {
   expectRoundTrip(spec, std::vector<double>{});
 }
 
+TEST(ParamParse, ListOfStrings) {
+  const auto spec = param::textList("topics", {"/camera/image_raw"});
+  EXPECT_EQ(parseOk(spec, "[/a, /b/c]"), ParamValue(std::vector<std::string>{"/a", "/b/c"}));
+  EXPECT_EQ(parseOk(spec, "[]"), ParamValue(std::vector<std::string>{}));
+  EXPECT_EQ(toText(ParamValue(std::vector<std::string>{"/a", "/b"})), "[/a, /b]");
+  expectRoundTrip(spec, std::vector<std::string>{"a, b", "[x]", "true", "3", ""});
+  EXPECT_TRUE(Contains(parseFails(spec, "/a"), {"'topics'", "a list of strings"}));
+  EXPECT_TRUE(Contains(parseFails(spec, "[[a]]"), {"'topics'", "a list of strings"}));
+}
+
 TEST(ParamParse, EveryDefaultIsValidAndRoundTrips) {
   const std::vector<ParamSpec> specs = {
       param::boolean("b", true),          param::integer("i", 4),
@@ -160,7 +170,7 @@ TEST(ParamParse, EveryDefaultIsValidAndRoundTrips) {
       param::interval("iv", 0, 10, 2, 3), param::options("o", {"a", "b"}, "b"),
       param::angle("an", 0.5),            param::path("p", "/tmp/x"),
       param::color("c", 1, 2, 3),         param::pair("pr", 1, 2),
-      param::list("l", {1, 2, 3})};
+      param::list("l", {1, 2, 3}),        param::textList("tl", {"a", "b c"})};
   for (const auto& s : specs) {
     SCOPED_TRACE(s.name + " (" + s.kindName() + ")");
     EXPECT_TRUE(s.validate(s.default_value)) << s.validate(s.default_value).message();

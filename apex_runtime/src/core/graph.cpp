@@ -107,6 +107,11 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
     return Status::error("node type '" + type_id + "' failed to construct: " + ex.what());
   }
   auto state = std::make_shared<NodeState>(name, type, next_seq_++, revision_);
+  if (type->manifest->shape) {  // its ports for its default parameters
+    auto iface = interfaceFor(*state, "", nullptr);
+    if (!iface) return iface.status();
+    state->setInterface(iface.value());
+  }
   state->attach(std::move(object));
   state->group = group(gname);
   detail::initLiveness(state.get());
@@ -205,10 +210,17 @@ Result<std::string> Graph::setParameter(const std::string& node, const std::stri
   NodeState& s = *n.value();
   if (!s.type) return Status::error("node '" + node + "' has the unknown type '" + s.typeId() + "': its parameters are kept unchanged");
   const int i = s.findParam(param);
-  if (i < 0) return Status::error("node '" + node + "' (" + s.typeId() + ") has no parameter '" + param + "' (parameters: " + s.manifest.listParams() + ")");
-  auto value = s.manifest.params[i].parse(text);
+  if (i < 0) return Status::error("node '" + node + "' (" + s.typeId() + ") has no parameter '" + param + "' (parameters: " + s.manifest().listParams() + ")");
+  const ParamSpec& spec = s.manifest().params[i];
+  auto value = spec.parse(text);
   if (!value) return Status::error("node '" + node + "': " + value.message());
-  s.requestParam(i, value.value());
+  if (spec.shapes_interface) {
+    auto iface = interfaceFor(s, param, &value.value());
+    if (!iface) return iface.status();
+    applyInterface(&s, iface.value(), [&] { s.requestParam(s.findParam(param), value.value()); });
+  } else {
+    s.requestParam(i, value.value());
+  }
   bump();
   return toText(value.value());
 }
@@ -219,7 +231,10 @@ Status Graph::setInteractive(const std::string& node, const std::string& param, 
   if (!n) return n.status();
   NodeState* s = n.value().get();
   const int i = s->findParam(param);
-  if (i < 0) return Status::error("node '" + node + "' (" + s->typeId() + ") has no parameter '" + param + "' (parameters: " + s->manifest.listParams() + ")");
+  if (i < 0) return Status::error("node '" + node + "' (" + s->typeId() + ") has no parameter '" + param + "' (parameters: " + s->manifest().listParams() + ")");
+  if (on && s->manifest().params[i].shapes_interface)
+    return Status::error("parameter '" + param + "' of node '" + node +
+                         "' decides the node's ports: it is set by edits only and cannot have ports");
   auto& p = s->params[i];
   if (!on && (p.in_edge || !p.out_edges.empty())) {
     std::vector<NodeState*> receivers;
@@ -275,14 +290,14 @@ Status Graph::fireSlot(const std::string& node, const std::string& slot) {
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
-  const auto& slots = s.manifest.slots;
+  const auto& slots = s.manifest().slots;
   for (std::size_t i = 0; i < slots.size(); ++i) {
     if (slots[i].name != slot) continue;
     const int index = static_cast<int>(i);
     s.post([index](NodeState& x) { x.runSlot(index); });
     return Status::ok();
   }
-  return Status::error("node '" + node + "' (" + s.typeId() + ") has no slot '" + slot + "' (slots: " + s.manifest.listSlots() + ")");
+  return Status::error("node '" + node + "' (" + s.typeId() + ") has no slot '" + slot + "' (slots: " + s.manifest().listSlots() + ")");
 }
 
 Status Graph::setUi(const std::string& node, const std::string& ui) {
@@ -314,7 +329,7 @@ Status Graph::setTap(const std::string& node, const std::string& port, PortTap t
     return Status::ok();
   }
   return Status::error("node '" + node + "' (" + s->typeId() + ") has no output or interactive parameter '" + port +
-                       "' (outputs: " + s->manifest.listOutputs() + ")");
+                       "' (outputs: " + s->manifest().listOutputs() + ")");
 }
 
 // ------------------------------------------------------------------ running
@@ -424,6 +439,12 @@ std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const {
   auto lock = lockEdits();
   auto n = find(node);
   return n ? n->type : nullptr;
+}
+
+std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const {
+  auto lock = lockEdits();
+  auto n = find(node);
+  return n && n->type ? n->iface : nullptr;
 }
 
 Node* Graph::nodeObject(const std::string& node) const {

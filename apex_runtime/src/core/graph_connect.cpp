@@ -58,7 +58,7 @@ Status notInteractive(const NodeState& n, const std::string& p) {
 }
 
 Result<Endpoint> source(const NodeState& n, const std::string& port) {
-  const Manifest& m = n.manifest;
+  const Manifest& m = n.manifest();
   if (int i = indexOf(m.outputs, port); i >= 0) return Endpoint{Kind::Output, i, m.outputs[i].type};
   if (int i = indexOf(m.triggers, port); i >= 0) return Endpoint{Kind::Trigger, i, nullptr};
   if (int i = indexOf(m.params, port); i >= 0) {
@@ -73,7 +73,7 @@ Result<Endpoint> source(const NodeState& n, const std::string& port) {
 }
 
 Result<Endpoint> target(const NodeState& n, const std::string& port) {
-  const Manifest& m = n.manifest;
+  const Manifest& m = n.manifest();
   if (int i = indexOf(m.inputs, port); i >= 0) return Endpoint{Kind::Input, i, m.inputs[i].type};
   if (int i = indexOf(m.slots, port); i >= 0) return Endpoint{Kind::Slot, i, nullptr};
   if (int i = indexOf(m.params, port); i >= 0) {

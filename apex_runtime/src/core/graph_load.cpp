@@ -33,9 +33,10 @@ NodeDescription describeNode(const NodeState& n) {
   NodeDescription d;
   d.name = n.name;
   d.type = n.type->id;
+  d.interface = n.iface;
   for (std::size_t i = 0; i < n.params.size(); ++i) {
-    d.parameters.emplace_back(n.manifest.params[i].name, toText(n.params[i].requested));
-    if (n.params[i].interactive) d.interactive.push_back(n.manifest.params[i].name);
+    d.parameters.emplace_back(n.manifest().params[i].name, toText(n.params[i].requested));
+    if (n.params[i].interactive) d.interactive.push_back(n.manifest().params[i].name);
   }
   d.enabled = n.enabled;
   d.thread_group = n.group->name();
@@ -44,19 +45,19 @@ NodeDescription describeNode(const NodeState& n) {
 }
 
 std::string targetName(const detail::Edge& e) {
-  const Manifest& m = e.to->manifest;
+  const Manifest& m = e.to->manifest();
   return e.to_param ? m.params[e.to_index].name : m.inputs[e.to_index].name;
 }
 
 void describeConnections(const NodeState& n, std::vector<ConnectionDescription>& out) {
-  const Manifest& m = n.manifest;
+  const Manifest& m = n.manifest();
   for (std::size_t i = 0; i < n.outputs.size(); ++i)
     for (auto& e : n.outputs[i].edges) out.push_back({n.name, m.outputs[i].name, e->to->name, targetName(*e), 0});
   for (std::size_t i = 0; i < n.params.size(); ++i)
     for (auto& e : n.params[i].out_edges) out.push_back({n.name, m.params[i].name, e->to->name, targetName(*e), 0});
   for (std::size_t i = 0; i < n.trigger_edges.size(); ++i)
     for (auto& e : n.trigger_edges[i])
-      out.push_back({n.name, m.triggers[i].name, e->to->name, e->to->manifest.slots[e->slot].name, 0});
+      out.push_back({n.name, m.triggers[i].name, e->to->name, e->to->manifest().slots[e->slot].name, 0});
 }
 
 }  // namespace

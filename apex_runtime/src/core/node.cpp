@@ -35,18 +35,20 @@ void Node::notifyNewData() {
   if (auto* s = state_.load(std::memory_order_acquire)) s->notifyNewData();
 }
 
+const Manifest& Node::interface() const { return stateOf(state_.load(std::memory_order_acquire)).manifest(); }
+
 const Message& Node::inputMessage(std::string_view input) const {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findInput(input);
-  if (i < 0) unknown(s, "input", input, s.manifest.listInputs());
+  if (i < 0) unknown(s, "input", input, s.manifest().listInputs());
   return s.inputs[i]->current;
 }
 
 void Node::publishMessage(std::string_view output, Message message) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findOutput(output);
-  if (i < 0) unknown(s, "output", output, s.manifest.listOutputs());
-  const TypeInfo* want = s.manifest.outputs[i].type;
+  if (i < 0) unknown(s, "output", output, s.manifest().listOutputs());
+  const TypeInfo* want = s.manifest().outputs[i].type;
   if (!message.isNothing() && !compatible(message.type(), want)) {
     throw std::invalid_argument("node '" + s.name + "' published a " + message.typeName() + " on output '" + std::string(output) +
                                 "', which carries " + want->name);
@@ -57,14 +59,14 @@ void Node::publishMessage(std::string_view output, Message message) {
 const ParamValue& Node::paramValue(std::string_view name) const {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findParam(name);
-  if (i < 0) unknown(s, "parameter", name, s.manifest.listParams());
+  if (i < 0) unknown(s, "parameter", name, s.manifest().listParams());
   return s.params[i].active;
 }
 
 void Node::trigger(std::string_view name) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findTrigger(name);
-  if (i < 0) unknown(s, "trigger", name, s.manifest.listTriggers());
+  if (i < 0) unknown(s, "trigger", name, s.manifest().listTriggers());
   s.fireTrigger(i);
 }
 

@@ -8,9 +8,9 @@ namespace apex {
 namespace detail {
 namespace {
 
-const Manifest& manifestOf(const std::shared_ptr<const NodeType>& type) {
-  static const Manifest kEmpty;
-  return type ? *type->manifest : kEmpty;
+std::shared_ptr<const Manifest> manifestOf(const std::shared_ptr<const NodeType>& type) {
+  static const auto kEmpty = std::make_shared<const Manifest>();
+  return type ? type->manifest : kEmpty;
 }
 
 template <class T>
@@ -23,26 +23,32 @@ int indexOf(const std::vector<T>& items, std::string_view n) {
 
 NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint64_t s,
                      std::shared_ptr<std::atomic<std::uint64_t>> r)
-    : name(std::move(n)), type(std::move(t)), manifest(manifestOf(type)), seq(s), revision(std::move(r)) {
-  for (std::size_t i = 0; i < manifest.inputs.size(); ++i) inputs.push_back(std::make_unique<InputState>());
-  outputs.resize(manifest.outputs.size());
-  params.resize(manifest.params.size());
+    : name(std::move(n)),
+      type(std::move(t)),
+      iface(manifestOf(type)),
+      seq(s),
+      revision(std::move(r)),
+      driven_(iface->source_mode == SourceMode::Driven) {
+  const Manifest& m = manifest();
+  for (std::size_t i = 0; i < m.inputs.size(); ++i) inputs.push_back(std::make_unique<InputState>());
+  outputs.resize(m.outputs.size());
+  params.resize(m.params.size());
   for (std::size_t i = 0; i < params.size(); ++i) {
-    params[i].requested = params[i].active = manifest.params[i].default_value;
-    params[i].interactive = manifest.params[i].interactive;
+    params[i].requested = params[i].active = m.params[i].default_value;
+    params[i].interactive = m.params[i].interactive;
   }
-  trigger_edges.resize(manifest.triggers.size());
-  slot_edges.resize(manifest.slots.size());
+  trigger_edges.resize(m.triggers.size());
+  slot_edges.resize(m.slots.size());
   blockers.store(driven() ? 1 : 0);  // a driven source waits for its first notifyNewData()
   last_fired_.store(ticks());  // idle since added
 }
 
 NodeState::~NodeState() = default;
 
-int NodeState::findInput(std::string_view n) const { return indexOf(manifest.inputs, n); }
-int NodeState::findOutput(std::string_view n) const { return indexOf(manifest.outputs, n); }
-int NodeState::findParam(std::string_view n) const { return indexOf(manifest.params, n); }
-int NodeState::findTrigger(std::string_view n) const { return indexOf(manifest.triggers, n); }
+int NodeState::findInput(std::string_view n) const { return indexOf(manifest().inputs, n); }
+int NodeState::findOutput(std::string_view n) const { return indexOf(manifest().outputs, n); }
+int NodeState::findParam(std::string_view n) const { return indexOf(manifest().params, n); }
+int NodeState::findTrigger(std::string_view n) const { return indexOf(manifest().triggers, n); }
 
 std::string NodeState::error() const {
   std::lock_guard<std::mutex> lock(state_mutex);
@@ -53,7 +59,7 @@ std::string NodeState::error() const {
 
 bool NodeState::isSource() const {
   if (connected_inputs > 0) return false;
-  for (const auto& in : manifest.inputs)
+  for (const auto& in : manifest().inputs)
     if (!in.optional) return false;
   return true;
 }
@@ -92,19 +98,19 @@ std::string NodeState::waitingFor() const {
   if (!type) return "";
   if (!live) {
     for (std::size_t i = 0; i < inputs.size(); ++i)
-      if (!manifest.inputs[i].optional && !inputs[i]->edge)
-        return "cut off: input '" + manifest.inputs[i].name + "' is not connected";
+      if (!manifest().inputs[i].optional && !inputs[i]->edge)
+        return "cut off: input '" + manifest().inputs[i].name + "' is not connected";
     return "cut off: no source reaches its inputs";
   }
   // An unread output blocks whatever the inputs hold: say it first.
   for (std::size_t i = 0; i < outputs.size(); ++i)
     for (auto& e : outputs[i].edges)
       if (e->unread.load(std::memory_order_acquire))
-        return "waiting for '" + e->to->name + "' to read '" + manifest.outputs[i].name + "'";
+        return "waiting for '" + e->to->name + "' to read '" + manifest().outputs[i].name + "'";
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const Edge* e = inputs[i]->edge.get();
     if (e && e->live && !inputs[i]->full.load(std::memory_order_acquire))
-      return "waiting for input '" + manifest.inputs[i].name + "' from '" + e->from->name + "'";
+      return "waiting for input '" + manifest().inputs[i].name + "' from '" + e->from->name + "'";
   }
   if (driven() && !has_data.load(std::memory_order_acquire)) return "waiting for new data";
   return "";
@@ -160,7 +166,7 @@ bool NodeState::fireIfReady() {
   }
 
   bool skip = !active_enabled_;
-  for (std::size_t i = 0; i < inputs.size(); ++i) take(*inputs[i], manifest.inputs[i].optional, skip);
+  for (std::size_t i = 0; i < inputs.size(); ++i) take(*inputs[i], manifest().inputs[i].optional, skip);
 
   if (!skip) {
     try {
@@ -312,9 +318,9 @@ void NodeState::applyParams() {
   }
   for (int i : changed) {
     try {
-      node->parameterChanged(manifest.params[i].name);
+      node->parameterChanged(manifest().params[i].name);
     } catch (const std::exception& ex) {
-      setError("node '" + name + "' (" + type->id + ") failed to apply parameter '" + manifest.params[i].name +
+      setError("node '" + name + "' (" + type->id + ") failed to apply parameter '" + manifest().params[i].name +
                "': " + ex.what());
     }
     publishParam(i);  // a parameter output carries every change
@@ -332,7 +338,7 @@ void NodeState::publishParam(int index, ThreadGroup* here) {
 void NodeState::receiveParam(Edge& edge, const Message& m) {
   if (edge.dead) return;
   if (!m.isNothing()) {
-    auto value = fromMessage(manifest.params[edge.to_index], m);
+    auto value = fromMessage(manifest().params[edge.to_index], m);
     if (value) {
       requestParam(edge.to_index, value.value());
       applyParams();
@@ -375,10 +381,11 @@ void NodeState::runSlot(int slot) {
     applyEnabled();
     return;
   }
+  if (slot >= static_cast<int>(manifest().slots.size())) return;  // posted before an interface change
   try {
-    manifest.slots[slot].handler(*node);
+    manifest().slots[slot].handler(*node);
   } catch (const std::exception& ex) {
-    setError("node '" + name + "' (" + type->id + ") slot '" + manifest.slots[slot].name + "' threw: " + ex.what());
+    setError("node '" + name + "' (" + type->id + ") slot '" + manifest().slots[slot].name + "' threw: " + ex.what());
   }
 }
 

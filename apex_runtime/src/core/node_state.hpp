@@ -39,7 +39,7 @@ namespace detail {
 
 class NodeState;
 
-/** Where the registry puts the built-in events (registry.cpp): first in every manifest. */
+/** Where the registry puts the built-in events (registry.cpp): first in every manifest(). */
 constexpr int kEnableIndex = 0, kDisableIndex = 1;  // slots
 constexpr int kProcessedIndex = 0;                  // trigger
 
@@ -100,7 +100,10 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 
   const std::string name;
   const std::shared_ptr<const NodeType> type;  // nullptr: placeholder
-  const Manifest& manifest;
+  /** The instance's interface: its type's manifest, or what Manifest::shape made of it.
+   *  Replaced by edits only (graph_interface.cpp), with the node's group paused. */
+  std::shared_ptr<const Manifest> iface;
+  const Manifest& manifest() const { return *iface; }
   const std::uint64_t seq;
   std::shared_ptr<std::atomic<std::uint64_t>> revision;  // the graph's: bumped on every visible change
   std::unique_ptr<Node> node;
@@ -166,7 +169,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // --- edits (groups paused) ---
   /** The part of `blockers` that only edits and firings change (not has_data). */
   int structuralBlockers();
-  bool driven() const { return manifest.source_mode == SourceMode::Driven; }
+  bool driven() const { return driven_; }
   NodeStats stats() const;
   /** When the node last fired, or was made if never (ticks.hpp). */
   std::int64_t lastFired() const { return last_fired_.load(std::memory_order_relaxed); }
@@ -174,6 +177,10 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::string waitingFor() const;
   /** Drops every message on its inputs and every unread mark on its outputs (groups paused). */
   void flushPorts();
+
+  /** Replaces the interface, keeping the state of every port whose name and kind stay and
+   *  re-indexing its edges; the caller has removed the edges of the others (graph_interface.cpp). */
+  void setInterface(std::shared_ptr<const Manifest> next);
 
   int findInput(std::string_view n) const;
   int findOutput(std::string_view n) const;
@@ -189,6 +196,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void setError(std::string text);
   void clearError();
 
+  const bool driven_;  // the type's source mode: an interface keeps it
   bool active_enabled_ = true;
   std::atomic<bool> params_dirty_{false};
   bool apply_posted_ = false;  // state_mutex

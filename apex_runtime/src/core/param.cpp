@@ -97,6 +97,7 @@ Status ParamSpec::validate(const ParamValue& v) const {
     case ParamKind::Color: return holds<Color>(v) ? checkColor(*this, std::get<Color>(v)) : wrongType(*this, v);
     case ParamKind::Pair: return holds<Pair>(v) ? Status::ok() : wrongType(*this, v);
     case ParamKind::List: return holds<std::vector<double>>(v) ? Status::ok() : wrongType(*this, v);
+    case ParamKind::TextList: return holds<std::vector<std::string>>(v) ? Status::ok() : wrongType(*this, v);
   }
   return wrongType(*this, v);
 }
@@ -116,6 +117,7 @@ const TypeInfo* ParamSpec::portType() const {
     case ParamKind::Pair: return typeOf<Pair>();
     case ParamKind::Color: return typeOf<Color>();
     case ParamKind::List: return typeOf<std::vector<double>>();
+    case ParamKind::TextList: return typeOf<std::vector<std::string>>();
   }
   return typeOf<Any>();
 }
@@ -135,6 +137,7 @@ std::string ParamSpec::kindName() const {
     case ParamKind::Color: return "color";
     case ParamKind::Pair: return "pair";
     case ParamKind::List: return "list";
+    case ParamKind::TextList: return "text list";
   }
   return "unknown";
 }
@@ -153,6 +156,7 @@ Result<ParamValue> fromMessage(const ParamSpec& spec, const Message& m) {
   else if (auto p = m.as<Pair>()) v = *p;
   else if (auto p = m.as<Color>()) v = *p;
   else if (auto p = m.as<std::vector<double>>()) v = *p;
+  else if (auto p = m.as<std::vector<std::string>>()) v = *p;
   else return Status::error("parameter '" + spec.name + "' (" + spec.kindName() + ") cannot take a message of type " + m.typeName());
   if (auto st = spec.validate(v); !st) return st;
   return v;
@@ -196,6 +200,9 @@ ParamSpec path(std::string n, std::string d, PathMode mode) {
 ParamSpec color(std::string n, int r, int g, int b) { return make(std::move(n), ParamKind::Color, Color{r, g, b}); }
 ParamSpec pair(std::string n, double a, double b) { return make(std::move(n), ParamKind::Pair, Pair{a, b}); }
 ParamSpec list(std::string n, std::vector<double> d) { return make(std::move(n), ParamKind::List, std::move(d)); }
+ParamSpec textList(std::string n, std::vector<std::string> d) {
+  return make(std::move(n), ParamKind::TextList, std::move(d));
+}
 }  // namespace param
 
 }  // namespace apex

@@ -80,6 +80,16 @@ struct Parser {
         if (!v) return fail("a list of numbers, e.g. [1, 2.5]");
         return ParamValue(v.value());
       }
+      case ParamKind::TextList: {
+        std::vector<std::string> v;
+        if (!node.IsSequence()) return fail("a list of strings, e.g. [/camera/image_raw, /camera/points]");
+        for (const auto& item : node) {
+          std::string text;
+          if (!scalar(item, text)) return fail("a list of strings, e.g. [/camera/image_raw, /camera/points]");
+          v.push_back(std::move(text));
+        }
+        return ParamValue(std::move(v));
+      }
     }
     return fail("a value");
   }
@@ -132,6 +142,13 @@ std::string toText(const ParamValue& value) {
       std::string s = "[";
       for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number(v[i]);
       return s + "]";
+    }
+    std::string operator()(const std::vector<std::string>& v) const {
+      YAML::Emitter e;  // in a flow sequence ',', '[' and ']' need quotes: the emitter knows
+      e << YAML::Flow << YAML::BeginSeq;
+      for (const auto& s : v) e << s;
+      e << YAML::EndSeq;
+      return e.c_str();
     }
   };
   return std::visit(Visitor{}, value);

@@ -1,41 +1,11 @@
 #include "apex/core/registry.hpp"
 
 #include <iostream>
-#include <set>
 
 #include "names.hpp"
 
 namespace apex {
 namespace {
-
-Status checkNames(const std::string& id, const Manifest& m) {
-  auto bad = [&](const std::string& what) { return Status::error("node type '" + id + "': " + what); };
-  std::set<std::string> to_side, from_side;  // names a connection's target / source may use
-  for (const auto& p : m.inputs) {
-    if (!validName(p.name)) return bad("input name '" + p.name + "' " + kNameRule);
-    if (!to_side.insert(p.name).second) return bad("two inputs are named '" + p.name + "'");
-  }
-  for (const auto& p : m.outputs) {
-    if (!validName(p.name)) return bad("output name '" + p.name + "' " + kNameRule);
-    if (!from_side.insert(p.name).second) return bad("two outputs are named '" + p.name + "'");
-  }
-  for (const auto& p : m.params) {
-    if (!validName(p.name)) return bad("parameter name '" + p.name + "' " + kNameRule);
-    if (!to_side.insert(p.name).second || !from_side.insert(p.name).second)
-      return bad("parameter '" + p.name + "' has the name of another port or parameter");
-    if (auto st = p.validate(p.default_value); !st) return bad("default value: " + st.message());
-  }
-  for (const auto& s : m.slots) {
-    if (!validName(s.name)) return bad("slot name '" + s.name + "' " + kNameRule);
-    if (!to_side.insert(s.name).second) return bad("slot '" + s.name + "' has the name of another port");
-    if (!s.handler) return bad("slot '" + s.name + "' has no handler");
-  }
-  for (const auto& t : m.triggers) {
-    if (!validName(t.name)) return bad("trigger name '" + t.name + "' " + kNameRule);
-    if (!from_side.insert(t.name).second) return bad("trigger '" + t.name + "' has the name of another port");
-  }
-  return Status::ok();
-}
 
 /** Every node has enable/disable slots and a processed trigger, first in their lists. */
 Manifest withBuiltins(Manifest m) {
@@ -50,8 +20,7 @@ Manifest withBuiltins(Manifest m) {
 Status NodeRegistry::add(const std::string& id, Manifest manifest, std::function<std::unique_ptr<Node>()> create) {
   if (!validTypeId(id)) return Status::error("node type id '" + id + "' " + kTypeIdRule);
   if (!create) return Status::error("node type '" + id + "' has no factory");
-  auto st = checkNames(id, withBuiltins(manifest));
-  if (!st) return st;
+  if (auto st = withBuiltins(manifest).check(); !st) return Status::error("node type '" + id + "': " + st.message());
   auto type = std::make_shared<NodeType>(NodeType{id, std::make_shared<const Manifest>(withBuiltins(std::move(manifest))),
                                                   std::move(create)});
   std::lock_guard<std::mutex> lock(mutex_);

@@ -1,6 +1,7 @@
 #include "convert.hpp"
 
 #include <algorithm>
+#include <map>
 
 namespace apex {
 namespace ros_host {
@@ -51,13 +52,27 @@ std::string state(const NodeDescription& n) {
 
 bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
 
-/** data, parameter or event, from the ports' kinds in the two manifests */
-std::string connectionKind(const Graph& graph, const ConnectionDescription& c) {
-  auto from = graph.nodeType(c.from_node);
-  auto to = graph.nodeType(c.to_node);
-  if (from && from->manifest->findTrigger(c.from_port)) return "event";
-  if ((from && from->manifest->findParam(c.from_port)) || (to && to->manifest->findParam(c.to_port))) return "parameter";
+/** data, parameter or event, from the ports' kinds in the two nodes' interfaces */
+std::string connectionKind(const std::map<std::string, const Manifest*>& ifaces, const ConnectionDescription& c) {
+  auto get = [&](const std::string& node) -> const Manifest* {
+    auto it = ifaces.find(node);
+    return it == ifaces.end() ? nullptr : it->second;
+  };
+  const Manifest* from = get(c.from_node);
+  const Manifest* to = get(c.to_node);
+  if (from && from->findTrigger(c.from_port)) return "event";
+  if ((from && from->findParam(c.from_port)) || (to && to->findParam(c.to_port))) return "parameter";
   return "data";
+}
+
+/** The ports of a manifest, parameters apart: a type's, or an instance's interface. */
+std::vector<PortInfo> ports(const Manifest& m) {
+  std::vector<PortInfo> out;
+  for (const auto& p : m.inputs) out.push_back(port(p.name, "input", p.type, p.optional, p.description));
+  for (const auto& p : m.outputs) out.push_back(port(p.name, "output", p.type, false, p.description));
+  for (const auto& e : m.slots) out.push_back(port(e.name, "slot", nullptr, false, e.description));
+  for (const auto& e : m.triggers) out.push_back(port(e.name, "trigger", nullptr, false, e.description));
+  return out;
 }
 
 }  // namespace
@@ -67,15 +82,12 @@ NodeTypeInfo toTypeInfo(const NodeType& type) {
   NodeTypeInfo t;
   t.id = type.id;
   t.description = m.description;
-  for (const auto& p : m.inputs) t.ports.push_back(port(p.name, "input", p.type, p.optional, p.description));
-  for (const auto& p : m.outputs) t.ports.push_back(port(p.name, "output", p.type, false, p.description));
-  for (const auto& e : m.slots) t.ports.push_back(port(e.name, "slot", nullptr, false, e.description));
-  for (const auto& e : m.triggers) t.ports.push_back(port(e.name, "trigger", nullptr, false, e.description));
+  t.ports = ports(m);
   for (const auto& s : m.params) t.parameters.push_back(param(s, toText(s.default_value), s.interactive));
   return t;
 }
 
-NodeInfo toNodeInfo(const Graph& graph, const NodeDescription& n) {
+NodeInfo toNodeInfo(const NodeDescription& n) {
   NodeInfo info;
   info.name = n.name;
   info.type = n.type;
@@ -84,11 +96,9 @@ NodeInfo toNodeInfo(const Graph& graph, const NodeDescription& n) {
   info.state = state(n);
   info.error = n.error;
   info.ui = n.ui;
-  auto type = graph.nodeType(n.name);
-  if (!type) return info;  // a placeholder: no ports known
-  NodeTypeInfo t = toTypeInfo(*type);
-  for (auto& p : t.ports) info.ports.push_back(p);
-  for (const auto& s : type->manifest->params) {
+  if (!n.interface) return info;  // a placeholder: no ports known
+  info.ports = ports(*n.interface);
+  for (const auto& s : n.interface->params) {
     std::string value = toText(s.default_value);
     for (const auto& [name, text] : n.parameters) if (name == s.name) value = text;
     const bool interactive = has(n.interactive, s.name);
@@ -107,14 +117,18 @@ GraphState toGraphState(const Graph& graph, std::uint64_t revision) {
   g.paused = graph.paused();
   g.thread_groups.push_back("default");
   for (const auto& name : d.thread_groups) g.thread_groups.push_back(name);
-  for (const auto& n : d.nodes) g.nodes.push_back(toNodeInfo(graph, n));
+  std::map<std::string, const Manifest*> ifaces;
+  for (const auto& n : d.nodes) {
+    g.nodes.push_back(toNodeInfo(n));
+    ifaces[n.name] = n.interface.get();
+  }
   for (const auto& c : d.connections) {
     Connection msg;
     msg.from_node = c.from_node;
     msg.from_port = c.from_port;
     msg.to_node = c.to_node;
     msg.to_port = c.to_port;
-    msg.kind = connectionKind(graph, c);
+    msg.kind = connectionKind(ifaces, c);
     g.connections.push_back(msg);
   }
   return g;

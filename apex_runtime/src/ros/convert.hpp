@@ -13,7 +13,7 @@ namespace ros_host {
 NodeTypeInfo toTypeInfo(const NodeType& type);
 /** The whole graph, with each node's ports, parameters (current values) and state. */
 GraphState toGraphState(const Graph& graph, std::uint64_t revision);
-NodeInfo toNodeInfo(const Graph& graph, const NodeDescription& node);
+NodeInfo toNodeInfo(const NodeDescription& node);
 RuntimeStatus toStatus(const Graph& graph);
 
 }  // namespace ros_host

@@ -36,11 +36,11 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
     return std::make_pair(it->second->pub ? it->second->pub.getTopic() : nh_.resolveName(it->second->topic),
                           it->second->inspector.message_type);
   if (!graph.nodeObject(node)) return Status::error("no node named '" + node + "'");
-  auto type = graph.nodeType(node);
-  if (!type) return Status::error("node '" + node + "' has a type unknown here: it has no ports to inspect");
+  auto iface = graph.nodeInterface(node);
+  if (!iface) return Status::error("node '" + node + "' has a type unknown here: it has no ports to inspect");
   const TypeInfo* port_type = nullptr;
-  if (auto* out = type->manifest->findOutput(port)) port_type = out->type;
-  if (auto* p = type->manifest->findParam(port)) port_type = p->portType();
+  if (auto* out = iface->findOutput(port)) port_type = out->type;
+  if (auto* p = iface->findParam(port)) port_type = p->portType();
   auto tap = std::make_shared<Tap>();
   tap->nh = nh_;
   tap->topic = "inspect/" + node + "/" + port;

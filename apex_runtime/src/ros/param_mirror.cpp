@@ -34,6 +34,12 @@ XmlRpc::XmlRpcValue toXmlRpc(const ParamValue& value) {
       for (std::size_t i = 0; i < list.size(); ++i) v[static_cast<int>(i)] = list[i];
       return v;
     }
+    XmlRpc::XmlRpcValue operator()(const std::vector<std::string>& list) const {
+      XmlRpc::XmlRpcValue v;
+      v.setSize(static_cast<int>(list.size()));
+      for (std::size_t i = 0; i < list.size(); ++i) v[static_cast<int>(i)] = list[i];
+      return v;
+    }
   };
   return std::visit(Visitor{}, value);
 }

@@ -121,7 +121,7 @@ struct RuntimeHost::Impl {
     if (added) {
       res.name = added.value();
       for (const auto& n : graph.describe().nodes)
-        if (n.name == res.name) res.node = toNodeInfo(graph, n);
+        if (n.name == res.name) res.node = toNodeInfo(n);
     }
     return answered(res, added.status());
   }
@@ -141,7 +141,7 @@ struct RuntimeHost::Impl {
   }
 
   bool setParameter(SetParameter::Request& req, SetParameter::Response& res) {
-    auto value = confinedValue(graph.nodeType(req.node), req.node, req.parameter, req.value);
+    auto value = confinedValue(graph.nodeInterface(req.node), req.node, req.parameter, req.value);
     auto applied = value ? graph.setParameter(req.node, req.parameter, value.value()) : Result<std::string>(value.status());
     if (applied) {
       res.value = applied.value();
@@ -193,10 +193,10 @@ struct RuntimeHost::Impl {
 
   /** A parameter value from a service: a path parameter's value must lie in the roots and be
    *  what its mode needs (a bag to read must exist); it is passed on resolved. */
-  Result<std::string> confinedValue(const std::shared_ptr<const NodeType>& type, const std::string& node,
+  Result<std::string> confinedValue(const std::shared_ptr<const Manifest>& iface, const std::string& node,
                                     const std::string& param, const std::string& text) {
-    if (!type) return text;  // the graph names the unknown node or type
-    for (const auto& spec : type->manifest->params) {
+    if (!iface) return text;  // the graph names the unknown node or type
+    for (const auto& spec : iface->params) {
       if (spec.name != param || spec.kind != ParamKind::Path) continue;
       auto value = spec.parse(text);
       if (!value || std::get<std::string>(value.value()).empty()) return text;  // the graph says why / nothing to open

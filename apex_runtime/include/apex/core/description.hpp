@@ -3,11 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace apex {
+
+struct Manifest;
 
 /** @brief One node as saved: parameter values are YAML text. */
 struct NodeDescription {
@@ -19,6 +22,9 @@ struct NodeDescription {
   std::string ui;                ///< free-form front-end metadata, YAML flow text ("" if none)
   bool placeholder = false;      ///< type unknown here: kept and written back unchanged
   std::string error;             ///< current error (state, not saved)
+  /** The instance's ports (state, not saved): its type's manifest, or what the type's
+   *  interface function made of it for these parameters; nullptr for placeholders. */
+  std::shared_ptr<const Manifest> interface;
   int line = 0;                  ///< where it was read from, for messages (0: not from a file)
 };
 

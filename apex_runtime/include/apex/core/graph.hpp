@@ -100,6 +100,9 @@ class Graph {
   std::vector<GroupStats> groupStats() const;
   /** @brief A node's type, or nullptr if there is no such node (or it is a placeholder). */
   std::shared_ptr<const NodeType> nodeType(const std::string& node) const;
+  /** @brief A node's ports, events and parameters as they are now (its type's manifest, or
+   *  what the type's interface function made of it); nullptr if no such node or a placeholder. */
+  std::shared_ptr<const Manifest> nodeInterface(const std::string& node) const;
   /** @brief The node object itself (for tests and hosts); nullptr if none. */
   Node* nodeObject(const std::string& node) const;
   std::size_t size() const;
@@ -134,6 +137,13 @@ class Graph {
   /** The edit of one data or parameter connection between two nodes (see live.hpp). */
   detail::Restructure restructure(detail::NodeState* from, detail::NodeState* to, bool into_data_input) const;
   void removeEdge(std::shared_ptr<detail::Edge> edge);
+  /** The node's interface if `param` had `value` (nullptr: as it is); refused with a message
+   *  naming the node when the type's interface function fails or breaks a rule. */
+  Result<std::shared_ptr<const Manifest>> interfaceFor(const detail::NodeState& node, const std::string& param,
+                                                       const ParamValue* value) const;
+  /** Gives the node `next` as one edit (graph_interface.cpp); `also` runs inside it. */
+  void applyInterface(detail::NodeState* node, std::shared_ptr<const Manifest> next,
+                      const std::function<void()>& also = {});
   void removeEvent(std::shared_ptr<detail::EventEdge> edge);
 
   NodeRegistry registry_;

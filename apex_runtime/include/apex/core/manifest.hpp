@@ -2,11 +2,15 @@
 #pragma once
 
 #include <functional>
+#include <map>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "apex/core/message.hpp"
 #include "apex/core/param.hpp"
+#include "apex/core/result.hpp"
 
 namespace apex {
 
@@ -33,6 +37,33 @@ enum class SourceMode {
   Driven,       ///< fires only after notifyNewData(): an outside callback has data
 };
 
+struct Manifest;
+
+/** @brief One instance's parameter values by name, as an interface function sees them. */
+class ParamValues {
+ public:
+  ParamValues() = default;
+  void set(std::string name, ParamValue value) { values_[std::move(name)] = std::move(value); }
+  /** @brief The value as T; throws std::invalid_argument for an unknown name or another type. */
+  template <class T>
+  const T& get(std::string_view name) const {
+    auto it = values_.find(name);
+    if (it == values_.end()) throw std::invalid_argument("no parameter '" + std::string(name) + "'");
+    if (const T* v = std::get_if<T>(&it->second)) return *v;
+    throw std::invalid_argument("parameter '" + std::string(name) + "' is read with the wrong C++ type");
+  }
+
+ private:
+  std::map<std::string, ParamValue, std::less<>> values_;
+};
+
+/** @brief Makes an instance's interface from its parameters: gets the type's manifest in
+ *  `iface` and adds, removes or retypes ports, events and parameters (not the built-in
+ *  events, nor the parameters marked shapesInterface()). An error refuses the parameter
+ *  change that asked for it. Must be a function of `params` only: it runs on the thread
+ *  of the edit, possibly while the node's process() runs. */
+using InterfaceFn = std::function<Status(const ParamValues& params, Manifest& iface)>;
+
 /** @brief Everything the registry knows about a node type before creating one. */
 struct Manifest {
   std::string description;
@@ -40,6 +71,7 @@ struct Manifest {
   std::vector<ParamSpec> params;
   std::vector<EventSpec> slots, triggers;
   SourceMode source_mode = SourceMode::FreeRunning;
+  InterfaceFn shape;  ///< empty: every instance has exactly these ports
 
   explicit Manifest(std::string desc = {}) : description(std::move(desc)) {}
 
@@ -76,6 +108,16 @@ struct Manifest {
     source_mode = SourceMode::Driven;
     return *this;
   }
+  /** @brief Interfaces per instance: `fn` decides the ports from the parameters marked
+   *  shapesInterface(), when a node is made and whenever one of them is set. The ports
+   *  declared above are what the palette shows and what `fn` starts from. */
+  Manifest& shapedBy(InterfaceFn fn) {
+    shape = std::move(fn);
+    return *this;
+  }
+
+  /** @brief Names valid and unique per side of a connection, defaults within their specs. */
+  Status check() const;
 
   const PortSpec* findInput(const std::string& name) const;
   const PortSpec* findOutput(const std::string& name) const;

@@ -13,6 +13,10 @@
 #include "apex/core/param.hpp"
 
 namespace apex {
+struct Manifest;
+}
+
+namespace apex {
 
 namespace detail {
 class NodeState;
@@ -36,6 +40,10 @@ class Node {
 
   /** @brief The node's name in its graph ("" before it is added to one). */
   const std::string& name() const;
+  /** @brief This instance's ports, events and parameters: the type's manifest, or what its
+   *  interface function (Manifest::shapedBy) made for the current parameters. For
+   *  process() and slot handlers. */
+  const Manifest& interface() const;
 
   /** @brief For Driven sources: new data arrived from outside. Callable from any
    *  thread once the node is in a graph (a call from its constructor is lost);

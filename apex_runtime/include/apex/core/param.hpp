@@ -29,10 +29,11 @@ struct Color {
 };
 
 /** @brief Every value a parameter can hold. Sets hold the chosen option's name,
- *  paths a string, angles radians, lists a vector of numbers. */
-using ParamValue = std::variant<bool, int, double, std::string, Interval, Pair, Color, std::vector<double>>;
+ *  paths a string, angles radians, lists a vector of numbers, text lists a vector of strings. */
+using ParamValue =
+    std::variant<bool, int, double, std::string, Interval, Pair, Color, std::vector<double>, std::vector<std::string>>;
 
-enum class ParamKind { Bool, Int, Double, String, IntRange, DoubleRange, Interval, Set, Angle, Path, Color, Pair, List };
+enum class ParamKind { Bool, Int, Double, String, IntRange, DoubleRange, Interval, Set, Angle, Path, Color, Pair, List, TextList };
 enum class PathMode { Read, Write, Directory };
 
 /** @brief A parameter's declaration: what a node type says about one parameter. */
@@ -46,11 +47,15 @@ struct ParamSpec {
   PathMode path_mode = PathMode::Read; ///< paths
   bool interactive = false;            ///< gets ports by default
   bool file_name = false;              ///< strings: a single file name, never a path (no '/', not "." or "..")
+  bool shapes_interface = false;       ///< a change may change the node's ports (Manifest::shapedBy)
 
   ParamSpec& describe(std::string text) { description = std::move(text); return *this; }
   ParamSpec& makeInteractive(bool on = true) { interactive = on; return *this; }
   /** @brief A string that names a file inside a folder given elsewhere: it cannot carry a path out of it. */
   ParamSpec& fileName() { file_name = true; return *this; }
+  /** @brief Its value decides the node's ports (Manifest::shapedBy): setting it is an edit of the
+   *  node's interface, so it is set by edits only and cannot have ports itself. */
+  ParamSpec& shapesInterface() { shapes_interface = true; return *this; }
 
   /** @brief Checks a value's type and bounds; the message names the parameter. */
   Status validate(const ParamValue& value) const;
@@ -85,6 +90,7 @@ ParamSpec path(std::string name, std::string def, PathMode mode = PathMode::Read
 ParamSpec color(std::string name, int r, int g, int b);
 ParamSpec pair(std::string name, double first, double second);
 ParamSpec list(std::string name, std::vector<double> def);
+ParamSpec textList(std::string name, std::vector<std::string> def);
 }  // namespace param
 
 }  // namespace apex
@@ -92,3 +98,4 @@ ParamSpec list(std::string name, std::vector<double> def);
 APEX_TYPE_NAME(apex::Interval, "interval");
 APEX_TYPE_NAME(apex::Pair, "pair");
 APEX_TYPE_NAME(apex::Color, "color");
+APEX_TYPE_NAME(std::vector<std::string>, "list<string>");
