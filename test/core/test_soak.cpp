@@ -116,20 +116,35 @@ class Pass : public SoakNode {
   long pokes_ = 0;
 };
 
-/** Two frames in, the first out: frames of one source must be the same frame. */
+/** Two frames in (three with `extra`: an interface per instance), the first out: frames
+ *  of one source must be the same frame. */
 class Join : public SoakNode {
  public:
-  static Manifest manifest() { return Manifest("checks a pair").input<Frame>("a").input<Frame>("b").output<Frame>("out"); }
+  static Manifest manifest() {
+    return Manifest("checks a pair")
+        .input<Frame>("a")
+        .input<Frame>("b")
+        .output<Frame>("out")
+        .param(param::boolean("extra", false).shapesInterface())
+        .shapedBy([](const ParamValues& p, Manifest& m) {
+          if (p.get<bool>("extra")) m.optionalInput<Frame>("c");
+          return Status::ok();
+        });
+  }
   void process() override {
     checkAlive();
     auto a = input<Frame>("a");
-    auto b = input<Frame>("b");
-    if (a->source == b->source && a->n != b->n) {
-      std::ostringstream s;
-      s << "join '" << name() << "' paired frame " << a->n << " with frame " << b->n << " of source " << a->source;
-      board.violate(s.str());
-    }
+    check(*a, *input<Frame>("b"));
+    if (interface().findInput("c") && hasInput("c")) check(*a, *input<Frame>("c"));
     publish("out", *a);
+  }
+
+ private:
+  void check(const Frame& a, const Frame& b) {
+    if (a.source != b.source || a.n == b.n) return;
+    std::ostringstream s;
+    s << "join '" << name() << "' paired frame " << a.n << " with frame " << b.n << " of source " << a.source;
+    board.violate(s.str());
   }
 };
 
@@ -174,8 +189,10 @@ const std::vector<Link> kLinks = {
 const std::map<std::string, std::vector<int>> kSinkPaths = {
     {"k1", {0, 1, 2, 3, 4, 5}}, {"k3", {0, 1, 2, 3, 4, 6, 7, 8}}, {"k2", {9, 10, 11, 12, 13, 14}}};
 // Connections a careless user might make: another source into a join, a cycle.
+// p2 -> j1.c and q2 -> j2.c exist only while the join has `extra` (its interface changes).
 const std::vector<Link> kStray = {{"s2", "out", "j1", "a"}, {"q3", "out", "p1", "in"}, {"j1", "out", "p1", "in"},
-                                  {"s1", "out", "q2", "in"}, {"j3", "out", "q1", "in"}};
+                                  {"s1", "out", "q2", "in"}, {"j3", "out", "q1", "in"}, {"p2", "out", "j1", "c"},
+                                  {"q2", "out", "j2", "c"}};
 const std::vector<std::string> kGroups = {"default", "a", "b", "c"};
 
 NodeRegistry soakRegistry() {
@@ -205,7 +222,7 @@ class Soak {
   /** One random edit; refused edits are fine (they must change nothing). */
   void randomEdit() {
     const std::string node = kNodes[pick(kNodes.size())].name;
-    switch (pick(12)) {
+    switch (pick(13)) {
       case 0: case 1: {
         const Link& l = kLinks[pick(kLinks.size())];
         (void)g_.disconnect(l.from, l.from_port, l.to, l.to_port);
@@ -231,6 +248,9 @@ class Soak {
         (void)g_.connect(l.from, l.from_port, l.to, l.to_port);
         break;
       }
+      case 12:
+        if (node[0] == 'j') (void)g_.setParameter(node, "extra", pick(2) ? "true" : "false");
+        break;
       case 11:
         if (!g_.paused()) {
           if (pick(4) == 0) g_.pause();
