@@ -1,100 +1,260 @@
-// BagReader: plays a bag file directly into the graph, at the bag's pace times
-// `rate` (0: as fast as the graph takes them). It never drops: the next message
-// waits until the graph has read the last one.
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
-
+// BagReader: a bag player. One output per played topic, typed by the topic's
+// message type (an interface per instance); the messages of one frame leave in
+// one firing. Plays at the bag's pace times `rate` (0: as fast as the graph
+// takes them) and never drops: the next frame waits until the graph has read
+// the last one. Seeks in O(log n) (bag_frames.hpp). While paused it holds its
+// frame and sends it again after any change downstream, so a parameter's
+// effect shows on that frame at once.
+#include <chrono>
 #include <memory>
 
 #include "apex/ros/node_plugin.hpp"
 #include "apex_nodes/ros_convert.hpp"
-#include "shared_image_transport.hpp"
+#include "bag_frames.hpp"
 
 namespace apex_nodes {
+namespace {
+
+constexpr const char* kImageType = "sensor_msgs/Image";
+constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
+
+/** The topics a node plays and their outputs: `topics`, one output each; or, when that is
+ *  empty, as graphs made before it: `image_topic` on output image, `cloud_topic` on cloud. */
+std::vector<std::pair<std::string, std::string>> playedTopics(const std::vector<std::string>& topics,
+                                                              const std::string& image_topic,
+                                                              const std::string& cloud_topic) {
+  std::vector<std::pair<std::string, std::string>> out;  // (output, topic)
+  for (const auto& topic : topics) out.emplace_back(portForTopic(topic), topic);
+  if (!out.empty()) return out;
+  if (!image_topic.empty()) out.emplace_back("image", image_topic);
+  if (!cloud_topic.empty()) out.emplace_back("cloud", cloud_topic);
+  return out;
+}
+
+const apex::TypeInfo* typeFor(const std::string& datatype) {
+  if (datatype == kImageType) return apex::typeOf<Image>();
+  if (datatype == kCloudType) return apex::typeOf<Cloud>();
+  return nullptr;
+}
+
+apex::Message convert(const rosbag::MessageInstance& m) {
+  if (auto image = m.instantiate<sensor_msgs::Image>()) return apex::Message::share<Image>(fromRos(image));
+  if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) return apex::Message::share<Cloud>(fromRos(cloud));
+  return {};
+}
+
+/** The outputs for the played topics, typed from the bag; `any` while the bag cannot be read. */
+apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
+  using Texts = std::vector<std::string>;
+  const auto played = playedTopics(p.get<Texts>("topics"), p.get<std::string>("image_topic"), p.get<std::string>("cloud_topic"));
+  const bool legacy = p.get<std::vector<std::string>>("topics").empty();
+  std::map<std::string, std::string> types;
+  if (!legacy && !p.get<std::string>("file").empty()) {
+    try {
+      auto bag = openBag(p.get<std::string>("file"));
+      types = topicTypes(*bag);
+      closeBag(bag);
+    } catch (const std::invalid_argument&) {
+      // the node reports why; its outputs carry anything until the bag can be read
+    }
+  }
+  std::vector<apex::PortSpec> outputs;
+  for (const auto& [port, topic] : played) {
+    const apex::TypeInfo* type = apex::typeOf<apex::Any>();
+    std::string desc = "messages of " + topic;
+    if (legacy) {
+      type = port == "image" ? apex::typeOf<Image>() : apex::typeOf<Cloud>();
+    } else if (auto it = types.find(topic); it != types.end()) {
+      type = typeFor(it->second);
+      if (!type)
+        return apex::Status::error("topic '" + topic + "' holds " + it->second + "; BagReader plays " + kImageType +
+                                   " and " + kCloudType);
+      desc += " (" + it->second + ")";
+    }
+    outputs.push_back({port, type, false, desc});
+  }
+  m.outputs.insert(m.outputs.begin(), outputs.begin(), outputs.end());
+  return apex::Status::ok();
+}
+
+}  // namespace
 
 class BagReader : public apex::Node {
  public:
   static apex::Manifest manifest() {
-    return apex::Manifest("Reads images and point clouds from a bag file")
-        .output<Image>("image", "messages of image_topic (sensor_msgs/Image)")
-        .output<Cloud>("cloud", "messages of cloud_topic (sensor_msgs/PointCloud2)")
-        .output<int>("index", "how many messages were read before this one")
-        .trigger("finished", "fires after the last message (each pass when looping)")
-        .param(apex::param::path("file", "", apex::PathMode::Read).describe("the bag"))
-        .param(apex::param::text("image_topic", "/camera/image_raw"))
-        .param(apex::param::text("cloud_topic", "/camera/points"))
+    return apex::Manifest("Plays a bag: one output per topic, one firing per frame; seeks, holds a frame")
+        .output<double>("stamp", "record time of the frame's first message, seconds")
+        .trigger("finished", "fires after the last frame of each pass")
+        .slot("restart", &BagReader::restart, "back to the first frame (and send it)")
+        .slot("next", &BagReader::next, "send the next frame")
+        .slot("previous", &BagReader::previous, "send the previous frame")
+        .param(apex::param::path("file", "", apex::PathMode::Read).describe("the bag").shapesInterface())
+        .param(apex::param::textList("topics", {})
+                   .describe("topics to play, one output each (/camera/image_raw: output camera_image_raw); "
+                             "empty: image_topic and cloud_topic, on outputs image and cloud")
+                   .shapesInterface())
+        .param(apex::param::text("image_topic", "/camera/image_raw").describe("used when topics is empty").shapesInterface())
+        .param(apex::param::text("cloud_topic", "/camera/points").describe("used when topics is empty").shapesInterface())
+        .param(apex::param::range("sync_window", 0.0, 10.0, 0.001, 0.02)
+                   .describe("messages within this many seconds of a frame's first one belong to it"))
+        .param(apex::param::boolean("playing", true))
         .param(apex::param::range("rate", 0.0, 100.0, 0.1, 1.0).describe("times the recorded pace; 0: as fast as possible"))
         .param(apex::param::boolean("loop", false))
-        .param(apex::param::boolean("playing", true))
+        .param(apex::param::range("start", 0.0, 1e6, 0.1, 0.0).describe("play from this many seconds into the bag"))
+        .param(apex::param::range("end", 0.0, 1e6, 0.1, 0.0).describe("play up to this many seconds into the bag; 0: its end"))
+        .param(apex::param::range("frame", 0, 10000000, 1, 0)
+                   .describe("the current frame (its output sends each frame's index); setting it seeks there "
+                             "and sends that frame")
+                   .everySet()
+                   .makeInteractive())
+        .shapedBy(shapeOutputs)
         .driven();
   }
-  ~BagReader() override { close(); }
+  ~BagReader() override { closeBag(bag_); }
   void setup() override { open(); }
   void parameterChanged(const std::string& name) override {
-    if (name == "file" || name == "image_topic" || name == "cloud_topic") open();
-    if (name == "playing" && param<bool>("playing")) notifyNewData();
-  }
-  void process() override {
-    if (!view_ || it_ == view_->end()) return;  // Nothing: not open, or finished
-    const rosbag::MessageInstance& m = *it_;
-    const ros::Time stamp = m.getTime();
-    if (auto image = m.instantiate<sensor_msgs::Image>()) publish<Image>("image", fromRos(image));
-    if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) publish<Cloud>("cloud", fromRos(cloud));
-    publish("index", index_++);
-    ++it_;
-    if (it_ == view_->end()) {
-      trigger("finished");
-      if (!param<bool>("loop")) return;
-      it_ = view_->begin();
-      index_ = 0;
+    if (name == "file" || name == "topics" || name == "image_topic" || name == "cloud_topic" || name == "sync_window") {
+      if (opened_) open();  // before setup(): it opens once with every value
+    } else if (name == "start" || name == "end") {
+      playRange();
+    } else if (name == "frame") {
+      if (opened_) seek(param<int>("frame"));
+      else seek_on_open_ = true;  // set with the node: open() goes there
+    } else if (name == "playing" && param<bool>("playing")) {
+      if (next_ > last_) next_ = first_;  // play at the end starts again
+      wake();
     }
-    scheduleNext(stamp);
+  }
+  void downstreamChanged() override {
+    if (!param<bool>("playing") && current_ >= 0) request(current_);  // the held frame, once more
   }
 
- private:
-  /** rosbag loads and unloads its encryptor plugins through pluginlib when a bag opens and
-   *  closes: under the node library's plugin lock, or another thread group's image_transport
-   *  set-up crashes the process ("Could not unload library"). */
-  void close() {
-    std::lock_guard<std::mutex> lock(pluginLoaderMutex());
-    view_.reset();
-    bag_.reset();
+  void process() override {
+    if (!bag_ || frames_.empty()) return;
+    int k;
+    const bool requested = request_ >= 0;
+    if (requested) {
+      k = request_;
+      request_ = -1;
+    } else if (param<bool>("playing") && next_ <= last_ && std::chrono::steady_clock::now() >= due_) {
+      k = next_;
+    } else {
+      return;  // paused, past the end, or an early wake-up: the timer for the next frame is set
+    }
+    next_ = k + 1;
+    const bool pass_ends = k == last_ && !requested;
+    if (pass_ends && param<bool>("loop")) next_ = first_;
+    if (param<bool>("playing") && next_ <= last_) schedule(k);
+    send(k);  // last: a malformed message fails this frame only, the next one is on its way
+    if (pass_ends) trigger("finished");
   }
+
+  void restart() {
+    next_ = first_;
+    request(first_);
+  }
+  // From a frame asked for but not sent yet, if any: quick presses add up, and coalesce.
+  void next() {
+    const int at = request_ >= 0 ? request_ : current_;
+    request(at < 0 ? next_ : std::min(at + 1, static_cast<int>(frames_.size()) - 1));
+  }
+  void previous() { request(std::max((request_ >= 0 ? request_ : current_) - 1, 0)); }
+
+ private:
   void open() {
-    close();
+    opened_ = true;
+    closeBag(bag_);
+    frames_.clear();
+    current_ = request_ = -1;
     const std::string file = param<std::string>("file");
     if (file.empty()) return;
-    {
-      std::lock_guard<std::mutex> lock(pluginLoaderMutex());
-      bag_ = std::make_unique<rosbag::Bag>();
-      try {
-        bag_->open(file, rosbag::bagmode::Read);
-      } catch (const rosbag::BagException& e) {
-        bag_.reset();
-        throw std::invalid_argument("cannot open bag '" + file + "': " + e.what());
-      }
+    bag_ = openBag(file);
+    ports_.clear();
+    topics_.clear();
+    using Texts = std::vector<std::string>;
+    for (const auto& [port, topic] :
+         playedTopics(param<Texts>("topics"), param<std::string>("image_topic"), param<std::string>("cloud_topic"))) {
+      ports_[topic] = port;
+      topics_.push_back(topic);
     }
-    view_ = std::make_unique<rosbag::View>(
-        *bag_, rosbag::TopicQuery({param<std::string>("image_topic"), param<std::string>("cloud_topic")}));
-    if (view_->size() == 0)
-      log(apex::LogLevel::Warn, "bag '" + file + "' has no messages on " + param<std::string>("image_topic") + " or " +
-                                    param<std::string>("cloud_topic"));
-    it_ = view_->begin();
-    index_ = 0;
+    frames_ = indexFrames(*bag_, topics_, param<double>("sync_window"));
+    std::string missing;
+    const auto types = topicTypes(*bag_);
+    for (const auto& t : topics_) if (!types.count(t)) missing += (missing.empty() ? "" : ", ") + t;
+    if (!missing.empty()) log(apex::LogLevel::Warn, "bag '" + file + "' has no topic " + missing);
+    playRange();
+    const int asked = param<int>("frame");
+    const bool show = seek_on_open_ && !param<bool>("playing");
+    seek_on_open_ = false;
+    // Playing from a position saved at the end of a pass starts over; paused on a frame shows it.
+    next_ = asked > first_ && asked < last_ ? asked : param<bool>("playing") ? first_ : std::min(asked, last_);
+    if (show) seek(asked);
+    wake();
+  }
+  /** first_/last_ from `start` and `end`, as frame indices. */
+  void playRange() {
+    first_ = 0;
+    last_ = static_cast<int>(frames_.size()) - 1;
+    if (frames_.empty()) return;
+    const ros::Time begin = frames_.front().start;
+    const double start = param<double>("start"), end = param<double>("end");
+    while (first_ < last_ && (frames_[first_].start - begin).toSec() < start) ++first_;
+    if (end > 0)
+      while (last_ > first_ && (frames_[last_].start - begin).toSec() > end) --last_;
+  }
+  void seek(int k) {
+    if (!bag_) return;
+    if (k >= static_cast<int>(frames_.size()))
+      throw std::invalid_argument("frame " + std::to_string(k) + " is past the bag's last frame " +
+                                  std::to_string(frames_.size() - 1));
+    next_ = k;
+    request(k);
+  }
+  void request(int k) {
+    if (k < 0 || !bag_) return;
+    request_ = k;
+    notifyNewData();
+  }
+  void wake() {
+    due_ = std::chrono::steady_clock::now();
     if (param<bool>("playing")) notifyNewData();
   }
-  void scheduleNext(const ros::Time& previous) {
-    if (!param<bool>("playing")) return;
+  /** Publishes frame k: every played topic's message in it, the index and the stamp. */
+  void send(int k) {
+    current_ = k;
+    updateParam("frame", k);
+    const BagFrame& f = frames_[k];
+    for (const rosbag::MessageInstance& m : rosbag::View(*bag_, rosbag::TopicQuery(topics_), f.start, f.end)) {
+      auto port = ports_.find(m.getTopic());
+      if (port == ports_.end()) continue;
+      apex::Message msg = convert(m);
+      if (!msg.isNothing()) publishMessage(port->second, std::move(msg));
+    }
+    publish("stamp", f.start.toSec());
+  }
+  void schedule(int sent) {
     const double rate = param<double>("rate");
-    if (rate <= 0) return notifyNewData();
-    const double gap = std::max(0.0, (it_->getTime() - previous).toSec()) / rate;
+    if (rate <= 0) {
+      due_ = std::chrono::steady_clock::now();
+      return notifyNewData();
+    }
+    const double gap = std::max(0.0, (frames_[next_].start - frames_[sent].start).toSec()) / rate;
+    due_ = std::chrono::steady_clock::now() +
+           std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(gap));
     notifyAfter(gap);
   }
 
   std::unique_ptr<rosbag::Bag> bag_;
-  std::unique_ptr<rosbag::View> view_;
-  rosbag::View::iterator it_;
-  int index_ = 0;
+  std::vector<std::string> topics_;
+  std::map<std::string, std::string> ports_;  // topic → output
+  std::vector<BagFrame> frames_;
+  int first_ = 0, last_ = -1;  // the play range
+  int current_ = -1;           // the frame sent last (held while paused)
+  int next_ = 0;               // the frame playing sends next
+  int request_ = -1;           // a frame asked for by a seek, a slot or a change downstream
+  bool opened_ = false;
+  bool seek_on_open_ = false;
+  std::chrono::steady_clock::time_point due_;
 };
 
 }  // namespace apex_nodes

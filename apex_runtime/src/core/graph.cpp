@@ -221,8 +221,14 @@ Result<std::string> Graph::setParameter(const std::string& node, const std::stri
   } else {
     s.requestParam(i, value.value());
   }
+  changedDownstreamOf(&s);
   bump();
   return toText(value.value());
+}
+
+void Graph::changedDownstreamOf(NodeState* node) {
+  for (NodeState* up : detail::upstreamOf(node))
+    if (up->type) up->post([](NodeState& x) { x.runDownstreamChanged(); });
 }
 
 Status Graph::setInteractive(const std::string& node, const std::string& param, bool on) {
@@ -261,6 +267,7 @@ Status Graph::setEnabled(const std::string& node, bool enabled) {
     s.placeholder.enabled = enabled;
   }
   if (s.type) s.post([](NodeState& x) { x.applyEnabled(); });
+  changedDownstreamOf(&s);
   return Status::ok();
 }
 

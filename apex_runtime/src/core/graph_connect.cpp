@@ -121,7 +121,9 @@ std::shared_ptr<Edge> findEdge(NodeState& from, const Endpoint& src, NodeState& 
 Status Graph::connect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
   auto lock = lockEdits();
   auto st = connectLocked({fn, fp, tn, tp, 0});
-  if (st) bump();
+  if (!st) return st;
+  if (auto to = find(tn)) changedDownstreamOf(to.get());  // the part it feeds now gets the held frame
+  bump();
   return st;
 }
 
@@ -229,6 +231,7 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
     Restructure change = restructure(from.get(), to.get(), dst->kind == Kind::Input);
     removeEdge(e);
   }
+  changedDownstreamOf(to.get());
   bump();
   return Status::ok();
 }

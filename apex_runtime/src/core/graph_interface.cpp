@@ -45,6 +45,9 @@ Status sameBuiltins(const Manifest& type, const Manifest& next) {
   if (next.triggers.empty() || next.triggers[detail::kProcessedIndex].name != type.triggers[detail::kProcessedIndex].name)
     return Status::error("it removed or moved the built-in trigger 'processed'");
   if (next.source_mode != type.source_mode) return Status::error("it changed how the node is scheduled (driven)");
+  for (const auto& p : next.params)  // a host checks paths against its file roots by the type's manifest
+    if (p.kind == ParamKind::Path && !type.findParam(p.name))
+      return Status::error("it added the path parameter '" + p.name + "': path parameters must be in the type's manifest");
   for (const auto& p : type.params) {
     if (!p.shapes_interface) continue;
     const ParamSpec* q = next.findParam(p.name);

@@ -70,6 +70,20 @@ std::vector<NodeState*> downstreamOf(const std::vector<NodeState*>& roots) {
   return out;
 }
 
+std::vector<NodeState*> upstreamOf(NodeState* node) {
+  std::set<NodeState*> seen{node};
+  std::vector<NodeState*> out{node};
+  auto visit = [&](const std::shared_ptr<Edge>& e) {
+    if (e && seen.insert(e->from).second) out.push_back(e->from);
+  };
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    for (auto& in : out[i]->inputs) visit(in->edge);
+    for (auto& p : out[i]->params) visit(p.in_edge);
+  }
+  out.erase(out.begin());
+  return out;
+}
+
 std::vector<NodeState*> componentOf(const std::vector<NodeState*>& roots) {
   std::set<NodeState*> seen(roots.begin(), roots.end());
   std::vector<NodeState*> out(seen.begin(), seen.end());

@@ -16,6 +16,8 @@ namespace detail {
 
 /** @brief The nodes data reaches from `roots` (roots included), over edges into data inputs. */
 std::vector<NodeState*> downstreamOf(const std::vector<NodeState*>& roots);
+/** @brief The nodes whose data or parameter values reach `node` (without it). */
+std::vector<NodeState*> upstreamOf(NodeState* node);
 /** @brief Every node joined to `roots` by data or parameter connections (events excluded). */
 std::vector<NodeState*> componentOf(const std::vector<NodeState*>& roots);
 

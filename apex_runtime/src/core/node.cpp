@@ -63,6 +63,14 @@ const ParamValue& Node::paramValue(std::string_view name) const {
   return s.params[i].active;
 }
 
+void Node::updateParam(std::string_view name, ParamValue value) {
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
+  const int i = s.findParam(name);
+  if (i < 0) unknown(s, "parameter", name, s.manifest().listParams());
+  if (auto st = s.manifest().params[i].validate(value); !st) throw std::invalid_argument("node '" + s.name + "': " + st.message());
+  s.updateParam(i, std::move(value));
+}
+
 void Node::trigger(std::string_view name) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findTrigger(name);

@@ -297,6 +297,7 @@ void NodeState::requestParam(int index, ParamValue v) {
   {
     std::lock_guard<std::mutex> lock(state_mutex);
     params[index].requested = std::move(v);
+    params[index].resend = manifest().params[index].every_set;
     params_dirty_.store(true, std::memory_order_release);
     post_now = !apply_posted_;
     apply_posted_ = true;
@@ -311,7 +312,8 @@ void NodeState::applyParams() {
     apply_posted_ = false;
     params_dirty_.store(false, std::memory_order_relaxed);
     for (std::size_t i = 0; i < params.size(); ++i) {
-      if (params[i].requested == params[i].active) continue;
+      if (params[i].requested == params[i].active && !params[i].resend) continue;
+      params[i].resend = false;
       params[i].active = params[i].requested;
       changed.push_back(static_cast<int>(i));
     }
@@ -326,6 +328,17 @@ void NodeState::applyParams() {
     publishParam(i);  // a parameter output carries every change
   }
   if (!changed.empty()) revision->fetch_add(1, std::memory_order_relaxed);
+}
+
+void NodeState::updateParam(int index, ParamValue v) {
+  {
+    std::lock_guard<std::mutex> lock(state_mutex);
+    ParamState& p = params[index];
+    if (p.active == v) return;
+    if (p.requested == p.active) p.requested = v;  // else an edit asked for another value: it applies next
+    p.active = std::move(v);
+  }
+  revision->fetch_add(1, std::memory_order_relaxed);  // its output sends it with the firing's outputs
 }
 
 void NodeState::publishParam(int index, ThreadGroup* here) {
@@ -386,6 +399,15 @@ void NodeState::runSlot(int slot) {
     manifest().slots[slot].handler(*node);
   } catch (const std::exception& ex) {
     setError("node '" + name + "' (" + type->id + ") slot '" + manifest().slots[slot].name + "' threw: " + ex.what());
+  }
+}
+
+void NodeState::runDownstreamChanged() {
+  if (removed) return;
+  try {
+    node->downstreamChanged();
+  } catch (const std::exception& ex) {
+    setError("node '" + name + "' (" + type->id + ") failed to re-send after a change downstream: " + ex.what());
   }
 }
 

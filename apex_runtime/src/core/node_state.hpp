@@ -87,6 +87,7 @@ struct ParamState {
   ParamValue requested;  // state_mutex
   ParamValue active;     // group thread
   bool interactive = false;
+  bool resend = false;   // state_mutex: set again (ParamSpec::every_set), apply even if unchanged
   std::shared_ptr<Edge> in_edge;
   std::vector<std::shared_ptr<Edge>> out_edges;
   Tap tap;
@@ -152,7 +153,11 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void runSetup();
   void applyEnabled();
   void runSlot(int slot);
+  /** Node::downstreamChanged(); a throw is the node's error. */
+  void runDownstreamChanged();
   void receiveParam(Edge& edge, const Message& m);
+  /** The node set its own parameter (Node::updateParam); a pending request stays and wins. */
+  void updateParam(int index, ParamValue v);
   void fireTrigger(int trigger);
   void setOutput(int index, Message m);
 

@@ -210,7 +210,7 @@ struct RuntimeHost::Impl {
   Status confine(NodeDescription& d) {
     const auto type = graph.registry().find(d.type);
     for (auto& [param, text] : d.parameters) {
-      auto value = confinedValue(type, d.name, param, text);
+      auto value = confinedValue(type ? type->manifest : nullptr, d.name, param, text);
       if (!value) return value.status();
       text = value.value();
     }

@@ -34,6 +34,10 @@ class Node {
   virtual void process() = 0;
   /** @brief Called on the node's thread group before a firing, after a parameter changed. */
   virtual void parameterChanged(const std::string& /*name*/) {}
+  /** @brief Called on the node's thread group after an edit downstream of it: a parameter
+   *  of a node its data reaches was set, or a connection there changed. A source that holds
+   *  a frame re-sends it here, so the change shows on that frame (BagReader does). */
+  virtual void downstreamChanged() {}
   /** @brief Called once on the node's thread group when it is in a graph, before its
    *  first firing: start subscriptions or timers here, not in the constructor. */
   virtual void setup() {}
@@ -89,6 +93,12 @@ class Node {
     if (const T* p = std::get_if<T>(&v)) return *p;
     throwWrongParamType(name);
   }
+
+  /** @brief Sets one of the node's own parameters from process() or a slot handler, e.g. a
+   *  player's current frame: the value shows in the graph's description and goes out on the
+   *  parameter's output with the firing's outputs; parameterChanged() is not called. A value set meanwhile by an edit
+   *  wins. Throws std::invalid_argument for an unknown parameter or a value its spec refuses. */
+  void updateParam(std::string_view name, ParamValue value);
 
   /** @brief Sends an event on one of the node's triggers. */
   void trigger(std::string_view name);

@@ -48,6 +48,7 @@ struct ParamSpec {
   bool interactive = false;            ///< gets ports by default
   bool file_name = false;              ///< strings: a single file name, never a path (no '/', not "." or "..")
   bool shapes_interface = false;       ///< a change may change the node's ports (Manifest::shapedBy)
+  bool every_set = false;              ///< parameterChanged() on every set, even to the same value
 
   ParamSpec& describe(std::string text) { description = std::move(text); return *this; }
   ParamSpec& makeInteractive(bool on = true) { interactive = on; return *this; }
@@ -56,6 +57,9 @@ struct ParamSpec {
   /** @brief Its value decides the node's ports (Manifest::shapedBy): setting it is an edit of the
    *  node's interface, so it is set by edits only and cannot have ports itself. */
   ParamSpec& shapesInterface() { shapes_interface = true; return *this; }
+  /** @brief Setting it is a command as well as a value (e.g. a player's frame: go there, and
+   *  send it again): parameterChanged() runs on every set, also to the value it has. */
+  ParamSpec& everySet() { every_set = true; return *this; }
 
   /** @brief Checks a value's type and bounds; the message names the parameter. */
   Status validate(const ParamValue& value) const;

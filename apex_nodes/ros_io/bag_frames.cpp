@@ -1,0 +1,69 @@
+#include "bag_frames.hpp"
+
+#include <cctype>
+#include <filesystem>
+#include <mutex>
+#include <set>
+#include <stdexcept>
+
+#include "shared_image_transport.hpp"
+
+namespace apex_nodes {
+
+std::unique_ptr<rosbag::Bag> openBag(const std::string& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw std::invalid_argument("cannot open bag '" + file + "': " +
+                                (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
+  // rosbag loads its encryptor plugins through pluginlib when a bag opens: under the node
+  // library's plugin lock, or another thread group's image_transport set-up crashes the process.
+  std::lock_guard<std::mutex> lock(pluginLoaderMutex());
+  auto bag = std::make_unique<rosbag::Bag>();
+  try {
+    bag->open(file, rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    throw std::invalid_argument("cannot open bag '" + file + "': " + e.what());
+  }
+  return bag;
+}
+
+void closeBag(std::unique_ptr<rosbag::Bag>& bag) {
+  std::lock_guard<std::mutex> lock(pluginLoaderMutex());
+  bag.reset();
+}
+
+std::map<std::string, std::string> topicTypes(rosbag::Bag& bag) {
+  std::map<std::string, std::string> out;
+  rosbag::View all(bag);
+  for (const rosbag::ConnectionInfo* c : all.getConnections()) out[c->topic] = c->datatype;
+  return out;
+}
+
+std::vector<BagFrame> indexFrames(rosbag::Bag& bag, const std::vector<std::string>& topics, double window) {
+  std::vector<BagFrame> frames;
+  std::set<std::string> in_frame;
+  const ros::Duration span(window);
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topics))) {
+    const ros::Time t = m.getTime();  // from the index: no message is read
+    if (frames.empty() || t - frames.back().start > span || !in_frame.insert(m.getTopic()).second) {
+      frames.push_back({t, t});
+      in_frame = {m.getTopic()};
+    }
+    frames.back().end = t;
+  }
+  return frames;
+}
+
+std::string portForTopic(const std::string& topic) {
+  std::string out;
+  for (char c : topic) {
+    const bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    if (!ok && (out.empty() || out.back() == '_')) continue;  // no leading or doubled separators
+    out += ok ? c : '_';
+  }
+  while (!out.empty() && out.back() == '_') out.pop_back();
+  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "topic_" + out;
+  return out;
+}
+
+}  // namespace apex_nodes

@@ -1,0 +1,248 @@
+// BagReader as a player: outputs per topic, one firing per frame, seek, restart,
+// a held frame sent again on a change downstream; on bags this test writes.
+#include <gmock/gmock.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/String.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+
+#include "apex_nodes/types.hpp"
+#include "apex_test/node_harness.hpp"
+
+using namespace apex_test;
+using testing::ElementsAre;
+using testing::HasSubstr;
+
+namespace {
+
+const ros::Time kBegin(1000, 0);
+ros::Time frameTime(int k) { return kBegin + ros::Duration(0.1 * k); }
+
+sensor_msgs::Image image(int k) {
+  sensor_msgs::Image m;
+  m.header.stamp = frameTime(k);
+  m.height = 2, m.width = 3, m.encoding = "mono8", m.step = 3;
+  m.data.assign(6, static_cast<std::uint8_t>(k % 256));
+  return m;
+}
+
+sensor_msgs::PointCloud2 cloud(int k) {
+  sensor_msgs::PointCloud2 m;
+  m.header.stamp = frameTime(k);
+  m.height = 1, m.width = 1, m.point_step = 12, m.row_step = 12, m.is_dense = true;
+  for (int i = 0; i < 3; ++i) {
+    sensor_msgs::PointField f;
+    f.name = std::string(1, "xyz"[i]), f.offset = 4 * i, f.datatype = sensor_msgs::PointField::FLOAT32, f.count = 1;
+    m.fields.push_back(f);
+  }
+  m.data.assign(12, 0);
+  return m;
+}
+
+/** A bag of `frames` frames: an image, then 5 ms later a cloud, every 100 ms; and a text topic. */
+std::string writeBag(int frames) {
+  const auto dir = std::filesystem::temp_directory_path() / ("apex_bag_reader_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / ("frames_" + std::to_string(frames) + ".bag")).string();
+  if (std::filesystem::exists(path)) return path;
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  std_msgs::String note;
+  note.data = "not a frame";
+  for (int k = 0; k < frames; ++k) {
+    bag.write("/camera/image_raw", frameTime(k), image(k));
+    bag.write("/camera/points", frameTime(k) + ros::Duration(0.005), cloud(k));
+  }
+  bag.write("/notes", frameTime(0), note);
+  return path;
+}
+
+/** bag → image, cloud, frame and stamp collectors; `finished` → a counter's reset slot. */
+class Player {
+ public:
+  explicit Player(int frames, const std::string& extra = "") : g_(pluginRegistry()) {
+    auto added = g_.addNode(description(writeBag(frames), extra));
+    EXPECT_TRUE(added) << added.message();
+    for (const char* sink : {"images", "clouds", "frames", "stamps"}) add(g_, "test/Collector", sink);
+    add(g_, "test/Counter", "passes");
+    link(g_, "bag", "camera_image_raw", "images", "in");
+    link(g_, "bag", "camera_points", "clouds", "in");
+    link(g_, "bag", "frame", "frames", "in");
+    link(g_, "bag", "stamp", "stamps", "in");
+    link(g_, "bag", "finished", "passes", "reset");
+    g_.start();
+  }
+  static NodeDescription description(const std::string& file, const std::string& extra) {
+    NodeDescription d;
+    d.name = "bag", d.type = "apex_nodes/BagReader";
+    d.parameters = {{"file", file}, {"topics", "[/camera/image_raw, /camera/points]"}, {"rate", "0"}};
+    d.interactive = {"frame"};  // its output: the index of each frame sent
+    if (!extra.empty()) d.parameters.emplace_back(extra.substr(0, extra.find('=')), extra.substr(extra.find('=') + 1));
+    return d;
+  }
+  Graph& graph() { return g_; }
+  Collector& sink(const std::string& name) { return *object<Collector>(g_, name); }
+  void set(const std::string& param, const std::string& value) {
+    auto r = g_.setParameter("bag", param, value);
+    ASSERT_TRUE(r) << r.message();
+  }
+  std::vector<double> stamps() {
+    std::vector<double> out;
+    for (const auto& m : sink("stamps").messages()) out.push_back(m.isNothing() ? -1 : *m.as<double>());
+    return out;
+  }
+
+ private:
+  Graph g_;
+};
+
+TEST(BagReader, OneOutputPerTopicTypedByItsMessageType) {
+  Player p(3, "playing=false");
+  const auto iface = p.graph().nodeInterface("bag");
+  ASSERT_TRUE(iface);
+  ASSERT_EQ(iface->outputs.size(), 3u);  // + stamp
+  EXPECT_EQ(iface->outputs[0].name, "camera_image_raw");
+  EXPECT_EQ(iface->outputs[0].type, typeOf<apex_nodes::Image>());
+  EXPECT_EQ(iface->outputs[1].name, "camera_points");
+  EXPECT_EQ(iface->outputs[1].type, typeOf<apex_nodes::Cloud>());
+  auto r = p.graph().setParameter("bag", "topics", "[/camera/image_raw, /notes]");
+  ASSERT_FALSE(r);
+  EXPECT_THAT(r.message(), HasSubstr("topic '/notes' holds std_msgs/String; BagReader plays sensor_msgs/Image"));
+  // Fewer topics: the output of the one that goes loses its connection, the rest stays.
+  p.set("topics", "[/camera/image_raw]");
+  for (const auto& c : p.graph().describe().connections) EXPECT_NE(c.from_port, "camera_points");
+}
+
+TEST(BagReader, TheMessagesOfAFrameLeaveInOneFiringAndFinishedFiresOncePerPass) {
+  Player p(40);
+  ASSERT_TRUE(p.sink("stamps").waitFor(40));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  ASSERT_TRUE(object<Counter>(p.graph(), "passes")->resets == 1);
+  for (const char* sink : {"images", "clouds", "stamps"}) {  // frame: a parameter output, it never holds the player
+    SCOPED_TRACE(sink);
+    const auto got = p.sink(sink).messages();
+    EXPECT_EQ(got.size(), 40u);  // one firing per frame...
+    EXPECT_EQ(std::count_if(got.begin(), got.end(), [](const Message& m) { return m.isNothing(); }), 0);  // ...with all of it
+  }
+  EXPECT_EQ(p.sink("frames").ints().back(), 39);
+  EXPECT_EQ(std::get<int>(p.graph().parameterValue("bag", "frame").value()), 39);  // the position shows
+  p.graph().fireSlot("bag", "restart");  // replays from frame 0
+  ASSERT_TRUE(p.sink("stamps").waitFor(80));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  EXPECT_EQ(p.stamps()[40], frameTime(0).toSec());
+  EXPECT_EQ(object<Counter>(p.graph(), "passes")->resets, 2);
+}
+
+TEST(BagReader, SeekingSendsExactlyTheFramesAskedFor) {
+  Player p(40, "playing=false");
+  int n = 0;
+  for (int k : {0, 39, 17}) {
+    p.set("frame", std::to_string(k));
+    ASSERT_TRUE(p.sink("stamps").waitFor(++n));
+  }
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  EXPECT_THAT(p.stamps(), ElementsAre(frameTime(0).toSec(), frameTime(39).toSec(), frameTime(17).toSec()));
+  EXPECT_EQ(p.sink("frames").ints().back(), 17);
+  auto past = p.graph().setParameter("bag", "frame", "40");
+  ASSERT_TRUE(past);  // a valid int: the node says why it cannot go there
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  EXPECT_THAT(p.graph().nodeStats(0).at(0).error, HasSubstr("frame 40 is past the bag's last frame 39"));
+  p.graph().fireSlot("bag", "previous");
+  p.graph().fireSlot("bag", "previous");
+  p.graph().fireSlot("bag", "next");
+  ASSERT_TRUE(p.sink("stamps").waitFor(4));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  const auto got = p.stamps();  // presses in quick succession add up and may be sent as one
+  EXPECT_EQ(got.back(), frameTime(16).toSec());
+  EXPECT_LE(got.size(), 6u);
+  for (std::size_t i = 3; i < got.size(); ++i) EXPECT_THAT(got[i], testing::AnyOf(frameTime(16).toSec(), frameTime(15).toSec()));
+}
+
+TEST(BagReader, AHeldFrameIsSentAgainWhenSomethingDownstreamChanges) {
+  Player p(40, "playing=false");
+  add(p.graph(), "test/Gain", "gain");
+  add(p.graph(), "test/Collector", "gained");
+  link(p.graph(), "bag", "frame", "gain", "in");
+  link(p.graph(), "gain", "out", "gained", "in");
+  p.set("frame", "7");
+  ASSERT_TRUE(p.sink("frames").waitFor(1));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  ASSERT_EQ(p.stamps().size(), 1u);
+  ASSERT_TRUE(p.graph().setParameter("gain", "gain", "3"));  // no play, no step
+  ASSERT_TRUE(p.sink("stamps").waitFor(2));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  EXPECT_EQ(p.stamps().back(), frameTime(7).toSec());
+  EXPECT_EQ(object<Collector>(p.graph(), "gained")->ints().back(), 21);
+
+  // 20 changes at once: runs on frame 7 only, the last with the last value.
+  for (int v = 1; v <= 20; ++v) ASSERT_TRUE(p.graph().setParameter("gain", "gain", std::to_string(v)));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  EXPECT_EQ(object<Collector>(p.graph(), "gained")->ints().back(), 7 * 20);
+  EXPECT_LE(p.stamps().size(), 2u + 20u);
+  for (double t : p.stamps()) EXPECT_EQ(t, frameTime(7).toSec());
+}
+
+TEST(BagReader, GraphsWithTheOlderParametersStillLoad) {
+  Graph g(pluginRegistry());
+  NodeDescription d;
+  d.name = "bag", d.type = "apex_nodes/BagReader";
+  d.parameters = {{"file", writeBag(5)}, {"image_topic", "/camera/image_raw"}, {"cloud_topic", "/camera/points"},
+                  {"rate", "0"}};
+  ASSERT_TRUE(g.addNode(d));
+  add(g, "test/Collector", "images");
+  add(g, "test/Collector", "clouds");
+  link(g, "bag", "image", "images", "in");
+  link(g, "bag", "cloud", "clouds", "in");
+  g.start();
+  ASSERT_TRUE(object<Collector>(g, "clouds")->waitFor(5));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(object<Collector>(g, "images")->size(), 5u);  // one firing per frame here too
+}
+
+TEST(BagReader, AMissingBagLeavesOutputsThatCarryAnythingAndSaysWhy) {
+  Graph g(pluginRegistry());
+  NodeDescription d;
+  d.name = "bag", d.type = "apex_nodes/BagReader";
+  d.parameters = {{"file", "/nonexistent/x.bag"}, {"topics", "[/camera/image_raw]"}};
+  ASSERT_TRUE(g.addNode(d));
+  EXPECT_EQ(g.nodeInterface("bag")->outputs[0].type, typeOf<Any>());
+  g.start();
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats(0).at(0).error, HasSubstr("cannot open bag '/nonexistent/x.bag': no such file"));
+}
+
+/** Median wall time from setting `frame` to that frame's stamp arriving. */
+double seekSeconds(Player& p, int k, int repeats) {
+  std::vector<double> t;
+  for (int i = 0; i < repeats; ++i) {
+    for (int target : {k == 1 ? 2 : 1, k}) {  // away first: every set is a change
+      const auto before = p.sink("stamps").size();
+      const auto start = std::chrono::steady_clock::now();
+      p.set("frame", std::to_string(target));
+      EXPECT_TRUE(p.sink("stamps").waitFor(before + 1));
+      if (target == k) t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      EXPECT_TRUE(p.graph().waitIdle(kWait));
+    }
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+TEST(BagReader, SeekingToTheLastOfTenThousandFramesCostsWhatSeekingToTheFirstDoes) {
+  Player p(10000, "playing=false");
+  const double first = seekSeconds(p, 0, 21), last = seekSeconds(p, 9999, 21);
+  std::printf("seek on 10,000 frames: first %.3f ms, last %.3f ms\n", first * 1e3, last * 1e3);
+  EXPECT_LT(last, 3 * first + 0.002);  // replaying from the start would take ~10,000 times longer
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::Time::init();
+  return RUN_ALL_TESTS();
+}
