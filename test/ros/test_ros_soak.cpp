@@ -44,11 +44,11 @@ struct Link {
 
 /** The `connections:` of graphs/paper_pipeline.yaml. */
 const std::vector<Link> kLinks = {
-    {"bag", "image", "rotate", "image"},          {"rotate", "image", "gray", "image"},
+    {"bag", "camera_image_raw", "rotate", "image"},      {"rotate", "image", "gray", "image"},
     {"gray", "image", "threshold", "image"},      {"threshold", "image", "morphology", "image"},
     {"morphology", "image", "blobs", "image"},    {"rotate", "image", "overlay", "image"},
     {"blobs", "regions", "overlay", "regions"},   {"overlay", "image", "overlay_out", "image"},
-    {"bag", "cloud", "passthrough", "cloud"},     {"passthrough", "cloud", "voxels", "cloud"},
+    {"bag", "camera_points", "passthrough", "cloud"},     {"passthrough", "cloud", "voxels", "cloud"},
     {"voxels", "cloud", "cloud_out", "cloud"},
 };
 
