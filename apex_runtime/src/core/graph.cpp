@@ -227,8 +227,17 @@ Result<std::string> Graph::setParameter(const std::string& node, const std::stri
 }
 
 void Graph::changedDownstreamOf(NodeState* node) {
-  for (NodeState* up : detail::upstreamOf(node))
-    if (up->type) up->post([](NodeState& x) { x.runDownstreamChanged(); });
+  for (NodeState* up : detail::upstreamOf(node)) {
+    if (!up->type || !up->isSource()) continue;  // a held frame starts at a source
+    // At most one re-send per pass of a frame through what it feeds (the sum of those nodes'
+    // mean firing times; 40 ms to 0.5 s, so at most 25 re-runs a second, which the eye cannot
+    // tell from more): a burst of edits re-runs a held frame a few times, never a queue of
+    // stale runs, and the last run sees the last change.
+    std::uint64_t pass_ns = 0;
+    for (NodeState* down : detail::downstreamOf({up})) pass_ns += down->stats().mean_ns;
+    const auto pass = std::chrono::nanoseconds(std::clamp<std::uint64_t>(pass_ns, 40'000'000, 500'000'000));
+    up->downstreamChanged(pass);
+  }
 }
 
 Status Graph::setInteractive(const std::string& node, const std::string& param, bool on) {

@@ -402,6 +402,27 @@ void NodeState::runSlot(int slot) {
   }
 }
 
+void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) {
+  auto run = [](NodeState& n) { n.runDownstreamChanged(); };
+  const auto now = std::chrono::steady_clock::now();
+  std::lock_guard<std::mutex> lock(state_mutex);
+  if (resend_due_) return;  // the one set for later sees this change too
+  if (now >= last_resend_ + interval) {
+    last_resend_ = now;
+    post(run);
+    return;
+  }
+  resend_due_ = true;
+  group->at(last_resend_ + interval, Mail{shared_from_this(), [run](NodeState& n) {
+                                            {
+                                              std::lock_guard<std::mutex> l(n.state_mutex);
+                                              n.resend_due_ = false;
+                                              n.last_resend_ = std::chrono::steady_clock::now();
+                                            }
+                                            n.post(run);  // on the node's group, wherever it is now
+                                          }});
+}
+
 void NodeState::runDownstreamChanged() {
   if (removed) return;
   try {

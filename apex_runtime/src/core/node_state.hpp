@@ -168,6 +168,10 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void post(std::function<void(NodeState&)> fn);
   void notifyNewData();
   void notifyAfter(double seconds);
+  /** Something downstream changed (an edit): Node::downstreamChanged() on the group thread now,
+   *  or, within `interval` of the last call, once at the end of that interval: a burst of
+   *  changes gives one run per interval and always one after the last change. */
+  void downstreamChanged(std::chrono::steady_clock::duration interval);
   /** Requested value changed: apply on the group thread before the next firing. */
   void requestParam(int index, ParamValue v);
 
@@ -205,6 +209,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   bool active_enabled_ = true;
   std::atomic<bool> params_dirty_{false};
   bool apply_posted_ = false;  // state_mutex
+  bool resend_due_ = false;    // state_mutex: a downstreamChanged() is set on a timer
+  std::chrono::steady_clock::time_point last_resend_;  // state_mutex
   std::atomic<bool> has_error_{false};
   std::string error_;  // state_mutex
   std::chrono::steady_clock::time_point error_logged_;  // state_mutex

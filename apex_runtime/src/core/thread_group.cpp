@@ -95,9 +95,13 @@ void ThreadGroup::post(Mail mail) {
 }
 
 void ThreadGroup::notifyAt(Clock::time_point when, std::shared_ptr<NodeState> node) {
+  at(when, Mail{std::move(node), [](NodeState& n) { n.notifyNewData(); }});  // pushes onto the node's current group
+}
+
+void ThreadGroup::at(Clock::time_point when, Mail mail) {
   std::lock_guard<std::mutex> lock(m_);
   const bool earliest = timers_.empty() || when < timers_.begin()->first;
-  timers_.emplace(when, std::move(node));
+  timers_.emplace(when, std::move(mail));
   if (earliest && waiting_ && pause_requests_ == 0) cv_.notify_one();  // re-arm the wait
 }
 
@@ -221,11 +225,11 @@ void ThreadGroup::run() {
     }
     // Due timers before firings: a group kept busy by a free-running source must not starve them.
     if (pause_requests_ == 0 && !timers_.empty() && timers_.begin()->first <= Clock::now()) {
-      auto node = std::move(timers_.begin()->second);
+      Mail due = std::move(timers_.begin()->second);
       timers_.erase(timers_.begin());
       lock.unlock();
-      node->notifyNewData();  // pushes onto this or the node's current group
-      node.reset();
+      due.fn(*due.node);
+      due = Mail{};  // drops the node reference outside the lock
       lock.lock();
       continue;
     }

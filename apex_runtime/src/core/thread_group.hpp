@@ -55,6 +55,8 @@ class ThreadGroup {
   void post(Mail mail);
   /** @brief Calls the node's notifyNewData() at `when` (a timer; pending timers do not keep the group busy). */
   void notifyAt(std::chrono::steady_clock::time_point when, std::shared_ptr<NodeState> node);
+  /** @brief Runs `mail` on this group's thread at `when` (a timer, as above). */
+  void at(std::chrono::steady_clock::time_point when, Mail mail);
 
   /** @brief Returns once the thread is parked at a firing boundary; counted, so
    *  several editors may pause at once. Cheap when the thread is idle. */
@@ -97,7 +99,7 @@ class ThreadGroup {
   std::condition_variable state_cv_;  // the thread parked, stepped or went idle
   std::deque<NodeState*> ready_;
   std::vector<Mail> mail_;
-  std::multimap<std::chrono::steady_clock::time_point, std::shared_ptr<NodeState>> timers_;
+  std::multimap<std::chrono::steady_clock::time_point, Mail> timers_;
   bool waiting_ = false;   // the thread waits on cv_ (at a firing boundary)
   bool busy_ = false;      // the thread runs a firing or mail
   bool stop_ = false;

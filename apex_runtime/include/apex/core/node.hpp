@@ -34,9 +34,11 @@ class Node {
   virtual void process() = 0;
   /** @brief Called on the node's thread group before a firing, after a parameter changed. */
   virtual void parameterChanged(const std::string& /*name*/) {}
-  /** @brief Called on the node's thread group after an edit downstream of it: a parameter
-   *  of a node its data reaches was set, or a connection there changed. A source that holds
-   *  a frame re-sends it here, so the change shows on that frame (BagReader does). */
+  /** @brief Sources only: called on the node's thread group after an edit downstream of it
+   *  (a parameter of a node its data reaches was set, a connection there changed). A source
+   *  that holds a frame sends it again here, so the change shows on that frame (BagReader
+   *  does). A burst of edits calls it about once per pass of a frame through the nodes it
+   *  feeds, and always once after the last edit. */
   virtual void downstreamChanged() {}
   /** @brief Called once on the node's thread group when it is in a graph, before its
    *  first firing: start subscriptions or timers here, not in the constructor. */

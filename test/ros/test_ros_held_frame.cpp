@@ -1,0 +1,164 @@
+// Tuning on a held frame, as a user does it with rosservice or the panel: the
+// demo graph's player is paused; seeking sends exactly the frames asked for;
+// setting the threshold's `c` re-runs the held frame at once (no play, no step);
+// a burst of changes re-runs it a few times, the last with the last value.
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+
+#include <apex/SetParameter.h>
+#include <sensor_msgs/Image.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <thread>
+
+#include "apex_test/ros_client.hpp"
+
+using namespace apex_test;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+std::string g_bag;
+
+/** Every overlay that arrives, with its arrival time. */
+class Overlays {
+ public:
+  explicit Overlays(ros::NodeHandle& nh)
+      : sub_(nh.subscribe<sensor_msgs::Image>("/apex_demo/overlay", 50, [this](const sensor_msgs::Image::ConstPtr& m) {
+          std::lock_guard<std::mutex> l(m_);
+          got_.push_back({Clock::now(), m});
+          cv_.notify_all();
+        })) {}
+  bool connected() const { return sub_.getNumPublishers() > 0; }
+  std::size_t size() {
+    std::lock_guard<std::mutex> l(m_);
+    return got_.size();
+  }
+  /** The next overlay after the first `after`, or nullptr after 10 s. */
+  std::pair<Clock::time_point, sensor_msgs::Image::ConstPtr> next(std::size_t after) {
+    std::unique_lock<std::mutex> l(m_);
+    if (!cv_.wait_for(l, std::chrono::seconds(10), [&] { return got_.size() > after; })) return {};
+    return got_[after];
+  }
+  std::vector<sensor_msgs::Image::ConstPtr> since(std::size_t after) {
+    std::lock_guard<std::mutex> l(m_);
+    std::vector<sensor_msgs::Image::ConstPtr> out;
+    for (std::size_t i = after; i < got_.size(); ++i) out.push_back(got_[i].second);
+    return out;
+  }
+
+ private:
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::vector<std::pair<Clock::time_point, sensor_msgs::Image::ConstPtr>> got_;
+  ros::Subscriber sub_;
+};
+
+void set(const std::string& node, const std::string& param, const std::string& value) {
+  apex::SetParameter::Request r;
+  r.node = node, r.parameter = param, r.value = value;
+  auto res = call<apex::SetParameter>("set_parameter", r);
+  ASSERT_TRUE(res.success) << node << "/" << param << ": " << res.message;
+}
+
+/** The image stamps of the bag, frame by frame. */
+std::vector<ros::Time> bagStamps() {
+  rosbag::Bag bag(g_bag);
+  std::vector<ros::Time> out;
+  for (const auto& m : rosbag::View(bag, rosbag::TopicQuery("/camera/image_raw")))
+    out.push_back(m.instantiate<sensor_msgs::Image>()->header.stamp);
+  return out;
+}
+
+double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+bool sameImage(const sensor_msgs::Image& a, const sensor_msgs::Image& b) {
+  return a.width == b.width && a.height == b.height && a.data == b.data;
+}
+
+TEST(HeldFrame, SeekThenTuneOnTheHeldFrameWithoutPlaying) {
+  ros::NodeHandle nh;
+  Overlays overlays(nh);
+  const auto deadline = Clock::now() + std::chrono::seconds(30);
+  while (!overlays.connected() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(overlays.connected()) << "the overlay publisher never connected";
+  const auto stamps = bagStamps();
+  ASSERT_EQ(stamps.size(), 40u);
+
+  // Seek: exactly the frames asked for, in order. The time it takes is the pipeline's own.
+  std::vector<double> pipeline;
+  for (int k : {0, 39, 17, 7}) {
+    const auto before = overlays.size();
+    const auto start = Clock::now();
+    set("bag", "frame", std::to_string(k));
+    auto [when, image] = overlays.next(before);
+    ASSERT_TRUE(image) << "no overlay after seeking to frame " << k;
+    EXPECT_EQ(image->header.stamp, stamps[k]) << "seek to frame " << k;
+    pipeline.push_back(seconds(when - start));
+  }
+  std::sort(pipeline.begin(), pipeline.end());
+  const double processing = pipeline.back();
+
+  // A parameter change re-runs the held frame 7, at once.
+  const auto before = overlays.size();
+  const auto start = Clock::now();
+  set("threshold", "c", "10.0");
+  auto [when, image] = overlays.next(before);
+  ASSERT_TRUE(image) << "setting threshold/c on a paused player sent no new overlay";
+  EXPECT_EQ(image->header.stamp, stamps[7]);
+  EXPECT_LT(seconds(when - start), processing + 0.1) << "pipeline " << processing << " s";
+
+  // 20 changes within 50 ms: a few re-runs, all of frame 7, the last with the last value.
+  // A persistent connection, as a slider's client keeps: a call then takes about a millisecond.
+  auto client = nh.serviceClient<apex::SetParameter>(service("set_parameter"), true);
+  apex::SetParameter burst_call;
+  burst_call.request.node = "threshold", burst_call.request.parameter = "c", burst_call.request.value = "25.0";
+  const auto connected = overlays.size();
+  ASSERT_TRUE(client.call(burst_call) && burst_call.response.success);
+  ASSERT_TRUE(overlays.next(connected).second);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // that re-run is through
+  const auto burst = overlays.size();
+  const auto burst_start = Clock::now();
+  for (int i = 0; i < 20; ++i) {
+    burst_call.request.value = std::to_string(i % 2 ? 40.0 : -20.0 + i);
+    ASSERT_TRUE(client.call(burst_call) && burst_call.response.success) << burst_call.response.message;
+  }
+  const double burst_s = seconds(Clock::now() - burst_start);
+  std::printf("burst of 20 changes: %.1f ms; pipeline %.1f ms\n", burst_s * 1e3, processing * 1e3);
+  EXPECT_LT(burst_s, 0.1);
+  burst_call.request.value = "30.0";  // the last value
+  ASSERT_TRUE(client.call(burst_call) && burst_call.response.success);
+  ASSERT_TRUE(overlays.next(burst).second);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // any stale re-run would come now
+  const auto reruns = overlays.since(burst);
+  EXPECT_LE(reruns.size(), 5u) << "a queue of stale re-runs";
+  for (const auto& r : reruns) EXPECT_EQ(r->header.stamp, stamps[7]);
+
+  // The same value alone gives the same overlay as the burst's last re-run.
+  set("threshold", "c", "29.5");
+  ASSERT_TRUE(overlays.next(burst + reruns.size()).second);
+  const auto other = overlays.size();
+  set("threshold", "c", "30.0");
+  auto reference = overlays.next(other).second;
+  ASSERT_TRUE(reference);
+  EXPECT_TRUE(sameImage(*reruns.back(), *reference)) << "the last re-run did not use the last value";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_ros_held_frame");
+  if (argc < 2) {
+    std::fprintf(stderr, "usage: test_ros_held_frame BAG\n");
+    return 2;
+  }
+  g_bag = argv[1];
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
