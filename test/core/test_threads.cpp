@@ -134,6 +134,43 @@ TEST_F(Threads, StepAdvancesOneWaveAtATime) {
   for (int i = 0; i < 100 && !HasFatalFailure(); ++i) stepWaves(g.registry());
 }
 
+/** One frame step on src -> a (vision) -> b (default) -> sink, src -> c (cloud) -> sink2:
+ *  every node the frame reaches fires exactly once, the source once. */
+void stepFrames(NodeRegistry registry) {
+  Graph g(std::move(registry));
+  add(g, "test/Feeder", "src");
+  add(g, "test/Relay", "a", "vision");
+  add(g, "test/Relay", "b");
+  add(g, "test/Relay", "c", "cloud");
+  add(g, "test/Collector", "sink");
+  add(g, "test/Collector", "sink2", "cloud");
+  link(g, "src", "out", "a", "in");
+  link(g, "a", "out", "b", "in");
+  link(g, "b", "out", "sink", "in");
+  link(g, "src", "out", "c", "in");
+  link(g, "c", "out", "sink2", "in");
+  g.pause();
+  g.start();
+  auto* src = object<Feeder>(g, "src");
+  for (int v = 1; v <= 3; ++v) src->feed(v);
+  ASSERT_TRUE(g.waitIdle(kWait));
+  for (int frame = 1; frame <= 2; ++frame) {
+    ASSERT_TRUE(g.stepFrame());
+    ASSERT_EQ(object<Collector>(g, "sink")->ints().back(), frame);  // all the way through
+    ASSERT_EQ(object<Collector>(g, "sink2")->ints().back(), frame);
+    for (const auto& n : g.nodeStats(0)) ASSERT_EQ(n.firings, std::uint64_t(frame)) << n.name;  // each once per frame
+  }
+  g.resume();
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(3));
+}
+
+TEST_F(Threads, AFrameStepTakesOneFrameThroughTheWholeGraph) {
+  for (int i = 0; i < 100 && !HasFatalFailure(); ++i) stepFrames(g.registry());
+  add(g, "test/Feeder", "src");
+  g.start();
+  EXPECT_EQ(g.stepFrame().message(), "the graph is running: pause it to step");
+}
+
 TEST_F(Threads, OneWakeUpPerMessageCrossingIntoAnIdleGroup) {
   add(g, "test/Feeder", "src");
   add(g, "test/Collector", "sink", "far");

@@ -7,6 +7,8 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 
+#include <apex/Control.h>
+#include <apex/RuntimeStatus.h>
 #include <apex/SetParameter.h>
 #include <sensor_msgs/Image.h>
 
@@ -146,6 +148,35 @@ TEST(HeldFrame, SeekThenTuneOnTheHeldFrameWithoutPlaying) {
   auto reference = overlays.next(other).second;
   ASSERT_TRUE(reference);
   EXPECT_TRUE(sameImage(*reruns.back(), *reference)) << "the last re-run did not use the last value";
+}
+
+TEST(HeldFrame, AStepIsOneFrameThroughBothThreadGroups) {
+  ros::NodeHandle nh;
+  Overlays overlays(nh);
+  const auto deadline = Clock::now() + std::chrono::seconds(30);
+  while (!overlays.connected() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const auto stamps = bagStamps();
+  apex::Control::Request pause, step;
+  pause.command = "pause", step.command = "step";
+  ASSERT_TRUE(call<apex::Control>("control", pause).success);
+  set("bag", "frame", "20");      // asked for; the paused graph holds it
+  set("bag", "playing", "true");  // and then the frames after it
+  for (int k : {20, 21, 22}) {
+    apex::RuntimeStatus before, after;
+    ASSERT_TRUE(receive(nh, "/apex/status", before));
+    const auto first = overlays.size();
+    auto stepped = call<apex::Control>("control", step);
+    ASSERT_TRUE(stepped.success) << stepped.message;
+    auto image = overlays.next(first).second;
+    ASSERT_TRUE(image) << "a step sent no overlay";
+    EXPECT_EQ(image->header.stamp, stamps[k]) << "step to frame " << k;
+    ASSERT_TRUE(receive(nh, "/apex/status", after));
+    std::map<std::string, std::uint64_t> fired;
+    for (const auto& n : before.nodes) fired[n.name] = n.firings;
+    for (const auto& n : after.nodes) fired[n.name] = n.firings - fired[n.name];
+    for (const auto& [name, n] : fired) EXPECT_EQ(n, 1u) << name << " fired " << n << " times in one step";
+    EXPECT_EQ(overlays.size(), first + 1);
+  }
 }
 
 }  // namespace

@@ -393,14 +393,34 @@ void Graph::step() {
   for (auto& [name, g] : groups_) g->waitStep();
 }
 
+Status Graph::stepFrame(double timeout_s) {
+  auto lock = lockEdits();
+  if (!paused_) return Status::error("the graph is running: pause it to step");
+  std::vector<std::shared_ptr<ThreadGroup>> groups;
+  for (auto& [name, g] : groups_) groups.push_back(g);
+  // Budgets set with every group paused: no source fires twice, whichever group frees it.
+  for (auto& g : groups) g->pause();
+  for (auto& g : groups) g->beginFrameStep();
+  for (auto& g : groups) g->resume();
+  const bool done = allIdle(groups, timeout_s);
+  for (auto& g : groups) g->endFrameStep();
+  bump();
+  if (!done) return Status::error("the frame did not finish within " + std::to_string(timeout_s) + " s");
+  return Status::ok();
+}
+
 bool Graph::waitIdle(double timeout_s) const {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                                std::chrono::duration<double>(timeout_s));
   std::vector<std::shared_ptr<ThreadGroup>> groups;  // shared: a load may drop a group meanwhile
   {
     auto lock = lockEdits();
     for (auto& [name, g] : groups_) groups.push_back(g);
   }
+  return allIdle(groups, timeout_s);
+}
+
+bool Graph::allIdle(const std::vector<std::shared_ptr<ThreadGroup>>& groups, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                                std::chrono::duration<double>(timeout_s));
   // A group found idle may be given work by one checked later: idle means two
   // passes in a row found every group idle with no work pushed or posted between.
   std::vector<std::uint64_t> last;

@@ -134,6 +134,29 @@ void ThreadGroup::beginStep() {
   cv_.notify_one();
 }
 
+void ThreadGroup::beginFrameStep() {
+  std::lock_guard<std::mutex> lock(m_);
+  frame_step_ = true;
+  stepped_sources_.clear();
+  cv_.notify_one();
+}
+
+void ThreadGroup::endFrameStep() {
+  std::lock_guard<std::mutex> lock(m_);
+  frame_step_ = false;
+  stepped_sources_.clear();
+}
+
+int ThreadGroup::firable() const {
+  if (ready_.empty()) return -1;
+  if (!hold_ || step_budget_ > 0) return 0;
+  if (!frame_step_) return -1;
+  // Structure (isSource) changes only in edits, which pause this group: stable here.
+  for (std::size_t i = 0; i < ready_.size(); ++i)
+    if (!ready_[i]->isSource() || !stepped_sources_.count(ready_[i])) return static_cast<int>(i);
+  return -1;
+}
+
 void ThreadGroup::waitStep() {
   std::unique_lock<std::mutex> lock(m_);
   if (!running_) return;
@@ -233,11 +256,13 @@ void ThreadGroup::run() {
       lock.lock();
       continue;
     }
-    if (pause_requests_ == 0 && canFire()) {
-      NodeState* node = ready_.front();
-      ready_.pop_front();
+    const int next = pause_requests_ == 0 ? firable() : -1;
+    if (next >= 0) {
+      NodeState* node = ready_[next];
+      ready_.erase(ready_.begin() + next);
       node->queued = false;
-      if (hold_) --step_budget_;
+      if (hold_ && step_budget_ > 0) --step_budget_;
+      if (hold_ && frame_step_ && node->isSource()) stepped_sources_.insert(node);
       if (node->queued_from_outside) {
         node->queued_from_outside = false;
         --queued_from_outside_;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -68,6 +69,10 @@ class ThreadGroup {
   /** @brief While held: allow the nodes ready now to fire once each. */
   void beginStep();
   void waitStep();
+  /** @brief While held: each source may fire once, every other node fires freely (a frame
+   *  goes all the way through); ends with endFrameStep(). Idle means nothing more can fire. */
+  void beginFrameStep();
+  void endFrameStep();
 
   /** @brief Waits until nothing is ready, running or posted, or the group is stopped; false on timeout. */
   bool waitIdle(std::chrono::steady_clock::time_point deadline);
@@ -88,7 +93,9 @@ class ThreadGroup {
     attention_.store(pause_requests_ > 0 || !mail_.empty() || hold_ || stop_ || queued_from_outside_ > 0,
                      std::memory_order_relaxed);
   }
-  bool canFire() const { return !ready_.empty() && (!hold_ || step_budget_ > 0); }
+  bool canFire() const { return firable() >= 0; }
+  /** The position in ready_ of the next node allowed to fire, -1 if none. */
+  int firable() const;
   // a stopped group counts as idle: nothing will run there until it starts again
   bool idleLocked() const { return !running_ || (mail_.empty() && !canFire() && !busy_ && waiting_); }
 
@@ -107,6 +114,8 @@ class ThreadGroup {
   int pause_requests_ = 0;
   bool hold_ = false;
   std::size_t step_budget_ = 0;
+  bool frame_step_ = false;
+  std::set<const NodeState*> stepped_sources_;  // fired in this frame step
   std::uint64_t activity_ = 0;
   std::thread thread_;
   std::atomic<bool> attention_{false};

@@ -244,9 +244,9 @@ struct RuntimeHost::Impl {
       graph.pause();
     } else if (req.command == "resume") {
       graph.resume();
-    } else if (req.command == "step") {
-      if (graph.paused()) graph.step();
-      else st = Status::error("step: the graph is running; pause it first");
+    } else if (req.command == "step") {  // one frame through the whole graph
+      st = graph.stepFrame();
+      if (!st) st = Status::error("step: " + st.message());
     } else {
       st = Status::error("unknown command '" + req.command + "' (commands: pause, resume, step)");
     }

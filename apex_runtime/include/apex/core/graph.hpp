@@ -85,8 +85,14 @@ class Graph {
   void pause();
   void resume();
   bool paused() const;
-  /** @brief While paused: fires each node that is ready now, once, and returns when done. */
+  /** @brief While paused: fires each node that is ready now, once, and returns when done
+   *  (one wave: a frame moves one node further). */
   void step();
+  /** @brief While paused: one frame. Every source that is ready fires once, and every node
+   *  its data reaches fires until the frame has gone all the way through (sources stay held);
+   *  returns when nothing more can fire. Refused while running, or if the frame does not
+   *  finish within `timeout_s`. */
+  Status stepFrame(double timeout_s = 30.0);
 
   // --- reading ---
   /** @brief The whole graph as plain data (nodes in insertion order). */
@@ -121,6 +127,8 @@ class Graph {
   /** Takes the edit mutex; throws std::logic_error when called from this graph's
    *  own node code, where waiting for the node's thread group would deadlock. */
   std::unique_lock<std::mutex> lockEdits() const;
+  /** Every group idle (nothing ready that may fire, running or posted), twice in a row. */
+  static bool allIdle(const std::vector<std::shared_ptr<detail::ThreadGroup>>& groups, double timeout_s);
   NodePtr find(const std::string& name) const;
   Result<NodePtr> require(const std::string& name) const;
   detail::ThreadGroup* group(const std::string& name);  // creates
