@@ -161,6 +161,26 @@ struct Tick : Node {
   std::atomic<int> setups{0};
 };
 
+TEST(Observe, RatesCountFramesAndFiringsThatOnlyPassNothingAreCountedApart) {
+  Graph g(testRegistry());
+  add(g, "test/Feeder", "src");
+  add(g, "test/OptionalSum", "sum");
+  add(g, "test/Collector", "sink");
+  link(g, "src", "out", "sum", "a");
+  link(g, "sum", "sum", "sink", "in");
+  g.start();
+  for (int v = 1; v <= 3; ++v) object<Feeder>(g, "src")->feed(v);
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(3));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  object<Feeder>(g, "src")->notifyNewData();  // nothing queued: the source sends Nothing, and so does the chain
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(4));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  for (const auto& n : g.nodeStats(0)) {
+    EXPECT_EQ(n.firings, 3u) << n.name;
+    EXPECT_EQ(n.nothing_firings, 1u) << n.name;
+  }
+}
+
 TEST(Timers, ASourceAtARateUsesTheGroupsTimerAndSetup) {
   Graph g(testRegistry());
   ASSERT_TRUE(g.registry().add<Tick>("test/Tick"));

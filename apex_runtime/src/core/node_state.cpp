@@ -180,6 +180,10 @@ bool NodeState::fireIfReady() {
     if (has_error_.load(std::memory_order_relaxed))
       for (auto& out : outputs) out.pending = Message();
   }
+  bool data = false;  // consumed or produced a message: a frame, for rates
+  for (auto& in : inputs) data = data || !in->current.isNothing();
+  for (auto& out : outputs) data = data || !out.pending.isNothing();
+  last_had_data_ = data;
   for (auto& out : outputs) {
     if (out.tap) out.tap(out.pending);
     const std::size_t n = out.edges.size();
@@ -197,17 +201,22 @@ bool NodeState::fireIfReady() {
 void NodeState::recordFiring(std::int64_t t, std::int64_t end) {
   // One writer (the group thread): plain loads and stores, no locked instructions.
   const auto relaxed = std::memory_order_relaxed;
+  last_fired_.store(end, relaxed);
+  if (!last_had_data_) {  // only Nothing in and out: counted apart, not in the rate or the times
+    nothing_firings_.store(nothing_firings_.load(relaxed) + 1, relaxed);
+    return;
+  }
   firings_.store(firings_.load(relaxed) + 1, relaxed);
   last_t_.store(t, relaxed);
   total_t_.store(total_t_.load(relaxed) + t, relaxed);
   if (t > max_t_.load(relaxed)) max_t_.store(t, relaxed);
-  last_fired_.store(end, relaxed);
 }
 
 NodeStats NodeState::stats() const {
   NodeStats s;
   s.name = name;
   s.firings = firings_.load(std::memory_order_relaxed);
+  s.nothing_firings = nothing_firings_.load(std::memory_order_relaxed);
   s.last_ns = ticksToNs(last_t_.load(std::memory_order_relaxed));
   s.max_ns = ticksToNs(max_t_.load(std::memory_order_relaxed));
   s.mean_ns = s.firings ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / s.firings : 0;

@@ -146,7 +146,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // --- group thread ---
   /** Fires if nothing blocks it (an edit may have blocked it since it was queued). */
   bool fireIfReady();
-  /** A firing took `t` ticks and ended at tick `end`. */
+  /** A firing took `t` ticks and ended at tick `end`; one that only passed Nothing is counted apart. */
   void recordFiring(std::int64_t t, std::int64_t end);
   void applyParams();
   /** Node::setup(), once; a throw is the node's error. */
@@ -216,7 +216,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::chrono::steady_clock::time_point error_logged_;  // state_mutex
   static constexpr std::chrono::seconds kErrorLogInterval{5};
   // written by the group thread only (load + store, no read-modify-write), read by anyone
-  std::atomic<std::uint64_t> firings_{0};
+  std::atomic<std::uint64_t> firings_{0}, nothing_firings_{0};
+  bool last_had_data_ = false;  // group thread: the firing recorded next moved a message
   std::atomic<std::int64_t> last_t_{0}, total_t_{0}, max_t_{0}, last_fired_{0};  // in ticks (ticks.hpp)
   void take(InputState& in, bool optional, bool& skip);
 };

@@ -143,6 +143,7 @@ RuntimeStatus toStatus(const Graph& graph) {
     ns.state = !n.error.empty() ? "error" : n.enabled ? "ok" : "disabled";
     ns.error = n.error;
     ns.firings = n.firings;
+    ns.nothing_firings = n.nothing_firings;
     ns.last_ms = n.last_ns / 1e6;
     ns.mean_ms = n.mean_ns / 1e6;
     ns.max_ms = n.max_ns / 1e6;

@@ -46,7 +46,8 @@ struct GraphDescription {
 /** @brief Profiling of one node; times in nanoseconds. */
 struct NodeStats {
   std::string name;
-  std::uint64_t firings = 0;
+  std::uint64_t firings = 0;          ///< firings that took or sent a message: frames
+  std::uint64_t nothing_firings = 0;  ///< firings that only passed Nothing (not in the rate or times)
   std::uint64_t last_ns = 0, mean_ns = 0, max_ns = 0;
   std::string error;
   bool enabled = true;
