@@ -7,42 +7,28 @@
 
 #include "apex/ros/node_plugin.hpp"
 #include "apex_nodes/types.hpp"
+#include "topic_source.hpp"
 
 namespace apex_nodes {
 
-class LaserScanSubscriber : public apex::Node {
+class LaserScanSubscriber : public TopicSource<sensor_msgs::LaserScan> {
  public:
   static apex::Manifest manifest() {
     return apex::Manifest("Receives sensor_msgs/LaserScan; keeps only the newest")
         .output<sensor_msgs::LaserScan>("scan")
         .param(apex::param::text("topic", "scan"))
+        .param(holdParam())
         .driven();
-  }
-  void setup() override { subscribe(); }
-  void parameterChanged(const std::string&) override { subscribe(); }
-  void process() override {
-    sensor_msgs::LaserScanConstPtr scan;
-    {
-      std::lock_guard<std::mutex> l(m_);
-      std::swap(scan, latest_);
-    }
-    if (scan)  // shared with ROS, not copied: boost to std ownership
-      publish<sensor_msgs::LaserScan>("scan", std::shared_ptr<const sensor_msgs::LaserScan>(scan.get(), [scan](auto*) {}));
   }
 
  private:
-  void subscribe() {
+  void subscribe() override {
     sub_ = ros::NodeHandle().subscribe<sensor_msgs::LaserScan>(param<std::string>("topic"), 1,
-                                                               [this](const sensor_msgs::LaserScanConstPtr& s) {
-                                                                 {
-                                                                   std::lock_guard<std::mutex> l(m_);
-                                                                   latest_ = s;
-                                                                 }
-                                                                 notifyNewData();
-                                                               });
+                                                               [this](const MsgPtr& s) { received(s); });
   }
-  std::mutex m_;
-  sensor_msgs::LaserScanConstPtr latest_;
+  void send(const MsgPtr& scan) override {  // shared with ROS, not copied: boost to std ownership
+    publish<sensor_msgs::LaserScan>("scan", std::shared_ptr<const sensor_msgs::LaserScan>(scan.get(), [scan](auto*) {}));
+  }
   ros::Subscriber sub_;
 };
 

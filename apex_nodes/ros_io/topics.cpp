@@ -1,65 +1,32 @@
 // ImageSubscriber, ImagePublisher, PointCloudSubscriber, PointCloudPublisher.
-// Subscribers are driven sources that keep only the newest message: a busy
-// graph drops frames instead of queueing them. Publishers convert only while
-// someone subscribes.
+// Subscribers keep only the newest message and can hold one (topic_source.hpp).
+// Publishers convert only while someone subscribes.
 #include <ros/ros.h>
-
-#include <mutex>
 
 #include "apex/ros/node_plugin.hpp"
 #include "apex_nodes/ros_convert.hpp"
 #include "shared_image_transport.hpp"
+#include "topic_source.hpp"
 
 namespace apex_nodes {
-namespace {
 
-/** The newest message from a callback thread, taken by process(). */
-template <class Ptr>
-class Latest {
- public:
-  void put(const Ptr& msg) {
-    std::lock_guard<std::mutex> lock(m_);
-    msg_ = msg;
-  }
-  Ptr take() {
-    std::lock_guard<std::mutex> lock(m_);
-    Ptr out;
-    std::swap(out, msg_);
-    return out;
-  }
-
- private:
-  std::mutex m_;
-  Ptr msg_;
-};
-
-}  // namespace
-
-class ImageSubscriber : public apex::Node {
+class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
  public:
   static apex::Manifest manifest() {
     return apex::Manifest("Receives images from a topic (image_transport); keeps only the newest")
         .output<Image>("image")
         .param(apex::param::text("topic", "image").describe("resolved in the runtime's namespace"))
         .param(apex::param::options("transport", {"raw", "compressed", "theora"}, "raw"))
+        .param(holdParam())
         .driven();
-  }
-  void setup() override { subscribe(); }
-  void parameterChanged(const std::string&) override { subscribe(); }
-  void process() override {
-    if (auto msg = latest_.take()) publish<Image>("image", fromRos(msg));
   }
 
  private:
-  void subscribe() {
-    sub_ = subscribeImage(param<std::string>("topic"), 1,
-                          [this](const sensor_msgs::ImageConstPtr& msg) {
-                            latest_.put(msg);
-                            notifyNewData();
-                          },
+  void subscribe() override {
+    sub_ = subscribeImage(param<std::string>("topic"), 1, [this](const MsgPtr& msg) { received(msg); },
                           param<std::string>("transport"));
   }
-  Latest<sensor_msgs::ImageConstPtr> latest_;
+  void send(const MsgPtr& msg) override { publish<Image>("image", fromRos(msg)); }
   image_transport::Subscriber sub_;
 };
 
@@ -81,30 +48,22 @@ class ImagePublisher : public apex::Node {
   image_transport::Publisher pub_;
 };
 
-class PointCloudSubscriber : public apex::Node {
+class PointCloudSubscriber : public TopicSource<sensor_msgs::PointCloud2> {
  public:
   static apex::Manifest manifest() {
     return apex::Manifest("Receives sensor_msgs/PointCloud2 (x, y, z); keeps only the newest")
         .output<Cloud>("cloud")
         .param(apex::param::text("topic", "points"))
+        .param(holdParam())
         .driven();
-  }
-  void setup() override { subscribe(); }
-  void parameterChanged(const std::string&) override { subscribe(); }
-  void process() override {
-    if (auto msg = latest_.take()) publish<Cloud>("cloud", fromRos(msg));
   }
 
  private:
-  void subscribe() {
-    ros::NodeHandle nh;
-    sub_ = nh.subscribe<sensor_msgs::PointCloud2>(param<std::string>("topic"), 1,
-                                                  [this](const sensor_msgs::PointCloud2ConstPtr& msg) {
-                                                    latest_.put(msg);
-                                                    notifyNewData();
-                                                  });
+  void subscribe() override {
+    sub_ = ros::NodeHandle().subscribe<sensor_msgs::PointCloud2>(param<std::string>("topic"), 1,
+                                                                 [this](const MsgPtr& msg) { received(msg); });
   }
-  Latest<sensor_msgs::PointCloud2ConstPtr> latest_;
+  void send(const MsgPtr& msg) override { publish<Cloud>("cloud", fromRos(msg)); }
   ros::Subscriber sub_;
 };
 

@@ -1,4 +1,5 @@
-// Malformed messages published to the running demo graph (topic mode): each puts the
+// The demo graph in topic mode. A held camera keeps its frame and runs it again on a
+// change downstream. Malformed messages published to it: each puts the
 // receiving node in an error state on ~status naming what is wrong, and the next valid
 // frame comes out as usual. Before, the image below crashed the runtime (its height x
 // step wraps around 32 bits and so matched its small buffer).
@@ -6,9 +7,11 @@
 #include <ros/ros.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include <apex/RuntimeStatus.h>
+#include <apex/SetParameter.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 
@@ -110,6 +113,74 @@ TEST(BadMessages, AMalformedFrameIsANamedErrorAndTheNextFrameFlows) {
       << errorOf(nh, "lidar");
 
   EXPECT_TRUE(valid()) << "the overlay or the clouds stopped after the malformed frames";
+}
+
+/** The stamps of the overlays, as they arrive. */
+class Stamps {
+ public:
+  explicit Stamps(ros::NodeHandle& nh)
+      : sub_(nh.subscribe<sensor_msgs::Image>("/apex_demo/overlay", 10, [this](const sensor_msgs::Image::ConstPtr& m) {
+          std::lock_guard<std::mutex> l(m_);
+          got_.push_back(m->header.stamp);
+          cv_.notify_all();
+        })) {}
+  /** Until an overlay of `stamp` arrives (at most `timeout` s). */
+  bool waitFor(const ros::Time& stamp, double timeout = 0.5) {
+    std::unique_lock<std::mutex> l(m_);
+    return cv_.wait_for(l, std::chrono::duration<double>(timeout),
+                        [&] { return std::find(got_.begin(), got_.end(), stamp) != got_.end(); });
+  }
+  /** Until more than `n` overlays have arrived (at most `timeout` s). */
+  bool waitBeyond(std::size_t n, double timeout = 5.0) {
+    std::unique_lock<std::mutex> l(m_);
+    return cv_.wait_for(l, std::chrono::duration<double>(timeout), [&] { return got_.size() > n; });
+  }
+  std::vector<ros::Time> all() {
+    std::lock_guard<std::mutex> l(m_);
+    return got_;
+  }
+
+ private:
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::vector<ros::Time> got_;
+  ros::Subscriber sub_;
+};
+
+void set(const std::string& node, const std::string& param, const std::string& value) {
+  apex::SetParameter::Request r;
+  r.node = node, r.parameter = param, r.value = value;
+  auto res = call<apex::SetParameter>("set_parameter", r);
+  ASSERT_TRUE(res.success) << res.message;
+}
+
+TEST(TopicMode, AHeldCameraKeepsItsFrameAndRunsItAgainOnAChange) {
+  ros::NodeHandle nh;
+  Source<sensor_msgs::Image> images(nh, "/camera/image_raw");
+  Stamps overlays(nh);
+  auto frame = image(640, 480, 640 * 3, 640 * 480 * 3);
+  auto shown = [&](const ros::Time& stamp) {  // published until its overlay comes (a busy graph drops frames)
+    frame.header.stamp = stamp;
+    for (int i = 0; i < 40; ++i) {
+      images.publish(frame);
+      if (overlays.waitFor(stamp)) return true;
+    }
+    return false;
+  };
+  const ros::Time held(100, 0), later(200, 0), live(300, 0);
+  ASSERT_TRUE(shown(held));
+  set("camera", "hold", "true");
+  frame.header.stamp = later;
+  for (int i = 0; i < 5; ++i) images.publish(frame);  // ignored while held
+  for (const char* c : {"20.0", "25.0"}) {  // the second within the first's run: it comes after it
+    const auto before = overlays.all().size();
+    set("threshold", "c", c);
+    ASSERT_TRUE(overlays.waitBeyond(before)) << "setting threshold/c to " << c << " did not run the held frame again";
+    EXPECT_EQ(overlays.all().back(), held);
+  }
+  for (const auto& t : overlays.all()) EXPECT_NE(t, later) << "a frame that came while held was processed";
+  set("camera", "hold", "false");
+  EXPECT_TRUE(shown(live)) << "the camera did not go live again";
 }
 
 }  // namespace

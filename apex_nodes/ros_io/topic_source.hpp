@@ -1,0 +1,76 @@
+// The base of the subscriber nodes: a driven source that sends the newest
+// message of a topic (a busy graph drops frames instead of queueing them).
+// With `hold` it keeps the message it sent last, ignores new ones, and sends
+// that one again after any change downstream: tuning on a live camera's frame.
+#pragma once
+
+#include <boost/shared_ptr.hpp>
+
+#include <atomic>
+#include <mutex>
+
+#include "apex/core/node.hpp"
+#include "apex/core/param.hpp"
+
+namespace apex_nodes {
+
+template <class Msg>
+class TopicSource : public apex::Node {
+ public:
+  using MsgPtr = boost::shared_ptr<const Msg>;
+
+  /** The parameter every subscriber declares. */
+  static apex::ParamSpec holdParam() {
+    return apex::param::boolean("hold", false)
+        .describe("keep the last message, ignore new ones, and send it again after any change downstream");
+  }
+
+  void setup() override { subscribe(); }
+  void parameterChanged(const std::string& name) override {
+    if (name != "hold") return subscribe();
+    holding_ = param<bool>("hold");
+    if (!holding_) notifyNewData();  // back to live: the newest message
+  }
+  void downstreamChanged() override {
+    if (!holding_ || !sent_) return;
+    resend_ = true;
+    notifyNewData();
+  }
+  void process() override {
+    MsgPtr msg;
+    if (holding_) {
+      if (!resend_) return;  // held: new messages wait
+      resend_ = false;
+      msg = sent_;
+    } else {
+      std::lock_guard<std::mutex> lock(m_);
+      std::swap(msg, latest_);
+    }
+    if (!msg) return;
+    sent_ = msg;
+    send(msg);
+  }
+
+ protected:
+  /** (Re)subscribes with the current parameters; the callback calls received(). */
+  virtual void subscribe() = 0;
+  /** Converts and publishes one message (on process()'s thread). */
+  virtual void send(const MsgPtr& msg) = 0;
+  /** For the subscription's callback, on a ROS thread. */
+  void received(const MsgPtr& msg) {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      latest_ = msg;
+    }
+    if (!holding_) notifyNewData();
+  }
+
+ private:
+  std::mutex m_;
+  MsgPtr latest_;                      // m_: the newest from the callback
+  MsgPtr sent_;                        // process() only: the last one sent (held)
+  bool resend_ = false;                // process() only
+  std::atomic<bool> holding_{false};   // read by the callback
+};
+
+}  // namespace apex_nodes
