@@ -11,7 +11,7 @@
 
 #include "apex/core/graph.hpp"
 #include "apex_nodes/types.hpp"
-#include "plugin_types.hpp"
+#include "plugin_registry.hpp"
 #include "spread.hpp"
 
 using namespace apex;
@@ -99,15 +99,10 @@ class FrameSink : public Node {
 };
 
 NodeRegistry& registry() {
-  static NodeRegistry* r = [] {
-    auto* reg = new NodeRegistry();
-    static auto* types = new ros_host::PluginTypes;  // never unloaded: node code lives in its libraries
-    for (const auto& e : types->registerAll(*reg)) std::fprintf(stderr, "%s\n", e.c_str());
-    (void)reg->add<FrameSource>("bench/FrameSource");
-    (void)reg->add<FrameSink>("bench/FrameSink");
-    return reg;
-  }();
-  return *r;
+  return apex_bench::pluginRegistry([](NodeRegistry& r) {
+    (void)r.add<FrameSource>("bench/FrameSource");
+    (void)r.add<FrameSink>("bench/FrameSink");
+  });
 }
 
 /** The chain as an APEX graph; with two groups the second starts at morphology. */

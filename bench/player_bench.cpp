@@ -16,7 +16,7 @@
 
 #include "apex/core/graph.hpp"
 #include "apex_nodes/types.hpp"
-#include "plugin_types.hpp"
+#include "plugin_registry.hpp"
 #include "spread.hpp"
 
 using namespace apex;
@@ -56,14 +56,9 @@ class ResultSink : public Node {
 };
 
 NodeRegistry& registry() {
-  static NodeRegistry* r = [] {
-    auto* reg = new NodeRegistry();
-    static auto* types = new ros_host::PluginTypes;  // never unloaded: node code lives in its libraries
-    for (const auto& e : types->registerAll(*reg)) std::fprintf(stderr, "%s\n", e.c_str());
-    (void)reg->add<ResultSink>("bench/ResultSink");
-    return reg;
-  }();
-  return *r;
+  return apex_bench::pluginRegistry([](NodeRegistry& r) {
+    (void)r.add<ResultSink>("bench/ResultSink");
+  });
 }
 
 /** A bag of `n` frames of `cols` x `rows` with dark squares, on /camera/image_raw at 10 Hz. */

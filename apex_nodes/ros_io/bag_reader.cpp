@@ -43,16 +43,21 @@ apex::Message convert(const rosbag::MessageInstance& m) {
   return {};
 }
 
-/** The outputs for the played topics, typed from the bag; `any` while the bag cannot be read. */
+/** The outputs for the played topics, typed from the bag (`any` while the bag cannot be
+ *  read), and the range of `frame`: the bag's frames. */
 apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
   using Texts = std::vector<std::string>;
   const auto played = playedTopics(p.get<Texts>("topics"), p.get<std::string>("image_topic"), p.get<std::string>("cloud_topic"));
-  const bool legacy = p.get<std::vector<std::string>>("topics").empty();
+  const bool legacy = p.get<Texts>("topics").empty();
   std::map<std::string, std::string> types;
-  if (!legacy && !p.get<std::string>("file").empty()) {
+  std::size_t frames = 0;
+  if (!p.get<std::string>("file").empty()) {
     try {
       auto bag = openBag(p.get<std::string>("file"));
       types = topicTypes(*bag);
+      Texts topics;
+      for (const auto& [port, topic] : played) topics.push_back(topic);
+      frames = indexFrames(*bag, topics, p.get<double>("sync_window")).size();
       closeBag(bag);
     } catch (const std::invalid_argument&) {
       // the node reports why; its outputs carry anything until the bag can be read
@@ -74,6 +79,9 @@ apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
     outputs.push_back({port, type, false, desc});
   }
   m.outputs.insert(m.outputs.begin(), outputs.begin(), outputs.end());
+  if (frames > 0)
+    for (auto& spec : m.params)
+      if (spec.name == "frame") spec.max = static_cast<double>(frames - 1);  // the panel's slider spans the bag
   return apex::Status::ok();
 }
 
@@ -96,7 +104,8 @@ class BagReader : public apex::Node {
         .param(apex::param::text("image_topic", "/camera/image_raw").describe("used when topics is empty").shapesInterface())
         .param(apex::param::text("cloud_topic", "/camera/points").describe("used when topics is empty").shapesInterface())
         .param(apex::param::range("sync_window", 0.0, 10.0, 0.001, 0.02)
-                   .describe("messages within this many seconds of a frame's first one belong to it"))
+                   .describe("messages within this many seconds of a frame's first one belong to it")
+                   .shapesInterface())
         .param(apex::param::boolean("playing", true))
         .param(apex::param::range("rate", 0.0, 100.0, 0.1, 1.0).describe("times the recorded pace; 0: as fast as possible"))
         .param(apex::param::boolean("loop", false))

@@ -59,6 +59,7 @@ void GraphScene::show(const GraphModel& model) {
       connect(item, &NodeItem::parameterEdited, this, &GraphScene::parameterEdited);
       connect(item, &NodeItem::interactiveToggled, this, &GraphScene::interactiveToggled);
       connect(item, &NodeItem::moved, this, &GraphScene::nodeMoved);
+      connect(item, &NodeItem::slotFired, this, &GraphScene::slotFired);
       connect(item, &QGraphicsObject::xChanged, this, &GraphScene::reroute);
       connect(item, &QGraphicsObject::yChanged, this, &GraphScene::reroute);
     } else {

@@ -6,6 +6,7 @@
 
 #include "apex_rviz_plugin/graph_scene.hpp"
 #include "apex_rviz_plugin/param_editor.hpp"
+#include "apex_rviz_plugin/transport_bar.hpp"
 
 namespace apex_rviz_plugin {
 namespace {
@@ -22,7 +23,9 @@ bool sameShape(const apex::NodeInfo& a, const apex::NodeInfo& b) {
   for (std::size_t i = 0; i < a.ports.size(); ++i)
     if (a.ports[i].name != b.ports[i].name || a.ports[i].kind != b.ports[i].kind) return false;
   for (std::size_t i = 0; i < a.parameters.size(); ++i)
-    if (a.parameters[i].name != b.parameters[i].name || a.parameters[i].kind != b.parameters[i].kind) return false;
+    if (a.parameters[i].name != b.parameters[i].name || a.parameters[i].kind != b.parameters[i].kind ||
+        a.parameters[i].min != b.parameters[i].min || a.parameters[i].max != b.parameters[i].max)
+      return false;  // e.g. a player's frame range after another bag
   return true;
 }
 
@@ -110,6 +113,7 @@ void NodeItem::update(const apex::NodeInfo& node) {
   if (rebuild) return build();
   for (const auto& p : info_.parameters)
     if (auto* e = editor(p.name)) e->showApplied(p);
+  if (transport_) transport_->show(info_);
   setToolTip(QString::fromStdString(info_.error));
   QGraphicsObject::update();
 }
@@ -121,6 +125,7 @@ void NodeItem::build() {
   if (params_) delete params_;  // deletes its widget and the editors in it
   params_ = nullptr;
   editors_.clear();
+  transport_ = nullptr;
   double left = kTitle + kRow / 2, right = left;
   for (const auto& p : info_.ports) {
     auto* item = new PortItem(p, this);
@@ -137,6 +142,13 @@ void NodeItem::build() {
     column->setContentsMargins(4, 2, 4, 2);
     column->setSpacing(2);
     const QString node = QString::fromStdString(info_.name);
+    if (TransportBar::isPlayer(info_)) {
+      transport_ = new TransportBar(info_);
+      column->addWidget(transport_);
+      connect(transport_, &TransportBar::parameterEdited, this,
+              [this, node](const QString& n, const QString& v) { emit parameterEdited(node, n, v); });
+      connect(transport_, &TransportBar::slotFired, this, [this, node](const QString& slot) { emit slotFired(node, slot); });
+    }
     for (const auto& p : info_.parameters) {
       auto* e = new ParamEditor(p);
       editors_[p.name] = e;

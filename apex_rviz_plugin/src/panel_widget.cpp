@@ -64,6 +64,7 @@ void PanelWidget::connectEditor() {
   connect(e, &GraphEditor::controlRequested, this, [this](const QString& cmd) {
     link_.control(cmd.toStdString(), [this, cmd](bool ok, const std::string& m) { report(ok, m, cmd); });
   });
+  connect(s, &GraphScene::slotFired, e, &GraphEditor::fireSlotRequested);  // a player's transport bar
   connect(e, &GraphEditor::fireSlotRequested, this, [this](const QString& n, const QString& slot) {
     link_.fireSlot(n.toStdString(), slot.toStdString(),
                    [this, n, slot](bool ok, const std::string& m) { report(ok, m, "fire " + n + "/" + slot); });

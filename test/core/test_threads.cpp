@@ -168,7 +168,7 @@ TEST_F(Threads, AFrameStepTakesOneFrameThroughTheWholeGraph) {
   for (int i = 0; i < 100 && !HasFatalFailure(); ++i) stepFrames(g.registry());
   add(g, "test/Feeder", "src");
   g.start();
-  EXPECT_EQ(g.stepFrame().message(), "the graph is running: pause it to step");
+  EXPECT_EQ(g.stepFrame().message(), "the graph is running; pause it first");
 }
 
 TEST_F(Threads, OneWakeUpPerMessageCrossingIntoAnIdleGroup) {

@@ -18,17 +18,26 @@
 #include <QToolButton>
 
 #include <apex/GetGraph.h>
+#include <apex/SetParameter.h>
 #include <ros/ros.h>
 #include <yaml-cpp/yaml.h>
 
 #include "apex_rviz_plugin/panel_widget.hpp"
 #include "apex_rviz_plugin/param_editor.hpp"
+#include "apex_rviz_plugin/transport_bar.hpp"
 
 using namespace apex_rviz_plugin;
 
 namespace {
 
-std::string g_shot;
+std::string g_shot, g_bag;
+
+/** Sets a parameter through the runtime's service, as a script would. */
+bool setParameter(const std::string& node, const std::string& param, const std::string& value) {
+  apex::SetParameter srv;
+  srv.request.node = node, srv.request.parameter = param, srv.request.value = value;
+  return ros::service::call("/apex/set_parameter", srv) && srv.response.success;
+}
 constexpr int kWaitMs = 20000;
 
 apex::GraphState runtimeGraph() {
@@ -226,6 +235,36 @@ TEST_F(PanelWidgetTest, ANodeThatCannotFireSaysWhatItWaitsFor) {
   EXPECT_EQ(counter->toolTip(), counter->waiting());
 }
 
+TEST_F(PanelWidgetTest, APlayerHasATransportBar) {
+  addByKeyboard("BagReader", "bag_reader_1");
+  NodeItem* player = panel.editor()->scene()->node("bag_reader_1");
+  ASSERT_TRUE(player && player->transport()) << "a BagReader shows no transport bar";
+  EXPECT_FALSE(panel.editor()->scene()->node("counter_2") && panel.editor()->scene()->node("counter_2")->transport());
+  auto* play = player->transport()->findChild<QToolButton*>("play");
+  ASSERT_TRUE(play);
+  EXPECT_EQ(player->transport()->text().toStdString(), "❚❚ frame 0");  // playing (no bag yet)
+  QTest::mouseClick(play, Qt::LeftButton);  // pause: the runtime's parameter changes, the bar follows
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "bag_reader_1", "playing") == "false"; }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 0"; }, kWaitMs))
+      << player->transport()->text().toStdString();
+  // A bag: the frame slider spans its 40 frames; next and previous step through them.
+  ASSERT_TRUE(setParameter("bag_reader_1", "file", g_bag));
+  ASSERT_TRUE(setParameter("bag_reader_1", "topics", "[/camera/image_raw, /camera/points]"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport() && player->transport()->text() == "▶ held · frame 0 / 40"; }, kWaitMs))
+      << (player->transport() ? player->transport()->text().toStdString() : "no transport bar");
+  auto* bar = player->transport();
+  for (const char* button : {"next", "next", "next", "previous"}) {
+    QToolButton* b = nullptr;
+    for (auto* t : bar->findChildren<QToolButton*>()) if (t->toolTip().startsWith(button)) b = t;
+    ASSERT_TRUE(b) << button;
+    QTest::mouseClick(b, Qt::LeftButton);
+  }
+  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 1 / 40"; }, kWaitMs))  // 0, 1, 2, 1
+      << player->transport()->text().toStdString();
+  // The node's parameter box with its transport bar (docs/panel_transport.png).
+  player->transport()->parentWidget()->grab().save(QString::fromStdString(g_shot).replace(".png", "_transport.png"));
+}
+
 /** A runtime of its own, in another namespace, that a test can stop and start again. */
 class OwnRuntime {
  public:
@@ -287,6 +326,7 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "test_panel_widget");
   g_shot = argc > 1 ? argv[1] : "panel_widget.png";
+  g_bag = argc > 2 ? argv[2] : "";
   qputenv("QT_QPA_PLATFORM", "offscreen");
   QApplication app(argc, argv);
   return RUN_ALL_TESTS();

@@ -395,7 +395,7 @@ void Graph::step() {
 
 Status Graph::stepFrame(double timeout_s) {
   auto lock = lockEdits();
-  if (!paused_) return Status::error("the graph is running: pause it to step");
+  if (!paused_) return Status::error("the graph is running; pause it first");
   std::vector<std::shared_ptr<ThreadGroup>> groups;
   for (auto& [name, g] : groups_) groups.push_back(g);
   // Budgets set with every group paused: no source fires twice, whichever group frees it.

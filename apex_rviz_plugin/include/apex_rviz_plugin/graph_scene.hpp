@@ -20,6 +20,7 @@ namespace apex_rviz_plugin {
 
 class ParamEditor;
 class NodeItem;
+class TransportBar;
 
 /** @brief One port: where connections end and drags start. */
 class PortItem : public QGraphicsItem {
@@ -66,6 +67,8 @@ class NodeItem : public QGraphicsObject {
   std::uint64_t firings() const { return firings_; }
   /** @brief Inspected scalar values shown in the box, e.g. "count = 42". */
   const QString& values() const { return values_; }
+  /** @brief A player's transport bar, nullptr for other nodes. */
+  TransportBar* transport() const { return transport_; }
 
   QRectF boundingRect() const override;
   void paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) override;
@@ -74,6 +77,7 @@ class NodeItem : public QGraphicsObject {
   void parameterEdited(const QString& node, const QString& param, const QString& yaml);
   void interactiveToggled(const QString& node, const QString& param, bool interactive);
   void moved(const QString& node, QPointF pos);
+  void slotFired(const QString& node, const QString& slot);
 
  protected:
   void mouseReleaseEvent(QGraphicsSceneMouseEvent* e) override;
@@ -85,6 +89,7 @@ class NodeItem : public QGraphicsObject {
   apex::NodeInfo info_;
   std::vector<PortItem*> ports_;
   std::map<std::string, ParamEditor*> editors_;
+  TransportBar* transport_ = nullptr;  // in params_, for players
   QGraphicsProxyWidget* params_ = nullptr;
   QString timing_, values_;
   QString waiting_;  // what a stalled node waits for (the runtime says)
@@ -131,6 +136,7 @@ class GraphScene : public QGraphicsScene {
   void nodeMenuRequested(const QString& node, QPoint screen_pos);
   void portMenuRequested(const QString& node, const QString& port, QPoint screen_pos);
   void inspectRequested(const QString& node, const QString& port);
+  void slotFired(const QString& node, const QString& slot);
 
  protected:
   void mouseMoveEvent(QGraphicsSceneMouseEvent* e) override;
