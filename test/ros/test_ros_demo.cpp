@@ -108,6 +108,9 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
     ++frame;
   }
   EXPECT_EQ(frame, 40);
+  if (g_source == "bag")  // one firing per frame: image and cloud of a frame leave the player together
+    for (const char* node : {"bag", "rotate", "overlay", "passthrough"})
+      EXPECT_EQ(firingsOf(nh, node), truth.size()) << node << " did not fire once per frame";
   cloud_waiter.join();
   EXPECT_EQ(filtered.header.frame_id, "camera");
   EXPECT_GT(filtered.width * filtered.height, 100u);
