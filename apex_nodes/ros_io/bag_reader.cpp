@@ -5,6 +5,7 @@
 // the last one. Seeks in O(log n) (bag_frames.hpp). While paused it holds its
 // frame and sends it again after any change downstream, so a parameter's
 // effect shows on that frame at once.
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
@@ -44,20 +45,20 @@ apex::Message convert(const rosbag::MessageInstance& m) {
 }
 
 /** The outputs for the played topics, typed from the bag (`any` while the bag cannot be
- *  read), and the range of `frame`: the bag's frames. */
+ *  read), and the ranges of `frame` and `time`: the bag's frames. */
 apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
   using Texts = std::vector<std::string>;
   const auto played = playedTopics(p.get<Texts>("topics"), p.get<std::string>("image_topic"), p.get<std::string>("cloud_topic"));
   const bool legacy = p.get<Texts>("topics").empty();
   std::map<std::string, std::string> types;
-  std::size_t frames = 0;
+  std::vector<BagFrame> frames;
   if (!p.get<std::string>("file").empty()) {
     try {
       auto bag = openBag(p.get<std::string>("file"));
       types = topicTypes(*bag);
       Texts topics;
       for (const auto& [port, topic] : played) topics.push_back(topic);
-      frames = indexFrames(*bag, topics, p.get<double>("sync_window")).size();
+      frames = indexFrames(*bag, topics, p.get<double>("sync_window"));
       closeBag(bag);
     } catch (const std::invalid_argument&) {
       // the node reports why; its outputs carry anything until the bag can be read
@@ -79,9 +80,11 @@ apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
     outputs.push_back({port, type, false, desc});
   }
   m.outputs.insert(m.outputs.begin(), outputs.begin(), outputs.end());
-  if (frames > 0)
-    for (auto& spec : m.params)
-      if (spec.name == "frame") spec.max = static_cast<double>(frames - 1);  // the panel's slider spans the bag
+  if (!frames.empty())
+    for (auto& spec : m.params) {  // the panel's sliders span the bag
+      if (spec.name == "frame") spec.max = static_cast<double>(frames.size() - 1);
+      if (spec.name == "time") spec.max = std::max(0.001, (frames.back().start - frames.front().start).toSec());
+    }
   return apex::Status::ok();
 }
 
@@ -116,6 +119,9 @@ class BagReader : public apex::Node {
                              "and sends that frame")
                    .everySet()
                    .makeInteractive())
+        .param(apex::param::range("time", 0.0, 1e6, 0.01, 0.0)
+                   .describe("seconds into the bag of the current frame; setting it seeks to the frame at that time")
+                   .everySet())
         .shapedBy(shapeOutputs)
         .driven();
   }
@@ -129,6 +135,8 @@ class BagReader : public apex::Node {
     } else if (name == "frame") {
       if (opened_) seek(param<int>("frame"));
       else seek_on_open_ = true;  // set with the node: open() goes there
+    } else if (name == "time" && opened_ && !frames_.empty()) {
+      seek(frameAt(param<double>("time")));
     } else if (name == "playing" && param<bool>("playing")) {
       if (next_ > last_) next_ = first_;  // play at the end starts again
       wake();
@@ -219,6 +227,12 @@ class BagReader : public apex::Node {
     next_ = k;
     request(k);
   }
+  /** The first frame at or after `seconds` into the bag (binary search), the last if none. */
+  int frameAt(double seconds) const {
+    const ros::Time t = frames_.front().start + ros::Duration(std::max(0.0, seconds));
+    auto it = std::lower_bound(frames_.begin(), frames_.end(), t, [](const BagFrame& f, const ros::Time& at) { return f.start < at; });
+    return static_cast<int>(std::min<std::ptrdiff_t>(it - frames_.begin(), frames_.size() - 1));
+  }
   void request(int k) {
     if (k < 0 || !bag_) return;
     request_ = k;
@@ -231,8 +245,9 @@ class BagReader : public apex::Node {
   /** Publishes frame k: every played topic's message in it, the index and the stamp. */
   void send(int k) {
     current_ = k;
-    updateParam("frame", k);
     const BagFrame& f = frames_[k];
+    updateParam("frame", k);
+    updateParam("time", (f.start - frames_.front().start).toSec());
     for (const rosbag::MessageInstance& m : rosbag::View(*bag_, rosbag::TopicQuery(topics_), f.start, f.end)) {
       auto port = ports_.find(m.getTopic());
       if (port == ports_.end()) continue;

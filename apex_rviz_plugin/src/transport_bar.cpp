@@ -6,6 +6,7 @@
 #include <QVBoxLayout>
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace apex_rviz_plugin {
 namespace {
@@ -63,6 +64,8 @@ void TransportBar::show(const apex::NodeInfo& node) {
   play_->setToolTip(playing_ ? "pause: hold this frame; every change downstream runs it again" : "play");
   QString where = "frame " + QString::fromStdString(frame->value);
   if (frame->max < 1e7) where += " / " + QString::number(static_cast<long>(frame->max) + 1);
+  if (const apex::ParamInfo* time = param(node, "time"))
+    where += " · " + QString::number(std::atof(time->value.c_str()), 'f', 2) + " s";
   label_->setText(playing_ ? where : "held · " + where);
 }
 

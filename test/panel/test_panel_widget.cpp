@@ -242,15 +242,15 @@ TEST_F(PanelWidgetTest, APlayerHasATransportBar) {
   EXPECT_FALSE(panel.editor()->scene()->node("counter_2") && panel.editor()->scene()->node("counter_2")->transport());
   auto* play = player->transport()->findChild<QToolButton*>("play");
   ASSERT_TRUE(play);
-  EXPECT_EQ(player->transport()->text().toStdString(), "❚❚ frame 0");  // playing (no bag yet)
+  EXPECT_EQ(player->transport()->text().toStdString(), "❚❚ frame 0 · 0.00 s");  // playing (no bag yet)
   QTest::mouseClick(play, Qt::LeftButton);  // pause: the runtime's parameter changes, the bar follows
   ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "bag_reader_1", "playing") == "false"; }, kWaitMs));
-  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 0"; }, kWaitMs))
+  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 0 · 0.00 s"; }, kWaitMs))
       << player->transport()->text().toStdString();
   // A bag: the frame slider spans its 40 frames; next and previous step through them.
   ASSERT_TRUE(setParameter("bag_reader_1", "file", g_bag));
   ASSERT_TRUE(setParameter("bag_reader_1", "topics", "[/camera/image_raw, /camera/points]"));
-  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport() && player->transport()->text() == "▶ held · frame 0 / 40"; }, kWaitMs))
+  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport() && player->transport()->text() == "▶ held · frame 0 / 40 · 0.00 s"; }, kWaitMs))
       << (player->transport() ? player->transport()->text().toStdString() : "no transport bar");
   auto* bar = player->transport();
   for (const char* button : {"next", "next", "next", "previous"}) {
@@ -259,7 +259,7 @@ TEST_F(PanelWidgetTest, APlayerHasATransportBar) {
     ASSERT_TRUE(b) << button;
     QTest::mouseClick(b, Qt::LeftButton);
   }
-  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 1 / 40"; }, kWaitMs))  // 0, 1, 2, 1
+  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 1 / 40 · 0.10 s"; }, kWaitMs))  // 0, 1, 2, 1
       << player->transport()->text().toStdString();
   // The node's parameter box with its transport bar (docs/panel_transport.png).
   player->transport()->parentWidget()->grab().save(QString::fromStdString(g_shot).replace(".png", "_transport.png"));
