@@ -38,23 +38,66 @@ class Throttle : public apex::Node {
   std::chrono::steady_clock::time_point last_;
 };
 
+/** "a", "b", ... : the ports of the i-th synchronised message. */
+std::string letter(int i) { return std::string(1, static_cast<char>('a' + i)); }
+
 class TimeSync : public apex::Node {
  public:
   static apex::Manifest manifest() {
-    return apex::Manifest("Passes a pair on only if their stamps lie within a tolerance; else Nothing on both")
+    return apex::Manifest("Passes its messages on only if their stamps lie within a tolerance; else Nothing on all")
         .input<apex::Any>("a", "an image, cloud, regions, clusters or scan")
         .input<apex::Any>("b")
         .output<apex::Any>("a")
         .output<apex::Any>("b")
-        .param(apex::param::range("tolerance", 0.0, 10.0, 0.001, 0.05).describe("seconds"));
+        .param(apex::param::range("inputs", 2, 8, 1, 2).describe("how many messages to synchronise: a, b, c, ...").shapesInterface())
+        .param(apex::param::range("tolerance", 0.0, 10.0, 0.001, 0.05).describe("seconds"))
+        .shapedBy([](const apex::ParamValues& p, apex::Manifest& m) {
+          m.inputs.clear();
+          m.outputs.clear();
+          for (int i = 0; i < p.get<int>("inputs"); ++i) {
+            m.input<apex::Any>(letter(i), i == 0 ? "an image, cloud, regions, clusters or scan" : "");
+            m.output<apex::Any>(letter(i));
+          }
+          return apex::Status::ok();
+        });
   }
   void process() override {
-    const auto a = headerOf(inputMessage("a")), b = headerOf(inputMessage("b"));
-    if (!a || !b)
-      throw std::invalid_argument("cannot read a stamp from a " + (a ? inputMessage("b") : inputMessage("a")).typeName());
-    if (std::abs((a->stamp - b->stamp).toSec()) > param<double>("tolerance")) return;
-    publishMessage("a", inputMessage("a"));
-    publishMessage("b", inputMessage("b"));
+    const auto& ports = interface().inputs;
+    ros::Time low, high;
+    for (std::size_t i = 0; i < ports.size(); ++i) {
+      const auto header = headerOf(inputMessage(ports[i].name));
+      if (!header) throw std::invalid_argument("cannot read a stamp from a " + inputMessage(ports[i].name).typeName() +
+                                               " on input '" + ports[i].name + "'");
+      if (i == 0 || header->stamp < low) low = header->stamp;
+      if (i == 0 || header->stamp > high) high = header->stamp;
+    }
+    if ((high - low).toSec() > param<double>("tolerance")) return;
+    for (const auto& in : ports) publishMessage(in.name, inputMessage(in.name));
+  }
+};
+
+/** Passes on one of its inputs: switch between variants of a pipeline while it runs. */
+class Select : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Passes on the input chosen by `choice`; the others are read and dropped")
+        .optionalInput<apex::Any>("in_0")
+        .optionalInput<apex::Any>("in_1")
+        .output<apex::Any>("out")
+        .param(apex::param::range("inputs", 2, 16, 1, 2).describe("how many inputs: in_0, in_1, ...").shapesInterface())
+        .param(apex::param::range("choice", 0, 15, 1, 0).describe("the input passed on").makeInteractive())
+        .shapedBy([](const apex::ParamValues& p, apex::Manifest& m) {
+          m.inputs.clear();
+          for (int i = 0; i < p.get<int>("inputs"); ++i) m.optionalInput<apex::Any>("in_" + std::to_string(i));
+          return apex::Status::ok();
+        });
+  }
+  void process() override {
+    const auto& ports = interface().inputs;
+    const int choice = param<int>("choice");
+    if (choice >= static_cast<int>(ports.size()))
+      throw std::invalid_argument("choice " + std::to_string(choice) + " but only " + std::to_string(ports.size()) + " inputs");
+    publishMessage("out", inputMessage(ports[choice].name));
   }
 };
 
@@ -63,3 +106,4 @@ class TimeSync : public apex::Node {
 APEX_EXPORT_NODE(apex_nodes, Add, apex_nodes::Add);
 APEX_EXPORT_NODE(apex_nodes, Throttle, apex_nodes::Throttle);
 APEX_EXPORT_NODE(apex_nodes, TimeSync, apex_nodes::TimeSync);
+APEX_EXPORT_NODE(apex_nodes, Select, apex_nodes::Select);
