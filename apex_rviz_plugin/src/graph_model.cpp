@@ -144,7 +144,14 @@ std::optional<Edit> GraphModel::setParameter(const std::string& node_name, const
   set.parameter = back.parameter = param;
   set.value = value;
   back.value = p->value;
-  return Edit{"Set " + node_name + "/" + param, {{"set_parameter", set}}, {{"set_parameter", back}}};
+  Edit e{"Set " + node_name + "/" + param, {{"set_parameter", set}}, {{"set_parameter", back}}};
+  if (p->shapes_ports)  // the new ports may lack some that are connected now: undo connects them again
+    for (const auto& c : graph_.connections)
+      if (c.from_node == node_name || c.to_node == node_name) {
+        e.revert.push_back(connectCall("connect", c));
+        e.revert.back().if_missing = true;
+      }
+  return e;
 }
 
 std::optional<Edit> GraphModel::move(const std::string& node_name, double x, double y) const {

@@ -160,6 +160,26 @@ TEST(GraphModel, EnableGroupAndInteractiveEditsAreUndoneToTheOldState) {
   EXPECT_FALSE(m.setInteractive("clock", "nothing", true));
 }
 
+TEST(GraphModel, UndoOfAParameterThatShapesPortsConnectsWhatItDropped) {
+  auto g = graph(1);
+  g.nodes[0].parameters.push_back(param("outputs", "2"));
+  g.nodes[0].parameters.back().shapes_ports = true;
+  GraphModel m;
+  m.update(g);
+  auto plain = m.setParameter("clock", "rate", "5");
+  ASSERT_TRUE(plain);
+  EXPECT_EQ(plain->revert.size(), 1u);  // a value only
+  auto shaping = m.setParameter("clock", "outputs", "1");
+  ASSERT_TRUE(shaping);
+  ASSERT_EQ(shaping->revert.size(), 3u);  // the value, then clock's two connections, if missing
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(shaping->revert[0].request).value, "2");
+  for (std::size_t i = 1; i < 3; ++i) {
+    EXPECT_EQ(shaping->revert[i].service, "connect");
+    EXPECT_TRUE(shaping->revert[i].if_missing);
+    EXPECT_EQ(std::get<apex::Connect::Request>(shaping->revert[i].request).from_node, "clock");
+  }
+}
+
 TEST(EditHistory, UndoRedoAndANewEditClearsRedo) {
   GraphModel m;
   m.update(graph(1));

@@ -40,6 +40,7 @@ ParamInfo param(const ParamSpec& s, const std::string& value, bool interactive) 
   p.options = s.options;
   if (s.kind == ParamKind::Path) p.path_mode = pathMode(s.path_mode);
   p.interactive = interactive;
+  p.shapes_ports = s.shapes_interface;
   p.description = s.description;
   return p;
 }

@@ -28,6 +28,9 @@ struct Call {
                apex::SetEnabled::Request, apex::SetInteractive::Request, apex::SetThreadGroup::Request,
                apex::SetUi::Request>
       request;
+  /** connect only: restoring a connection that may still be there (undo of an edit that may
+   *  have dropped it); "already connected" is then success. */
+  bool if_missing = false;
 };
 
 /** @brief An edit as done, and the calls that undo it. */
