@@ -422,13 +422,13 @@ void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) 
     return;
   }
   resend_due_ = true;
-  group->at(last_resend_ + interval, Mail{shared_from_this(), [run](NodeState& n) {
+  group->at(last_resend_ + interval, Mail{shared_from_this(), [](NodeState& n) {
                                             {
                                               std::lock_guard<std::mutex> l(n.state_mutex);
                                               n.resend_due_ = false;
                                               n.last_resend_ = std::chrono::steady_clock::now();
                                             }
-                                            n.post(run);  // on the node's group, wherever it is now
+                                            n.runDownstreamChanged();  // timers run on the node's group
                                           }});
 }
 

@@ -248,11 +248,11 @@ void ThreadGroup::run() {
     }
     // Due timers before firings: a group kept busy by a free-running source must not starve them.
     if (pause_requests_ == 0 && !timers_.empty() && timers_.begin()->first <= Clock::now()) {
-      Mail due = std::move(timers_.begin()->second);
+      batch.push_back(std::move(timers_.begin()->second));
       timers_.erase(timers_.begin());
       lock.unlock();
-      due.fn(*due.node);
-      due = Mail{};  // drops the node reference outside the lock
+      runMail(batch);  // like mail: not for a removed node, and on the node's group if it moved since
+      batch.clear();   // drops the node reference outside the lock
       lock.lock();
       continue;
     }

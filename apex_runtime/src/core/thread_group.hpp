@@ -56,7 +56,8 @@ class ThreadGroup {
   void post(Mail mail);
   /** @brief Calls the node's notifyNewData() at `when` (a timer; pending timers do not keep the group busy). */
   void notifyAt(std::chrono::steady_clock::time_point when, std::shared_ptr<NodeState> node);
-  /** @brief Runs `mail` on this group's thread at `when` (a timer, as above). */
+  /** @brief Runs `mail` at `when` (a timer, as above) on the node's group: this one, or the one it
+   *  moved to since. */
   void at(std::chrono::steady_clock::time_point when, Mail mail);
 
   /** @brief Returns once the thread is parked at a firing boundary; counted, so
