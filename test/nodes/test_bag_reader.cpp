@@ -130,7 +130,7 @@ TEST(BagReader, TheMessagesOfAFrameLeaveInOneFiringAndFinishedFiresOncePerPass) 
   }
   EXPECT_EQ(p.sink("frames").ints().back(), 39);
   EXPECT_EQ(std::get<int>(p.graph().parameterValue("bag", "frame").value()), 39);  // the position shows
-  p.graph().fireSlot("bag", "restart");  // replays from frame 0
+  ASSERT_TRUE(p.graph().fireSlot("bag", "restart"));  // replays from frame 0
   ASSERT_TRUE(p.sink("stamps").waitFor(80));
   ASSERT_TRUE(p.graph().waitIdle(kWait));
   EXPECT_EQ(p.stamps()[40], frameTime(0).toSec());
@@ -157,9 +157,9 @@ TEST(BagReader, SeekingSendsExactlyTheFramesAskedFor) {
   auto past = p.graph().setParameter("bag", "frame", "40");  // the parameter's range is the bag's frames
   ASSERT_FALSE(past);
   EXPECT_EQ(past.message(), "node 'bag': parameter 'frame': 40 is out of range [0, 39]");
-  p.graph().fireSlot("bag", "previous");
-  p.graph().fireSlot("bag", "previous");
-  p.graph().fireSlot("bag", "next");
+  ASSERT_TRUE(p.graph().fireSlot("bag", "previous"));
+  ASSERT_TRUE(p.graph().fireSlot("bag", "previous"));
+  ASSERT_TRUE(p.graph().fireSlot("bag", "next"));
   ASSERT_TRUE(p.sink("stamps").waitFor(6));
   ASSERT_TRUE(p.graph().waitIdle(kWait));
   const auto got = p.stamps();  // presses in quick succession add up and may be sent as one

@@ -39,46 +39,21 @@ TEST(GenericNodes, TimeSyncPairsByStamp) {
   EXPECT_THAT(h.error(), HasSubstr("cannot read a stamp from a int"));
 }
 
-/** `type` with `inputs` inputs, each fed by its own feeder, and `output` collected. */
-struct WideHarness {
-  Graph g{pluginRegistry()};
-  WideHarness(const std::string& type, int inputs, const std::vector<std::string>& names, const std::string& output) {
-    add(g, type, "node");
-    auto r = g.setParameter("node", "inputs", std::to_string(inputs));
-    EXPECT_TRUE(r) << r.message();
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      add(g, "test/MessageFeeder", "in" + std::to_string(i));
-      link(g, "in" + std::to_string(i), "out", "node", names[i]);
-    }
-    add(g, "test/Collector", "sink");
-    link(g, "node", output, "sink", "in");
-    g.start();
-  }
-  Message run(const std::vector<Message>& messages) {
-    auto* sink = object<Collector>(g, "sink");
-    const auto before = sink->size();
-    for (std::size_t i = 0; i < messages.size(); ++i) object<MessageFeeder>(g, "in" + std::to_string(i))->feed(messages[i]);
-    EXPECT_TRUE(sink->waitFor(before + 1));
-    EXPECT_TRUE(g.waitIdle(kWait));
-    return sink->messages().back();
-  }
-};
-
 TEST(GenericNodes, TimeSyncTakesAsManyInputsAsItIsGiven) {
-  WideHarness h("apex_nodes/TimeSync", 3, {"a", "b", "c"}, "c");
+  NodeHarness h("apex_nodes/TimeSync", {"a", "b", "c"}, "c", {{"inputs", "3"}});
   const auto c = stamped(10.04);
   auto cloud = [](std::shared_ptr<const apex_nodes::Cloud> p) { return Message::share<apex_nodes::Cloud>(p); };
   EXPECT_EQ(h.run({cloud(stamped(10.0)), cloud(stamped(10.02)), cloud(c)}).raw(), c.get());
   EXPECT_TRUE(h.run({cloud(stamped(10.0)), cloud(stamped(10.02)), cloud(stamped(10.2))}).isNothing());
-  ASSERT_TRUE(h.g.setParameter("node", "inputs", "2"));  // c goes, with its connections: no stall
-  EXPECT_EQ(h.g.describe().connections.size(), 2u + 0u);  // in0 -> a, in1 -> b
+  ASSERT_TRUE(h.graph().setParameter("node", "inputs", "2"));  // c goes, with its connections: no stall
+  EXPECT_EQ(h.graph().describe().connections.size(), 2u + 0u);  // in0 -> a, in1 -> b
 }
 
 TEST(GenericNodes, SelectPassesTheChosenInput) {
-  WideHarness h("apex_nodes/Select", 3, {"in_0", "in_1", "in_2"}, "out");
-  ASSERT_TRUE(h.g.setParameter("node", "choice", "2"));
+  NodeHarness h("apex_nodes/Select", {"in_0", "in_1", "in_2"}, "out", {{"inputs", "3"}});
+  h.set("choice", "2");
   EXPECT_EQ(*h.run({Message::make(1), Message::make(2), Message::make(3)}).as<int>(), 3);
-  ASSERT_TRUE(h.g.setParameter("node", "choice", "0"));
+  h.set("choice", "0");
   EXPECT_EQ(*h.run({Message::make(4), Message::make(5), Message::make(6)}).as<int>(), 4);
 }
 

@@ -35,7 +35,12 @@ class Overlays {
           got_.push_back({Clock::now(), m});
           cv_.notify_all();
         })) {}
-  bool connected() const { return sub_.getNumPublishers() > 0; }
+  /** Until the runtime's publisher is connected (roscpp has no callback for this: polled, 30 s at most). */
+  bool waitConnected() const {
+    const auto deadline = Clock::now() + std::chrono::seconds(30);
+    while (sub_.getNumPublishers() == 0 && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return sub_.getNumPublishers() > 0;
+  }
   std::size_t size() {
     std::lock_guard<std::mutex> l(m_);
     return got_.size();
@@ -76,6 +81,17 @@ std::vector<ros::Time> bagStamps() {
   return out;
 }
 
+/** Until the graph is quiet: two ~status messages in a row (0.5 s apart) with the same overlay firings. */
+bool quiet(ros::NodeHandle& nh) {
+  std::uint64_t last = firingsOf(nh, "overlay");
+  for (int i = 0; i < 20; ++i) {
+    const std::uint64_t now = firingsOf(nh, "overlay");
+    if (now == last) return true;
+    last = now;
+  }
+  return false;
+}
+
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 bool sameImage(const sensor_msgs::Image& a, const sensor_msgs::Image& b) {
@@ -85,9 +101,7 @@ bool sameImage(const sensor_msgs::Image& a, const sensor_msgs::Image& b) {
 TEST(HeldFrame, SeekThenTuneOnTheHeldFrameWithoutPlaying) {
   ros::NodeHandle nh;
   Overlays overlays(nh);
-  const auto deadline = Clock::now() + std::chrono::seconds(30);
-  while (!overlays.connected() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  ASSERT_TRUE(overlays.connected()) << "the overlay publisher never connected";
+  ASSERT_TRUE(overlays.waitConnected()) << "the overlay publisher never connected";
   const auto stamps = bagStamps();
   ASSERT_EQ(stamps.size(), 40u);
 
@@ -122,7 +136,7 @@ TEST(HeldFrame, SeekThenTuneOnTheHeldFrameWithoutPlaying) {
   const auto connected = overlays.size();
   ASSERT_TRUE(client.call(burst_call) && burst_call.response.success);
   ASSERT_TRUE(overlays.next(connected).second);
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // that re-run is through
+  ASSERT_TRUE(quiet(nh));  // that re-run is through
   const auto burst = overlays.size();
   const auto burst_start = Clock::now();
   for (int i = 0; i < 20; ++i) {
@@ -135,7 +149,7 @@ TEST(HeldFrame, SeekThenTuneOnTheHeldFrameWithoutPlaying) {
   burst_call.request.value = "30.0";  // the last value
   ASSERT_TRUE(client.call(burst_call) && burst_call.response.success);
   ASSERT_TRUE(overlays.next(burst).second);
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // any stale re-run would come now
+  ASSERT_TRUE(quiet(nh));  // any stale re-run would have come by now
   const auto reruns = overlays.since(burst);
   EXPECT_LE(reruns.size(), 5u) << "a queue of stale re-runs";
   for (const auto& r : reruns) EXPECT_EQ(r->header.stamp, stamps[7]);
@@ -153,8 +167,7 @@ TEST(HeldFrame, SeekThenTuneOnTheHeldFrameWithoutPlaying) {
 TEST(HeldFrame, AStepIsOneFrameThroughBothThreadGroups) {
   ros::NodeHandle nh;
   Overlays overlays(nh);
-  const auto deadline = Clock::now() + std::chrono::seconds(30);
-  while (!overlays.connected() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(overlays.waitConnected()) << "the overlay publisher never connected";
   const auto stamps = bagStamps();
   apex::Control::Request pause, step;
   pause.command = "pause", step.command = "step";

@@ -1,5 +1,5 @@
 // Graph lifecycle, node edits and reading. Connections: graph_connect.cpp;
-// describing and loading: graph_load.cpp.
+// describing and loading: graph_load.cpp; running and stepping: graph_run.cpp.
 #include "apex/core/graph.hpp"
 
 #include <algorithm>
@@ -346,93 +346,6 @@ Status Graph::setTap(const std::string& node, const std::string& port, PortTap t
   }
   return Status::error("node '" + node + "' (" + s->typeId() + ") has no output or interactive parameter '" + port +
                        "' (outputs: " + s->manifest().listOutputs() + ")");
-}
-
-// ------------------------------------------------------------------ running
-
-void Graph::start() {
-  auto lock = lockEdits();
-  running_ = true;
-  ran_ = true;
-  for (auto& [name, g] : groups_) g->start();
-}
-
-void Graph::stop() {
-  auto lock = lockEdits();
-  running_ = false;
-  for (auto& [name, g] : groups_) g->stop();
-}
-
-void Graph::pause() {
-  auto lock = lockEdits();
-  paused_ = true;
-  bump();
-  for (auto& [name, g] : groups_) g->hold(true);
-}
-
-void Graph::resume() {
-  auto lock = lockEdits();
-  paused_ = false;
-  bump();
-  for (auto& [name, g] : groups_) g->hold(false);
-}
-
-bool Graph::paused() const {
-  auto lock = lockEdits();
-  return paused_;
-}
-
-void Graph::step() {
-  auto lock = lockEdits();
-  if (!paused_) return;
-  // Every group's budget is the nodes ready at one instant: groups stay paused
-  // while the budgets are taken, so no firing of this step joins it early.
-  for (auto& [name, g] : groups_) g->pause();
-  for (auto& [name, g] : groups_) g->beginStep();
-  for (auto& [name, g] : groups_) g->resume();
-  for (auto& [name, g] : groups_) g->waitStep();
-}
-
-Status Graph::stepFrame(double timeout_s) {
-  auto lock = lockEdits();
-  if (!paused_) return Status::error("the graph is running; pause it first");
-  std::vector<std::shared_ptr<ThreadGroup>> groups;
-  for (auto& [name, g] : groups_) groups.push_back(g);
-  // Budgets set with every group paused: no source fires twice, whichever group frees it.
-  for (auto& g : groups) g->pause();
-  for (auto& g : groups) g->beginFrameStep();
-  for (auto& g : groups) g->resume();
-  const bool done = allIdle(groups, timeout_s);
-  for (auto& g : groups) g->endFrameStep();
-  bump();
-  if (!done) return Status::error("the frame did not finish within " + std::to_string(timeout_s) + " s");
-  return Status::ok();
-}
-
-bool Graph::waitIdle(double timeout_s) const {
-  std::vector<std::shared_ptr<ThreadGroup>> groups;  // shared: a load may drop a group meanwhile
-  {
-    auto lock = lockEdits();
-    for (auto& [name, g] : groups_) groups.push_back(g);
-  }
-  return allIdle(groups, timeout_s);
-}
-
-bool Graph::allIdle(const std::vector<std::shared_ptr<ThreadGroup>>& groups, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                                std::chrono::duration<double>(timeout_s));
-  // A group found idle may be given work by one checked later: idle means two
-  // passes in a row found every group idle with no work pushed or posted between.
-  std::vector<std::uint64_t> last;
-  for (;;) {
-    std::vector<std::uint64_t> seen;
-    for (auto& g : groups) {
-      if (!g->waitIdle(deadline)) return false;
-      seen.push_back(g->activity());
-    }
-    if (seen == last) return true;
-    last = std::move(seen);
-  }
 }
 
 // ------------------------------------------------------------------ reading

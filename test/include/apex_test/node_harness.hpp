@@ -49,10 +49,13 @@ inline const NodeRegistry& pluginRegistry() {
 
 class NodeHarness {
  public:
-  /** `type` with inputs fed in order from `inputs` and its `output` collected. */
-  NodeHarness(const std::string& type, std::vector<std::string> inputs, const std::string& output)
+  /** `type` with inputs fed in order from `inputs` and its `output` collected; `ports`:
+   *  parameters set first, e.g. {{"inputs", "3"}} for a node whose ports follow them. */
+  NodeHarness(const std::string& type, std::vector<std::string> inputs, const std::string& output,
+              const std::vector<std::pair<std::string, std::string>>& ports = {})
       : graph_(pluginRegistry()), inputs_(std::move(inputs)) {
     add(graph_, type, "node");
+    for (const auto& [param, value] : ports) set(param, value);
     for (std::size_t i = 0; i < inputs_.size(); ++i) {
       add(graph_, "test/MessageFeeder", "in" + std::to_string(i));
       link(graph_, "in" + std::to_string(i), "out", "node", inputs_[i]);
