@@ -1,7 +1,7 @@
 // Clock: a source at a rate, from its thread group's timer.
 #include <chrono>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 
 namespace apex_nodes {
 
@@ -31,4 +31,4 @@ class Clock : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Clock, apex_nodes::Clock);
+APEX_REGISTER_NODE(apex_nodes::Clock, "apex_nodes/Clock");

@@ -1,5 +1,5 @@
 // Counter: counts the messages it receives; a slot resets it.
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 
 namespace apex_nodes {
 
@@ -20,4 +20,4 @@ class Counter : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Counter, apex_nodes::Counter);
+APEX_REGISTER_NODE(apex_nodes::Counter, "apex_nodes/Counter");

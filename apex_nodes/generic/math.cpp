@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/stamp.hpp"
 
 namespace apex_nodes {
@@ -103,7 +103,7 @@ class Select : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Add, apex_nodes::Add);
-APEX_EXPORT_NODE(apex_nodes, Throttle, apex_nodes::Throttle);
-APEX_EXPORT_NODE(apex_nodes, TimeSync, apex_nodes::TimeSync);
-APEX_EXPORT_NODE(apex_nodes, Select, apex_nodes::Select);
+APEX_REGISTER_NODE(apex_nodes::Add, "apex_nodes/Add");
+APEX_REGISTER_NODE(apex_nodes::Throttle, "apex_nodes/Throttle");
+APEX_REGISTER_NODE(apex_nodes::TimeSync, "apex_nodes/TimeSync");
+APEX_REGISTER_NODE(apex_nodes::Select, "apex_nodes/Select");

@@ -1,5 +1,5 @@
 // Print: logs each message it receives (numbers and strings by value).
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 
 namespace apex_nodes {
 
@@ -24,4 +24,4 @@ class Print : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Print, apex_nodes::Print);
+APEX_REGISTER_NODE(apex_nodes::Print, "apex_nodes/Print");

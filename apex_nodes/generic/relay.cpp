@@ -1,5 +1,5 @@
 // Relay: passes any message through unchanged (the same object, no copy).
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 
 namespace apex_nodes {
 
@@ -15,4 +15,4 @@ class Relay : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Relay, apex_nodes::Relay);
+APEX_REGISTER_NODE(apex_nodes::Relay, "apex_nodes/Relay");

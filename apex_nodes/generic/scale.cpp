@@ -1,5 +1,5 @@
 // Scale: multiplies a number by a factor.
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 
 namespace apex_nodes {
 
@@ -16,4 +16,4 @@ class Scale : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Scale, apex_nodes::Scale);
+APEX_REGISTER_NODE(apex_nodes::Scale, "apex_nodes/Scale");

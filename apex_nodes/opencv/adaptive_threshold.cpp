@@ -1,7 +1,7 @@
 // AdaptiveThreshold: the paper's Fig. 3 parameters, on a single-channel 8-bit image.
 #include <opencv2/imgproc.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 #include "apex_nodes/output_buffer.hpp"
 
@@ -38,4 +38,4 @@ class AdaptiveThreshold : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, AdaptiveThreshold, apex_nodes::AdaptiveThreshold);
+APEX_REGISTER_NODE(apex_nodes::AdaptiveThreshold, "apex_nodes/AdaptiveThreshold");

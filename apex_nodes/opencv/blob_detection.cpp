@@ -1,7 +1,7 @@
 // BlobDetection: connected components of a binary image, filtered by area.
 #include <opencv2/imgproc.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 
 namespace apex_nodes {
@@ -48,4 +48,4 @@ class BlobDetection : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, BlobDetection, apex_nodes::BlobDetection);
+APEX_REGISTER_NODE(apex_nodes::BlobDetection, "apex_nodes/BlobDetection");

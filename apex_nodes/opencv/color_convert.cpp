@@ -2,7 +2,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 #include "apex_nodes/output_buffer.hpp"
 
@@ -62,4 +62,4 @@ class ColorConvert : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, ColorConvert, apex_nodes::ColorConvert);
+APEX_REGISTER_NODE(apex_nodes::ColorConvert, "apex_nodes/ColorConvert");

@@ -1,7 +1,7 @@
 // DrawRegions: the regions' boxes over the image, for visual feedback.
 #include <opencv2/imgproc.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 #include "apex_nodes/output_buffer.hpp"
 
@@ -39,4 +39,4 @@ class DrawRegions : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, DrawRegions, apex_nodes::DrawRegions);
+APEX_REGISTER_NODE(apex_nodes::DrawRegions, "apex_nodes/DrawRegions");

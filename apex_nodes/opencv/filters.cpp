@@ -2,7 +2,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 #include "apex_nodes/output_buffer.hpp"
 
@@ -91,6 +91,6 @@ class Canny : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, GaussianBlur, apex_nodes::GaussianBlur);
-APEX_EXPORT_NODE(apex_nodes, Threshold, apex_nodes::Threshold);
-APEX_EXPORT_NODE(apex_nodes, Canny, apex_nodes::Canny);
+APEX_REGISTER_NODE(apex_nodes::GaussianBlur, "apex_nodes/GaussianBlur");
+APEX_REGISTER_NODE(apex_nodes::Threshold, "apex_nodes/Threshold");
+APEX_REGISTER_NODE(apex_nodes::Canny, "apex_nodes/Canny");

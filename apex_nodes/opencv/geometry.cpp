@@ -1,7 +1,7 @@
 // Resize and Crop.
 #include <opencv2/imgproc.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 #include "apex_nodes/output_buffer.hpp"
 
@@ -60,5 +60,5 @@ class Crop : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Resize, apex_nodes::Resize);
-APEX_EXPORT_NODE(apex_nodes, Crop, apex_nodes::Crop);
+APEX_REGISTER_NODE(apex_nodes::Resize, "apex_nodes/Resize");
+APEX_REGISTER_NODE(apex_nodes::Crop, "apex_nodes/Crop");

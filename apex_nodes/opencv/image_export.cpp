@@ -3,7 +3,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 
 namespace apex_nodes {
@@ -45,4 +45,4 @@ class ImageExport : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, ImageExport, apex_nodes::ImageExport);
+APEX_REGISTER_NODE(apex_nodes::ImageExport, "apex_nodes/ImageExport");

@@ -1,7 +1,7 @@
 // Morphology: erode, dilate, open, close with a rectangular, cross or elliptic kernel.
 #include <opencv2/imgproc.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 #include "apex_nodes/output_buffer.hpp"
 
@@ -43,4 +43,4 @@ class Morphology : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Morphology, apex_nodes::Morphology);
+APEX_REGISTER_NODE(apex_nodes::Morphology, "apex_nodes/Morphology");

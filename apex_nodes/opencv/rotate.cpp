@@ -2,7 +2,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 #include "apex_nodes/output_buffer.hpp"
 
@@ -43,4 +43,4 @@ class Rotate : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, Rotate, apex_nodes::Rotate);
+APEX_REGISTER_NODE(apex_nodes::Rotate, "apex_nodes/Rotate");

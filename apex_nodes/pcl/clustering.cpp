@@ -2,7 +2,7 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/cloud_check.hpp"
 
 namespace apex_nodes {
@@ -45,4 +45,4 @@ class EuclideanClustering : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, EuclideanClustering, apex_nodes::EuclideanClustering);
+APEX_REGISTER_NODE(apex_nodes::EuclideanClustering, "apex_nodes/EuclideanClustering");

@@ -2,7 +2,7 @@
 #include <pcl/filters/passthrough.h>
 #include <pcl/filters/voxel_grid.h>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/cloud_check.hpp"
 
 namespace apex_nodes {
@@ -55,5 +55,5 @@ class VoxelGrid : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, PassThrough, apex_nodes::PassThrough);
-APEX_EXPORT_NODE(apex_nodes, VoxelGrid, apex_nodes::VoxelGrid);
+APEX_REGISTER_NODE(apex_nodes::PassThrough, "apex_nodes/PassThrough");
+APEX_REGISTER_NODE(apex_nodes::VoxelGrid, "apex_nodes/VoxelGrid");

@@ -1,7 +1,7 @@
 // StatisticalOutlierRemoval: drops points far from their neighbours.
 #include <pcl/filters/statistical_outlier_removal.h>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/cloud_check.hpp"
 
 namespace apex_nodes {
@@ -30,4 +30,4 @@ class StatisticalOutlierRemoval : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, StatisticalOutlierRemoval, apex_nodes::StatisticalOutlierRemoval);
+APEX_REGISTER_NODE(apex_nodes::StatisticalOutlierRemoval, "apex_nodes/StatisticalOutlierRemoval");

@@ -2,7 +2,7 @@
 #include <pcl/filters/extract_indices.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/cloud_check.hpp"
 
 namespace apex_nodes {
@@ -47,4 +47,4 @@ class PlaneSegmentation : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, PlaneSegmentation, apex_nodes::PlaneSegmentation);
+APEX_REGISTER_NODE(apex_nodes::PlaneSegmentation, "apex_nodes/PlaneSegmentation");

@@ -3,7 +3,7 @@
 
 #include <Eigen/Geometry>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/cloud_check.hpp"
 #include "apex_nodes/stamp.hpp"
 
@@ -45,4 +45,4 @@ class TransformCloud : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, TransformCloud, apex_nodes::TransformCloud);
+APEX_REGISTER_NODE(apex_nodes::TransformCloud, "apex_nodes/TransformCloud");

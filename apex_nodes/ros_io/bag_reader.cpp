@@ -9,7 +9,7 @@
 #include <chrono>
 #include <memory>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
 #include "apex_nodes/ros_convert.hpp"
 #include "bag_frames.hpp"
 
@@ -283,4 +283,4 @@ class BagReader : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, BagReader, apex_nodes::BagReader);
+APEX_REGISTER_NODE(apex_nodes::BagReader, "apex_nodes/BagReader");

@@ -5,7 +5,8 @@
 #include <cmath>
 #include <mutex>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
+#include "apex/ros/node_handles.hpp"
 #include "apex_nodes/types.hpp"
 #include "topic_source.hpp"
 
@@ -23,8 +24,8 @@ class LaserScanSubscriber : public TopicSource<sensor_msgs::LaserScan> {
 
  private:
   void subscribe() override {
-    sub_ = ros::NodeHandle().subscribe<sensor_msgs::LaserScan>(param<std::string>("topic"), 1,
-                                                               [this](const MsgPtr& s) { received(s); });
+    sub_ = apex::nodeHandle(*this).subscribe<sensor_msgs::LaserScan>(param<std::string>("topic"), 1,
+                                                                     [this](const MsgPtr& s) { received(s); });
   }
   void send(const MsgPtr& scan) override {  // shared with ROS, not copied: boost to std ownership
     publish<sensor_msgs::LaserScan>("scan", std::shared_ptr<const sensor_msgs::LaserScan>(scan.get(), [scan](auto*) {}));
@@ -65,5 +66,5 @@ class LaserScanToCloud : public apex::Node {
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, LaserScanSubscriber, apex_nodes::LaserScanSubscriber);
-APEX_EXPORT_NODE(apex_nodes, LaserScanToCloud, apex_nodes::LaserScanToCloud);
+APEX_REGISTER_NODE(apex_nodes::LaserScanSubscriber, "apex_nodes/LaserScanSubscriber");
+APEX_REGISTER_NODE(apex_nodes::LaserScanToCloud, "apex_nodes/LaserScanToCloud");

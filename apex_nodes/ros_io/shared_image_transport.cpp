@@ -20,16 +20,18 @@ image_transport::ImageTransport& transport() {
 
 }  // namespace
 
-image_transport::Publisher advertiseImage(const std::string& topic, uint32_t queue_size) {
+image_transport::Publisher advertiseImage(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size) {
+  const std::string resolved = nh.resolveName(topic);  // the shared transport's own handle is the root
   std::lock_guard<std::mutex> lock(pluginLoaderMutex());
-  return transport().advertise(topic, queue_size);
+  return transport().advertise(resolved, queue_size);
 }
 
-image_transport::Subscriber subscribeImage(const std::string& topic, uint32_t queue_size,
+image_transport::Subscriber subscribeImage(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size,
                                            const ImageCallback& callback,
                                            const std::string& transport_name) {
+  const std::string resolved = nh.resolveName(topic);
   std::lock_guard<std::mutex> lock(pluginLoaderMutex());
-  return transport().subscribe(topic, queue_size, callback, ros::VoidPtr(),
+  return transport().subscribe(resolved, queue_size, callback, ros::VoidPtr(),
                                image_transport::TransportHints(transport_name));
 }
 

@@ -21,9 +21,10 @@ std::mutex& pluginLoaderMutex();
 
 using ImageCallback = boost::function<void(const sensor_msgs::ImageConstPtr&)>;
 
-image_transport::Publisher advertiseImage(const std::string& topic, uint32_t queue_size);
+/** `topic` is resolved by `nh` (its namespace and remappings: the node's, from the host). */
+image_transport::Publisher advertiseImage(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size);
 
-image_transport::Subscriber subscribeImage(const std::string& topic, uint32_t queue_size,
+image_transport::Subscriber subscribeImage(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size,
                                            const ImageCallback& callback,
                                            const std::string& transport);
 

@@ -6,7 +6,8 @@
 #include <memory>
 
 #include "apex/ros/inspect.hpp"
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
+#include "apex/ros/node_handles.hpp"
 #include "apex_nodes/stamp.hpp"
 
 namespace apex_nodes {
@@ -23,7 +24,7 @@ class TfLookup : public apex::Node {
   }
   void setup() override {
     buffer_ = std::make_unique<tf2_ros::Buffer>();
-    listener_ = std::make_unique<tf2_ros::TransformListener>(*buffer_);
+    listener_ = std::make_unique<tf2_ros::TransformListener>(*buffer_, apex::nodeHandle(*this));
   }
   void process() override {
     const auto header = headerOf(inputMessage("stamped"));
@@ -48,4 +49,4 @@ const bool kInspectTransforms = apex::addInspector<geometry_msgs::TransformStamp
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, TfLookup, apex_nodes::TfLookup);
+APEX_REGISTER_NODE(apex_nodes::TfLookup, "apex_nodes/TfLookup");

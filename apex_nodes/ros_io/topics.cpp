@@ -3,7 +3,8 @@
 // Publishers convert only while someone subscribes.
 #include <ros/ros.h>
 
-#include "apex/ros/node_plugin.hpp"
+#include "apex/core/registry.hpp"
+#include "apex/ros/node_handles.hpp"
 #include "apex_nodes/ros_convert.hpp"
 #include "shared_image_transport.hpp"
 #include "topic_source.hpp"
@@ -23,7 +24,7 @@ class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
 
  private:
   void subscribe() override {
-    sub_ = subscribeImage(param<std::string>("topic"), 1, [this](const MsgPtr& msg) { received(msg); },
+    sub_ = subscribeImage(apex::nodeHandle(*this), param<std::string>("topic"), 1, [this](const MsgPtr& msg) { received(msg); },
                           param<std::string>("transport"));
   }
   void send(const MsgPtr& msg) override { publish<Image>("image", fromRos(msg)); }
@@ -44,7 +45,7 @@ class ImagePublisher : public apex::Node {
   }
 
  private:
-  void advertise() { pub_ = advertiseImage(param<std::string>("topic"), 1); }
+  void advertise() { pub_ = advertiseImage(apex::nodeHandle(*this), param<std::string>("topic"), 1); }
   image_transport::Publisher pub_;
 };
 
@@ -60,8 +61,8 @@ class PointCloudSubscriber : public TopicSource<sensor_msgs::PointCloud2> {
 
  private:
   void subscribe() override {
-    sub_ = ros::NodeHandle().subscribe<sensor_msgs::PointCloud2>(param<std::string>("topic"), 1,
-                                                                 [this](const MsgPtr& msg) { received(msg); });
+    sub_ = apex::nodeHandle(*this).subscribe<sensor_msgs::PointCloud2>(param<std::string>("topic"), 1,
+                                                                       [this](const MsgPtr& msg) { received(msg); });
   }
   void send(const MsgPtr& msg) override { publish<Cloud>("cloud", fromRos(msg)); }
   ros::Subscriber sub_;
@@ -81,13 +82,13 @@ class PointCloudPublisher : public apex::Node {
   }
 
  private:
-  void advertise() { pub_ = ros::NodeHandle().advertise<sensor_msgs::PointCloud2>(param<std::string>("topic"), 1); }
+  void advertise() { pub_ = apex::nodeHandle(*this).advertise<sensor_msgs::PointCloud2>(param<std::string>("topic"), 1); }
   ros::Publisher pub_;
 };
 
 }  // namespace apex_nodes
 
-APEX_EXPORT_NODE(apex_nodes, ImageSubscriber, apex_nodes::ImageSubscriber);
-APEX_EXPORT_NODE(apex_nodes, ImagePublisher, apex_nodes::ImagePublisher);
-APEX_EXPORT_NODE(apex_nodes, PointCloudSubscriber, apex_nodes::PointCloudSubscriber);
-APEX_EXPORT_NODE(apex_nodes, PointCloudPublisher, apex_nodes::PointCloudPublisher);
+APEX_REGISTER_NODE(apex_nodes::ImageSubscriber, "apex_nodes/ImageSubscriber");
+APEX_REGISTER_NODE(apex_nodes::ImagePublisher, "apex_nodes/ImagePublisher");
+APEX_REGISTER_NODE(apex_nodes::PointCloudSubscriber, "apex_nodes/PointCloudSubscriber");
+APEX_REGISTER_NODE(apex_nodes::PointCloudPublisher, "apex_nodes/PointCloudPublisher");

@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "apex/core/connection_rules.hpp"
+
 #include <algorithm>
 #include <cctype>
 
@@ -30,8 +32,55 @@ std::string parametersText(const apex::NodeInfo& n) {
   return "{" + params + "}";
 }
 
-bool sourceKind(const std::string& k) { return k == "output" || k == "trigger" || k == "param_out"; }
-bool targetKind(const std::string& k) { return k == "input" || k == "slot" || k == "param_in"; }
+/** The last ~graph, for the runtime's own connection rules (apex/core/connection_rules.hpp). */
+class StateView : public apex::ConnectionView {
+ public:
+  explicit StateView(const apex::GraphState& graph) : graph_(graph) {}
+  std::optional<apex::NodeView> node(const std::string& name) const override {
+    const apex::NodeInfo* n = find(name);
+    if (!n) return std::nullopt;
+    apex::NodeView v;
+    v.type = n->type;
+    v.placeholder = n->state == "placeholder";
+    for (const auto& p : n->ports) {
+      apex::PortKind kind;
+      if (apex::portKindFromName(p.kind, &kind)) v.ports.push_back({p.name, kind, p.type});
+    }
+    for (const auto& p : n->parameters) v.params.push_back(p.name);
+    return v;
+  }
+  std::string feeding(const std::string& node, const std::string& port) const override {
+    for (const auto& c : graph_.connections)
+      if (c.to_node == node && c.to_port == port && !isSlot(c.to_node, c.to_port)) return c.from_node;
+    return "";
+  }
+  bool hasEvent(const apex::ConnectionDescription& d) const override {
+    for (const auto& c : graph_.connections)
+      if (c.from_node == d.from_node && c.from_port == d.from_port && c.to_node == d.to_node && c.to_port == d.to_port)
+        return true;
+    return false;
+  }
+  std::vector<std::string> dataReceivers(const std::string& node) const override {
+    std::vector<std::string> out;
+    for (const auto& c : graph_.connections)
+      if (c.from_node == node && hasPort(c.to_node, c.to_port, "input")) out.push_back(c.to_node);
+    return out;
+  }
+
+ private:
+  const apex::NodeInfo* find(const std::string& name) const {
+    for (const auto& n : graph_.nodes) if (n.name == name) return &n;
+    return nullptr;
+  }
+  bool hasPort(const std::string& node, const std::string& port, const std::string& kind) const {
+    const apex::NodeInfo* n = find(node);
+    if (!n) return false;
+    for (const auto& p : n->ports) if (p.name == port && p.kind == kind) return true;
+    return false;
+  }
+  bool isSlot(const std::string& node, const std::string& port) const { return hasPort(node, port, "slot"); }
+  const apex::GraphState& graph_;
+};
 
 }  // namespace
 
@@ -64,21 +113,8 @@ const apex::PortInfo* GraphModel::port(const std::string& node_name, const std::
 
 std::string GraphModel::whyNot(const std::string& fn, const std::string& fp, const std::string& tn,
                                const std::string& tp) const {
-  const apex::NodeInfo* from = node(fn);
-  const apex::NodeInfo* to = node(tn);
-  if (!from || !to) return "no node named '" + (from ? tn : fn) + "'";
-  const apex::PortInfo* src = nullptr;
-  const apex::PortInfo* dst = nullptr;
-  for (const auto& p : from->ports) if (p.name == fp && sourceKind(p.kind)) src = &p;
-  for (const auto& p : to->ports) if (p.name == tp && targetKind(p.kind)) dst = &p;
-  if (!src) return "'" + fp + "' is not an output, trigger or parameter of " + fn;
-  if (!dst) return "'" + tp + "' is not an input, slot or parameter of " + tn;
-  if ((src->kind == "trigger") != (dst->kind == "slot")) return "triggers connect only to slots";
-  if (dst->kind != "slot" && src->type != dst->type && src->type != "any" && dst->type != "any")
-    return "type mismatch: " + src->type + " to " + dst->type;
-  for (const auto& c : graph_.connections)
-    if (dst->kind != "slot" && c.to_node == tn && c.to_port == tp) return "already connected (from " + c.from_node + ")";
-  return "";
+  auto checked = apex::checkConnection(StateView(graph_), {fn, fp, tn, tp, 0});
+  return checked ? "" : checked.message();
 }
 
 std::pair<double, double> GraphModel::position(const std::string& name) const {

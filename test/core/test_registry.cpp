@@ -12,7 +12,30 @@ namespace {
 
 int plus(int a, int b) { return a + b; }
 
+class Doubler : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Doubles an int").input<int>("in").output<int>("out");
+  }
+  void process() override { publish("out", *input<int>("in") * 2); }
+};
+
 }  // namespace
+
+APEX_REGISTER_NODE(Doubler, "test/Doubler");
+
+TEST(Registry, OneLineRegistersATypeForThisProgramAndForItsLibrary) {
+  const auto type = apex::NodeRegistry::global().find("test/Doubler");
+  ASSERT_NE(type, nullptr);
+  EXPECT_EQ(type->manifest->description, "Doubles an int");
+  // A plugin library hands the host its module's list (APEX_NODE_LIBRARY): the same type.
+  EXPECT_EQ(apex::detail::moduleTypes().find("test/Doubler"), type);
+  EXPECT_EQ(apex::detail::moduleTypes().ids(), std::vector<std::string>{"test/Doubler"});
+  apex::Graph graph;  // starts from the process-wide registry
+  EXPECT_TRUE(graph.addNode("test/Doubler", "d"));
+  // A second registration of the id is refused (and reported on stderr).
+  EXPECT_FALSE(apex::detail::registerNode<Doubler>("test/Doubler"));
+}
 
 TEST(Registry, ListsAWholeInterfaceWithoutCreatingANode) {
   NodeRegistry r = testRegistry();

@@ -53,18 +53,24 @@ TEST(GraphModel, TakesOnlyNewerRevisions) {
   EXPECT_TRUE(m.update(graph(6)));
 }
 
-TEST(GraphModel, SaysWhyAConnectionCannotBeMade) {
+TEST(GraphModel, SaysWhyAConnectionCannotBeMadeWithTheRuntimesRules) {
   GraphModel m;
   m.update(graph(1));
-  EXPECT_EQ(m.whyNot("clock", "time", "count", "in"), "already connected (from relay)");
-  EXPECT_THAT(m.whyNot("clock", "processed", "relay", "in"), HasSubstr("triggers connect only to slots"));
-  EXPECT_THAT(m.whyNot("relay", "in", "count", "in"), HasSubstr("not an output"));
+  EXPECT_THAT(m.whyNot("clock", "time", "count", "in"), HasSubstr("is already connected (from relay)"));
+  EXPECT_THAT(m.whyNot("clock", "processed", "relay", "in"), HasSubstr("a trigger connects only to slots"));
+  EXPECT_THAT(m.whyNot("relay", "in", "count", "in"), HasSubstr("'in' is an input of node 'relay'"));
   EXPECT_THAT(m.whyNot("ghost", "out", "count", "in"), HasSubstr("no node named 'ghost'"));
-  EXPECT_EQ(m.whyNot("clock", "processed", "count", "reset"), "");  // events are many-to-many
+  EXPECT_THAT(m.whyNot("clock", "processed", "count", "reset"), HasSubstr("they are already connected"));
   auto g = graph(2);
-  g.connections.erase(g.connections.begin() + 1);
+  g.connections.erase(g.connections.begin() + 1);  // relay -> count
+  g.connections.pop_back();                        // clock/processed -> count/reset
   m.update(g);
   EXPECT_EQ(m.whyNot("clock", "time", "count", "in"), "");  // any input takes a double
+  EXPECT_EQ(m.whyNot("clock", "processed", "count", "reset"), "");
+  g = graph(3);
+  g.connections.erase(g.connections.begin());  // clock -> relay: relay/in is free, relay feeds count
+  m.update(g);
+  EXPECT_THAT(m.whyNot("count", "count", "relay", "in"), HasSubstr("it would close a cycle (relay already feeds count)"));
 }
 
 TEST(GraphModel, PositionsComeFromUiMetadata) {

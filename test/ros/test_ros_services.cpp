@@ -81,9 +81,9 @@ TEST_F(Services, ListNodeTypesDescribesEveryTypeAndNamesLoadErrors) {
   EXPECT_THAT(clock->ports[0].kind, "output");
   std::string errors;
   for (const auto& e : res.load_errors) errors += e + "\n";
-  EXPECT_THAT(errors, HasSubstr("node type 'apex_test/NoLibrary'"));
+  EXPECT_THAT(errors, HasSubstr("node library 'apex_test/NoLibrary'"));
   EXPECT_THAT(errors, HasSubstr("libapex_not_built"));
-  EXPECT_THAT(errors, HasSubstr("node type 'apex_test/NotExported'"));
+  EXPECT_THAT(errors, HasSubstr("node library 'apex_test/NotExported'"));
 }
 
 TEST_F(Services, AddNodeAppliesParametersAndRefusesBadInput) {

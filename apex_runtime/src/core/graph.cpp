@@ -45,6 +45,11 @@ std::string knownTypes(const NodeRegistry& registry) {
 
 Graph::Graph(NodeRegistry registry) : registry_(std::move(registry)) { group(kDefaultGroup); }
 
+void Graph::setHost(std::shared_ptr<const Host> host) {
+  auto lock = lockEdits();
+  host_ = std::move(host);
+}
+
 Graph::~Graph() {
   stop();
   std::lock_guard<std::mutex> lock(edit_mutex_);
@@ -107,6 +112,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
     return Status::error("node type '" + type_id + "' failed to construct: " + ex.what());
   }
   auto state = std::make_shared<NodeState>(name, type, next_seq_++, revision_);
+  state->host = host_;
   if (type->manifest->shape) {  // its ports for its default parameters
     auto iface = interfaceFor(*state, "", nullptr);
     if (!iface) return iface.status();

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <set>
 
+#include "apex/core/connection_rules.hpp"
 #include "apex/core/graph.hpp"
 #include "edit_scope.hpp"
 #include "live.hpp"
@@ -17,32 +18,11 @@ using detail::Restructure;
 
 namespace {
 
-enum class Kind { Output, ParamOut, Trigger, Input, ParamIn, Slot };
-
 struct Endpoint {
-  Kind kind;
+  PortKind kind;
   int index;
   const TypeInfo* type;  // nullptr for events
 };
-
-/** "an input", "a slot" */
-std::string withArticle(Kind k);
-
-const char* kindName(Kind k) {
-  switch (k) {
-    case Kind::Output: return "output";
-    case Kind::ParamOut: case Kind::ParamIn: return "parameter";
-    case Kind::Trigger: return "trigger";
-    case Kind::Input: return "input";
-    case Kind::Slot: return "slot";
-  }
-  return "port";
-}
-
-std::string withArticle(Kind k) {
-  const std::string n = kindName(k);
-  return (n[0] == 'i' || n[0] == 'o' ? "an " : "a ") + n;
-}
 
 template <class T>
 int indexOf(const std::vector<T>& items, const std::string& n) {
@@ -50,68 +30,90 @@ int indexOf(const std::vector<T>& items, const std::string& n) {
   return -1;
 }
 
-std::string where(const NodeState& n) { return "node '" + n.name + "' (" + n.typeId() + ")"; }
-
-Status notInteractive(const NodeState& n, const std::string& p) {
-  return Status::error("parameter '" + p + "' of node '" + n.name +
-                       "' is not interactive: make it interactive to give it ports");
-}
-
-Result<Endpoint> source(const NodeState& n, const std::string& port) {
+/** A node as the connection rules see it. */
+NodeView viewOf(const NodeState& n) {
+  NodeView v;
+  v.type = n.typeId();
+  v.placeholder = !n.type;
+  if (v.placeholder) return v;
   const Manifest& m = n.manifest();
-  if (int i = indexOf(m.outputs, port); i >= 0) return Endpoint{Kind::Output, i, m.outputs[i].type};
-  if (int i = indexOf(m.triggers, port); i >= 0) return Endpoint{Kind::Trigger, i, nullptr};
-  if (int i = indexOf(m.params, port); i >= 0) {
-    if (!n.params[i].interactive) return notInteractive(n, port);
-    return Endpoint{Kind::ParamOut, i, m.params[i].portType()};
+  for (const auto& p : m.inputs) v.ports.push_back({p.name, PortKind::Input, p.type->name});
+  for (const auto& p : m.outputs) v.ports.push_back({p.name, PortKind::Output, p.type->name});
+  for (const auto& e : m.slots) v.ports.push_back({e.name, PortKind::Slot, ""});
+  for (const auto& e : m.triggers) v.ports.push_back({e.name, PortKind::Trigger, ""});
+  for (std::size_t i = 0; i < m.params.size(); ++i) {
+    v.params.push_back(m.params[i].name);
+    if (!n.params[i].interactive) continue;
+    v.ports.push_back({m.params[i].name, PortKind::ParamIn, m.params[i].portType()->name});
+    v.ports.push_back({m.params[i].name, PortKind::ParamOut, m.params[i].portType()->name});
   }
-  if (indexOf(m.inputs, port) >= 0 || indexOf(m.slots, port) >= 0)
-    return Status::error("'" + port + "' is an input of " + where(n) +
-                         ": a connection goes from an output, parameter or trigger to an input, parameter or slot");
-  return Status::error(where(n) + " has no output, trigger or parameter '" + port + "' (outputs: " + m.listOutputs() +
-                       "; triggers: " + m.listTriggers() + "; parameters: " + m.listParams() + ")");
+  return v;
 }
 
-Result<Endpoint> target(const NodeState& n, const std::string& port) {
+/** The live graph for the connection rules. */
+class LiveView : public ConnectionView {
+ public:
+  explicit LiveView(const std::map<std::string, std::shared_ptr<NodeState>>& nodes) : nodes_(nodes) {}
+  std::optional<NodeView> node(const std::string& name) const override {
+    const NodeState* n = find(name);
+    return n ? std::optional<NodeView>(viewOf(*n)) : std::nullopt;
+  }
+  std::string feeding(const std::string& node, const std::string& port) const override {
+    const NodeState* n = find(node);
+    if (!n || !n->type) return "";
+    const Manifest& m = n->manifest();
+    std::shared_ptr<Edge> e;
+    if (int i = indexOf(m.inputs, port); i >= 0) e = n->inputs[i]->edge;
+    if (int i = indexOf(m.params, port); i >= 0) e = n->params[i].in_edge;
+    return e ? e->from->name : "";
+  }
+  bool hasEvent(const ConnectionDescription& c) const override {
+    const NodeState* from = find(c.from_node);
+    if (!from || !from->type) return false;
+    const int t = indexOf(from->manifest().triggers, c.from_port);
+    if (t < 0) return false;
+    for (const auto& e : from->trigger_edges[t])
+      if (e->to->name == c.to_node && e->to->manifest().slots[e->slot].name == c.to_port) return true;
+    return false;
+  }
+  std::vector<std::string> dataReceivers(const std::string& node) const override {
+    std::vector<std::string> out;
+    const NodeState* n = find(node);
+    if (!n) return out;
+    auto add = [&](const std::shared_ptr<Edge>& e) { if (!e->to_param) out.push_back(e->to->name); };
+    for (const auto& o : n->outputs) for (const auto& e : o.edges) add(e);
+    for (const auto& p : n->params) for (const auto& e : p.out_edges) add(e);
+    return out;
+  }
+
+ private:
+  const NodeState* find(const std::string& name) const {
+    auto it = nodes_.find(name);
+    return it == nodes_.end() ? nullptr : it->second.get();
+  }
+  const std::map<std::string, std::shared_ptr<NodeState>>& nodes_;
+};
+
+/** Where a port the rules accepted lives in the node. */
+Endpoint locate(const NodeState& n, const PortView& p) {
   const Manifest& m = n.manifest();
-  if (int i = indexOf(m.inputs, port); i >= 0) return Endpoint{Kind::Input, i, m.inputs[i].type};
-  if (int i = indexOf(m.slots, port); i >= 0) return Endpoint{Kind::Slot, i, nullptr};
-  if (int i = indexOf(m.params, port); i >= 0) {
-    if (!n.params[i].interactive) return notInteractive(n, port);
-    return Endpoint{Kind::ParamIn, i, m.params[i].portType()};
+  switch (p.kind) {
+    case PortKind::Input: { const int i = indexOf(m.inputs, p.name); return {p.kind, i, m.inputs[i].type}; }
+    case PortKind::Output: { const int i = indexOf(m.outputs, p.name); return {p.kind, i, m.outputs[i].type}; }
+    case PortKind::Slot: return {p.kind, indexOf(m.slots, p.name), nullptr};
+    case PortKind::Trigger: return {p.kind, indexOf(m.triggers, p.name), nullptr};
+    case PortKind::ParamIn: case PortKind::ParamOut: {
+      const int i = indexOf(m.params, p.name);
+      return {p.kind, i, m.params[i].portType()};
+    }
   }
-  if (indexOf(m.outputs, port) >= 0 || indexOf(m.triggers, port) >= 0)
-    return Status::error("'" + port + "' is an output of " + where(n) +
-                         ": a connection goes from an output, parameter or trigger to an input, parameter or slot");
-  return Status::error(where(n) + " has no input, slot or parameter '" + port + "' (inputs: " + m.listInputs() +
-                       "; slots: " + m.listSlots() + "; parameters: " + m.listParams() + ")");
-}
-
-/** Nodes downstream of `from` through edges into data inputs (those wait for data). */
-bool reaches(const NodeState* from, const NodeState* goal) {
-  std::vector<const NodeState*> stack{from};
-  std::set<const NodeState*> seen{from};
-  while (!stack.empty()) {
-    const NodeState* n = stack.back();
-    stack.pop_back();
-    if (n == goal) return true;
-    auto visit = [&](const std::shared_ptr<Edge>& e) {
-      if (!e->to_param && seen.insert(e->to).second) stack.push_back(e->to);
-    };
-    for (auto& o : n->outputs) for (auto& e : o.edges) visit(e);
-    for (auto& p : n->params) for (auto& e : p.out_edges) visit(e);
-  }
-  return false;
-}
-
-std::string label(const ConnectionDescription& c) {
-  return c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port;
+  return {p.kind, -1, nullptr};
 }
 
 /** The edge feeding `to` at `port`, if it comes from `from`/`from_port`. */
 std::shared_ptr<Edge> findEdge(NodeState& from, const Endpoint& src, NodeState& to, const Endpoint& dst) {
-  std::shared_ptr<Edge> e = dst.kind == Kind::Input ? to.inputs[dst.index]->edge : to.params[dst.index].in_edge;
-  const bool from_param = src.kind == Kind::ParamOut;
+  std::shared_ptr<Edge> e = dst.kind == PortKind::Input ? to.inputs[dst.index]->edge : to.params[dst.index].in_edge;
+  const bool from_param = src.kind == PortKind::ParamOut;
   if (e && e->from == &from && e->from_param == from_param && e->from_index == src.index) return e;
   return nullptr;
 }
@@ -128,30 +130,18 @@ Status Graph::connect(const std::string& fn, const std::string& fp, const std::s
 }
 
 Status Graph::connectLocked(const ConnectionDescription& c) {
-  auto fail = [&](const std::string& why) { return Status::error("cannot connect " + label(c) + ": " + why); };
-  auto from = find(c.from_node);
-  auto to = find(c.to_node);
-  if (!from) return fail("no node named '" + c.from_node + "'");
-  if (!to) return fail("no node named '" + c.to_node + "'");
-  if (!from->type || !to->type) {  // a placeholder: keep the connection as written
-    if (std::find(dormant_.begin(), dormant_.end(), c) != dormant_.end()) return fail("they are already connected");
+  auto checked = checkConnection(LiveView(nodes_), c);
+  if (!checked) return checked.status();
+  if (!checked.value().from) {  // a placeholder: keep the connection as written
+    if (std::find(dormant_.begin(), dormant_.end(), c) != dormant_.end())
+      return Status::error("cannot connect " + connectionLabel(c) + ": they are already connected");
     dormant_.push_back(c);
     return Status::ok();
   }
-  auto src = source(*from, c.from_port);
-  if (!src) return fail(src.message());
-  auto dst = target(*to, c.to_port);
-  if (!dst) return fail(dst.message());
-  const Endpoint s = src.value(), d = dst.value();
-
-  if ((s.kind == Kind::Trigger) != (d.kind == Kind::Slot)) {
-    return fail(s.kind == Kind::Trigger
-                    ? "a trigger connects only to slots, and '" + c.to_port + "' is " + withArticle(d.kind)
-                    : "a slot receives only triggers, and '" + c.from_port + "' is " + withArticle(s.kind));
-  }
-  if (s.kind == Kind::Trigger) {
-    for (auto& e : from->trigger_edges[s.index])
-      if (e->to == to.get() && e->slot == d.index) return fail("they are already connected");
+  auto from = find(c.from_node);
+  auto to = find(c.to_node);
+  const Endpoint s = locate(*from, *checked.value().from), d = locate(*to, *checked.value().to);
+  if (s.kind == PortKind::Trigger) {
     EditScope scope;
     scope.involve(from.get());
     scope.involve(to.get());
@@ -160,24 +150,13 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
     to->slot_edges[d.index].push_back(e);
     return Status::ok();
   }
-  if (!compatible(s.type, d.type))
-    return fail(std::string("type mismatch: ") + kindName(s.kind) + " '" + c.from_port + "' carries " + s.type->name +
-                ", " + kindName(d.kind) + " '" + c.to_port + "' takes " + d.type->name);
-  auto existing = d.kind == Kind::Input ? to->inputs[d.index]->edge : to->params[d.index].in_edge;
-  if (existing)
-    return fail(std::string(kindName(d.kind)) + " '" + c.to_port + "' of node '" + c.to_node +
-                "' is already connected (from " + existing->from->name + "); an input has one source: disconnect it first");
-  if (d.kind == Kind::Input && reaches(to.get(), from.get()))
-    return fail("it would close a cycle (" + c.to_node + " already feeds " + c.from_node +
-                "); a data cycle can never fire");
-
-  Restructure change = restructure(from.get(), to.get(), d.kind == Kind::Input);
+  Restructure change = restructure(from.get(), to.get(), d.kind == PortKind::Input);
   auto e = std::make_shared<Edge>();
   e->from = from.get();
-  e->from_param = s.kind == Kind::ParamOut;
+  e->from_param = s.kind == PortKind::ParamOut;
   e->from_index = s.index;
   e->to = to.get();
-  e->to_param = d.kind == Kind::ParamIn;
+  e->to_param = d.kind == PortKind::ParamIn;
   e->to_index = d.index;
   if (e->from_param) {
     from->params[s.index].out_edges.push_back(e);
@@ -197,7 +176,7 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
 Status Graph::disconnect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
   auto lock = lockEdits();
   const ConnectionDescription c{fn, fp, tn, tp, 0};
-  auto fail = [&](const std::string& why) { return Status::error("cannot disconnect " + label(c) + ": " + why); };
+  auto fail = [&](const std::string& why) { return Status::error("cannot disconnect " + connectionLabel(c) + ": " + why); };
   auto dormant = std::find(dormant_.begin(), dormant_.end(), c);
   if (dormant != dormant_.end()) {
     dormant_.erase(dormant);
@@ -208,13 +187,14 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
   auto to = find(tn);
   if (!from) return fail("no node named '" + fn + "'");
   if (!to) return fail("no node named '" + tn + "'");
-  auto src = source(*from, fp);
-  if (!src) return fail(src.message());
-  auto dst = target(*to, tp);
-  if (!dst) return fail(dst.message());
-  if (src->kind == Kind::Trigger && dst->kind == Kind::Slot) {
-    for (auto& e : from->trigger_edges[src->index]) {
-      if (e->to != to.get() || e->slot != dst->index) continue;
+  auto src_port = connectionEnd(fn, viewOf(*from), fp, true);
+  if (!src_port) return fail(src_port.message());
+  auto dst_port = connectionEnd(tn, viewOf(*to), tp, false);
+  if (!dst_port) return fail(dst_port.message());
+  const Endpoint src = locate(*from, src_port.value()), dst = locate(*to, dst_port.value());
+  if (src.kind == PortKind::Trigger && dst.kind == PortKind::Slot) {
+    for (auto& e : from->trigger_edges[src.index]) {
+      if (e->to != to.get() || e->slot != dst.index) continue;
       EditScope scope;
       scope.involve(from.get());
       scope.involve(to.get());
@@ -224,11 +204,11 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
     }
     return fail("they are not connected");
   }
-  if (dst->kind == Kind::Slot || src->kind == Kind::Trigger) return fail("they are not connected");
-  auto e = findEdge(*from, src.value(), *to, dst.value());
+  if (dst.kind == PortKind::Slot || src.kind == PortKind::Trigger) return fail("they are not connected");
+  auto e = findEdge(*from, src, *to, dst);
   if (!e) return fail("they are not connected");
   {
-    Restructure change = restructure(from.get(), to.get(), dst->kind == Kind::Input);
+    Restructure change = restructure(from.get(), to.get(), dst.kind == PortKind::Input);
     removeEdge(e);
   }
   changedDownstreamOf(to.get());

@@ -112,6 +112,7 @@ Result<LoadReport> Graph::load(const GraphDescription& description) {
   auto check = lockEdits();  // refuses node code; released: building the staged graph needs no lock
   check.unlock();
   Graph staged(registry_);
+  staged.host_ = host_;
   LoadReport report;
   for (const auto& g : description.thread_groups) {
     if (!validName(g)) return Status::error("thread group name '" + g + "' " + kNameRule);

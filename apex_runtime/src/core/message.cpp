@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <map>
+#include <set>
 #include <mutex>
 
 namespace apex {
@@ -21,10 +22,17 @@ const TypeInfo* internType(const std::type_info& type, const std::string& name) 
   // Types live for the whole process: plugin libraries may be unloaded, but a
   // TypeInfo they created must stay valid for messages still in flight.
   static std::mutex mutex;
+  // Names are unique, so that rules and front ends can compare types by name: a second
+  // C++ type given a name already taken keeps its mangled name as well.
   static auto* table = new std::map<std::type_index, TypeInfo*>();
+  static auto* names = new std::set<std::string>();
   std::lock_guard<std::mutex> lock(mutex);
   auto [it, inserted] = table->emplace(std::type_index(type), nullptr);
-  if (inserted) it->second = new TypeInfo{name, std::type_index(type)};
+  if (inserted) {
+    const std::string unique = names->insert(name).second ? name : name + " (" + type.name() + ")";
+    names->insert(unique);
+    it->second = new TypeInfo{unique, std::type_index(type)};
+  }
   return it->second;
 }
 

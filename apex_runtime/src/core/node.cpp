@@ -35,6 +35,11 @@ void Node::notifyNewData() {
   if (auto* s = state_.load(std::memory_order_acquire)) s->notifyNewData();
 }
 
+const Host* Node::host() const {
+  auto* s = state_.load(std::memory_order_acquire);
+  return s ? s->host.get() : nullptr;
+}
+
 const Manifest& Node::interface() const { return stateOf(state_.load(std::memory_order_acquire)).manifest(); }
 
 const Message& Node::inputMessage(std::string_view input) const {

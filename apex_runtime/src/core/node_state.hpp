@@ -108,6 +108,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   const std::uint64_t seq;
   std::shared_ptr<std::atomic<std::uint64_t>> revision;  // the graph's: bumped on every visible change
   std::unique_ptr<Node> node;
+  std::shared_ptr<const Host> host;  // the graph's, when the node was made
   void attach(std::unique_ptr<Node> object) {
     node = std::move(object);
     node->state_.store(this, std::memory_order_release);

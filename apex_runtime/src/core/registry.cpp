@@ -28,6 +28,13 @@ Status NodeRegistry::add(const std::string& id, Manifest manifest, std::function
   return Status::ok();
 }
 
+Status NodeRegistry::add(std::shared_ptr<const NodeType> type) {
+  if (!type) return Status::error("no node type given");
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!types_.emplace(type->id, type).second) return Status::error("node type '" + type->id + "' is already registered");
+  return Status::ok();
+}
+
 void NodeRegistry::remove(const std::string& id) {
   std::lock_guard<std::mutex> lock(mutex_);
   types_.erase(id);
@@ -43,6 +50,13 @@ std::vector<std::string> NodeRegistry::ids() const {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::string> out;
   for (const auto& [id, type] : types_) out.push_back(id);
+  return out;
+}
+
+std::vector<std::shared_ptr<const NodeType>> NodeRegistry::types() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::shared_ptr<const NodeType>> out;
+  for (const auto& [id, type] : types_) out.push_back(type);
   return out;
 }
 

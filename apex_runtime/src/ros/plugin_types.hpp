@@ -1,4 +1,5 @@
-// Fills a NodeRegistry with every node type exported to APEX through pluginlib.
+// Fills a NodeRegistry with the node types of every node library exported to APEX
+// through pluginlib (one plugin per library: apex/ros/node_library.hpp).
 #pragma once
 
 #include <pluginlib/class_loader.hpp>
@@ -8,25 +9,25 @@
 #include <vector>
 
 #include "apex/core/registry.hpp"
-#include "apex/ros/node_plugin.hpp"
+#include "apex/ros/node_library.hpp"
 
 namespace apex {
 namespace ros_host {
 
 class PluginTypes {
  public:
-  /** @brief Finds plugins exported in package.xml files (<apex plugin="..."/>) and in
+  /** @brief Finds libraries exported in package.xml files (<apex plugin="..."/>) and in
    *  `extra_xml` plugin description files. */
   explicit PluginTypes(std::vector<std::string> extra_xml = {});
-  /** @brief Registers every type it can load; returns one message per type that
-   *  failed, naming the type and its library, while the others load. */
+  /** @brief Registers every type of every library it can load; returns one message per
+   *  library or type that failed, naming it and its library file, while the others load. */
   std::vector<std::string> registerAll(NodeRegistry& registry);
 
  private:
-  std::string load(const std::unique_ptr<pluginlib::ClassLoader<NodePlugin>>& loader, const std::string& type,
-                   NodeRegistry& registry);
-  std::vector<std::unique_ptr<pluginlib::ClassLoader<NodePlugin>>> loaders_;
-  std::vector<std::shared_ptr<NodePlugin>> plugins_;  // keep their libraries loaded
+  using Loader = pluginlib::ClassLoader<NodeLibrary>;
+  std::vector<std::string> load(Loader& loader, const std::string& library, NodeRegistry& registry);
+  std::vector<std::unique_ptr<Loader>> loaders_;
+  std::vector<std::shared_ptr<NodeLibrary>> libraries_;  // keep them loaded: node code lives there
   std::vector<std::string> errors_;
 };
 

@@ -2,6 +2,7 @@
 // (latched) after every change from any source, ~status at 2 Hz, parameter
 // values mirrored on the parameter server under ~nodes/<node>/<parameter>.
 #include "apex/ros/runtime_host.hpp"
+#include "apex/ros/node_handles.hpp"
 
 #include <apex/AddNode.h>
 #include <apex/Connect.h>
@@ -76,7 +77,9 @@ struct RuntimeHost::Impl {
   std::uint64_t published_revision = ~0ull;
 
   Impl(ros::NodeHandle n, ros::NodeHandle p)
-      : nh(n), pnh(p), graph(NodeRegistry()), inspection(pnh), mirror(pnh) {}
+      : nh(n), pnh(p), graph(NodeRegistry()), inspection(pnh), mirror(pnh) {
+    graph.setHost(std::make_shared<RosHost>(nh, pnh));  // nodes' topics: in our namespace, with our remappings
+  }
 
   // ------------------------------------------------------------ publishing
 

@@ -45,6 +45,8 @@ class Graph {
 
   const NodeRegistry& registry() const { return registry_; }
   NodeRegistry& registry() { return registry_; }
+  /** @brief What nodes added from now on see as Node::host(): set it before adding nodes. */
+  void setHost(std::shared_ptr<const Host> host);
 
   // --- edits: each returns why it was refused; a refused edit changes nothing ---
   /** @brief Adds a node of a registered type. An empty name is generated from the
@@ -158,6 +160,7 @@ class Graph {
   void removeEvent(std::shared_ptr<detail::EventEdge> edge);
 
   NodeRegistry registry_;
+  std::shared_ptr<const Host> host_;  // edit_mutex_
   mutable std::mutex edit_mutex_;  // serialises edits and reads of the structure
   std::map<std::string, NodePtr> nodes_;
   std::map<std::uint64_t, detail::NodeState*> order_;  // insertion order

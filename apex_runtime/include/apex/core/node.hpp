@@ -22,6 +22,13 @@ namespace detail {
 class NodeState;
 }
 
+/** @brief What the program hosting a graph offers its nodes, e.g. the ROS runtime's node
+ *  handles (apex/ros/node_handles.hpp). The core only passes it on. */
+class Host {
+ public:
+  virtual ~Host() = default;
+};
+
 class Node {
  public:
   virtual ~Node() = default;
@@ -50,6 +57,8 @@ class Node {
    *  interface function (Manifest::shapedBy) made for the current parameters. For
    *  process() and slot handlers. */
   const Manifest& interface() const;
+  /** @brief What the graph's host offers (Graph::setHost), or nullptr. */
+  const Host* host() const;
 
   /** @brief For Driven sources: new data arrived from outside. Callable from any
    *  thread once the node is in a graph (a call from its constructor is lost);

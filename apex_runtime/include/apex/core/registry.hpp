@@ -1,5 +1,6 @@
-// Node types by id: manifest + factory. Filled by one line per type
-// (APEX_REGISTER_NODE), or by pluginlib at the ROS edge.
+// Node types by id: manifest + factory. Filled by one line per type,
+// APEX_REGISTER_NODE, next to the class in its .cpp: in a program, and in a
+// plugin library that the ROS host loads (apex/ros/node_library.hpp).
 #pragma once
 
 #include <functional>
@@ -54,6 +55,8 @@ class NodeRegistry {
   }
   /** @brief Registers a type from a manifest and a factory. */
   Status add(const std::string& id, Manifest manifest, std::function<std::unique_ptr<Node>()> create);
+  /** @brief Registers a type of another registry (checked there). Fails on a duplicate id. */
+  Status add(std::shared_ptr<const NodeType> type);
   /** @brief Removes a type (e.g. its plugin library was unloaded); existing nodes keep working. */
   void remove(const std::string& id);
 
@@ -61,6 +64,8 @@ class NodeRegistry {
   std::shared_ptr<const NodeType> find(const std::string& id) const;
   /** @brief Every type id, sorted. */
   std::vector<std::string> ids() const;
+  /** @brief Every type, sorted by id. */
+  std::vector<std::shared_ptr<const NodeType>> types() const;
 
   /** @brief The process-wide registry that APEX_REGISTER_NODE fills. */
   static NodeRegistry& global();
@@ -79,6 +84,22 @@ class NodeRegistry {
 namespace detail {
 /** Registration from a static initialiser: prints the reason on failure. */
 bool registerOrReport(const Status& status, const std::string& id);
+
+/** The types registered by the module (program or shared library) this is compiled into:
+ *  hidden, so every shared library has its own. A plugin library hands these to the host. */
+__attribute__((visibility("hidden"))) inline NodeRegistry& moduleTypes() {
+  static NodeRegistry types;
+  return types;
+}
+
+/** APEX_REGISTER_NODE: into the module's list and the process-wide registry. */
+template <class T>
+bool registerNode(const std::string& id) {
+  static_assert(NodeTypeChecks<T>::value, "see the messages above");
+  const bool ok = registerOrReport(moduleTypes().add<T>(id), id);
+  if (ok) registerOrReport(NodeRegistry::global().add(moduleTypes().find(id)), id);
+  return ok;
+}
 }  // namespace detail
 
 }  // namespace apex
@@ -86,7 +107,8 @@ bool registerOrReport(const Status& status, const std::string& id);
 #define APEX_CONCAT_INNER(a, b) a##b
 #define APEX_CONCAT(a, b) APEX_CONCAT_INNER(a, b)
 /** One line per node type, at namespace scope in its .cpp:
- *  APEX_REGISTER_NODE(my_pkg::Counter, "my_pkg/Counter"); */
-#define APEX_REGISTER_NODE(Type, Id)                                        \
-  static const bool APEX_CONCAT(apex_registered_, __COUNTER__) =             \
-      ::apex::detail::registerOrReport(::apex::NodeRegistry::global().add<Type>(Id), Id)
+ *  APEX_REGISTER_NODE(my_pkg::Counter, "my_pkg/Counter");
+ *  In a plugin library, that is all: APEX_NODE_LIBRARY (once per library) hands the
+ *  library's types to the ROS host. */
+#define APEX_REGISTER_NODE(Type, Id) \
+  static const bool APEX_CONCAT(apex_registered_, __COUNTER__) = ::apex::detail::registerNode<Type>(Id)
