@@ -50,6 +50,13 @@ struct Relay : Node {
   void process() override { publishMessage("out", inputMessage("in")); }
 };
 
+struct HandleRelay : Node {  // the same, through typed handles (ports.hpp)
+  static Manifest manifest() { return Manifest().input<int>("in").output<int>("out"); }
+  void process() override { out_.publishMessage(in_.message()); }
+  Input<int> in_{this, "in"};
+  Output<int> out_{this, "out"};
+};
+
 struct Work : Node {  // ~2 ms of busy work, a stand-in for an image filter
   static Manifest manifest() { return Manifest().input<int>("in").output<int>("out"); }
   void process() override {
@@ -81,18 +88,19 @@ NodeRegistry registry() {
   (void)r.add<Source>("bench/Source");
   (void)r.add<Feed>("bench/Feed");
   (void)r.add<Relay>("bench/Relay");
+  (void)r.add<HandleRelay>("bench/HandleRelay");
   (void)r.add<Work>("bench/Work");
   (void)r.add<Sink>("bench/Sink");
   return r;
 }
 
 /** source → k relays → sink; relays from index `split` on go to group "b". */
-void chain(Graph& g, const char* source, int k, int split = 1 << 30) {
+void chain(Graph& g, const char* source, int k, int split = 1 << 30, const char* relay = "bench/Relay") {
   (void)g.addNode(source, "src");
   std::string prev = "src";
   for (int i = 0; i < k; ++i) {
     const std::string name = "r" + std::to_string(i);
-    (void)g.addNode("bench/Relay", name, i >= split ? "b" : "");
+    (void)g.addNode(relay, name, i >= split ? "b" : "");
     (void)g.connect(prev, "out", name, "in");
     prev = name;
   }
@@ -148,9 +156,9 @@ double tbbHopNs(int k, long messages) {
 }
 #endif
 
-double apexHopNs(int k, long messages) {
+double apexHopNs(int k, long messages, const char* relay = "bench/Relay") {
   Graph g(registry());
-  chain(g, "bench/Source", k);
+  chain(g, "bench/Source", k, 1 << 30, relay);
   auto* sink = static_cast<Sink*>(g.nodeObject("sink"));
   const auto t0 = Clock::now();
   g.start();
@@ -259,21 +267,25 @@ int main(int argc, char** argv) {
   std::printf("end to end divided by k. Baselines in the same run: the same k calls through `std::function`\n");
   std::printf("passing a `shared_ptr` message in a plain loop, and the same chain in TBB's `flow_graph`\n");
   std::printf("(input_node, k serial function_nodes, a sink; one thread, like one group). The variants run\n");
-  std::printf("interleaved, %d repetitions each: median (min–max) ns per hop; ratios of the medians.\n\n", reps);
-  std::printf("| k | APEX | TBB flow_graph | std::function | APEX / TBB | APEX / std::function |\n|---|---|---|---|---|---|\n");
+  std::printf("interleaved, %d repetitions each: median (min–max) ns per hop; ratios of the medians.\n", reps);
+  std::printf("APEX relays read and write by name (`publishMessage(\"out\", inputMessage(\"in\"))`), or through\n");
+  std::printf("typed handles resolved once (`out_.publishMessage(in_.message())`, ports.hpp).\n\n");
+  std::printf("| k | APEX, names | APEX, handles | TBB flow_graph | std::function | names / TBB | handles / TBB | handles / names |\n|---|---|---|---|---|---|---|---|\n");
   for (int k : {1, 4, 16, 64}) {
     const long m = std::max<long>(2000, hop_messages / k);
-    Spread base, tbb, apex_ns;
+    Spread base, tbb, apex_ns, handles_ns;
     for (int r = 0; r < reps; ++r) {
       base.add(baselineHopNs(k, m * 10));
 #ifdef APEX_BENCH_TBB
       tbb.add(tbbHopNs(k, m));
 #endif
       apex_ns.add(apexHopNs(k, m));
+      handles_ns.add(apexHopNs(k, m, "bench/HandleRelay"));
     }
-    std::printf("| %d | %s | %s | %s | %.2fx | %.0fx |\n", k, apex_ns.text().c_str(),
-                tbb.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(),
-                tbb.empty() ? 0.0 : apex_ns.median() / tbb.median(), apex_ns.median() / base.median());
+    const double t = tbb.empty() ? 0.0 : tbb.median();
+    std::printf("| %d | %s | %s | %s | %s | %.2fx | %.2fx | %.2fx |\n", k, apex_ns.text().c_str(), handles_ns.text().c_str(),
+                tbb.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(), t > 0 ? apex_ns.median() / t : 0.0,
+                t > 0 ? handles_ns.median() / t : 0.0, handles_ns.median() / apex_ns.median());
   }
 
   std::printf("\n## Thread wake-ups per group boundary\n\n");

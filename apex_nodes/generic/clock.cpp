@@ -19,13 +19,16 @@ class Clock : public apex::Node {
     notifyNewData();
   }
   void process() override {
-    publish("count", count_++);
-    publish("time", std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
-    notifyAfter(1.0 / param<double>("rate"));
+    count_.publish(ticks_++);
+    time_.publish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+    notifyAfter(1.0 / rate_.get());
   }
 
  private:
-  int count_ = 0;
+  apex::Output<int> count_{this, "count"};
+  apex::Output<double> time_{this, "time"};
+  apex::Param<double> rate_{this, "rate"};
+  int ticks_ = 0;
   std::chrono::steady_clock::time_point start_;
 };
 

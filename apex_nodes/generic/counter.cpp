@@ -11,11 +11,12 @@ class Counter : public apex::Node {
         .output<int>("count", "messages received since the last reset")
         .slot("reset", &Counter::reset, "sets the count to zero");
   }
-  void process() override { publish("count", ++count_); }
-  void reset() { count_ = 0; }
+  void process() override { count_.publish(++received_); }
+  void reset() { received_ = 0; }
 
  private:
-  int count_ = 0;
+  apex::Output<int> count_{this, "count"};
+  int received_ = 0;
 };
 
 }  // namespace apex_nodes

@@ -14,7 +14,12 @@ class Add : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Adds two numbers").input<double>("a").input<double>("b").output<double>("sum");
   }
-  void process() override { publish("sum", *input<double>("a") + *input<double>("b")); }
+  void process() override { sum_.publish(*a_.get() + *b_.get()); }
+
+ private:
+  apex::Input<double> a_{this, "a"};
+  apex::Input<double> b_{this, "b"};
+  apex::Output<double> sum_{this, "sum"};
 };
 
 class Throttle : public apex::Node {
@@ -27,13 +32,16 @@ class Throttle : public apex::Node {
   }
   void process() override {
     const auto now = std::chrono::steady_clock::now();
-    if (passed_once_ && std::chrono::duration<double>(now - last_).count() < 1.0 / param<double>("rate")) return;
+    if (passed_once_ && std::chrono::duration<double>(now - last_).count() < 1.0 / rate_.get()) return;
     passed_once_ = true;
     last_ = now;
-    publishMessage("out", inputMessage("in"));
+    out_.publishMessage(in_.message());
   }
 
  private:
+  apex::Input<apex::Any> in_{this, "in"};
+  apex::Output<apex::Any> out_{this, "out"};
+  apex::Param<double> rate_{this, "rate"};
   bool passed_once_ = false;
   std::chrono::steady_clock::time_point last_;
 };
@@ -71,9 +79,12 @@ class TimeSync : public apex::Node {
       if (i == 0 || header->stamp < low) low = header->stamp;
       if (i == 0 || header->stamp > high) high = header->stamp;
     }
-    if ((high - low).toSec() > param<double>("tolerance")) return;
+    if ((high - low).toSec() > tolerance_.get()) return;
     for (const auto& in : ports) publishMessage(in.name, inputMessage(in.name));
   }
+
+ private:
+  apex::Param<double> tolerance_{this, "tolerance"};
 };
 
 /** Passes on one of its inputs: switch between variants of a pipeline while it runs. */
@@ -94,11 +105,15 @@ class Select : public apex::Node {
   }
   void process() override {
     const auto& ports = interface().inputs;
-    const int choice = param<int>("choice");
+    const int choice = choice_.get();
     if (choice >= static_cast<int>(ports.size()))
       throw std::invalid_argument("choice " + std::to_string(choice) + " but only " + std::to_string(ports.size()) + " inputs");
-    publishMessage("out", inputMessage(ports[choice].name));
+    out_.publishMessage(inputMessage(ports[choice].name));
   }
+
+ private:
+  apex::Output<apex::Any> out_{this, "out"};
+  apex::Param<int> choice_{this, "choice"};
 };
 
 }  // namespace apex_nodes

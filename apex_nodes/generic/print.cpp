@@ -10,9 +10,12 @@ class Print : public apex::Node {
         .input<apex::Any>("in", "any message")
         .param(apex::param::text("prefix", "").describe("text before each line"));
   }
-  void process() override { log(apex::LogLevel::Info, param<std::string>("prefix") + text(inputMessage("in"))); }
+  void process() override { log(apex::LogLevel::Info, prefix_.get() + text(in_.message())); }
 
  private:
+  apex::Input<apex::Any> in_{this, "in"};
+  apex::Param<std::string> prefix_{this, "prefix"};
+
   static std::string text(const apex::Message& m) {
     if (auto v = m.as<int>()) return std::to_string(*v);
     if (auto v = m.as<double>()) return apex::toText(*v);

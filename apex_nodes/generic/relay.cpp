@@ -10,7 +10,11 @@ class Relay : public apex::Node {
         .input<apex::Any>("in", "any message")
         .output<apex::Any>("out", "the same message");
   }
-  void process() override { publishMessage("out", inputMessage("in")); }
+  void process() override { out_.publishMessage(in_.message()); }
+
+ private:
+  apex::Input<apex::Any> in_{this, "in"};
+  apex::Output<apex::Any> out_{this, "out"};
 };
 
 }  // namespace apex_nodes

@@ -11,7 +11,12 @@ class Scale : public apex::Node {
         .output<double>("out")
         .param(apex::param::real("factor", 1.0).describe("the factor"));
   }
-  void process() override { publish("out", *input<double>("in") * param<double>("factor")); }
+  void process() override { out_.publish(*in_.get() * factor_.get()); }
+
+ private:
+  apex::Input<double> in_{this, "in"};
+  apex::Output<double> out_{this, "out"};
+  apex::Param<double> factor_{this, "factor"};
 };
 
 }  // namespace apex_nodes

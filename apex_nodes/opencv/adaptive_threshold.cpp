@@ -20,19 +20,26 @@ class AdaptiveThreshold : public apex::Node {
         .param(apex::param::range("c", -100.0, 100.0, 0.5, 2.0).describe("subtracted from the mean"));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_in_.get();
     requireImage(in, "1");
     if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image ('" + in.encoding + "')");
     auto out = buffer_.next(in);
-    cv::adaptiveThreshold(in.mat, out->mat, param<double>("max_value"),
-                          param<std::string>("method") == "mean" ? cv::ADAPTIVE_THRESH_MEAN_C : cv::ADAPTIVE_THRESH_GAUSSIAN_C,
-                          param<std::string>("threshold_type") == "binary" ? cv::THRESH_BINARY : cv::THRESH_BINARY_INV,
-                          param<int>("block_size"), param<double>("c"));
+    cv::adaptiveThreshold(in.mat, out->mat, max_value_.get(),
+                          method_.get() == "mean" ? cv::ADAPTIVE_THRESH_MEAN_C : cv::ADAPTIVE_THRESH_GAUSSIAN_C,
+                          threshold_type_.get() == "binary" ? cv::THRESH_BINARY : cv::THRESH_BINARY_INV,
+                          block_size_.get(), c_.get());
     out->encoding = "mono8";
-    publish<Image>("image", out);
+    image_out_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_in_{this, "image"};
+  apex::Output<Image> image_out_{this, "image"};
+  apex::Param<double> max_value_{this, "max_value"};
+  apex::Param<std::string> method_{this, "method"};
+  apex::Param<std::string> threshold_type_{this, "threshold_type"};
+  apex::Param<int> block_size_{this, "block_size"};
+  apex::Param<double> c_{this, "c"};
   OutputBuffer buffer_;
 };
 

@@ -18,16 +18,16 @@ class BlobDetection : public apex::Node {
         .param(apex::param::options("connectivity", {"4", "8"}, "8"));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_.get();
     requireImage(in, "1");
     if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit binary image ('" + in.encoding + "')");
     const int n = cv::connectedComponentsWithStats(in.mat, labels_, stats_, centroids_,
-                                                   param<std::string>("connectivity") == "4" ? 4 : 8, CV_32S,
+                                                   connectivity_.get() == "4" ? 4 : 8, CV_32S,
                                                    cv::CCL_DEFAULT);
     auto out = std::make_shared<Regions>();
     out->header = in.header;
     out->image_size = in.mat.size();
-    const int lo = param<int>("min_area"), hi = param<int>("max_area");
+    const int lo = min_area_.get(), hi = max_area_.get();
     for (int i = 1; i < n; ++i) {  // 0 is the background
       const int area = stats_.at<int>(i, cv::CC_STAT_AREA);
       if (area < lo || area > hi) continue;
@@ -38,11 +38,17 @@ class BlobDetection : public apex::Node {
       r.centroid = cv::Point2d(centroids_.at<double>(i, 0), centroids_.at<double>(i, 1));
       out->regions.push_back(r);
     }
-    publish("count", static_cast<int>(out->regions.size()));
-    publish<Regions>("regions", out);
+    count_.publish(static_cast<int>(out->regions.size()));
+    regions_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_{this, "image"};
+  apex::Output<Regions> regions_{this, "regions"};
+  apex::Output<int> count_{this, "count"};
+  apex::Param<int> min_area_{this, "min_area"};
+  apex::Param<int> max_area_{this, "max_area"};
+  apex::Param<std::string> connectivity_{this, "connectivity"};
   cv::Mat labels_, stats_, centroids_;  // reused between frames
 };
 

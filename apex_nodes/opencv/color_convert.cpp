@@ -43,8 +43,8 @@ class ColorConvert : public apex::Node {
         .param(apex::param::options("conversion", names(), "BGR2GRAY").describe("source and target colour space"));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
-    const auto& name = param<std::string>("conversion");
+    const Image& in = *image_in_.get();
+    const auto& name = conversion_.get();
     const Conversion& c = conversions().at(name);
     requireImage(in);
     if (in.mat.channels() != c.in_channels)
@@ -53,10 +53,13 @@ class ColorConvert : public apex::Node {
     auto out = buffer_.next(in);
     cv::cvtColor(in.mat, out->mat, c.code);
     out->encoding = c.out_encoding;
-    publish<Image>("image", out);
+    image_out_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_in_{this, "image"};
+  apex::Output<Image> image_out_{this, "image"};
+  apex::Param<std::string> conversion_{this, "conversion"};
   OutputBuffer buffer_;
 };
 

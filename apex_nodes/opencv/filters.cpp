@@ -18,16 +18,20 @@ class GaussianBlur : public apex::Node {
         .param(apex::param::range("sigma", 0.0, 50.0, 0.1, 0.0).describe("0: from the kernel size"));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_in_.get();
     requireImage(in);
     auto out = buffer_.next(in);
-    const int k = param<int>("kernel_size");
-    cv::GaussianBlur(in.mat, out->mat, cv::Size(k, k), param<double>("sigma"));
+    const int k = kernel_size_.get();
+    cv::GaussianBlur(in.mat, out->mat, cv::Size(k, k), sigma_.get());
     out->encoding = in.encoding;
-    publish<Image>("image", out);
+    image_out_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_in_{this, "image"};
+  apex::Output<Image> image_out_{this, "image"};
+  apex::Param<int> kernel_size_{this, "kernel_size"};
+  apex::Param<double> sigma_{this, "sigma"};
   OutputBuffer buffer_;
 };
 
@@ -43,23 +47,29 @@ class Threshold : public apex::Node {
         .param(apex::param::boolean("otsu", false).describe("choose the threshold from the histogram"));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_in_.get();
     requireImage(in, "1");
     static const std::map<std::string, int> kTypes{{"binary", cv::THRESH_BINARY}, {"binary_inv", cv::THRESH_BINARY_INV},
                                                    {"trunc", cv::THRESH_TRUNC}, {"tozero", cv::THRESH_TOZERO},
                                                    {"tozero_inv", cv::THRESH_TOZERO_INV}};
-    int type = kTypes.at(param<std::string>("type"));
-    if (param<bool>("otsu")) {
+    int type = kTypes.at(type_.get());
+    if (otsu_.get()) {
       if (in.mat.depth() != CV_8U) throw std::invalid_argument("Otsu needs an 8-bit image ('" + in.encoding + "')");
       type |= cv::THRESH_OTSU;
     }
     auto out = buffer_.next(in);
-    cv::threshold(in.mat, out->mat, param<double>("threshold"), param<double>("max_value"), type);
+    cv::threshold(in.mat, out->mat, threshold_.get(), max_value_.get(), type);
     out->encoding = in.encoding;
-    publish<Image>("image", out);
+    image_out_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_in_{this, "image"};
+  apex::Output<Image> image_out_{this, "image"};
+  apex::Param<double> threshold_{this, "threshold"};
+  apex::Param<double> max_value_{this, "max_value"};
+  apex::Param<std::string> type_{this, "type"};
+  apex::Param<bool> otsu_{this, "otsu"};
   OutputBuffer buffer_;
 };
 
@@ -75,17 +85,22 @@ class Canny : public apex::Node {
         .param(apex::param::boolean("l2_gradient", false));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_.get();
     requireImage(in);
     if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image ('" + in.encoding + "')");
     auto out = buffer_.next(in);
-    cv::Canny(in.mat, out->mat, param<double>("threshold1"), param<double>("threshold2"),
-              std::stoi(param<std::string>("aperture")), param<bool>("l2_gradient"));
+    cv::Canny(in.mat, out->mat, threshold1_.get(), threshold2_.get(), std::stoi(aperture_.get()), l2_gradient_.get());
     out->encoding = "mono8";
-    publish<Image>("edges", out);
+    edges_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_{this, "image"};
+  apex::Output<Image> edges_{this, "edges"};
+  apex::Param<double> threshold1_{this, "threshold1"};
+  apex::Param<double> threshold2_{this, "threshold2"};
+  apex::Param<std::string> aperture_{this, "aperture"};
+  apex::Param<bool> l2_gradient_{this, "l2_gradient"};
   OutputBuffer buffer_;
 };
 

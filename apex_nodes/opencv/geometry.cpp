@@ -17,19 +17,23 @@ class Resize : public apex::Node {
         .param(apex::param::options("interpolation", {"nearest", "linear", "area", "cubic"}, "area"));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_in_.get();
     requireImage(in);
-    const auto& i = param<std::string>("interpolation");
+    const auto& i = interpolation_.get();
     const int interp = i == "nearest" ? cv::INTER_NEAREST : i == "linear" ? cv::INTER_LINEAR : i == "area" ? cv::INTER_AREA : cv::INTER_CUBIC;
-    const double s = param<double>("scale");
+    const double s = scale_.get();
     auto out = buffer_.next(in);
     cv::resize(in.mat, out->mat, cv::Size(), s, s, interp);
     if (out->mat.empty()) throw std::invalid_argument("scale " + std::to_string(s) + " leaves no pixels");
     out->encoding = in.encoding;
-    publish<Image>("image", out);
+    image_out_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_in_{this, "image"};
+  apex::Output<Image> image_out_{this, "image"};
+  apex::Param<double> scale_{this, "scale"};
+  apex::Param<std::string> interpolation_{this, "interpolation"};
   OutputBuffer buffer_;
 };
 
@@ -45,17 +49,25 @@ class Crop : public apex::Node {
         .param(apex::param::range("height", 1, 100000, 1, 100000));
   }
   void process() override {
-    auto in = input<Image>("image");
+    auto in = image_in_.get();
     requireImage(*in);
-    const cv::Rect want(param<int>("x"), param<int>("y"), param<int>("width"), param<int>("height"));
+    const cv::Rect want(x_.get(), y_.get(), width_.get(), height_.get());
     const cv::Rect box = want & cv::Rect(0, 0, in->mat.cols, in->mat.rows);
     if (box.empty()) throw std::invalid_argument("the crop lies outside the " + std::to_string(in->mat.cols) + "x" +
                                                  std::to_string(in->mat.rows) + " image");
     auto out = std::make_shared<Image>(*in);
     out->mat = in->mat(box);  // no copy: a view, kept valid by `owner`
     out->owner = in;
-    publish<Image>("image", out);
+    image_out_.publish(out);
   }
+
+ private:
+  apex::Input<Image> image_in_{this, "image"};
+  apex::Output<Image> image_out_{this, "image"};
+  apex::Param<int> x_{this, "x"};
+  apex::Param<int> y_{this, "y"};
+  apex::Param<int> width_{this, "width"};
+  apex::Param<int> height_{this, "height"};
 };
 
 }  // namespace apex_nodes

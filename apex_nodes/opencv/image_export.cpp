@@ -19,24 +19,30 @@ class ImageExport : public apex::Node {
         .param(apex::param::text("prefix", "frame").fileName().describe("the start of each file's name"));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_.get();
     requireImage(in);
-    const std::string dir = param<std::string>("directory");
+    const std::string dir = directory_.get();
     struct stat st {};
     if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
       throw std::invalid_argument("directory '" + dir + "' does not exist");
-    const std::string stem = dir + "/" + param<std::string>("prefix") + "_" + std::to_string(count_++);
+    const std::string stem = dir + "/" + prefix_.get() + "_" + std::to_string(count_++);
     std::string last;
-    if (auto regions = input<Regions>("regions")) {
+    if (auto regions = regions_.get()) {
       int i = 0;
       for (const auto& r : regions->regions) write(last = stem + "_" + std::to_string(i++) + ".png", in.mat(r.box & cv::Rect(0, 0, in.mat.cols, in.mat.rows)));
     } else {
       write(last = stem + ".png", in.mat);
     }
-    publish("path", last);
+    path_.publish(last);
   }
 
  private:
+  apex::Input<Image> image_{this, "image"};
+  apex::Input<Regions> regions_{this, "regions"};
+  apex::Output<std::string> path_{this, "path"};
+  apex::Param<std::string> directory_{this, "directory"};
+  apex::Param<std::string> prefix_{this, "prefix"};
+
   static void write(const std::string& path, const cv::Mat& mat) {
     if (!cv::imwrite(path, mat)) throw std::runtime_error("cannot write '" + path + "'");
   }

@@ -20,23 +20,29 @@ class Morphology : public apex::Node {
   }
   void parameterChanged(const std::string&) override { kernel_.release(); }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_in_.get();
     requireImage(in);
     if (kernel_.empty()) {
-      const auto& s = param<std::string>("shape");
+      const auto& s = shape_.get();
       const int shape = s == "rect" ? cv::MORPH_RECT : s == "cross" ? cv::MORPH_CROSS : cv::MORPH_ELLIPSE;
-      const int k = param<int>("kernel_size");
+      const int k = kernel_size_.get();
       kernel_ = cv::getStructuringElement(shape, cv::Size(k, k));
     }
-    const auto& op = param<std::string>("operation");
+    const auto& op = operation_.get();
     const int code = op == "erode" ? cv::MORPH_ERODE : op == "dilate" ? cv::MORPH_DILATE : op == "open" ? cv::MORPH_OPEN : cv::MORPH_CLOSE;
     auto out = buffer_.next(in);
-    cv::morphologyEx(in.mat, out->mat, code, kernel_, cv::Point(-1, -1), param<int>("iterations"));
+    cv::morphologyEx(in.mat, out->mat, code, kernel_, cv::Point(-1, -1), iterations_.get());
     out->encoding = in.encoding;
-    publish<Image>("image", out);
+    image_out_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_in_{this, "image"};
+  apex::Output<Image> image_out_{this, "image"};
+  apex::Param<std::string> operation_{this, "operation"};
+  apex::Param<std::string> shape_{this, "shape"};
+  apex::Param<int> kernel_size_{this, "kernel_size"};
+  apex::Param<int> iterations_{this, "iterations"};
   cv::Mat kernel_;  // rebuilt after a parameter change
   OutputBuffer buffer_;
 };

@@ -17,11 +17,11 @@ class Rotate : public apex::Node {
         .param(apex::param::angle("angle", M_PI / 2, -2 * M_PI, 2 * M_PI).describe("radians, counter-clockwise"));
   }
   void process() override {
-    const Image& in = *input<Image>("image");
+    const Image& in = *image_in_.get();
     requireImage(in);
     auto out = buffer_.next(in);
     out->encoding = in.encoding;
-    const double quarter = param<double>("angle") / (M_PI / 2);
+    const double quarter = angle_.get() / (M_PI / 2);
     const long turns = std::lround(quarter);
     if (std::abs(quarter - turns) < 1e-9) {
       const int q = static_cast<int>(((turns % 4) + 4) % 4);
@@ -31,13 +31,16 @@ class Rotate : public apex::Node {
       if (q == 3) cv::rotate(in.mat, out->mat, cv::ROTATE_90_CLOCKWISE);
     } else {
       const cv::Point2f center(in.mat.cols / 2.0f, in.mat.rows / 2.0f);
-      const cv::Mat m = cv::getRotationMatrix2D(center, param<double>("angle") * 180.0 / M_PI, 1.0);
+      const cv::Mat m = cv::getRotationMatrix2D(center, angle_.get() * 180.0 / M_PI, 1.0);
       cv::warpAffine(in.mat, out->mat, m, in.mat.size());
     }
-    publish<Image>("image", out);
+    image_out_.publish(out);
   }
 
  private:
+  apex::Input<Image> image_in_{this, "image"};
+  apex::Output<Image> image_out_{this, "image"};
+  apex::Param<double> angle_{this, "angle"};
   OutputBuffer buffer_;
 };
 

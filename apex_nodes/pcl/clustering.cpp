@@ -19,15 +19,15 @@ class EuclideanClustering : public apex::Node {
         .param(apex::param::range("max_size", 1, 10000000, 1, 1000000));
   }
   void process() override {
-    auto in = input<Cloud>("cloud");
+    auto in = cloud_.get();
     requirePoints(*in);
     auto tree = std::make_shared<pcl::search::KdTree<PointT>>();
     tree->setInputCloud(in->points);
     std::vector<pcl::PointIndices> found;
     pcl::EuclideanClusterExtraction<PointT> ec;
-    ec.setClusterTolerance(param<double>("tolerance"));
-    ec.setMinClusterSize(param<int>("min_size"));
-    ec.setMaxClusterSize(param<int>("max_size"));
+    ec.setClusterTolerance(tolerance_.get());
+    ec.setMinClusterSize(min_size_.get());
+    ec.setMaxClusterSize(max_size_.get());
     ec.setSearchMethod(tree);
     ec.setInputCloud(in->points);
     ec.extract(found);
@@ -38,9 +38,17 @@ class EuclideanClustering : public apex::Node {
       for (int i : indices.indices) c->push_back((*in->points)[i]);
       out->clusters.push_back(std::move(c));
     }
-    publish("count", static_cast<int>(out->clusters.size()));
-    publish<Clusters>("clusters", out);
+    count_.publish(static_cast<int>(out->clusters.size()));
+    clusters_.publish(out);
   }
+
+ private:
+  apex::Input<Cloud> cloud_{this, "cloud"};
+  apex::Output<Clusters> clusters_{this, "clusters"};
+  apex::Output<int> count_{this, "count"};
+  apex::Param<double> tolerance_{this, "tolerance"};
+  apex::Param<int> min_size_{this, "min_size"};
+  apex::Param<int> max_size_{this, "max_size"};
 };
 
 }  // namespace apex_nodes

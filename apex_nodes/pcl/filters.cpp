@@ -18,18 +18,20 @@ class PassThrough : public apex::Node {
         .param(apex::param::boolean("negative", false).describe("keep the points outside instead"));
   }
   void process() override {
-    auto in = input<Cloud>("cloud");
-    requirePoints(*in);
-    pcl::PassThrough<PointT> filter;
-    filter.setInputCloud(in->points);  // shared, not copied
-    filter.setFilterFieldName(param<std::string>("field"));
-    const apex::Interval& lim = param<apex::Interval>("limits");
-    filter.setFilterLimits(static_cast<float>(lim.low), static_cast<float>(lim.high));
-    filter.setNegative(param<bool>("negative"));
-    auto points = std::make_shared<PclCloud>();
-    filter.filter(*points);
-    publish<Cloud>("cloud", cloudResult(*in, std::move(points)));
+    cloud_out_.publish(filterCloud<pcl::PassThrough<PointT>>(*cloud_in_.get(), [&](auto& filter) {
+      filter.setFilterFieldName(field_.get());
+      const apex::Interval& lim = limits_.get();
+      filter.setFilterLimits(static_cast<float>(lim.low), static_cast<float>(lim.high));
+      filter.setNegative(negative_.get());
+    }));
   }
+
+ private:
+  apex::Input<Cloud> cloud_in_{this, "cloud"};
+  apex::Output<Cloud> cloud_out_{this, "cloud"};
+  apex::Param<std::string> field_{this, "field"};
+  apex::Param<apex::Interval> limits_{this, "limits"};
+  apex::Param<bool> negative_{this, "negative"};
 };
 
 class VoxelGrid : public apex::Node {
@@ -41,16 +43,16 @@ class VoxelGrid : public apex::Node {
         .param(apex::param::range("leaf_size", 0.001, 10.0, 0.001, 0.05).describe("voxel edge, metres"));
   }
   void process() override {
-    auto in = input<Cloud>("cloud");
-    requirePoints(*in);
-    pcl::VoxelGrid<PointT> filter;
-    filter.setInputCloud(in->points);  // shared, not copied
-    const float leaf = static_cast<float>(param<double>("leaf_size"));
-    filter.setLeafSize(leaf, leaf, leaf);
-    auto points = std::make_shared<PclCloud>();
-    filter.filter(*points);
-    publish<Cloud>("cloud", cloudResult(*in, std::move(points)));
+    cloud_out_.publish(filterCloud<pcl::VoxelGrid<PointT>>(*cloud_in_.get(), [&](auto& filter) {
+      const float leaf = static_cast<float>(leaf_size_.get());
+      filter.setLeafSize(leaf, leaf, leaf);
+    }));
   }
+
+ private:
+  apex::Input<Cloud> cloud_in_{this, "cloud"};
+  apex::Output<Cloud> cloud_out_{this, "cloud"};
+  apex::Param<double> leaf_size_{this, "leaf_size"};
 };
 
 }  // namespace apex_nodes

@@ -16,16 +16,17 @@ class StatisticalOutlierRemoval : public apex::Node {
         .param(apex::param::range("stddev", 0.0, 10.0, 0.1, 1.0).describe("allowed standard deviations"));
   }
   void process() override {
-    auto in = input<Cloud>("cloud");
-    requirePoints(*in);
-    pcl::StatisticalOutlierRemoval<PointT> filter;
-    filter.setInputCloud(in->points);
-    filter.setMeanK(param<int>("mean_k"));
-    filter.setStddevMulThresh(param<double>("stddev"));
-    auto points = std::make_shared<PclCloud>();
-    filter.filter(*points);
-    publish<Cloud>("cloud", cloudResult(*in, std::move(points)));
+    cloud_out_.publish(filterCloud<pcl::StatisticalOutlierRemoval<PointT>>(*cloud_in_.get(), [&](auto& filter) {
+      filter.setMeanK(mean_k_.get());
+      filter.setStddevMulThresh(stddev_.get());
+    }));
   }
+
+ private:
+  apex::Input<Cloud> cloud_in_{this, "cloud"};
+  apex::Output<Cloud> cloud_out_{this, "cloud"};
+  apex::Param<int> mean_k_{this, "mean_k"};
+  apex::Param<double> stddev_{this, "stddev"};
 };
 
 }  // namespace apex_nodes

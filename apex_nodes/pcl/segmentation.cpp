@@ -19,14 +19,14 @@ class PlaneSegmentation : public apex::Node {
         .param(apex::param::range("max_iterations", 1, 100000, 1, 200));
   }
   void process() override {
-    auto in = input<Cloud>("cloud");
+    auto in = cloud_.get();
     requirePoints(*in);
     pcl::SACSegmentation<PointT> seg;
     seg.setOptimizeCoefficients(true);
     seg.setModelType(pcl::SACMODEL_PLANE);
     seg.setMethodType(pcl::SAC_RANSAC);
-    seg.setDistanceThreshold(param<double>("distance_threshold"));
-    seg.setMaxIterations(param<int>("max_iterations"));
+    seg.setDistanceThreshold(distance_threshold_.get());
+    seg.setMaxIterations(max_iterations_.get());
     seg.setInputCloud(in->points);
     auto indices = std::make_shared<pcl::PointIndices>();
     pcl::ModelCoefficients coefficients;
@@ -39,10 +39,18 @@ class PlaneSegmentation : public apex::Node {
     extract.filter(*inliers);
     extract.setNegative(true);
     extract.filter(*outliers);
-    publish<Cloud>("inliers", cloudResult(*in, std::move(inliers)));
-    publish<Cloud>("outliers", cloudResult(*in, std::move(outliers)));
-    publish("coefficients", std::vector<double>(coefficients.values.begin(), coefficients.values.end()));
+    inliers_.publish(cloudResult(*in, std::move(inliers)));
+    outliers_.publish(cloudResult(*in, std::move(outliers)));
+    coefficients_.publish(std::vector<double>(coefficients.values.begin(), coefficients.values.end()));
   }
+
+ private:
+  apex::Input<Cloud> cloud_{this, "cloud"};
+  apex::Output<Cloud> inliers_{this, "inliers"};
+  apex::Output<Cloud> outliers_{this, "outliers"};
+  apex::Output<std::vector<double>> coefficients_{this, "coefficients"};
+  apex::Param<double> distance_threshold_{this, "distance_threshold"};
+  apex::Param<int> max_iterations_{this, "max_iterations"};
 };
 
 }  // namespace apex_nodes

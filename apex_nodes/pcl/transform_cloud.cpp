@@ -29,8 +29,8 @@ class TransformCloud : public apex::Node {
         .output<Cloud>("cloud");
   }
   void process() override {
-    auto in = input<Cloud>("cloud");
-    const auto& t = *input<geometry_msgs::TransformStamped>("transform");
+    auto in = cloud_in_.get();
+    const auto& t = *transform_.get();
     requirePoints(*in);
     if (!t.child_frame_id.empty() && t.child_frame_id != in->header.frame_id)
       throw std::invalid_argument("the transform maps frame '" + t.child_frame_id + "', the cloud is in '" +
@@ -39,8 +39,13 @@ class TransformCloud : public apex::Node {
     pcl::transformPointCloud(*in->points, *points, toEigen(t.transform));
     auto out = cloudResult(*in, std::move(points));
     out->header.frame_id = t.header.frame_id;
-    publish<Cloud>("cloud", out);
+    cloud_out_.publish(out);
   }
+
+ private:
+  apex::Input<Cloud> cloud_in_{this, "cloud"};
+  apex::Input<geometry_msgs::TransformStamped> transform_{this, "transform"};
+  apex::Output<Cloud> cloud_out_{this, "cloud"};
 };
 
 }  // namespace apex_nodes

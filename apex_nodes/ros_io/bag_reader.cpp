@@ -133,17 +133,17 @@ class BagReader : public apex::Node {
     } else if (name == "start" || name == "end") {
       playRange();
     } else if (name == "frame") {
-      if (opened_) seek(param<int>("frame"));
+      if (opened_) seek(frame_.get());
       else seek_on_open_ = true;  // set with the node: open() goes there
     } else if (name == "time" && opened_ && !frames_.empty()) {
-      seek(frameAt(param<double>("time")));
-    } else if (name == "playing" && param<bool>("playing")) {
+      seek(frameAt(time_.get()));
+    } else if (name == "playing" && playing_.get()) {
       if (next_ > last_) next_ = first_;  // play at the end starts again
       wake();
     }
   }
   void downstreamChanged() override {
-    if (!param<bool>("playing") && current_ >= 0) request(current_);  // the held frame, once more
+    if (!playing_.get() && current_ >= 0) request(current_);  // the held frame, once more
   }
 
   void process() override {
@@ -153,17 +153,17 @@ class BagReader : public apex::Node {
     if (requested) {
       k = request_;
       request_ = -1;
-    } else if (param<bool>("playing") && next_ <= last_ && std::chrono::steady_clock::now() >= due_) {
+    } else if (playing_.get() && next_ <= last_ && std::chrono::steady_clock::now() >= due_) {
       k = next_;
     } else {
       return;  // paused, past the end, or an early wake-up: the timer for the next frame is set
     }
     next_ = k + 1;
     const bool pass_ends = k == last_ && !requested;
-    if (pass_ends && param<bool>("loop")) next_ = first_;
-    if (param<bool>("playing") && next_ <= last_) schedule(k);
+    if (pass_ends && loop_.get()) next_ = first_;
+    if (playing_.get() && next_ <= last_) schedule(k);
     send(k);  // last: a malformed message fails this frame only, the next one is on its way
-    if (pass_ends) trigger("finished");
+    if (pass_ends) finished_.fire();
   }
 
   void restart() {
@@ -183,28 +183,26 @@ class BagReader : public apex::Node {
     closeBag(bag_);
     frames_.clear();
     current_ = request_ = -1;
-    const std::string file = param<std::string>("file");
+    const std::string file = file_.get();
     if (file.empty()) return;
     bag_ = openBag(file);
     ports_.clear();
-    topics_.clear();
-    using Texts = std::vector<std::string>;
-    for (const auto& [port, topic] :
-         playedTopics(param<Texts>("topics"), param<std::string>("image_topic"), param<std::string>("cloud_topic"))) {
+    played_topics_.clear();
+    for (const auto& [port, topic] : playedTopics(topics_.get(), image_topic_.get(), cloud_topic_.get())) {
       ports_[topic] = port;
-      topics_.push_back(topic);
+      played_topics_.push_back(topic);
     }
-    frames_ = indexFrames(*bag_, topics_, param<double>("sync_window"));
+    frames_ = indexFrames(*bag_, played_topics_, sync_window_.get());
     std::string missing;
     const auto types = topicTypes(*bag_);
-    for (const auto& t : topics_) if (!types.count(t)) missing += (missing.empty() ? "" : ", ") + t;
+    for (const auto& t : played_topics_) if (!types.count(t)) missing += (missing.empty() ? "" : ", ") + t;
     if (!missing.empty()) log(apex::LogLevel::Warn, "bag '" + file + "' has no topic " + missing);
     playRange();
-    const int asked = param<int>("frame");
-    const bool show = seek_on_open_ && !param<bool>("playing");
+    const int asked = frame_.get();
+    const bool show = seek_on_open_ && !playing_.get();
     seek_on_open_ = false;
     // Playing from a position saved at the end of a pass starts over; paused on a frame shows it.
-    next_ = asked > first_ && asked < last_ ? asked : param<bool>("playing") ? first_ : std::min(asked, last_);
+    next_ = asked > first_ && asked < last_ ? asked : playing_.get() ? first_ : std::min(asked, last_);
     if (show) seek(asked);
     wake();
   }
@@ -214,7 +212,7 @@ class BagReader : public apex::Node {
     last_ = static_cast<int>(frames_.size()) - 1;
     if (frames_.empty()) return;
     const ros::Time begin = frames_.front().start;
-    const double start = param<double>("start"), end = param<double>("end");
+    const double start = start_.get(), end = end_.get();
     while (first_ < last_ && (frames_[first_].start - begin).toSec() < start) ++first_;
     if (end > 0)
       while (last_ > first_ && (frames_[last_].start - begin).toSec() > end) --last_;
@@ -240,7 +238,7 @@ class BagReader : public apex::Node {
   }
   void wake() {
     due_ = std::chrono::steady_clock::now();
-    if (param<bool>("playing")) notifyNewData();
+    if (playing_.get()) notifyNewData();
   }
   /** Publishes frame k: every played topic's message in it, the index and the stamp. */
   void send(int k) {
@@ -248,16 +246,16 @@ class BagReader : public apex::Node {
     const BagFrame& f = frames_[k];
     updateParam("frame", k);
     updateParam("time", (f.start - frames_.front().start).toSec());
-    for (const rosbag::MessageInstance& m : rosbag::View(*bag_, rosbag::TopicQuery(topics_), f.start, f.end)) {
+    for (const rosbag::MessageInstance& m : rosbag::View(*bag_, rosbag::TopicQuery(played_topics_), f.start, f.end)) {
       auto port = ports_.find(m.getTopic());
       if (port == ports_.end()) continue;
       apex::Message msg = convert(m);
       if (!msg.isNothing()) publishMessage(port->second, std::move(msg));
     }
-    publish("stamp", f.start.toSec());
+    stamp_.publish(f.start.toSec());
   }
   void schedule(int sent) {
-    const double rate = param<double>("rate");
+    const double rate = rate_.get();
     if (rate <= 0) {
       due_ = std::chrono::steady_clock::now();
       return notifyNewData();
@@ -268,8 +266,24 @@ class BagReader : public apex::Node {
     notifyAfter(gap);
   }
 
+  // The fixed ports and parameters; the outputs of the played topics are read by name (shapeOutputs).
+  apex::Output<double> stamp_{this, "stamp"};
+  apex::Trigger finished_{this, "finished"};
+  apex::Param<std::string> file_{this, "file"};
+  apex::Param<std::vector<std::string>> topics_{this, "topics"};
+  apex::Param<std::string> image_topic_{this, "image_topic"};
+  apex::Param<std::string> cloud_topic_{this, "cloud_topic"};
+  apex::Param<double> sync_window_{this, "sync_window"};
+  apex::Param<bool> playing_{this, "playing"};
+  apex::Param<double> rate_{this, "rate"};
+  apex::Param<bool> loop_{this, "loop"};
+  apex::Param<double> start_{this, "start"};
+  apex::Param<double> end_{this, "end"};
+  apex::Param<int> frame_{this, "frame"};
+  apex::Param<double> time_{this, "time"};
+
   std::unique_ptr<rosbag::Bag> bag_;
-  std::vector<std::string> topics_;
+  std::vector<std::string> played_topics_;
   std::map<std::string, std::string> ports_;  // topic → output
   std::vector<BagFrame> frames_;
   int first_ = 0, last_ = -1;  // the play range

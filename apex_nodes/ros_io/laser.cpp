@@ -24,12 +24,14 @@ class LaserScanSubscriber : public TopicSource<sensor_msgs::LaserScan> {
 
  private:
   void subscribe() override {
-    sub_ = apex::nodeHandle(*this).subscribe<sensor_msgs::LaserScan>(param<std::string>("topic"), 1,
+    sub_ = apex::nodeHandle(*this).subscribe<sensor_msgs::LaserScan>(topic_.get(), 1,
                                                                      [this](const MsgPtr& s) { received(s); });
   }
   void send(const MsgPtr& scan) override {  // shared with ROS, not copied: boost to std ownership
-    publish<sensor_msgs::LaserScan>("scan", std::shared_ptr<const sensor_msgs::LaserScan>(scan.get(), [scan](auto*) {}));
+    scan_.publish(std::shared_ptr<const sensor_msgs::LaserScan>(scan.get(), [scan](auto*) {}));
   }
+  apex::Output<sensor_msgs::LaserScan> scan_{this, "scan"};
+  apex::Param<std::string> topic_{this, "topic"};
   ros::Subscriber sub_;
 };
 
@@ -41,7 +43,7 @@ class LaserScanToCloud : public apex::Node {
         .output<Cloud>("cloud");
   }
   void process() override {
-    const auto& scan = *input<sensor_msgs::LaserScan>("scan");
+    const auto& scan = *scan_.get();
     if (!scan.intensities.empty() && scan.intensities.size() != scan.ranges.size())
       throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has " + std::to_string(scan.ranges.size()) +
                                   " ranges but " + std::to_string(scan.intensities.size()) + " intensities");
@@ -60,8 +62,12 @@ class LaserScanToCloud : public apex::Node {
     auto out = std::make_shared<Cloud>();
     out->header = scan.header;
     out->points = std::move(points);
-    publish<Cloud>("cloud", out);
+    cloud_.publish(out);
   }
+
+ private:
+  apex::Input<sensor_msgs::LaserScan> scan_{this, "scan"};
+  apex::Output<Cloud> cloud_{this, "cloud"};
 };
 
 }  // namespace apex_nodes

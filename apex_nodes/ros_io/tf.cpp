@@ -27,19 +27,24 @@ class TfLookup : public apex::Node {
     listener_ = std::make_unique<tf2_ros::TransformListener>(*buffer_, apex::nodeHandle(*this));
   }
   void process() override {
-    const auto header = headerOf(inputMessage("stamped"));
-    if (!header) throw std::invalid_argument("a " + inputMessage("stamped").typeName() + " has no header to look up");
-    const std::string source = param<std::string>("source_frame").empty() ? header->frame_id : param<std::string>("source_frame");
+    const auto header = headerOf(stamped_.message());
+    if (!header) throw std::invalid_argument("a " + stamped_.message().typeName() + " has no header to look up");
+    const std::string source = source_frame_.get().empty() ? header->frame_id : source_frame_.get();
     try {
-      publish("transform", buffer_->lookupTransform(param<std::string>("target_frame"), source, header->stamp,
-                                                    ros::Duration(param<double>("timeout"))));
+      transform_.publish(
+          buffer_->lookupTransform(target_frame_.get(), source, header->stamp, ros::Duration(timeout_.get())));
     } catch (const tf2::TransformException& e) {
-      throw std::runtime_error("no transform " + source + " -> " + param<std::string>("target_frame") + " at " +
+      throw std::runtime_error("no transform " + source + " -> " + target_frame_.get() + " at " +
                                std::to_string(header->stamp.toSec()) + ": " + e.what());
     }
   }
 
  private:
+  apex::Input<apex::Any> stamped_{this, "stamped"};
+  apex::Output<geometry_msgs::TransformStamped> transform_{this, "transform"};
+  apex::Param<std::string> target_frame_{this, "target_frame"};
+  apex::Param<std::string> source_frame_{this, "source_frame"};
+  apex::Param<double> timeout_{this, "timeout"};
   std::unique_ptr<tf2_ros::Buffer> buffer_;
   std::unique_ptr<tf2_ros::TransformListener> listener_;
 };

@@ -11,6 +11,7 @@
 
 #include "apex/core/node.hpp"
 #include "apex/core/param.hpp"
+#include "apex/core/ports.hpp"
 
 namespace apex_nodes {
 
@@ -28,7 +29,7 @@ class TopicSource : public apex::Node {
   void setup() override { subscribe(); }
   void parameterChanged(const std::string& name) override {
     if (name != "hold") return subscribe();
-    holding_ = param<bool>("hold");
+    holding_ = hold_.get();
     if (!holding_) notifyNewData();  // back to live: the newest message
   }
   void downstreamChanged() override {
@@ -66,6 +67,7 @@ class TopicSource : public apex::Node {
   }
 
  private:
+  apex::Param<bool> hold_{this, "hold"};  // declared by every subclass: holdParam()
   std::mutex m_;
   MsgPtr latest_;                      // m_: the newest from the callback
   MsgPtr sent_;                        // process() only: the last one sent (held)

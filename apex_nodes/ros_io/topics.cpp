@@ -24,10 +24,13 @@ class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
 
  private:
   void subscribe() override {
-    sub_ = subscribeImage(apex::nodeHandle(*this), param<std::string>("topic"), 1, [this](const MsgPtr& msg) { received(msg); },
-                          param<std::string>("transport"));
+    sub_ = subscribeImage(apex::nodeHandle(*this), topic_.get(), 1, [this](const MsgPtr& msg) { received(msg); },
+                          transport_.get());
   }
-  void send(const MsgPtr& msg) override { publish<Image>("image", fromRos(msg)); }
+  void send(const MsgPtr& msg) override { image_.publish(fromRos(msg)); }
+  apex::Output<Image> image_{this, "image"};
+  apex::Param<std::string> topic_{this, "topic"};
+  apex::Param<std::string> transport_{this, "transport"};
   image_transport::Subscriber sub_;
 };
 
@@ -41,11 +44,13 @@ class ImagePublisher : public apex::Node {
   void setup() override { advertise(); }
   void parameterChanged(const std::string&) override { advertise(); }
   void process() override {
-    if (pub_.getNumSubscribers() > 0) pub_.publish(toRos(*input<Image>("image")));
+    if (pub_.getNumSubscribers() > 0) pub_.publish(toRos(*image_.get()));
   }
 
  private:
-  void advertise() { pub_ = advertiseImage(apex::nodeHandle(*this), param<std::string>("topic"), 1); }
+  void advertise() { pub_ = advertiseImage(apex::nodeHandle(*this), topic_.get(), 1); }
+  apex::Input<Image> image_{this, "image"};
+  apex::Param<std::string> topic_{this, "topic"};
   image_transport::Publisher pub_;
 };
 
@@ -61,10 +66,12 @@ class PointCloudSubscriber : public TopicSource<sensor_msgs::PointCloud2> {
 
  private:
   void subscribe() override {
-    sub_ = apex::nodeHandle(*this).subscribe<sensor_msgs::PointCloud2>(param<std::string>("topic"), 1,
+    sub_ = apex::nodeHandle(*this).subscribe<sensor_msgs::PointCloud2>(topic_.get(), 1,
                                                                        [this](const MsgPtr& msg) { received(msg); });
   }
-  void send(const MsgPtr& msg) override { publish<Cloud>("cloud", fromRos(msg)); }
+  void send(const MsgPtr& msg) override { cloud_.publish(fromRos(msg)); }
+  apex::Output<Cloud> cloud_{this, "cloud"};
+  apex::Param<std::string> topic_{this, "topic"};
   ros::Subscriber sub_;
 };
 
@@ -78,11 +85,13 @@ class PointCloudPublisher : public apex::Node {
   void setup() override { advertise(); }
   void parameterChanged(const std::string&) override { advertise(); }
   void process() override {
-    if (pub_.getNumSubscribers() > 0) pub_.publish(toRos(*input<Cloud>("cloud")));
+    if (pub_.getNumSubscribers() > 0) pub_.publish(toRos(*cloud_.get()));
   }
 
  private:
-  void advertise() { pub_ = apex::nodeHandle(*this).advertise<sensor_msgs::PointCloud2>(param<std::string>("topic"), 1); }
+  void advertise() { pub_ = apex::nodeHandle(*this).advertise<sensor_msgs::PointCloud2>(topic_.get(), 1); }
+  apex::Input<Cloud> cloud_{this, "cloud"};
+  apex::Param<std::string> topic_{this, "topic"};
   ros::Publisher pub_;
 };
 

@@ -14,11 +14,19 @@ class Gain : public apex::Node {
         .trigger("overflow", "fires when the result passes 1000");
   }
   void process() override {
-    const int out = *input<int>("in") * param<int>("gain");
-    if (out > 1000) trigger("overflow");
-    publish("out", out);
+    const int out = *in_.get() * gain_.get();
+    if (out > 1000) overflow_.fire();
+    out_.publish(out);
   }
   void reset() { /* runs on the node's thread group, never during process() */ }
+
+ private:
+  // Typed handles, resolved once: a name that manifest() lacks, or a wrong type, is refused
+  // when the type is registered, saying what to write.
+  apex::Input<int> in_{this, "in"};
+  apex::Output<int> out_{this, "out"};
+  apex::Param<int> gain_{this, "gain"};
+  apex::Trigger overflow_{this, "overflow"};
 };
 
 }  // namespace demo

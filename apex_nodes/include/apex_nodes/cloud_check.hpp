@@ -23,4 +23,17 @@ inline std::shared_ptr<Cloud> cloudResult(const Cloud& in, std::shared_ptr<const
   return out;
 }
 
+/** @brief Runs a PCL filter (e.g. pcl::VoxelGrid<PointT>) on a checked cloud: `configure(filter)`
+ *  sets its parameters; the result keeps the input's header. The input is shared, not copied. */
+template <class Filter, class Configure>
+std::shared_ptr<Cloud> filterCloud(const Cloud& in, Configure configure) {
+  requirePoints(in);
+  Filter filter;
+  filter.setInputCloud(in.points);
+  configure(filter);
+  auto points = std::make_shared<PclCloud>();
+  filter.filter(*points);
+  return cloudResult(in, std::move(points));
+}
+
 }  // namespace apex_nodes

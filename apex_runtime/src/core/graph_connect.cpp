@@ -7,6 +7,7 @@
 #include "edit_scope.hpp"
 #include "live.hpp"
 #include "node_state.hpp"
+#include "names.hpp"
 
 namespace apex {
 
@@ -23,12 +24,6 @@ struct Endpoint {
   int index;
   const TypeInfo* type;  // nullptr for events
 };
-
-template <class T>
-int indexOf(const std::vector<T>& items, const std::string& n) {
-  for (std::size_t i = 0; i < items.size(); ++i) if (items[i].name == n) return static_cast<int>(i);
-  return -1;
-}
 
 /** A node as the connection rules see it. */
 NodeView viewOf(const NodeState& n) {

@@ -10,6 +10,7 @@
 #include "edit_scope.hpp"
 #include "live.hpp"
 #include "node_state.hpp"
+#include "names.hpp"
 
 namespace apex {
 
@@ -19,12 +20,6 @@ using detail::NodeState;
 
 namespace detail {
 namespace {
-
-template <class T>
-int indexOf(const std::vector<T>& items, const std::string& n) {
-  for (std::size_t i = 0; i < items.size(); ++i) if (items[i].name == n) return static_cast<int>(i);
-  return -1;
-}
 
 /** The type an edge carries, as its sender declares it. */
 const TypeInfo* carried(const Edge& e) {
@@ -149,6 +144,7 @@ void NodeState::setInterface(std::shared_ptr<const Manifest> next_ptr) {
   n.trigger_edges = std::move(triggers);
   n.slot_edges = std::move(slots);
   n.iface = std::move(next_ptr);
+  if (n.node) (void)resolveHandles(*n.node, n.manifest());  // a handle whose port went throws when used
 }
 
 

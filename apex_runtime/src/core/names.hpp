@@ -3,6 +3,8 @@
 
 #include <cctype>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace apex {
 
@@ -18,6 +20,14 @@ inline bool validName(const std::string& s) {
 inline bool validTypeId(const std::string& id) {
   auto slash = id.find('/');
   return slash != std::string::npos && validName(id.substr(0, slash)) && validName(id.substr(slash + 1));
+}
+
+/** The index of the item named `n` (ports, parameters, events), or -1. */
+template <class T>
+int indexOf(const std::vector<T>& items, std::string_view n) {
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (items[i].name == n) return static_cast<int>(i);
+  return -1;
 }
 
 }  // namespace apex

@@ -49,16 +49,23 @@ const Message& Node::inputMessage(std::string_view input) const {
   return s.inputs[i]->current;
 }
 
+const Message& Node::inputAt(int index) const { return stateOf(state_.load(std::memory_order_acquire)).inputs[index]->current; }
+
 void Node::publishMessage(std::string_view output, Message message) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findOutput(output);
   if (i < 0) unknown(s, "output", output, s.manifest().listOutputs());
-  const TypeInfo* want = s.manifest().outputs[i].type;
+  publishAt(i, std::move(message));
+}
+
+void Node::publishAt(int index, Message message) {
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
+  const TypeInfo* want = s.manifest().outputs[index].type;
   if (!message.isNothing() && !compatible(message.type(), want)) {
-    throw std::invalid_argument("node '" + s.name + "' published a " + message.typeName() + " on output '" + std::string(output) +
-                                "', which carries " + want->name);
+    throw std::invalid_argument("node '" + s.name + "' published a " + message.typeName() + " on output '" +
+                                s.manifest().outputs[index].name + "', which carries " + want->name);
   }
-  s.setOutput(i, std::move(message));
+  s.setOutput(index, std::move(message));
 }
 
 const ParamValue& Node::paramValue(std::string_view name) const {
@@ -67,6 +74,8 @@ const ParamValue& Node::paramValue(std::string_view name) const {
   if (i < 0) unknown(s, "parameter", name, s.manifest().listParams());
   return s.params[i].active;
 }
+
+const ParamValue& Node::paramAt(int index) const { return stateOf(state_.load(std::memory_order_acquire)).params[index].active; }
 
 void Node::updateParam(std::string_view name, ParamValue value) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
@@ -82,6 +91,8 @@ void Node::trigger(std::string_view name) {
   if (i < 0) unknown(s, "trigger", name, s.manifest().listTriggers());
   s.fireTrigger(i);
 }
+
+void Node::triggerAt(int index) { stateOf(state_.load(std::memory_order_acquire)).fireTrigger(index); }
 
 void Node::log(LogLevel level, const std::string& text) const { apex::log(level, name(), text); }
 

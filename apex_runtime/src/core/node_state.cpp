@@ -1,6 +1,7 @@
 // The firing rule (see docs/architecture.md): a node fires when `blockers` is
 // zero; it takes its inputs first (freeing its sources), processes, publishes.
 #include "node_state.hpp"
+#include "names.hpp"
 
 #include <algorithm>
 
@@ -11,12 +12,6 @@ namespace {
 std::shared_ptr<const Manifest> manifestOf(const std::shared_ptr<const NodeType>& type) {
   static const auto kEmpty = std::make_shared<const Manifest>();
   return type ? type->manifest : kEmpty;
-}
-
-template <class T>
-int indexOf(const std::vector<T>& items, std::string_view n) {
-  for (std::size_t i = 0; i < items.size(); ++i) if (items[i].name == n) return static_cast<int>(i);
-  return -1;
 }
 
 }  // namespace

@@ -111,6 +111,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::shared_ptr<const Host> host;  // the graph's, when the node was made
   void attach(std::unique_ptr<Node> object) {
     node = std::move(object);
+    (void)resolveHandles(*node, manifest());  // checked at registration against the default interface
     node->state_.store(this, std::memory_order_release);
   }
 

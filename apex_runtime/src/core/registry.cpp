@@ -15,12 +15,39 @@ Manifest withBuiltins(Manifest m) {
   return m;
 }
 
+/** The ports an instance has with default parameters: what its typed handles must name. */
+Manifest defaultInterface(const Manifest& type) {
+  if (!type.shape) return type;
+  ParamValues values;
+  for (const auto& p : type.params) values.set(p.name, p.default_value);
+  Manifest iface = type;
+  try {
+    if (type.shape(values, iface)) return iface;
+  } catch (const std::exception&) {  // the graph reports it when a node is made
+  }
+  return type;
+}
+
+/** Makes one instance and resolves its typed handles (ports.hpp), so that a handle naming
+ *  nothing is an error at registration, not at the first firing. */
+Status checkHandles(const Manifest& type, const std::function<std::unique_ptr<Node>()>& create) {
+  std::unique_ptr<Node> probe;
+  try {
+    probe = create();
+  } catch (const std::exception& ex) {
+    return Status::error(std::string("failed to construct: ") + ex.what());
+  }
+  if (!probe) return Status::error("its factory made no node");
+  return detail::resolveHandles(*probe, defaultInterface(type));
+}
+
 }  // namespace
 
 Status NodeRegistry::add(const std::string& id, Manifest manifest, std::function<std::unique_ptr<Node>()> create) {
   if (!validTypeId(id)) return Status::error("node type id '" + id + "' " + kTypeIdRule);
   if (!create) return Status::error("node type '" + id + "' has no factory");
   if (auto st = withBuiltins(manifest).check(); !st) return Status::error("node type '" + id + "': " + st.message());
+  if (auto st = checkHandles(withBuiltins(manifest), create); !st) return Status::error("node type '" + id + "': " + st.message());
   auto type = std::make_shared<NodeType>(NodeType{id, std::make_shared<const Manifest>(withBuiltins(std::move(manifest))),
                                                   std::move(create)});
   std::lock_guard<std::mutex> lock(mutex_);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "apex/core/log.hpp"
 #include "apex/core/message.hpp"
@@ -18,8 +19,12 @@ struct Manifest;
 
 namespace apex {
 
+class Handle;
+class Node;
 namespace detail {
 class NodeState;
+/** Resolves every typed handle of `node` against `iface`; the first error, naming the handle. */
+Status resolveHandles(Node& node, const Manifest& iface);
 }
 
 /** @brief What the program hosting a graph offers its nodes, e.g. the ROS runtime's node
@@ -119,6 +124,14 @@ class Node {
 
  private:
   friend class detail::NodeState;
+  friend class Handle;
+  friend Status detail::resolveHandles(Node& node, const Manifest& iface);
+  // By index in the current interface: for typed handles (ports.hpp).
+  const Message& inputAt(int index) const;
+  void publishAt(int index, Message message);
+  const ParamValue& paramAt(int index) const;
+  void triggerAt(int index);
+  std::vector<Handle*> handles_;  // registered by their constructors
   [[noreturn]] void throwWrongType(std::string_view input, const Message& m, const TypeInfo* want) const;
   [[noreturn]] void throwWrongParamType(std::string_view name) const;
   std::atomic<detail::NodeState*> state_{nullptr};  // set when the node joins a graph

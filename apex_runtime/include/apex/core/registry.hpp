@@ -13,6 +13,7 @@
 
 #include "apex/core/manifest.hpp"
 #include "apex/core/node.hpp"
+#include "apex/core/ports.hpp"
 #include "apex/core/result.hpp"
 
 namespace apex {

@@ -1,0 +1,116 @@
+// Typed handles: a node names each port, parameter and trigger once, as a member, and
+// reads or writes it through the handle, found by index at every use (no string look-up
+// per firing):
+//
+//   class Gain : public apex::Node {
+//     apex::Input<int> in_{this, "in"};
+//     apex::Output<int> out_{this, "out"};
+//     apex::Param<int> gain_{this, "gain"};
+//     void process() override { out_.publish(*in_.get() * gain_.get()); }
+//   };
+//
+// A handle that names nothing in the manifest, or with the wrong C++ type, is refused when
+// the type is registered, with a message saying what to write. Handles are resolved again
+// when an instance's interface changes (Manifest::shapedBy); using one whose port is gone
+// throws, naming it.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <variant>
+
+#include "apex/core/message.hpp"
+#include "apex/core/node.hpp"
+#include "apex/core/param.hpp"
+#include "apex/core/result.hpp"
+
+namespace apex {
+
+struct Manifest;
+
+/** @brief What handles have in common: the node, the name, the index in the interface. */
+class Handle {
+ public:
+  enum class Of { Input, Output, Param, Trigger };
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  const std::string& name() const { return name_; }
+  /** @brief Finds the handle's port in `iface`; an error says what to write instead. */
+  Status resolve(const Manifest& iface);
+
+ protected:
+  /** `type`: the C++ type of an input or output; `holds`: whether a value has the C++ type of a Param<T>. */
+  Handle(Node* node, Of of, std::string name, const TypeInfo* type, bool (*holds)(const ParamValue&),
+         std::string cpp);
+  ~Handle();  // leaves the node's list
+  /** The index in the node's current interface; throws if the port is not in it. */
+  int index() const {
+    if (index_ < 0) throwGone();
+    return index_;
+  }
+  const Message& inputAt(int i) const { return node_->inputAt(i); }
+  void publishAt(int i, Message m) const { node_->publishAt(i, std::move(m)); }
+  const ParamValue& paramAt(int i) const { return node_->paramAt(i); }
+  void triggerAt(int i) const { node_->triggerAt(i); }
+  [[noreturn]] void throwWrongType(const Message& m) const;
+
+ private:
+  [[noreturn]] void throwGone() const;
+  Node* node_;
+  Of of_;
+  std::string name_;
+  const TypeInfo* type_;
+  bool (*holds_)(const ParamValue&);
+  std::string cpp_;  // "Input<int>": for messages
+  int index_ = -1;
+};
+
+/** @brief An input of type T. */
+template <class T>
+class Input : public Handle {
+ public:
+  Input(Node* node, std::string name)
+      : Handle(node, Of::Input, std::move(name), typeOf<T>(), nullptr, "Input<" + typeOf<T>()->name + ">") {}
+  /** @brief This firing's payload; nullptr when the input holds Nothing. */
+  std::shared_ptr<const T> get() const {
+    const Message& m = message();
+    if (m.isNothing()) return nullptr;
+    auto p = m.as<T>();
+    if (!p) throwWrongType(m);
+    return p;
+  }
+  /** @brief True when the input holds a message (not Nothing) this firing. */
+  bool has() const { return !message().isNothing(); }
+  const Message& message() const { return inputAt(index()); }
+};
+
+/** @brief An output of type T; an output not published in a firing sends Nothing. */
+template <class T>
+class Output : public Handle {
+ public:
+  Output(Node* node, std::string name)
+      : Handle(node, Of::Output, std::move(name), typeOf<T>(), nullptr, "Output<" + typeOf<T>()->name + ">") {}
+  void publish(T value) const { publishAt(index(), Message::make<T>(std::move(value))); }
+  void publish(std::shared_ptr<const T> payload) const { publishAt(index(), Message::share<T>(std::move(payload))); }
+  /** @brief Sends a message as it is, e.g. one taken from an input (no copy). */
+  void publishMessage(Message m) const { publishAt(index(), std::move(m)); }
+};
+
+/** @brief A parameter's current value, stable for the whole firing. */
+template <class T>
+class Param : public Handle {
+ public:
+  Param(Node* node, std::string name)
+      : Handle(node, Of::Param, std::move(name), nullptr, [](const ParamValue& v) { return std::holds_alternative<T>(v); },
+               "Param<" + typeOf<T>()->name + ">") {}
+  const T& get() const { return std::get<T>(paramAt(index())); }
+};
+
+/** @brief Sends an event on a trigger. */
+class Trigger : public Handle {
+ public:
+  Trigger(Node* node, std::string name) : Handle(node, Of::Trigger, std::move(name), nullptr, nullptr, "Trigger") {}
+  void fire() const { triggerAt(index()); }
+};
+
+}  // namespace apex
