@@ -2,11 +2,11 @@
 #include <ros/ros.h>
 #include <sensor_msgs/LaserScan.h>
 
-#include <cmath>
 #include <mutex>
 
 #include "apex/core/registry.hpp"
 #include "apex/ros/node_handles.hpp"
+#include "apex_nodes/ros_convert.hpp"
 #include "apex_nodes/types.hpp"
 #include "topic_source.hpp"
 
@@ -42,28 +42,7 @@ class LaserScanToCloud : public apex::Node {
         .input<sensor_msgs::LaserScan>("scan")
         .output<Cloud>("cloud");
   }
-  void process() override {
-    const auto& scan = *scan_.get();
-    if (!scan.intensities.empty() && scan.intensities.size() != scan.ranges.size())
-      throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has " + std::to_string(scan.ranges.size()) +
-                                  " ranges but " + std::to_string(scan.intensities.size()) + " intensities");
-    if (!std::isfinite(scan.angle_min) || !std::isfinite(scan.angle_increment))
-      throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has a non-finite angle_min or angle_increment");
-    auto points = std::make_shared<PclCloud>();
-    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-      const float r = scan.ranges[i];
-      if (!std::isfinite(r) || r < scan.range_min || r > scan.range_max) continue;
-      const double a = scan.angle_min + i * static_cast<double>(scan.angle_increment);
-      points->push_back(PointT(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), 0.f));
-    }
-    if (points->empty())
-      throw std::invalid_argument("scan of " + std::to_string(scan.ranges.size()) + " ranges has none within [" +
-                                  std::to_string(scan.range_min) + ", " + std::to_string(scan.range_max) + "]");
-    auto out = std::make_shared<Cloud>();
-    out->header = scan.header;
-    out->points = std::move(points);
-    cloud_.publish(out);
-  }
+  void process() override { cloud_.publish(scanToCloud(*scan_.get())); }
 
  private:
   apex::Input<sensor_msgs::LaserScan> scan_{this, "scan"};

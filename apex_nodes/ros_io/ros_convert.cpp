@@ -4,6 +4,8 @@
 #include <pcl_conversions/pcl_conversions.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include <cmath>
+
 namespace apex_nodes {
 namespace {
 
@@ -52,7 +54,7 @@ void checkCloud(const sensor_msgs::PointCloud2& m) {
     throw std::invalid_argument("point cloud " + std::to_string(m.width) + "x" + std::to_string(m.height) + " on frame '" +
                                 m.header.frame_id + "': " + why);
   };
-  if (m.width > kMaxSide * kMaxSide || m.height > kMaxSide) bad("absurd size");
+  if (Size(m.width) * Size(m.height) > (Size(1) << 28)) bad("absurd size: over 2^28 points");
   if (m.point_step == 0) bad("point_step is 0");
   bool x = false, y = false, z = false;
   for (const auto& f : m.fields) {
@@ -96,7 +98,7 @@ sensor_msgs::ImagePtr toRos(const Image& image) {
 std::shared_ptr<const Cloud> fromRos(const sensor_msgs::PointCloud2ConstPtr& msg) {
   checkCloud(*msg);
   auto points = std::make_shared<PclCloud>();
-  pcl::fromROSMsg(*msg, *points);
+  if (msg->width != 0 && msg->height != 0) pcl::fromROSMsg(*msg, *points);  // PCL indexes point 0 of an empty cloud
   auto cloud = std::make_shared<Cloud>();
   cloud->header = msg->header;
   cloud->points = std::move(points);
@@ -108,6 +110,28 @@ sensor_msgs::PointCloud2Ptr toRos(const Cloud& cloud) {
   pcl::toROSMsg(*cloud.points, *msg);
   msg->header = cloud.header;
   return msg;
+}
+
+std::shared_ptr<const Cloud> scanToCloud(const sensor_msgs::LaserScan& scan) {
+  if (!scan.intensities.empty() && scan.intensities.size() != scan.ranges.size())
+    throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has " + std::to_string(scan.ranges.size()) +
+                                " ranges but " + std::to_string(scan.intensities.size()) + " intensities");
+  if (!std::isfinite(scan.angle_min) || !std::isfinite(scan.angle_increment))
+    throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has a non-finite angle_min or angle_increment");
+  auto points = std::make_shared<PclCloud>();
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    const float r = scan.ranges[i];
+    if (!std::isfinite(r) || r < scan.range_min || r > scan.range_max) continue;
+    const double a = scan.angle_min + i * static_cast<double>(scan.angle_increment);
+    points->push_back(PointT(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), 0.f));
+  }
+  if (points->empty())
+    throw std::invalid_argument("scan of " + std::to_string(scan.ranges.size()) + " ranges has none within [" +
+                                std::to_string(scan.range_min) + ", " + std::to_string(scan.range_max) + "]");
+  auto out = std::make_shared<Cloud>();
+  out->header = scan.header;
+  out->points = std::move(points);
+  return out;
 }
 
 }  // namespace apex_nodes

@@ -135,6 +135,12 @@ TEST_F(GraphFileErrors, WhatTheFormatDoesNotUseIsRefused) {
   EXPECT_TRUE(Contains(loadFails(head + "  - {name: !custom a, type: test/Relay}\n"), {"the tag '!custom'"}));
 }
 
+TEST_F(GraphFileErrors, MalformedTextThatHungTheYamlParserIsRefusedAtOnce) {
+  // Found by fuzz_graph_file: YAML::LoadAll (yaml-cpp 0.7) never returned on a lone comma.
+  for (const std::string text : {",", ",,,,ap", "apex_graph: 1\n,", "[,]", "{:"})
+    EXPECT_FALSE(loadFails(text).empty()) << text;
+}
+
 TEST_F(GraphFileErrors, SizesBeyondTheLimitsAreRefusedNotRunOutOfMemory) {
   std::string bomb = "a: &a [x, x, x, x, x, x, x, x, x, x]\n";  // ten to the ninth values through aliases
   for (char c = 'b'; c <= 'j'; ++c)

@@ -240,6 +240,19 @@ TEST(ParamRefuse, MapMissingAKeyIsRefusedNotThrown) {
 TEST(ParamRefuse, NonFiniteDoubles) {
   EXPECT_TRUE(Contains(parseFails(param::real("alpha", 0), ".nan"), {"'alpha'", "finite"}));
   EXPECT_TRUE(Contains(parseFails(param::range("sigma", 0.0, 1.0, 0.0, 0.0), ".inf"), {"'sigma'"}));
+  // Found by fuzz_param_text: a list or pair took NaN, printed it as "nan", and read that back as text.
+  EXPECT_TRUE(Contains(parseFails(param::list("weights", {1}), "[2, .NAN, 23]"), {"'weights'", "element 2", "not a finite number"}));
+  EXPECT_TRUE(Contains(parseFails(param::pair("size", 1, 2), "[1, -.inf]"), {"'size'", "element 2"}));
+  EXPECT_TRUE(Contains(parseFails(param::interval("band", 0, 255, 10, 200), "[19, .NaN]"), {"'band'", "element 2"}));
+}
+
+TEST(ParamRefuse, TextThatYamlCannotGiveBackIsRefused) {
+  // Found by fuzz_param_text: a NUL came back from YAML as other bytes, printed as another string.
+  EXPECT_TRUE(Contains(parseFails(param::text("label", "x"), std::string("\x01\0\0.", 4)), {"'label'", "a control character at byte 1"}));
+  EXPECT_TRUE(Contains(parseFails(param::text("label", "x"), "\"a\\x00b\""), {"a control character at byte 2"}));
+  EXPECT_TRUE(Contains(parseFails(param::path("file", ""), "\xff.bag"), {"'file'", "not UTF-8 at byte 1"}));
+  EXPECT_TRUE(Contains(parseFails(param::textList("topics", {}), "[ok, \"\\x07\"]"), {"'topics'", "control character"}));
+  EXPECT_TRUE(param::text("label", "x").parse("\"caf\u00e9\tbar\"").isOk());  // UTF-8 and tabs are fine
 }
 
 TEST(ParamRefuse, IntervalLowAboveHighOrOutsideBounds) {

@@ -70,7 +70,10 @@ TEST(BadMessages, CloudsWhoseFieldsOrStepsDoNotAddUpAreRefused) {
   EXPECT_THAT(refusal(cloud(10000000, 1, 0)), HasSubstr("data has 0 bytes"));
   auto wrapped = cloud(65537, 65536, 16);  // 2^16 x (2^16 + 1) points in 16 bytes
   wrapped->row_step = 16;
-  EXPECT_THAT(refusal(wrapped), HasSubstr("row_step 16 is shorter"));
+  EXPECT_THAT(refusal(wrapped), HasSubstr("over 2^28 points"));
+  auto short_rows = cloud(10, 1, 160);
+  short_rows->row_step = 16;
+  EXPECT_THAT(refusal(short_rows), HasSubstr("row_step 16 is shorter"));
   auto short_data = cloud(10, 1, 100);
   EXPECT_THAT(refusal(short_data), HasSubstr("data has 100 bytes"));
   auto far = cloud(10, 1, 160);
@@ -85,6 +88,14 @@ TEST(BadMessages, CloudsWhoseFieldsOrStepsDoNotAddUpAreRefused) {
   auto no_z = cloud(10, 1, 160);
   no_z->fields.pop_back();
   EXPECT_THAT(refusal(no_z), HasSubstr("no x, y, z fields"));
+  EXPECT_THAT(refusal(cloud(65536, 65536, 0)), HasSubstr("over 2^28 points"));
+}
+
+TEST(BadMessages, ACloudWithoutPointsIsAnEmptyCloud) {
+  // Found by fuzz_ros_messages: PCL's conversion indexed point 0 of a cloud of width 0 with data.
+  auto empty = cloud(0, 1, 64);
+  EXPECT_EQ(refusal(empty), "(accepted)");
+  EXPECT_TRUE(apex_nodes::fromRos(empty)->points->empty());
 }
 
 TEST(BadMessages, AScanWithMismatchedArraysIsANodeErrorAndTheNextOneFlows) {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <sensor_msgs/Image.h>
+#include <sensor_msgs/LaserScan.h>
 #include <sensor_msgs/PointCloud2.h>
 
 #include "apex_nodes/types.hpp"
@@ -18,5 +19,8 @@ sensor_msgs::ImagePtr toRos(const Image& image);
  *  for unknown datatypes, fields outside point_step, or data shorter than row_step x height. */
 std::shared_ptr<const Cloud> fromRos(const sensor_msgs::PointCloud2ConstPtr& msg);
 sensor_msgs::PointCloud2Ptr toRos(const Cloud& cloud);
+/** @brief A scan's valid ranges as points in its plane (z = 0). Throws std::invalid_argument
+ *  for mismatched arrays, non-finite angles, or a scan with no range inside its limits. */
+std::shared_ptr<const Cloud> scanToCloud(const sensor_msgs::LaserScan& scan);
 
 }  // namespace apex_nodes

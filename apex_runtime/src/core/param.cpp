@@ -49,7 +49,18 @@ Status checkSet(const ParamSpec& s, const std::string& v) {
   return Status::error("parameter '" + s.name + "': '" + v + "' is not one of: " + list);
 }
 
+/** Every number of a list, pair or interval is finite: NaN and infinities print as text YAML reads as
+ *  a string, so a saved graph would not load again. */
+Status checkFinite(const ParamSpec& s, const std::vector<double>& values) {
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      return Status::error("parameter '" + s.name + "': element " + std::to_string(i + 1) + " (" + num(values[i]) +
+                           ") is not a finite number");
+  return Status::ok();
+}
+
 Status checkInterval(const ParamSpec& s, const Interval& v) {
+  if (auto st = checkFinite(s, {v.low, v.high}); !st) return st;
   if (v.low > v.high) return Status::error("parameter '" + s.name + "': low " + num(v.low) + " is above high " + num(v.high));
   if (v.low < s.min || v.high > s.max) return outOfRange(s, "[" + num(v.low) + ", " + num(v.high) + "]");
   return Status::ok();
@@ -70,6 +81,28 @@ ParamSpec make(std::string name, ParamKind kind, ParamValue def) {
   return s;
 }
 
+/** Text is UTF-8 without control characters (tab and line breaks aside): what YAML writes and
+ *  reads back unchanged. yaml-cpp turns a NUL into bytes it then writes as another string
+ *  (found by fuzzing). */
+Status checkText(const ParamSpec& s, const std::string& v) {
+  auto bad = [&](std::size_t at, const char* what) {
+    return Status::error("parameter '" + s.name + "': " + what + " at byte " + std::to_string(at + 1));
+  };
+  for (std::size_t i = 0; i < v.size();) {
+    const auto c = static_cast<unsigned char>(v[i]);
+    if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') return bad(i, "a control character");
+    const int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+    if (extra < 0 || i + extra >= v.size()) return bad(i, "not UTF-8");
+    for (int k = 1; k <= extra; ++k)
+      if ((static_cast<unsigned char>(v[i + k]) >> 6) != 0x2) return bad(i, "not UTF-8");
+    if ((extra == 1 && c < 0xC2) || (extra == 2 && c == 0xE0 && static_cast<unsigned char>(v[i + 1]) < 0xA0) ||
+        (extra == 3 && c == 0xF0 && static_cast<unsigned char>(v[i + 1]) < 0x90) || (extra == 3 && c > 0xF4))
+      return bad(i, "not UTF-8 (an overlong or out-of-range sequence)");
+    i += extra + 1;
+  }
+  return Status::ok();
+}
+
 Status checkFileName(const ParamSpec& s, const std::string& v) {
   if (v.find('/') == std::string::npos && v.find('\0') == std::string::npos && v != "." && v != "..") return Status::ok();
   return Status::error("parameter '" + s.name + "' is a file name, not a path: '" + v + "' (no '/', not '.' or '..')");
@@ -87,17 +120,24 @@ Status ParamSpec::validate(const ParamValue& v) const {
                                                  : Status::error("parameter '" + name + "' is not a finite number");
     case ParamKind::String:
       if (!holds<std::string>(v)) return wrongType(*this, v);
+      if (auto st = checkText(*this, std::get<std::string>(v)); !st) return st;
       return file_name ? checkFileName(*this, std::get<std::string>(v)) : Status::ok();
-    case ParamKind::Path: return holds<std::string>(v) ? Status::ok() : wrongType(*this, v);
+    case ParamKind::Path: return holds<std::string>(v) ? checkText(*this, std::get<std::string>(v)) : wrongType(*this, v);
     case ParamKind::IntRange: return holds<int>(v) ? checkIntRange(*this, std::get<int>(v)) : wrongType(*this, v);
     case ParamKind::DoubleRange:
     case ParamKind::Angle: return holds<double>(v) ? checkNumber(*this, std::get<double>(v)) : wrongType(*this, v);
     case ParamKind::Interval: return holds<Interval>(v) ? checkInterval(*this, std::get<Interval>(v)) : wrongType(*this, v);
     case ParamKind::Set: return holds<std::string>(v) ? checkSet(*this, std::get<std::string>(v)) : wrongType(*this, v);
     case ParamKind::Color: return holds<Color>(v) ? checkColor(*this, std::get<Color>(v)) : wrongType(*this, v);
-    case ParamKind::Pair: return holds<Pair>(v) ? Status::ok() : wrongType(*this, v);
-    case ParamKind::List: return holds<std::vector<double>>(v) ? Status::ok() : wrongType(*this, v);
-    case ParamKind::TextList: return holds<std::vector<std::string>>(v) ? Status::ok() : wrongType(*this, v);
+    case ParamKind::Pair:
+      if (!holds<Pair>(v)) return wrongType(*this, v);
+      return checkFinite(*this, {std::get<Pair>(v).first, std::get<Pair>(v).second});
+    case ParamKind::List: return holds<std::vector<double>>(v) ? checkFinite(*this, std::get<std::vector<double>>(v)) : wrongType(*this, v);
+    case ParamKind::TextList:
+      if (!holds<std::vector<std::string>>(v)) return wrongType(*this, v);
+      for (const auto& text : std::get<std::vector<std::string>>(v))
+        if (auto st = checkText(*this, text); !st) return st;
+      return Status::ok();
   }
   return wrongType(*this, v);
 }
