@@ -37,6 +37,19 @@ TEST(Registry, OneLineRegistersATypeForThisProgramAndForItsLibrary) {
   EXPECT_FALSE(apex::detail::registerNode<Doubler>("test/Doubler"));
 }
 
+TEST(Registry, AnUnloadedLibrarysTypesLeaveTheProcessWideRegistry) {
+  // Their factories are the library's code: left behind, a graph made from the registry after
+  // the library was unloaded, or the registry's own destruction at exit, would call into it.
+  {
+    apex::detail::ModuleTypes library;  // what a plugin library holds, gone when it is unloaded
+    ASSERT_TRUE(library.types.add<Doubler>("test/Unloaded"));
+    ASSERT_TRUE(apex::NodeRegistry::global().add(library.types.find("test/Unloaded")));
+    ASSERT_TRUE(library.types.add<Doubler>("test/Doubler"));  // an id another module owns
+  }
+  EXPECT_EQ(apex::NodeRegistry::global().find("test/Unloaded"), nullptr);
+  EXPECT_NE(apex::NodeRegistry::global().find("test/Doubler"), nullptr);  // not this library's entry
+}
+
 TEST(Registry, ListsAWholeInterfaceWithoutCreatingANode) {
   NodeRegistry r = testRegistry();
   auto type = r.find("test/Counter");

@@ -93,8 +93,8 @@ NodeRegistry::NodeRegistry(const NodeRegistry& other) {
 }
 
 NodeRegistry& NodeRegistry::global() {
-  static NodeRegistry registry;
-  return registry;
+  static auto* registry = new NodeRegistry();  // leaked on purpose: see the header
+  return *registry;
 }
 
 NodeRegistry NodeRegistry::fromGlobal() { return NodeRegistry(global()); }

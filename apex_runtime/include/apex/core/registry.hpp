@@ -68,7 +68,8 @@ class NodeRegistry {
   /** @brief Every type, sorted by id. */
   std::vector<std::shared_ptr<const NodeType>> types() const;
 
-  /** @brief The process-wide registry that APEX_REGISTER_NODE fills. */
+  /** @brief The process-wide registry that APEX_REGISTER_NODE fills; never destroyed, so a
+   *  library's types can leave it whenever the library goes, even at exit. */
   static NodeRegistry& global();
   /** @brief A registry holding a copy of every type in global(). */
   static NodeRegistry fromGlobal();
@@ -86,11 +87,26 @@ namespace detail {
 /** Registration from a static initialiser: prints the reason on failure. */
 bool registerOrReport(const Status& status, const std::string& id);
 
-/** The types registered by the module (program or shared library) this is compiled into:
- *  hidden, so every shared library has its own. A plugin library hands these to the host. */
+/** The types registered by one module (the program, or a shared library). When a plugin
+ *  library is unloaded, its types leave the process-wide registry with it: their factories
+ *  are code of that library. */
+class ModuleTypes {
+ public:
+  ModuleTypes() = default;
+  ModuleTypes(const ModuleTypes&) = delete;
+  ModuleTypes& operator=(const ModuleTypes&) = delete;
+  ~ModuleTypes() {
+    for (const auto& type : types.types())
+      if (NodeRegistry::global().find(type->id) == type) NodeRegistry::global().remove(type->id);
+  }
+  NodeRegistry types;
+};
+
+/** This module's types: hidden, so every shared library has its own. A plugin library hands
+ *  these to the host (APEX_NODE_LIBRARY). */
 __attribute__((visibility("hidden"))) inline NodeRegistry& moduleTypes() {
-  static NodeRegistry types;
-  return types;
+  static ModuleTypes module;
+  return module.types;
 }
 
 /** APEX_REGISTER_NODE: into the module's list and the process-wide registry. */
