@@ -1,0 +1,124 @@
+// The Optimizer's searches in ask/tell form (apex_nodes/search.hpp). Their quality against
+// scipy is checked by test/optimizer/compare_scipy.py.
+#include <gmock/gmock.h>
+
+#include <cmath>
+#include <set>
+
+#include "apex_nodes/search.hpp"
+
+using namespace apex_nodes::search;
+using ::testing::HasSubstr;
+
+namespace {
+
+std::unique_ptr<Search> make(const std::string& algorithm, std::vector<Dimension> dims, Settings s = {}) {
+  auto made = makeSearch(algorithm, std::move(dims), s);
+  EXPECT_TRUE(made) << made.message();
+  return made ? std::move(made).value() : nullptr;
+}
+
+std::vector<std::vector<double>> run(Search& s, const std::function<double(const std::vector<double>&)>& fitness) {
+  std::vector<std::vector<double>> asked;
+  while (!s.done()) {
+    asked.push_back(s.ask());
+    s.tell(fitness(asked.back()));
+  }
+  return asked;
+}
+
+double minusSphere(const std::vector<double>& x) {
+  double s = 0;
+  for (double v : x) s += v * v;
+  return -s;
+}
+
+TEST(Search, TheSameSeedGivesTheSameCandidates) {
+  Settings s;
+  s.budget = 60, s.seed = 7;
+  const std::vector<Dimension> box{{"a", -1, 1}, {"b", 0, 10, true}};
+  for (const char* algorithm : {"differential_evolution", "random"}) {
+    auto one = run(*make(algorithm, box, s), minusSphere);
+    auto two = run(*make(algorithm, box, s), minusSphere);
+    EXPECT_EQ(one, two) << algorithm;
+    s.seed = 8;
+    EXPECT_NE(run(*make(algorithm, box, s), minusSphere), one) << algorithm;
+    s.seed = 7;
+  }
+}
+
+TEST(Search, CandidatesStayInTheirRangesAndIntegersAreWhole) {
+  Settings s;
+  s.budget = 300;
+  for (const char* algorithm : {"differential_evolution", "random", "grid"}) {
+    auto search = make(algorithm, {{"k", 1, 31, true}, {"c", -2.5, 2.5}}, s);
+    for (const auto& x : run(*search, [](const std::vector<double>& x) { return x[0] - std::abs(x[1]); })) {
+      EXPECT_GE(x[0], 1) << algorithm;
+      EXPECT_LE(x[0], 31) << algorithm;
+      EXPECT_EQ(x[0], std::round(x[0])) << algorithm;
+      EXPECT_GE(x[1], -2.5) << algorithm;
+      EXPECT_LE(x[1], 2.5) << algorithm;
+    }
+    EXPECT_EQ(search->evaluations(), 300);
+  }
+}
+
+TEST(Search, AGridWalksEveryPointOnceIncludingTheCorners) {
+  Settings s;
+  s.budget = 9;
+  auto asked = run(*make("grid", {{"a", 0, 1}, {"b", 10, 20}}, s), minusSphere);
+  std::set<std::vector<double>> points(asked.begin(), asked.end());
+  EXPECT_EQ(points.size(), 9u);
+  EXPECT_TRUE(points.count({0, 10}));
+  EXPECT_TRUE(points.count({1, 20}));
+  EXPECT_TRUE(points.count({0.5, 15}));
+}
+
+TEST(Search, DifferentialEvolutionKeepsTheBestAndImprovesOnItsStart) {
+  Settings s;
+  s.budget = 1500, s.population = 30;
+  auto search = make("differential_evolution", {{"x", -5, 5}, {"y", -5, 5}, {"z", -5, 5}}, s);
+  double start_best = -HUGE_VAL;
+  int n = 0;
+  while (!search->done()) {
+    const double f = minusSphere(search->ask());
+    search->tell(f);
+    if (++n <= 30) start_best = std::max(start_best, f);
+    EXPECT_GE(search->bestFitness(), f);
+  }
+  EXPECT_GT(search->bestFitness(), start_best);
+  EXPECT_GT(search->bestFitness(), -1e-3);
+  EXPECT_EQ(minusSphere(search->best()), search->bestFitness());
+}
+
+TEST(Search, AFailedEvaluationCountsAsTheWorst) {
+  auto search = make("random", {{"x", 0, 1}});
+  search->ask();
+  search->tell(0.5);
+  search->ask();
+  search->tell(std::nan(""));
+  EXPECT_EQ(search->bestFitness(), 0.5);
+}
+
+TEST(Search, AskAndTellMustAlternate) {
+  auto search = make("random", {{"x", 0, 1}});
+  EXPECT_THROW(search->tell(1), std::logic_error);
+  search->ask();
+  EXPECT_THROW(search->ask(), std::logic_error);
+}
+
+TEST(Search, BadSettingsAreRefusedWithTheReason) {
+  Settings s;
+  EXPECT_THAT(makeSearch("annealing", {{"x", 0, 1}}, s).message(), HasSubstr("unknown algorithm 'annealing'"));
+  EXPECT_THAT(makeSearch("random", {}, s).message(), HasSubstr("no dimensions"));
+  EXPECT_THAT(makeSearch("random", {{"x", 2, 1}}, s).message(), HasSubstr("dimension 'x'"));
+  EXPECT_THAT(makeSearch("grid", {{"k", 0.2, 0.8, true}}, s).message(), HasSubstr("integer but its range holds none"));
+  s.population = 3;
+  EXPECT_THAT(makeSearch("differential_evolution", {{"x", 0, 1}}, s).message(), HasSubstr("population 3 is below 4"));
+  s.population = 0, s.CR = 1.5;
+  EXPECT_THAT(makeSearch("differential_evolution", {{"x", 0, 1}}, s).message(), HasSubstr("CR"));
+  s.CR = 0.9, s.budget = 0;
+  EXPECT_THAT(makeSearch("random", {{"x", 0, 1}}, s).message(), HasSubstr("budget 0"));
+}
+
+}  // namespace
