@@ -1,7 +1,8 @@
 // Node types only the ROS tests use (test/ros/test_plugins.xml, given to the runtime as
 // ~extra_plugin_xml): a separate plugin library, registered as any package's would be.
 #include <chrono>
-#include <thread>
+#include <condition_variable>
+#include <mutex>
 
 #include "apex/core/registry.hpp"
 #include "apex/ros/node_library.hpp"
@@ -17,13 +18,22 @@ class Busy : public apex::Node {
         .output<apex::Any>("out")
         .param(apex::param::range("seconds", 0.0, 600.0, 0.1, 1.0));
   }
+  ~Busy() override {
+    std::lock_guard<std::mutex> lock(m_);
+    gone_ = true;
+    cv_.notify_all();
+  }
   void process() override {
     log(apex::LogLevel::Info, "inside process() for " + std::to_string(seconds_.get()) + " s");
-    std::this_thread::sleep_for(std::chrono::duration<double>(seconds_.get()));
+    std::unique_lock<std::mutex> lock(m_);  // the computation: over after `seconds`, or when the node goes
+    cv_.wait_for(lock, std::chrono::duration<double>(seconds_.get()), [this] { return gone_; });
     out_.publishMessage(in_.message());
   }
 
  private:
+  std::mutex m_;
+  std::condition_variable cv_;
+  bool gone_ = false;
   apex::Input<apex::Any> in_{this, "in"};
   apex::Output<apex::Any> out_{this, "out"};
   apex::Param<double> seconds_{this, "seconds"};
