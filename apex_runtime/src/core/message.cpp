@@ -38,6 +38,11 @@ const TypeInfo* internType(const std::type_info& type, const std::string& name) 
 
 }  // namespace detail
 
+Message Message::endOfSequence() {
+  static const auto kToken = std::make_shared<const EndOfSequence>();  // one for the process: no allocation per pass
+  return share<EndOfSequence>(kToken);
+}
+
 const std::string& Message::typeName() const {
   static const std::string kNothing = "Nothing";
   return type_ ? type_->name : kNothing;

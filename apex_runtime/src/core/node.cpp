@@ -61,7 +61,7 @@ void Node::publishMessage(std::string_view output, Message message) {
 void Node::publishAt(int index, Message message) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const TypeInfo* want = s.manifest().outputs[index].type;
-  if (!message.isNothing() && !compatible(message.type(), want)) {
+  if (!message.isNothing() && !message.isEndOfSequence() && !compatible(message.type(), want)) {
     throw std::invalid_argument("node '" + s.name + "' published a " + message.typeName() + " on output '" +
                                 s.manifest().outputs[index].name + "', which carries " + want->name);
   }
@@ -92,7 +92,21 @@ void Node::trigger(std::string_view name) {
   s.fireTrigger(i);
 }
 
+void Node::endSequence() {
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
+  for (std::size_t i = 0; i < s.outputs.size(); ++i) s.setOutput(static_cast<int>(i), Message::endOfSequence());
+}
+
+std::vector<ParamTarget> Node::parameterTargets(std::string_view output) const {
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
+  const int i = s.findOutput(output);
+  if (i < 0) unknown(s, "output", output, s.manifest().listOutputs());
+  return s.parameterTargets(i);
+}
+
 void Node::triggerAt(int index) { stateOf(state_.load(std::memory_order_acquire)).fireTrigger(index); }
+
+void Node::reportError(const std::string& text) { stateOf(state_.load(std::memory_order_acquire)).reportError(text); }
 
 void Node::log(LogLevel level, const std::string& text) const { apex::log(level, name(), text); }
 

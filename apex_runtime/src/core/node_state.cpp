@@ -162,22 +162,29 @@ bool NodeState::fireIfReady() {
 
   bool skip = !active_enabled_;
   for (std::size_t i = 0; i < inputs.size(); ++i) take(*inputs[i], manifest().inputs[i].optional, skip);
+  bool end = false;  // the end of a sequence: passed on in step, whatever else the inputs hold
+  for (auto& in : inputs) end = end || in->current.isEndOfSequence();
 
-  if (!skip) {
-    try {
-      node->process();
-      if (has_error_.load(std::memory_order_relaxed)) clearError();
-    } catch (const std::exception& ex) {
-      setError("node '" + name + "' (" + type->id + ") threw: " + ex.what());
-    } catch (...) {
-      setError("node '" + name + "' (" + type->id + ") threw an exception that is not a std::exception");
-    }
-    if (has_error_.load(std::memory_order_relaxed))
-      for (auto& out : outputs) out.pending = Message();
+  bool ok = true;
+  in_handler_ = true;
+  if (end && active_enabled_) {
+    static const std::string kAtEnd = "at the end of a sequence";
+    ok = guarded(kAtEnd, [this] { node->endOfSequence(); });
+  } else if (end) {
+    for (auto& out : outputs) out.pending = Message::endOfSequence();  // a disabled node passes the end on
+  } else if (!skip) {
+    static const std::string kProcess;
+    ok = guarded(kProcess, [this] { node->process(); });
+    if (ok && !reported_ && has_error_.load(std::memory_order_relaxed)) clearError();
   }
-  bool data = false;  // consumed or produced a message: a frame, for rates
-  for (auto& in : inputs) data = data || !in->current.isNothing();
-  for (auto& out : outputs) data = data || !out.pending.isNothing();
+  in_handler_ = false;
+  reported_ = false;
+  if (!ok)
+    for (auto& out : outputs) out.pending = Message();
+  bool data = false;  // consumed or produced a frame (not Nothing, not the end token): for rates
+  auto frame = [](const Message& m) { return !m.isNothing() && !m.isEndOfSequence(); };
+  for (auto& in : inputs) data = data || frame(in->current);
+  for (auto& out : outputs) data = data || frame(out.pending);
   last_had_data_ = data;
   for (auto& out : outputs) {
     if (out.tap) out.tap(out.pending);
@@ -189,8 +196,23 @@ bool NodeState::fireIfReady() {
   for (std::size_t i = 0; i < params.size(); ++i)
     if (!params[i].out_edges.empty() || params[i].tap) publishParam(static_cast<int>(i), group);
   for (auto& in : inputs) in->current = Message();
-  if (!skip) fireTrigger(kProcessedIndex);
+  releaseTriggers();
+  if (!skip && !end) fireTrigger(kProcessedIndex);
   return true;
+}
+
+template <class F>
+bool NodeState::guarded(const std::string& what, F&& fn) {
+  auto where = [&] { return "node '" + name + "' (" + type->id + ")" + (what.empty() ? "" : " " + what); };
+  try {
+    fn();
+    return true;
+  } catch (const std::exception& ex) {
+    setError(where() + " threw: " + ex.what());
+  } catch (...) {
+    setError(where() + " threw an exception that is not a std::exception");
+  }
+  return false;
 }
 
 void NodeState::recordFiring(std::int64_t t, std::int64_t end) {
@@ -399,11 +421,64 @@ void NodeState::runSlot(int slot) {
     return;
   }
   if (slot >= static_cast<int>(manifest().slots.size())) return;  // posted before an interface change
-  try {
-    manifest().slots[slot].handler(*node);
-  } catch (const std::exception& ex) {
-    setError("node '" + name + "' (" + type->id + ") slot '" + manifest().slots[slot].name + "' threw: " + ex.what());
+  const std::string& slot_name = manifest().slots[slot].name;
+  in_handler_ = true;
+  const bool ok = guarded("slot '" + slot_name + "'", [&] { manifest().slots[slot].handler(*node); });
+  in_handler_ = false;
+  reported_ = false;
+  if (ok) {
+    sendFromSlot(slot_name);
+  } else {
+    for (auto& out : outputs) out.pending = Message();
   }
+  releaseTriggers();
+}
+
+void NodeState::sendFromSlot(const std::string& slot) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    OutputState& out = outputs[i];
+    if (out.pending.isNothing()) continue;
+    Message m = std::move(out.pending);
+    out.pending = Message();
+    // A counted edge may carry one message at a time: the slot cannot send while a receiver
+    // still holds the last one (the firing rule's exclusivity of the receiver's input).
+    const Edge* busy = nullptr;
+    int counted = 0;
+    for (auto& e : out.edges) {
+      if (e->unread.load(std::memory_order_acquire)) busy = e.get();
+      counted += e->counted() ? 1 : 0;
+    }
+    if (busy) {
+      setError("node '" + name + "' (" + type->id + ") slot '" + slot + "' published on output '" +
+               manifest().outputs[i].name + "' while '" + busy->to->name + "' had not read its last message: not sent");
+      continue;
+    }
+    if (out.tap) out.tap(m);
+    blockers.fetch_add(counted, std::memory_order_acq_rel);  // released as the receivers read, as after a firing
+    for (auto& e : out.edges) deliver(e, m);
+  }
+}
+
+void NodeState::reportError(const std::string& text) {
+  setError("node '" + name + "' (" + typeId() + "): " + text);
+  reported_ = in_handler_;  // outside a firing there is nothing to keep it from clearing
+}
+
+void NodeState::releaseTriggers() {
+  std::vector<int> held;
+  held.swap(held_triggers_);
+  for (int t : held) fireTrigger(t);
+}
+
+std::vector<ParamTarget> NodeState::parameterTargets(int index) const {
+  std::vector<ParamTarget> out;
+  for (const auto& e : outputs[index].edges) {
+    if (!e->to_param || e->dead) continue;
+    NodeState& to = *e->to;
+    std::lock_guard<std::mutex> lock(to.state_mutex);  // its interface and values change under it
+    out.push_back({to.name, to.manifest().params[e->to_index], to.params[e->to_index].requested});
+  }
+  return out;
 }
 
 void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) {
@@ -437,6 +512,10 @@ void NodeState::runDownstreamChanged() {
 }
 
 void NodeState::fireTrigger(int trigger) {
+  if (in_handler_) {
+    held_triggers_.push_back(trigger);
+    return;
+  }
   for (auto& e : trigger_edges[trigger]) {
     const int slot = e->slot;
     e->to->post([slot](NodeState& n) { n.runSlot(slot); });

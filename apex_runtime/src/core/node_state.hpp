@@ -160,8 +160,14 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void receiveParam(Edge& edge, const Message& m);
   /** The node set its own parameter (Node::updateParam); a pending request stays and wins. */
   void updateParam(int index, ParamValue v);
+  /** Sends an event; from process() or a slot handler it waits until the messages published
+   *  there have left (releaseTriggers), so a receiver of both sees the data first. */
   void fireTrigger(int trigger);
   void setOutput(int index, Message m);
+  /** Node::reportError: the node's error, kept past the end of this firing. */
+  void reportError(const std::string& text);
+  /** The parameter inputs output `index` feeds (Node::parameterTargets). */
+  std::vector<ParamTarget> parameterTargets(int index) const;
 
   // --- any thread ---
   /** Releases k blockers; at zero the node is queued. `here`: the group whose thread is
@@ -206,6 +212,16 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void publishParam(int index, ThreadGroup* here = nullptr);
   void setError(std::string text);
   void clearError();
+  /** Runs node code (process(), endOfSequence(), a slot); a throw becomes the node's error,
+   *  "node 'n' (type) <what> threw: ...". False if it threw. */
+  template <class F>
+  bool guarded(const std::string& what, F&& fn);
+  /** Sends what a slot handler published, where every receiver has read the last message. */
+  void sendFromSlot(const std::string& slot);
+  void releaseTriggers();
+  bool in_handler_ = false;          // group thread: process() or a slot handler runs
+  bool reported_ = false;            // group thread: reportError() in this firing
+  std::vector<int> held_triggers_;   // group thread: fired there, sent after its messages
 
   const bool driven_;  // the type's source mode: an interface keeps it
   bool active_enabled_ = true;

@@ -12,7 +12,7 @@ struct Inspection::Tap {
   ros::Publisher pub;
 
   void onMessage(const Message& m) {  // on the node's thread group
-    if (m.isNothing()) return;
+    if (m.isNothing() || m.isEndOfSequence()) return;  // no frame to show
     std::lock_guard<std::mutex> lock(mutex);
     if (!pub) {
       inspector = findInspector(m.type());

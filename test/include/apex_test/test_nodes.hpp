@@ -163,6 +163,37 @@ class Collector : public Node {
   std::vector<Message> got_;
 };
 
+/** A driven source playing 0..frames-1 on `restart`, then the end of the sequence. */
+class Sequence : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("plays a short sequence")
+        .output<int>("out")
+        .slot("restart", &Sequence::restart)
+        .trigger("finished")
+        .param(param::integer("frames", 3))
+        .driven();
+  }
+  void restart() {
+    next_ = 0;
+    notifyNewData();
+  }
+  void process() override {
+    if (next_ < 0) return;
+    if (next_ == param<int>("frames")) {
+      next_ = -1;
+      endSequence();
+      trigger("finished");
+      return;
+    }
+    publish("out", next_++);
+    notifyNewData();
+  }
+
+ private:
+  int next_ = -1;
+};
+
 /** A registry with every test type. */
 inline NodeRegistry testRegistry() {
   NodeRegistry r;
@@ -174,6 +205,7 @@ inline NodeRegistry testRegistry() {
   EXPECT_TRUE(r.add<Thrower>("test/Thrower"));
   EXPECT_TRUE(r.add<Counter>("test/Counter"));
   EXPECT_TRUE(r.add<Collector>("test/Collector"));
+  EXPECT_TRUE(r.add<Sequence>("test/Sequence"));
   return r;
 }
 

@@ -20,6 +20,9 @@ struct TypeInfo {
 /** @brief Marker type for ports that accept or send any message (e.g. a relay). */
 struct Any {};
 
+/** @brief The payload of the end-of-sequence token (Message::endOfSequence()). */
+struct EndOfSequence {};
+
 /** @brief Readable type names; specialise for your own types, or use APEX_TYPE_NAME. */
 template <class T>
 struct TypeName {
@@ -66,7 +69,14 @@ class Message {
     return share<T>(std::make_shared<const T>(std::move(value)));
   }
 
+  /** @brief The end-of-sequence token: a source that plays a sequence (a bag's pass) sends it
+   *  on every output after the last frame. It travels like a frame, so it reaches every node
+   *  downstream after that frame: a node is told in Node::endOfSequence() instead of
+   *  process(), and by default sends it on. It passes every output, whatever its type. */
+  static Message endOfSequence();
+
   bool isNothing() const { return data_ == nullptr; }
+  bool isEndOfSequence() const;
   /** @brief The payload's type; nullptr for Nothing. */
   const TypeInfo* type() const { return type_; }
   /** @brief The payload's readable type name, "Nothing" for the token. */
@@ -101,3 +111,6 @@ APEX_TYPE_NAME(double, "double");
 APEX_TYPE_NAME(std::string, "string");
 APEX_TYPE_NAME(std::vector<double>, "list<double>");
 APEX_TYPE_NAME(apex::Any, "any");
+APEX_TYPE_NAME(apex::EndOfSequence, "end of sequence");
+
+inline bool apex::Message::isEndOfSequence() const { return type_ == typeOf<EndOfSequence>(); }

@@ -21,6 +21,13 @@ namespace apex {
 
 class Handle;
 class Node;
+
+/** @brief A parameter input that one of a node's outputs feeds (Node::parameterTargets). */
+struct ParamTarget {
+  std::string node;  ///< the receiving node's name
+  ParamSpec spec;    ///< its parameter's declaration (name, kind, range, step)
+  ParamValue value;  ///< the value it holds now
+};
 namespace detail {
 class NodeState;
 /** Resolves every typed handle of `node` against `iface`; the first error, naming the handle. */
@@ -44,6 +51,11 @@ class Node {
   /** @brief One firing: every connected input holds a message. Throwing puts the
    *  node in an error state for this firing; its outputs send Nothing. */
   virtual void process() = 0;
+  /** @brief Called instead of process() in a firing where an input holds the end-of-sequence
+   *  token (Message::endOfSequence()). The default sends it on every output (endSequence()),
+   *  so the end of a sequence reaches every node downstream, after its last frame. A node
+   *  that sums a sequence up publishes its result here instead. */
+  virtual void endOfSequence() { endSequence(); }
   /** @brief Called on the node's thread group before a firing, after a parameter changed. */
   virtual void parameterChanged(const std::string& /*name*/) {}
   /** @brief Sources only: called on the node's thread group after an edit downstream of it
@@ -90,7 +102,10 @@ class Node {
   /** @brief True when the input holds a message (not Nothing) this firing. */
   bool hasInput(std::string_view name) const { return !inputMessage(name).isNothing(); }
 
-  /** @brief Sends on an output; an output not published this firing sends Nothing. */
+  /** @brief Sends on an output; an output not published this firing sends Nothing.
+   *  A slot handler may publish too: its messages leave when it returns, on outputs whose
+   *  receivers have all read the last message (else it is dropped and the node reports it);
+   *  outputs it does not publish send nothing at all. */
   void publishMessage(std::string_view output, Message message);
   template <class T>
   void publish(std::string_view output, std::shared_ptr<const T> payload) {
@@ -116,8 +131,21 @@ class Node {
    *  wins. Throws std::invalid_argument for an unknown parameter or a value its spec refuses. */
   void updateParam(std::string_view name, ParamValue value);
 
-  /** @brief Sends an event on one of the node's triggers. */
+  /** @brief Sends the end-of-sequence token on every output this firing. */
+  void endSequence();
+
+  /** @brief Sends an event on one of the node's triggers. From process() or a slot handler,
+   *  events leave after the messages it published: a receiver of both sees the data first. */
   void trigger(std::string_view name);
+
+  /** @brief The parameter inputs an output feeds now, in connection order (for process() and
+   *  slot handlers). Throws std::invalid_argument for an unknown output. */
+  std::vector<ParamTarget> parameterTargets(std::string_view output) const;
+
+  /** @brief Puts the node in an error state as a throw would, but what it published still goes
+   *  out (e.g. a run that stopped gives its targets their values back). The next process() that
+   *  neither throws nor reports clears it. For process(), slot handlers and setup(). */
+  void reportError(const std::string& text);
 
   /** @brief Logs a line named after this node (rosconsole under the ROS host). */
   void log(LogLevel level, const std::string& text) const;

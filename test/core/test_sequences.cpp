@@ -1,0 +1,211 @@
+// Sequences and the rules an optimisation loop relies on: the end-of-sequence token travels in
+// step with the frames, events leave after the messages of the same firing or slot, a slot may
+// publish, a node sees the parameters its outputs feed, and reportError keeps what was sent.
+#include <gmock/gmock.h>
+
+#include <thread>
+
+#include "apex_test/test_nodes.hpp"
+
+using namespace apex_test;
+using ::testing::HasSubstr;
+
+namespace {
+
+/** Sums its input; at the end of a sequence sends the sum and starts again. */
+class Summer : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("sums a sequence").input<int>("in").output<int>("sum").slot("announce", &Summer::announce);
+  }
+  void process() override { sum_ += *input<int>("in"); }
+  void endOfSequence() override {
+    publish("sum", sum_);
+    sum_ = 0;
+  }
+  void announce() { publish("sum", -1); }  // from a slot
+
+ private:
+  int sum_ = 0;
+};
+
+/** Publishes the values of a parameter its output feeds, and a value, from a slot. */
+class Setter : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("sets a parameter")
+        .output<int>("value")
+        .slot("send", &Setter::send)
+        .trigger("sent")
+        .param(param::integer("to", 7))
+        .driven();  // fires only when told: its slot sends
+  }
+  void process() override {}
+  void send() {
+    targets = parameterTargets("value");
+    publish("value", param<int>("to"));
+    trigger("sent");
+  }
+  std::vector<ParamTarget> targets;
+};
+
+/** Per input: sends it on, fires `sent`, then works a while (the event must still wait). */
+class SlowSetter : public Node {
+ public:
+  static Manifest manifest() { return Manifest("sets a parameter slowly").input<int>("in").output<int>("value").trigger("sent"); }
+  void process() override {
+    publish("value", *input<int>("in"));
+    trigger("sent");
+    std::this_thread::sleep_for(20ms);  // the rest of a long process(): its messages leave only after it
+  }
+};
+
+/** Reports the gain it holds when its slot runs. */
+class GainProbe : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("records its gain on an event")
+        .slot("probe", &GainProbe::probe)
+        .param(param::range("gain", 0, 100, 1, 1).makeInteractive());
+  }
+  void process() override {}
+  void probe() { seen.push_back(param<int>("gain")); }
+  std::vector<int> seen;
+};
+
+/** Reports an error and still publishes. */
+class Reporter : public Node {
+ public:
+  static Manifest manifest() { return Manifest("reports").input<int>("in").output<int>("out"); }
+  void process() override {
+    const int v = *input<int>("in");
+    if (v < 0) reportError("negative input " + std::to_string(v));
+    publish("out", v);
+  }
+};
+
+NodeRegistry registry() {
+  NodeRegistry r = testRegistry();
+  EXPECT_TRUE(r.add<Summer>("test/Summer"));
+  EXPECT_TRUE(r.add<Setter>("test/Setter"));
+  EXPECT_TRUE(r.add<SlowSetter>("test/SlowSetter"));
+  EXPECT_TRUE(r.add<GainProbe>("test/GainProbe"));
+  EXPECT_TRUE(r.add<Reporter>("test/Reporter"));
+  return r;
+}
+
+TEST(Sequences, TheEndTravelsInStepThroughAChainAndADisabledNode) {
+  Graph g(registry());
+  add(g, "test/Sequence", "seq");
+  add(g, "test/Relay", "a", "one");
+  add(g, "test/Relay", "b", "two");  // disabled below: passes the end on all the same
+  add(g, "test/Summer", "sum", "three");
+  add(g, "test/Collector", "sums");
+  link(g, "seq", "out", "a", "in");
+  link(g, "a", "out", "b", "in");
+  link(g, "b", "out", "sum", "in");
+  link(g, "sum", "sum", "sums", "in");
+  ASSERT_TRUE(g.setParameter("seq", "frames", "50"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("seq", "restart"));
+  ASSERT_TRUE(object<Collector>(g, "sums")->waitFor(50 + 1));  // Nothing per frame, then the sum
+  auto got = object<Collector>(g, "sums")->ints();
+  EXPECT_EQ(got.back(), 49 * 50 / 2) << "the end arrived before the last frames";
+  ASSERT_TRUE(g.setEnabled("b", false));
+  ASSERT_TRUE(g.fireSlot("seq", "restart"));
+  ASSERT_TRUE(object<Collector>(g, "sums")->waitFor(2 * 51));
+  EXPECT_EQ(object<Collector>(g, "sums")->ints().back(), 0) << "a disabled node sends Nothing, and the end";
+  EXPECT_TRUE(g.waitIdle(kWait));
+}
+
+TEST(Sequences, EventsLeaveAfterTheMessagesOfTheirFiringAndSlot) {
+  // The setter's value reaches the probe's gain (another group) before its event reaches the probe.
+  Graph g(registry());
+  add(g, "test/Setter", "set", "one");
+  add(g, "test/GainProbe", "probe", "two");
+  link(g, "set", "value", "probe", "gain");
+  link(g, "set", "sent", "probe", "probe");
+  g.start();
+  for (int v = 10; v < 60; ++v) {
+    ASSERT_TRUE(g.setParameter("set", "to", std::to_string(v)));
+    ASSERT_TRUE(g.fireSlot("set", "send"));
+    ASSERT_TRUE(g.waitIdle(kWait));
+  }
+  const auto& seen = object<GainProbe>(g, "probe")->seen;
+  ASSERT_EQ(seen.size(), 50u);
+  for (int i = 0; i < 50; ++i) EXPECT_EQ(seen[i], 10 + i) << "the event overtook the value";
+}
+
+TEST(Sequences, EventsFromProcessLeaveAfterItsMessagesHoweverLongItTakes) {
+  Graph g(registry());
+  add(g, "test/Feeder", "src");
+  add(g, "test/SlowSetter", "set", "one");
+  add(g, "test/GainProbe", "probe", "two");
+  link(g, "src", "out", "set", "in");
+  link(g, "set", "value", "probe", "gain");
+  link(g, "set", "sent", "probe", "probe");
+  g.start();
+  for (int v = 10; v < 15; ++v) object<Feeder>(g, "src")->feed(v);
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(object<GainProbe>(g, "probe")->seen, (std::vector<int>{10, 11, 12, 13, 14}));
+}
+
+TEST(Sequences, ASlotPublishesAndSeesTheParametersItFeeds) {
+  Graph g(registry());
+  add(g, "test/Setter", "set");
+  add(g, "test/GainProbe", "probe");
+  link(g, "set", "value", "probe", "gain");
+  ASSERT_TRUE(g.setParameter("probe", "gain", "42"));
+  g.start();
+  ASSERT_TRUE(g.waitIdle(kWait));
+  ASSERT_TRUE(g.fireSlot("set", "send"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  const auto& targets = object<Setter>(g, "set")->targets;
+  ASSERT_EQ(targets.size(), 1u);
+  EXPECT_EQ(targets[0].node, "probe");
+  EXPECT_EQ(targets[0].spec.name, "gain");
+  EXPECT_EQ(targets[0].spec.max, 100);
+  EXPECT_EQ(std::get<int>(targets[0].value), 42);
+  EXPECT_EQ(std::get<int>(g.parameterValue("probe", "gain").value()), 7) << "the slot's message did not arrive";
+}
+
+TEST(Sequences, ASlotThatCannotSendBecauseTheReceiverHoldsTheLastMessageSaysSo) {
+  Graph g(registry());
+  add(g, "test/Summer", "sum", "one");
+  add(g, "test/Collector", "out", "two");
+  add(g, "test/Feeder", "src");
+  link(g, "src", "out", "sum", "in");
+  link(g, "sum", "sum", "out", "in");
+  // not started: nobody reads what the first slot sends
+  ASSERT_TRUE(g.fireSlot("sum", "announce"));
+  ASSERT_TRUE(g.fireSlot("sum", "announce"));
+  g.start();
+  ASSERT_TRUE(object<Collector>(g, "out")->waitFor(1));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(object<Collector>(g, "out")->ints(), std::vector<int>{-1});
+  const auto stats = g.nodeStats();
+  EXPECT_THAT(stats[0].error, HasSubstr("slot 'announce' published on output 'sum' while 'out' had not read"));
+  object<Feeder>(g, "src")->feed(1);  // the firing rule holds: the node fires again once read
+  ASSERT_TRUE(object<Collector>(g, "out")->waitFor(2));
+}
+
+TEST(Sequences, AReportedErrorStaysWhileTheOutputsGoOut) {
+  Graph g(registry());
+  add(g, "test/Feeder", "src");
+  add(g, "test/Reporter", "r");
+  add(g, "test/Collector", "out");
+  link(g, "src", "out", "r", "in");
+  link(g, "r", "out", "out", "in");
+  g.start();
+  object<Feeder>(g, "src")->feed(-3);
+  ASSERT_TRUE(object<Collector>(g, "out")->waitFor(1));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(object<Collector>(g, "out")->ints(), std::vector<int>{-3});
+  EXPECT_THAT(g.nodeStats()[1].error, HasSubstr("node 'r' (test/Reporter): negative input -3"));
+  object<Feeder>(g, "src")->feed(4);
+  ASSERT_TRUE(object<Collector>(g, "out")->waitFor(2));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(g.nodeStats()[1].error, "");
+}
+
+}  // namespace
