@@ -4,7 +4,8 @@
 // takes them) and never drops: the next frame waits until the graph has read
 // the last one. Seeks in O(log n) (bag_frames.hpp). While paused it holds its
 // frame and sends it again after any change downstream, so a parameter's
-// effect shows on that frame at once.
+// effect shows on that frame at once. After the last frame of a pass it sends the
+// end-of-sequence token, so nodes downstream (SequenceMean) know the pass is over.
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -95,7 +96,8 @@ class BagReader : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Plays a bag: one output per topic, one firing per frame; seeks, holds a frame")
         .output<double>("stamp", "record time of the frame's first message, seconds")
-        .trigger("finished", "fires after the last frame of each pass")
+        .trigger("finished", "fires after the last frame of each pass, with the end-of-sequence token that "
+                             "follows that frame on every output")
         .slot("restart", &BagReader::restart, "back to the first frame (and send it)")
         .slot("next", &BagReader::next, "send the next frame")
         .slot("previous", &BagReader::previous, "send the previous frame")
@@ -148,6 +150,15 @@ class BagReader : public apex::Node {
 
   void process() override {
     if (!bag_ || frames_.empty()) return;
+    if (end_pending_) {  // the pass's end, one firing behind its last frame: in step with it
+      end_pending_ = false;
+      endSequence();
+      finished_.fire();
+      // What comes next fires again: a frame asked for, or the next pass now (a later one has its timer).
+      const bool due = playing_.get() && next_ <= last_ && std::chrono::steady_clock::now() >= due_;
+      if (request_ >= 0 || due) notifyNewData();
+      return;
+    }
     int k;
     const bool requested = request_ >= 0;
     if (requested) {
@@ -159,11 +170,14 @@ class BagReader : public apex::Node {
       return;  // paused, past the end, or an early wake-up: the timer for the next frame is set
     }
     next_ = k + 1;
-    const bool pass_ends = k == last_ && !requested;
+    const bool pass_ends = k == last_ && (!requested || playing_.get());  // stepping by hand ends nothing
     if (pass_ends && loop_.get()) next_ = first_;
     if (playing_.get() && next_ <= last_) schedule(k);
+    if (pass_ends) {
+      end_pending_ = true;
+      notifyNewData();
+    }
     send(k);  // last: a malformed message fails this frame only, the next one is on its way
-    if (pass_ends) finished_.fire();
   }
 
   void restart() {
@@ -180,6 +194,7 @@ class BagReader : public apex::Node {
  private:
   void open() {
     opened_ = true;
+    end_pending_ = false;
     closeBag(bag_);
     frames_.clear();
     current_ = request_ = -1;
@@ -292,6 +307,7 @@ class BagReader : public apex::Node {
   int request_ = -1;           // a frame asked for by a seek, a slot or a change downstream
   bool opened_ = false;
   bool seek_on_open_ = false;
+  bool end_pending_ = false;  // the last frame of a pass went out: the end-of-sequence token follows
   std::chrono::steady_clock::time_point due_;
 };
 

@@ -69,11 +69,15 @@ class Player {
     EXPECT_TRUE(added) << added.message();
     for (const char* sink : {"images", "clouds", "frames", "stamps"}) add(g_, "test/Collector", sink);
     add(g_, "test/Counter", "passes");
+    add(g_, "apex_nodes/SequenceMean", "per_pass");  // counts the frames of a pass, at its end
+    add(g_, "test/Collector", "pass_lengths");
     link(g_, "bag", "camera_image_raw", "images", "in");
     link(g_, "bag", "camera_points", "clouds", "in");
     link(g_, "bag", "frame", "frames", "in");
     link(g_, "bag", "stamp", "stamps", "in");
     link(g_, "bag", "finished", "passes", "reset");
+    link(g_, "bag", "stamp", "per_pass", "value");
+    link(g_, "per_pass", "count", "pass_lengths", "in");
     g_.start();
   }
   static NodeDescription description(const std::string& file, const std::string& extra) {
@@ -122,6 +126,8 @@ TEST(BagReader, TheMessagesOfAFrameLeaveInOneFiringAndFinishedFiresOncePerPass) 
   ASSERT_TRUE(p.sink("stamps").waitFor(40));
   ASSERT_TRUE(p.graph().waitIdle(kWait));
   ASSERT_TRUE(object<Counter>(p.graph(), "passes")->resets == 1);
+  // the end of the pass follows its last frame: all 40 are counted before it
+  EXPECT_EQ(p.sink("pass_lengths").ints().back(), 40);
   for (const char* sink : {"images", "clouds", "stamps"}) {  // frame: a parameter output, it never holds the player
     SCOPED_TRACE(sink);
     const auto got = p.sink(sink).messages();

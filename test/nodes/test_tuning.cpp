@@ -1,0 +1,313 @@
+// The tuning loop's nodes: Optimizer, SequenceMean, RegionScore. The loop runs as in
+// graphs/tune_paper_pipeline.yaml, with a short sequence in place of the bag and a probe in
+// place of the detector: each frame reports the probe's parameter, so the score of a candidate
+// is its own value exactly when its values were in effect for every frame of its evaluation.
+#include <gmock/gmock.h>
+
+#include <fstream>
+#include <thread>
+
+#include "apex_nodes/types.hpp"
+#include "apex_test/node_harness.hpp"
+
+using namespace apex_test;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+namespace {
+
+/** Per frame, sends the value of its parameter `gain`; `size` steps by 2 (odd sizes). */
+class Probe : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("reports its parameters per frame")
+        .input<int>("in")
+        .output<double>("out")
+        .output<int>("size_out")
+        .param(param::range("gain", 0.0, 100.0, 0.0, 5.0).makeInteractive())
+        .param(param::range("size", 3, 101, 2, 3).makeInteractive());
+  }
+  void process() override {
+    publish("out", param<double>("gain"));
+    publish("size_out", param<int>("size"));
+  }
+};
+
+const NodeRegistry& registry() {
+  static NodeRegistry* r = [] {
+    auto* reg = new NodeRegistry(pluginRegistry());
+    EXPECT_TRUE(reg->add<Probe>("test/Probe"));
+    return reg;
+  }();
+  return *r;
+}
+
+/** A parameter's value as text; a string as it is. */
+std::string param(Graph& g, const std::string& node, const std::string& name) {
+  const ParamValue v = g.parameterValue(node, name).value();
+  if (const auto* s = std::get_if<std::string>(&v)) return *s;
+  return toText(v);
+}
+
+/** Waits until the optimiser's state starts with `prefix`. */
+bool waitState(Graph& g, const std::string& prefix, double timeout = kWait) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+  while (std::chrono::steady_clock::now() < until) {
+    if (param(g, "opt", "state").rfind(prefix, 0) == 0) return true;
+    std::this_thread::sleep_for(1ms);
+  }
+  return false;
+}
+
+std::vector<double> doubles(Collector* c) {
+  std::vector<double> out;
+  for (const auto& m : c->messages())
+    if (auto v = m.as<double>()) out.push_back(*v);
+  return out;
+}
+
+/** sequence → relay → probe → mean → optimiser, the optimiser's `gain` → the probe's gain;
+ *  evaluate → restart and reset. Four thread groups. */
+struct Loop {
+  Graph g{registry()};
+  explicit Loop(int frames = 20, const std::string& dims = "[gain 0 100]") {
+    add(g, "test/Sequence", "seq", "player");
+    add(g, "test/Relay", "relay", "one");
+    add(g, "test/Probe", "probe", "two");
+    add(g, "apex_nodes/SequenceMean", "mean");
+    add(g, "apex_nodes/Optimizer", "opt");
+    add(g, "test/Collector", "seen");        // what the probe reports, per frame
+    add(g, "test/Collector", "candidates");  // what the optimiser sends
+    EXPECT_TRUE(g.setParameter("seq", "frames", std::to_string(frames)));
+    EXPECT_TRUE(g.setParameter("opt", "dimensions", dims));
+    link(g, "seq", "out", "relay", "in");
+    link(g, "relay", "out", "probe", "in");
+    link(g, "probe", "out", "mean", "value");
+    link(g, "probe", "out", "seen", "in");
+    link(g, "mean", "mean", "opt", "fitness");
+    link(g, "opt", "gain", "probe", "gain");
+    link(g, "opt", "gain", "candidates", "in");
+    link(g, "opt", "evaluate", "seq", "restart");
+    link(g, "opt", "evaluate", "mean", "reset");
+  }
+  Collector* seen() { return object<Collector>(g, "seen"); }
+  Collector* candidates() { return object<Collector>(g, "candidates"); }
+};
+
+TEST(Optimizer, EachCandidateIsInEffectForEveryFrameOfItsEvaluationAndNoneOfThePrevious) {
+  Loop loop(20);
+  Graph& g = loop.g;
+  ASSERT_TRUE(g.setParameter("opt", "algorithm", "random"));
+  ASSERT_TRUE(g.setParameter("opt", "budget", "15"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(waitState(g, "finished")) << param(g, "opt", "state");
+  ASSERT_TRUE(g.waitIdle(kWait));
+
+  const auto candidates = doubles(loop.candidates());
+  ASSERT_EQ(candidates.size(), 16u) << "15 candidates, then the value from before the run";
+  EXPECT_EQ(candidates.back(), 5.0);
+  EXPECT_EQ(param(g, "probe", "gain"), "5.0") << "the run gives the tuned parameter its value back";
+  const auto seen = doubles(loop.seen());
+  ASSERT_EQ(seen.size(), 15u * 20u);
+  for (std::size_t k = 0; k < 15; ++k)
+    for (std::size_t f = 0; f < 20; ++f)
+      ASSERT_EQ(seen[k * 20 + f], candidates[k]) << "evaluation " << k << ", frame " << f;
+  const double best = *std::max_element(candidates.begin(), candidates.end() - 1);
+  EXPECT_THAT(param(g, "opt", "state"), HasSubstr("finished after 15 evaluations; best "));
+  EXPECT_THAT(param(g, "opt", "state"), HasSubstr("at {gain: " + toText(best) + "}"));
+  EXPECT_EQ(g.nodeStats()[4].error, "");
+}
+
+TEST(Optimizer, TheSameSeedGivesTheSameCandidatesAndApplyBestSetsTheBest) {
+  Loop loop(3);
+  Graph& g = loop.g;
+  ASSERT_TRUE(g.setParameter("opt", "budget", "12"));
+  ASSERT_TRUE(g.setParameter("opt", "population", "5"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(waitState(g, "finished"));
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(waitState(g, "running"));
+  ASSERT_TRUE(waitState(g, "finished"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  const auto c = doubles(loop.candidates());
+  ASSERT_EQ(c.size(), 26u);
+  EXPECT_EQ(std::vector<double>(c.begin(), c.begin() + 13), std::vector<double>(c.begin() + 13, c.end()));
+  const double best = *std::max_element(c.begin(), c.begin() + 12);
+
+  ASSERT_TRUE(g.fireSlot("opt", "apply_best"));
+  ASSERT_TRUE(waitState(g, "applied"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(param(g, "probe", "gain"), toText(best));
+  EXPECT_THAT(param(g, "opt", "state"), HasSubstr("{gain: " + toText(best) + "}"));
+}
+
+TEST(Optimizer, RangesAndStepsComeFromTheTunedParameter) {
+  Loop loop(2, "[gain, size int]");
+  Graph& g = loop.g;
+  link(g, "opt", "size", "probe", "size");
+  add(g, "test/Collector", "sizes");
+  link(g, "probe", "size_out", "sizes", "in");
+  ASSERT_TRUE(g.setParameter("opt", "budget", "30"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(waitState(g, "finished"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  for (double v : doubles(loop.seen())) EXPECT_TRUE(v >= 0 && v <= 100) << v;
+  for (int v : object<Collector>(g, "sizes")->ints())
+    if (v != -999) EXPECT_TRUE(v >= 3 && v <= 101 && v % 2 == 1) << v;
+}
+
+TEST(Optimizer, StartRefusesWhatCannotRunAndSaysWhy) {
+  Graph g(registry());
+  add(g, "apex_nodes/Optimizer", "opt");
+  g.start();
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats()[0].error, HasSubstr("no dimensions"));
+  ASSERT_TRUE(g.setParameter("opt", "dimensions", "[c 0 60]"));
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats()[0].error, HasSubstr("dimension 'c': its output feeds no parameter"));
+  auto bad = g.setParameter("opt", "dimensions", "[c 60 0]");
+  ASSERT_FALSE(bad);
+  EXPECT_THAT(bad.message(), HasSubstr("min is above max"));
+  EXPECT_THAT(g.setParameter("opt", "dimensions", "[c zero]").message(), HasSubstr("cannot read 'zero'"));
+  ASSERT_TRUE(g.fireSlot("opt", "apply_best"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats()[0].error, HasSubstr("no best values yet"));
+}
+
+/** A run that loses a tuned parameter mid-run: removed or unlinked. */
+void loseATargetMidRun(const std::function<void(Graph&)>& cut) {
+  Loop loop(30, "[gain 0 100, other 0 100]");
+  Graph& g = loop.g;
+  add(g, "test/Probe", "probe2", "three");
+  link(g, "opt", "other", "probe2", "gain");
+  ASSERT_TRUE(g.setParameter("opt", "budget", "1000"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(waitState(g, "running: evaluation 3"));
+  cut(g);
+  ASSERT_TRUE(waitState(g, "stopped")) << param(g, "opt", "state");
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats()[4].error, HasSubstr("dimension 'other' lost its parameter"));
+  EXPECT_EQ(param(g, "probe", "gain"), "5.0") << "the parameter still tuned gets its value back";
+  // the graph still runs: the sequence plays when asked
+  const auto before = loop.seen()->size();
+  ASSERT_TRUE(g.fireSlot("seq", "restart"));
+  ASSERT_TRUE(loop.seen()->waitFor(before + 30));
+}
+
+TEST(Optimizer, RemovingATunedNodeMidRunStopsTheRunWithAnError) {
+  loseATargetMidRun([](Graph& g) { ASSERT_TRUE(g.removeNode("probe2")); });
+}
+
+TEST(Optimizer, DisconnectingAnOutputMidRunStopsTheRunWithAnError) {
+  loseATargetMidRun([](Graph& g) { ASSERT_TRUE(g.disconnect("opt", "other", "probe2", "gain")); });
+}
+
+TEST(Optimizer, AGraphSavedMidRunLoadsWithAClearErrorAndTheRunGoesOn) {
+  Loop loop(30);
+  Graph& g = loop.g;
+  ASSERT_TRUE(g.setParameter("opt", "budget", "40"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(waitState(g, "running: evaluation 2"));
+  const GraphDescription saved = g.describe();
+
+  Graph copy(registry());
+  ASSERT_TRUE(copy.load(saved));
+  copy.start();
+  ASSERT_TRUE(copy.waitIdle(kWait));
+  std::string error;
+  for (const auto& s : copy.nodeStats())
+    if (s.name == "opt") error = s.error;
+  EXPECT_THAT(error, HasSubstr("saved while a run was in progress (running: evaluation"));
+  EXPECT_THAT(param(copy, "opt", "state"), StartsWith("interrupted (running: evaluation"));
+  ASSERT_TRUE(waitState(g, "finished", 60)) << "the original run went on";
+}
+
+TEST(SequenceMean, SendsTheMeanAtTheEndOfEachSequenceAndOnFinish) {
+  Graph g(registry());
+  add(g, "test/Sequence", "seq");
+  add(g, "test/Probe", "probe");
+  add(g, "apex_nodes/SequenceMean", "mean");
+  add(g, "test/Collector", "means");
+  add(g, "test/Collector", "counts");
+  link(g, "seq", "out", "probe", "in");
+  link(g, "probe", "out", "mean", "value");
+  link(g, "mean", "mean", "means", "in");
+  link(g, "mean", "count", "counts", "in");
+  ASSERT_TRUE(g.setParameter("seq", "frames", "4"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("seq", "restart"));
+  ASSERT_TRUE(object<Collector>(g, "means")->waitFor(5));
+  ASSERT_TRUE(g.setParameter("probe", "gain", "7"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  ASSERT_TRUE(g.fireSlot("seq", "restart"));
+  ASSERT_TRUE(object<Collector>(g, "means")->waitFor(10));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  ASSERT_TRUE(g.fireSlot("mean", "finish"));  // by hand, with nothing since: 0 of 0
+  ASSERT_TRUE(object<Collector>(g, "means")->waitFor(11));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(doubles(object<Collector>(g, "means")), (std::vector<double>{5, 7, 0}));
+  std::vector<int> counts;
+  for (int c : object<Collector>(g, "counts")->ints())
+    if (c != -999) counts.push_back(c);
+  EXPECT_EQ(counts, (std::vector<int>{4, 4, 0}));
+}
+
+// ---------------------------------------------------------------- RegionScore
+
+apex_nodes::Regions regions(std::uint64_t stamp_ns, cv::Size size, std::vector<cv::Rect> boxes) {
+  apex_nodes::Regions r;
+  r.header.stamp.fromNSec(stamp_ns);
+  r.image_size = size;
+  for (const auto& b : boxes) r.regions.push_back({b, static_cast<double>(b.area()), {}});
+  return r;
+}
+
+std::string writeTruth(const std::string& text) {
+  static int files = 0;
+  const std::string path =
+      ::testing::TempDir() + "/apex_truth_" + std::to_string(::getpid()) + "_" + std::to_string(++files) + ".yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+double scoreOf(NodeHarness& h, const apex_nodes::Regions& r) {
+  const Message m = h.run({Message::make(r)});
+  return m.isNothing() ? -1 : *m.as<double>();
+}
+
+TEST(RegionScore, MatchesBoxesByStampAndOverlapThroughTheCameraRotation) {
+  const std::string truth = writeTruth(
+      "scene_size: [640, 480]\ncamera_rotation: 90\nframes:\n"
+      "  - {stamp: 1000000000, signs: 2, boxes: [[100, 50, 80, 60], [300, 200, 100, 100]]}\n"
+      "  - {stamp: 1100000000, signs: 0, boxes: []}\n");
+  NodeHarness h("apex_nodes/RegionScore", {"regions"}, "f1");
+  h.set("truth", truth);
+  const cv::Size upright(640, 480), turned(480, 640);
+  // both found, upright
+  EXPECT_DOUBLE_EQ(scoreOf(h, regions(1000000000, upright, {{102, 52, 80, 60}, {300, 200, 100, 100}})), 1.0);
+  // one found, one false region: precision 1/2, recall 1/2
+  EXPECT_DOUBLE_EQ(scoreOf(h, regions(1000000000, upright, {{100, 50, 80, 60}, {0, 0, 10, 10}})), 0.5);
+  // the same two in the camera's turned image: x' = 480 - y - h, y' = x
+  EXPECT_DOUBLE_EQ(scoreOf(h, regions(1000000000, turned, {{370, 100, 60, 80}, {180, 300, 100, 100}})), 1.0);
+  // the stamp within a millisecond; an empty frame found empty scores 1
+  EXPECT_DOUBLE_EQ(scoreOf(h, regions(1100000300, upright, {})), 1.0);
+  // one region where there is nothing: precision 0, recall 1, F1 0
+  EXPECT_DOUBLE_EQ(scoreOf(h, regions(1100000000, upright, {{1, 1, 5, 5}})), 0.0);
+  // a stamp the truth does not have, an image of another size: errors naming them
+  EXPECT_EQ(scoreOf(h, regions(5000000000, upright, {})), -1);
+  EXPECT_THAT(h.error(), HasSubstr("has no frame at stamp 5"));
+  EXPECT_EQ(scoreOf(h, regions(1000000000, cv::Size(100, 100), {})), -1);
+  EXPECT_THAT(h.error(), HasSubstr("the regions come from a 100x100 image"));
+  h.set("truth", writeTruth("frames: [oops"));
+  EXPECT_EQ(scoreOf(h, regions(1000000000, upright, {})), -1);
+  EXPECT_THAT(h.error(), HasSubstr("cannot read the ground truth"));
+}
+
+}  // namespace
