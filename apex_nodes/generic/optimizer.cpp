@@ -93,6 +93,9 @@ class Optimizer : public apex::Node {
         .param(range("CR", 0.0, 1.0, 0.05, 0.9).describe("differential evolution: crossover probability"))
         .param(boolean("minimize", false).describe("smaller fitness is better"))
         .param(text("state", "idle").describe("what the optimiser is doing (it sets this; saved with the graph)"))
+        .param(text("best_values", "")
+                   .describe("the best values so far as YAML, {dimension: value} (it sets this; the panel's "
+                             "'Apply best values' sets them on the tuned parameters as one undoable edit)"))
         .shapedBy(shapeDimensions);
   }
 
@@ -127,6 +130,7 @@ class Optimizer : public apex::Node {
     best_fitness_.publish(minimize_ ? -search_->bestFitness() : search_->bestFitness());
     evaluations_.publish(search_->evaluations());
     best_.publish(bestText());
+    updateParam("best_values", bestText());
     if (search_->done()) return end("finished");
     propose();
   }

@@ -57,6 +57,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   connect(scene_, &GraphScene::refused, this, [this](const QString& why) { showMessage(why, true); });
   connect(scene_, &GraphScene::nodeMenuRequested, this, &GraphEditor::showNodeMenu);
   connect(scene_, &GraphScene::portMenuRequested, this, &GraphEditor::showPortMenu);
+  connect(scene_, &GraphScene::paramMenuRequested, this, &GraphEditor::showParamMenu);
   connect(scene_, &GraphScene::inspectRequested, this, &GraphEditor::inspectRequested);
   auto shortcut = [this](const QKeySequence& keys, auto fn) {
     auto* s = new QShortcut(keys, this);
@@ -243,6 +244,14 @@ void GraphEditor::showNodeMenu(const QString& node, QPoint at) {
     const QString g = QInputDialog::getText(this, "Thread group", "Name of the new thread group:");
     if (!g.isEmpty()) emit groupRequested(node, g);
   });
+  if (info.type == kOptimizerType) {
+    menu.addSeparator();
+    menu.addAction("Start optimising", this, [this, node] { emit fireSlotRequested(node, "start"); });
+    menu.addAction("Stop", this, [this, node] { emit fireSlotRequested(node, "stop"); });
+    QAction* apply = menu.addAction("Apply best values", this, [this, node] { emit applyBestRequested(node); });
+    apply->setEnabled(model_->applyBest(info.name).has_value());
+    menu.addSeparator();
+  }
   QMenu* slot_menu = menu.addMenu("Fire slot");
   QMenu* inspect = menu.addMenu("Inspect");
   for (const auto& p : info.ports) {
@@ -262,6 +271,23 @@ void GraphEditor::showPortMenu(const QString& node, const QString& port, QPoint 
   else if (item && item->port(port.toStdString(), false) && item->port(port.toStdString(), false)->port().kind == "slot")
     menu.addAction("Fire " + port, this, [this, node, port] { emit fireSlotRequested(node, port); });
   if (!menu.isEmpty()) menu.exec(at);
+}
+
+void GraphEditor::fillParamMenu(QMenu& menu, const QString& node, const QString& param) {
+  QMenu* with = menu.addMenu("Optimise with");
+  with->setObjectName("optimise_with");
+  if (model_)
+    for (const auto& opt : model_->optimizers()) {
+      const QString o = QString::fromStdString(opt);
+      with->addAction(o, this, [this, node, param, o] { emit optimiseRequested(node, param, o); });
+    }
+  with->addAction("New Optimizer", this, [this, node, param] { emit optimiseRequested(node, param, QString()); });
+}
+
+void GraphEditor::showParamMenu(const QString& node, const QString& param, QPoint at) {
+  QMenu menu;
+  fillParamMenu(menu, node, param);
+  menu.exec(at);
 }
 
 void GraphEditor::removeSelected() {

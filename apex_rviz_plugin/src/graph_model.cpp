@@ -274,3 +274,114 @@ std::vector<Call> EditHistory::redo() {
 }
 
 }  // namespace apex_rviz_plugin
+
+namespace apex_rviz_plugin {
+namespace {
+
+/** A text list parameter's value (YAML) as strings; empty if it cannot be read. */
+std::vector<std::string> textList(const std::string& yaml) {
+  try {
+    const YAML::Node n = YAML::Load(yaml);
+    return n.IsSequence() ? n.as<std::vector<std::string>>() : std::vector<std::string>{};
+  } catch (const YAML::Exception&) {
+    return {};
+  }
+}
+
+std::string yamlList(const std::vector<std::string>& items) {
+  YAML::Emitter out;
+  out << YAML::Flow << items;
+  return out.c_str();
+}
+
+Call setParam(const std::string& node, const std::string& param, const std::string& value) {
+  apex::SetParameter::Request r;
+  r.node = node, r.parameter = param, r.value = value;
+  return {"set_parameter", r};
+}
+
+Call interactive(const std::string& node, const std::string& param, bool on) {
+  apex::SetInteractive::Request r;
+  r.node = node, r.parameter = param, r.interactive = on;
+  return {"set_interactive", r};
+}
+
+}  // namespace
+
+std::vector<std::string> GraphModel::optimizers() const {
+  std::vector<std::string> out;
+  for (const auto& n : graph_.nodes)
+    if (n.type == kOptimizerType) out.push_back(n.name);
+  return out;
+}
+
+std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std::string& param,
+                                         const std::string& optimizer, double x, double y) const {
+  const apex::ParamInfo* p = parameter(node_name, param);
+  if (!p || (p->type != "int" && p->type != "double")) return std::nullopt;
+  const bool make = optimizer.empty();
+  const std::string opt = make ? freshName(kOptimizerType) : optimizer;
+  std::vector<std::string> dims;
+  if (!make) {
+    const apex::ParamInfo* d = parameter(opt, "dimensions");
+    if (!d) return std::nullopt;
+    dims = textList(d->value);
+  }
+  // A dimension is an output of the Optimizer: named after the parameter, unless taken.
+  auto taken = [&](const std::string& name) {
+    static const std::vector<std::string> kFixed = {"fitness", "best_fitness", "evaluations", "best"};
+    if (std::find(kFixed.begin(), kFixed.end(), name) != kFixed.end()) return true;
+    for (const auto& d : dims)
+      if (d.substr(0, d.find(' ')) == name) return true;
+    return false;
+  };
+  std::string dim = param;
+  for (int k = 2; taken(dim); ++k) dim = node_name + "_" + param + (k > 2 ? "_" + std::to_string(k - 1) : "");
+  const std::string old_dims = yamlList(dims);
+  dims.push_back(dim + (p->type == "int" ? " int" : ""));
+
+  Edit e{"Optimise " + node_name + "/" + param + " with " + opt, {}, {}};
+  if (make) e.apply = addNode(kOptimizerType, opt, x, y).apply;
+  if (!p->interactive) e.apply.push_back(interactive(node_name, param, true));
+  e.apply.push_back(setParam(opt, "dimensions", yamlList(dims)));
+  const apex::Connection link = [&] {
+    apex::Connection c;
+    c.from_node = opt, c.from_port = dim, c.to_node = node_name, c.to_port = param;
+    return c;
+  }();
+  e.apply.push_back(connectCall("connect", link));
+  e.revert.push_back(connectCall("disconnect", link));
+  if (make) {
+    apex::RemoveNode::Request remove;
+    remove.name = opt;
+    e.revert.push_back({"remove_node", remove});
+  } else {
+    e.revert.push_back(setParam(opt, "dimensions", old_dims));
+  }
+  if (!p->interactive) e.revert.push_back(interactive(node_name, param, false));
+  return e;
+}
+
+std::optional<Edit> GraphModel::applyBest(const std::string& opt) const {
+  const apex::ParamInfo* b = parameter(opt, "best_values");
+  if (!b) return std::nullopt;
+  YAML::Node best;
+  try {
+    best = YAML::Load(YAML::Load(b->value).as<std::string>());  // a text parameter holding a YAML map
+  } catch (const YAML::Exception&) {
+    return std::nullopt;
+  }
+  if (!best.IsMap()) return std::nullopt;
+  Edit e{"Apply the best values of " + opt, {}, {}};
+  for (const auto& c : graph_.connections) {
+    if (c.from_node != opt || !best[c.from_port]) continue;
+    const apex::ParamInfo* target = parameter(c.to_node, c.to_port);
+    if (!target) continue;
+    e.apply.push_back(setParam(c.to_node, c.to_port, best[c.from_port].Scalar()));
+    e.revert.push_back(setParam(c.to_node, c.to_port, target->value));
+  }
+  if (e.apply.empty()) return std::nullopt;
+  return e;
+}
+
+}  // namespace apex_rviz_plugin

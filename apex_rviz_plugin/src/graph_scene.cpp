@@ -60,6 +60,7 @@ void GraphScene::show(const GraphModel& model) {
       connect(item, &NodeItem::interactiveToggled, this, &GraphScene::interactiveToggled);
       connect(item, &NodeItem::moved, this, &GraphScene::nodeMoved);
       connect(item, &NodeItem::slotFired, this, &GraphScene::slotFired);
+      connect(item, &NodeItem::paramMenuRequested, this, &GraphScene::paramMenuRequested);
       connect(item, &QGraphicsObject::xChanged, this, &GraphScene::reroute);
       connect(item, &QGraphicsObject::yChanged, this, &GraphScene::reroute);
     } else {

@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include <QGraphicsProxyWidget>
 #include <QGraphicsSceneMouseEvent>
 #include <QPainter>
@@ -11,7 +13,7 @@
 namespace apex_rviz_plugin {
 namespace {
 
-constexpr double kTitle = 38, kRow = 18, kPad = 6;
+constexpr double kTitle = 38, kRow = 18, kPad = 6, kPlot = 56;
 
 bool sourceKind(const std::string& k) { return k == "output" || k == "trigger" || k == "param_out"; }
 bool eventKind(const std::string& k) { return k == "slot" || k == "trigger"; }
@@ -156,6 +158,8 @@ void NodeItem::build() {
       connect(e, &ParamEditor::edited, this, [this, node](const QString& n, const QString& v) { emit parameterEdited(node, n, v); });
       connect(e, &ParamEditor::interactiveToggled, this,
               [this, node](const QString& n, bool on) { emit interactiveToggled(node, n, on); });
+      connect(e, &ParamEditor::menuRequested, this,
+              [this, node](const QString& n, QPoint at) { emit paramMenuRequested(node, n, at); });
     }
     box->setFixedWidth(static_cast<int>(kWidth - 2 * kPad));
     box->adjustSize();
@@ -164,6 +168,7 @@ void NodeItem::build() {
     params_->setPos(kPad, height_);
     height_ += box->height() + kPad;
   }
+  if (isOptimizer()) height_ += kPlot;  // its progress
   height_ += 2 * kRow;  // timing and error lines
   setToolTip(QString::fromStdString(info_.error));
 }
@@ -182,7 +187,19 @@ void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
   QGraphicsObject::update();
 }
 
+bool NodeItem::isOptimizer() const { return info_.type == kOptimizerType; }
+
 void NodeItem::showValue(const QString& port, const QString& text) {
+  if (isOptimizer() && (port == "best_fitness" || port == "evaluations")) {  // drawn as progress
+    if (port == "evaluations") {
+      const int n = text.toInt();
+      if (n < evaluations_) fitness_.clear();  // a new run
+      evaluations_ = n;
+    } else {
+      fitness_.push_back(text.toDouble());
+    }
+    return QGraphicsObject::update();
+  }
   scalar_values_[port] = text;
   values_.clear();
   for (const auto& [p, v] : scalar_values_) values_ += (values_.isEmpty() ? "" : "  ") + p + " = " + v;
@@ -224,6 +241,7 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   p->drawText(QRectF(kPad, 18, kWidth - 2 * kPad, 14), Qt::AlignLeft | Qt::AlignVCenter,
               QString::fromStdString(info_.type + "  [" + (info_.thread_group.empty() ? "default" : info_.thread_group) + "]"));
   const double bottom = height_ - 2 * kRow;
+  if (isOptimizer()) paintProgress(p, QRectF(kPad, bottom - kPlot, kWidth - 2 * kPad, kPlot - 4));
   p->setPen(QColor(200, 200, 200));
   p->drawText(QRectF(kPad, bottom, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
               values_.isEmpty() ? timing_ : values_);
@@ -238,6 +256,29 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   } else if (!values_.isEmpty()) {
     p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter, timing_);
   }
+}
+
+void NodeItem::paintProgress(QPainter* p, const QRectF& area) const {
+  int budget = 0;
+  for (const auto& param : info_.parameters)
+    if (param.name == "budget") budget = QString::fromStdString(param.value).toInt();
+  QString line = QString("%1 / %2 evaluations").arg(evaluations_).arg(budget);
+  if (!fitness_.empty()) line += QString(" · best %1").arg(fitness_.back(), 0, 'g', 4);
+  p->setPen(QColor(200, 200, 200));
+  p->drawText(QRectF(area.left(), area.top(), area.width(), 14), Qt::AlignLeft | Qt::AlignVCenter, line);
+  const QRectF plot(area.left(), area.top() + 16, area.width(), area.height() - 16);
+  p->setPen(QColor(90, 90, 90));
+  p->setBrush(Qt::NoBrush);
+  p->drawRect(plot);
+  if (fitness_.size() < 2) return;
+  const auto [lo, hi] = std::minmax_element(fitness_.begin(), fitness_.end());
+  const double span = *hi - *lo > 0 ? *hi - *lo : 1;
+  const double n = std::max<double>(budget, fitness_.size()) - 1;
+  QPolygonF curve;  // best fitness over evaluations, left to right up to the budget
+  for (std::size_t i = 0; i < fitness_.size(); ++i)
+    curve << QPointF(plot.left() + plot.width() * i / n, plot.bottom() - 2 - (plot.height() - 4) * (fitness_[i] - *lo) / span);
+  p->setPen(QPen(QColor(110, 200, 120), 1.5));
+  p->drawPolyline(curve);
 }
 
 QVariant NodeItem::itemChange(GraphicsItemChange change, const QVariant& value) {

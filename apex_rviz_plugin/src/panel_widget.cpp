@@ -16,7 +16,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
   connect(&link_, &RuntimeLink::connectionChanged, this, [this](bool up, const QString& text) {
     editor_->showConnection(up, text);
-    if (!up) model_.reset();  // a runtime that comes back starts its revisions anew
+    if (!up) model_.reset(), watched_.clear();  // a runtime that comes back starts its revisions anew
     if (up) refreshTypes(), editor_->fitNextGraph();
   });
   connectEditor();
@@ -27,6 +27,7 @@ void PanelWidget::setNamespace(const QString& ns) {
   editor_->setNamespace(QString::fromStdString(link_.ns()));  // a refused one goes back to the current
   if (!changed) return;
   model_.reset();
+  watched_.clear();
   editor_->showGraph(model_);
   emit namespaceChanged(QString::fromStdString(link_.ns()));
 }
@@ -76,6 +77,15 @@ void PanelWidget::connectEditor() {
     link_.loadGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "loaded " + path); });
   });
   connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
+  connect(e, &GraphEditor::optimiseRequested, this, [this, str](const QString& n, const QString& p, const QString& opt) {
+    const auto [x, y] = model_.position(str(n));
+    perform(model_.optimise(str(n), str(p), str(opt), x, y + 320));
+  });
+  connect(e, &GraphEditor::applyBestRequested, this, [this, str](const QString& opt) {
+    const auto edit = model_.applyBest(str(opt));
+    if (!edit) return editor_->showMessage(opt + " has no best values yet: run it first", true);
+    perform(edit);
+  });
   connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
 }
 
@@ -106,7 +116,19 @@ void PanelWidget::onGraph(const apex::GraphState& graph) {
     model_.update(graph);
   }
   editor_->showGraph(model_);
+  watchOptimizers();
   emit graphShown(graph.revision);
+}
+
+void PanelWidget::watchOptimizers() {
+  for (const auto& name : model_.optimizers()) {
+    if (!watched_.insert(name).second) continue;
+    for (const char* port : {"evaluations", "best_fitness"})  // the node's box draws its progress from them
+      link_.inspect(name, port, [this, name, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
+        if (!ok) return report(false, m, QString::fromStdString("watch " + name + "/" + port));
+        link_.watchScalar(name, port, topic, type);
+      });
+  }
 }
 
 void PanelWidget::refreshTypes() {

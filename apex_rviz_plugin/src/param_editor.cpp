@@ -74,6 +74,11 @@ ParamEditor::ParamEditor(const apex::ParamInfo& param, QWidget* parent) : QWidge
   auto* label = new QLabel(QString::fromStdString(param.name));
   label->setMinimumWidth(70);
   row->addWidget(label);
+  if (param.type == "int" || param.type == "double") {  // a number can be tuned: right-click offers it
+    setContextMenuPolicy(Qt::CustomContextMenu);
+    connect(this, &QWidget::customContextMenuRequested, this,
+            [this](const QPoint& at) { emit menuRequested(QString::fromStdString(param_.name), mapToGlobal(at)); });
+  }
   build();
   if (!param.type.empty()) {  // a parameter with a port type can be linked: show its ports
     interactive_ = new QCheckBox;

@@ -251,4 +251,10 @@ void RuntimeLink::watchScalar(const std::string& node, const std::string& port, 
   scalar_subs_.push_back(sub);
 }
 
+bool RuntimeLink::receiving(const std::string& topic) const {
+  for (const auto& s : scalar_subs_)
+    if (s.getTopic() == topic && s.getNumPublishers() > 0) return true;
+  return false;
+}
+
 }  // namespace apex_rviz_plugin

@@ -186,6 +186,83 @@ TEST(GraphModel, UndoOfAParameterThatShapesPortsConnectsWhatItDropped) {
   }
 }
 
+/** graph(1) with the clock's rate a double and an int `size`, and (if `opt`) an Optimizer tuning the rate. */
+apex::GraphState tunable(bool opt) {
+  auto g = graph(1);
+  g.nodes[0].parameters[0].type = "double";
+  g.nodes[0].parameters.push_back(param("size", "3"));
+  g.nodes[0].parameters.back().type = "int";
+  g.nodes[0].parameters.push_back(param("label", "'x'"));
+  g.nodes[0].parameters.back().type = "string";
+  if (!opt) return g;
+  apex::NodeInfo o;
+  o.name = "tuner", o.type = kOptimizerType, o.enabled = true;
+  o.ports = {port("fitness", "input", "double"), port("rate", "output", "double")};
+  o.parameters = {param("dimensions", "[rate]"), param("best_values", "'{rate: 42.5}'")};
+  g.nodes.push_back(o);
+  apex::Connection c;
+  c.from_node = "tuner", c.from_port = "rate", c.to_node = "clock", c.to_port = "rate";
+  g.connections.push_back(c);
+  return g;
+}
+
+std::vector<std::string> services(const std::vector<Call>& calls) {
+  std::vector<std::string> out;
+  for (const auto& c : calls) out.push_back(c.service);
+  return out;
+}
+
+TEST(GraphModel, OptimisingAParameterWithANewOptimizerIsOneEdit) {
+  GraphModel m;
+  m.update(tunable(false));
+  EXPECT_TRUE(m.optimizers().empty());
+  auto e = m.optimise("clock", "size", "", 10, 300);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->label, "Optimise clock/size with optimizer_1");
+  EXPECT_THAT(services(e->apply), ::testing::ElementsAre("add_node", "set_ui", "set_interactive", "set_parameter", "connect"));
+  EXPECT_EQ(std::get<apex::AddNode::Request>(e->apply[0].request).type, kOptimizerType);
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(e->apply[3].request).value, "[size int]");  // an int parameter
+  const auto& link = std::get<apex::Connect::Request>(e->apply[4].request);
+  EXPECT_EQ(link.from_node + "/" + link.from_port + " -> " + link.to_node + "/" + link.to_port, "optimizer_1/size -> clock/size");
+  EXPECT_THAT(services(e->revert), ::testing::ElementsAre("disconnect", "remove_node", "set_interactive"));
+  EXPECT_FALSE(m.optimise("clock", "label", "", 0, 0)) << "a string is not tuned";
+  EXPECT_FALSE(m.optimise("clock", "nothing", "", 0, 0));
+}
+
+TEST(GraphModel, OptimisingWithAnExistingOptimizerAddsADimensionUnderAFreeName) {
+  GraphModel m;
+  auto g = tunable(true);
+  apex::NodeInfo other = g.nodes[0];
+  other.name = "clock2";  // a second node with a parameter named `rate`, already a dimension
+  g.nodes.push_back(other);
+  m.update(g);
+  EXPECT_EQ(m.optimizers(), std::vector<std::string>{"tuner"});
+  auto e = m.optimise("clock2", "rate", "tuner", 0, 0);
+  ASSERT_TRUE(e);
+  EXPECT_THAT(services(e->apply), ::testing::ElementsAre("set_parameter", "connect"));  // rate is interactive already
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(e->apply[0].request).value, "[rate, clock2_rate]");
+  EXPECT_EQ(std::get<apex::Connect::Request>(e->apply[1].request).from_port, "clock2_rate");
+  EXPECT_THAT(services(e->revert), ::testing::ElementsAre("disconnect", "set_parameter"));
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(e->revert[1].request).value, "[rate]");
+  EXPECT_FALSE(m.optimise("clock", "rate", "nobody", 0, 0));
+}
+
+TEST(GraphModel, ApplyingTheBestValuesIsOneEditUndoneToTheValuesBefore) {
+  GraphModel m;
+  m.update(tunable(true));
+  auto e = m.applyBest("tuner");
+  ASSERT_TRUE(e);
+  ASSERT_EQ(e->apply.size(), 1u);
+  const auto& set = std::get<apex::SetParameter::Request>(e->apply[0].request);
+  EXPECT_EQ(set.node + "/" + set.parameter + " = " + set.value, "clock/rate = 42.5");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(e->revert[0].request).value, "20.0");
+  auto g = tunable(true);
+  g.revision = 2;
+  g.nodes.back().parameters[1].value = "''";  // no run yet
+  m.update(g);
+  EXPECT_FALSE(m.applyBest("tuner"));
+}
+
 TEST(EditHistory, UndoRedoAndANewEditClearsRedo) {
   GraphModel m;
   m.update(graph(1));

@@ -17,6 +17,11 @@
 #include <QTest>
 #include <QToolButton>
 
+#include <QMenu>
+
+#include <apex/AddNode.h>
+#include <apex/Connect.h>
+#include <apex/FireSlot.h>
 #include <apex/GetGraph.h>
 #include <apex/SetParameter.h>
 #include <ros/ros.h>
@@ -39,6 +44,24 @@ bool setParameter(const std::string& node, const std::string& param, const std::
   return ros::service::call("/apex/set_parameter", srv) && srv.response.success;
 }
 constexpr int kWaitMs = 20000;
+
+bool addNode(const std::string& type, const std::string& name, const std::string& params) {
+  apex::AddNode srv;
+  srv.request.type = type, srv.request.name = name, srv.request.parameters = params;
+  return ros::service::call("/apex/add_node", srv) && srv.response.success;
+}
+
+bool link(const std::string& a, const std::string& ap, const std::string& b, const std::string& bp) {
+  apex::Connect srv;
+  srv.request.from_node = a, srv.request.from_port = ap, srv.request.to_node = b, srv.request.to_port = bp;
+  return ros::service::call("/apex/connect", srv) && srv.response.success;
+}
+
+bool fireSlot(const std::string& node, const std::string& slot) {
+  apex::FireSlot srv;
+  srv.request.node = node, srv.request.slot = slot;
+  return ros::service::call("/apex/fire_slot", srv) && srv.response.success;
+}
 
 apex::GraphState runtimeGraph() {
   apex::GetGraph srv;
@@ -263,6 +286,65 @@ TEST_F(PanelWidgetTest, APlayerHasATransportBar) {
       << player->transport()->text().toStdString();
   // The node's parameter box with its transport bar (docs/panel_transport.png).
   player->transport()->parentWidget()->grab().save(QString::fromStdString(g_shot).replace(".png", "_transport.png"));
+}
+
+TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestUndoably) {
+  // A loop through services, as a script would make it: the bag's stamps, scaled, averaged per
+  // pass; the Optimizer is what the panel adds.
+  ASSERT_TRUE(addNode("apex_nodes/BagReader", "player", "{file: '" + g_bag + "', topics: [/camera/image_raw], rate: 0.0}"));
+  ASSERT_TRUE(addNode("apex_nodes/Scale", "scale", "{factor: 1.0}"));
+  ASSERT_TRUE(addNode("apex_nodes/SequenceMean", "mean", ""));
+  ASSERT_TRUE(link("player", "stamp", "scale", "in") && link("scale", "out", "mean", "value"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editor()->scene()->node("scale") != nullptr; }, kWaitMs));
+
+  // Right-click on the factor: Optimise with > New Optimizer.
+  QMenu menu;
+  panel.editor()->fillParamMenu(menu, "scale", "factor");
+  auto* with = menu.findChild<QMenu*>("optimise_with");
+  ASSERT_TRUE(with && !with->actions().isEmpty());
+  EXPECT_EQ(with->actions().back()->text().toStdString(), "New Optimizer");
+  with->actions().back()->trigger();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return connected(runtimeGraph(), "optimizer_1", "factor", "scale", "factor"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_EQ(param(runtimeGraph(), "optimizer_1", "dimensions"), "[factor]");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editor()->scene()->node("optimizer_1") != nullptr; }, kWaitMs));
+
+  // The factor has no range: the run says so; with one it runs, and the box draws its progress.
+  ASSERT_TRUE(link("mean", "mean", "optimizer_1", "fitness"));
+  ASSERT_TRUE(link("optimizer_1", "evaluate", "player", "restart") && link("optimizer_1", "evaluate", "mean", "reset"));
+  ASSERT_TRUE(fireSlot("optimizer_1", "start"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return find(runtimeGraph(), "optimizer_1")->error.find("has no range") != std::string::npos; }, kWaitMs));
+  ASSERT_TRUE(setParameter("optimizer_1", "dimensions", "[factor 0 2]"));
+  ASSERT_TRUE(setParameter("optimizer_1", "budget", "6"));
+  // the box's progress comes from the runtime's inspection of the Optimizer: once it flows
+  for (const char* port : {"evaluations", "best_fitness"})
+    ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().receiving(std::string("/apex/inspect/optimizer_1/") + port); }, kWaitMs));
+  ASSERT_TRUE(fireSlot("optimizer_1", "start"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "optimizer_1", "state").find("finished") != std::string::npos; }, kWaitMs))
+      << param(runtimeGraph(), "optimizer_1", "state");
+  NodeItem* box = panel.editor()->scene()->node("optimizer_1");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return box->fitnessHistory().size() == 6; }, kWaitMs))
+      << box->fitnessHistory().size() << "; " << panel.editor()->message().toStdString();
+  EXPECT_EQ(number(runtimeGraph(), "scale", "factor"), 1.0) << "the run gives the factor its value back";
+
+  // Apply the best values: one edit; Undo puts the factor back.
+  const double best = YAML::Load(YAML::Load(param(runtimeGraph(), "optimizer_1", "best_values")).as<std::string>())["factor"].as<double>();
+  EXPECT_GT(best, 1.0);  // larger stamps score higher
+  const std::string best_text = param(runtimeGraph(), "optimizer_1", "best_values");
+  ASSERT_TRUE(QTest::qWaitFor([&] {
+    const auto* shown = panel.model().parameter("optimizer_1", "best_values");
+    return shown && shown->value == best_text;
+  }, kWaitMs)) << "the panel's graph never showed the final best values";
+  emit panel.editor()->applyBestRequested("optimizer_1");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "scale", "factor") == best; }, kWaitMs))
+      << panel.editor()->message().toStdString() << "; factor " << param(runtimeGraph(), "scale", "factor") << ", best "
+      << param(runtimeGraph(), "optimizer_1", "best_values");
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  ASSERT_TRUE(undo);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Apply the best values of optimizer_1"); }, kWaitMs))
+      << undo->toolTip().toStdString();
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "scale", "factor") == 1.0; }, kWaitMs));
 }
 
 /** A runtime of its own, in another namespace, that a test can stop and start again. */

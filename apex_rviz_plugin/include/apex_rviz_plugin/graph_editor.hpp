@@ -14,6 +14,7 @@
 
 class QGraphicsView;
 class QLabel;
+class QMenu;
 class QLineEdit;
 class QListWidget;
 class QToolButton;
@@ -24,6 +25,9 @@ class GraphEditor : public QWidget {
   Q_OBJECT
  public:
   explicit GraphEditor(QWidget* parent = nullptr);
+  /** @brief The menu of a right-click on a number parameter: "Optimise with" an Optimizer of the
+   *  graph or a new one. Filled for tests to read; shown by a right-click. */
+  void fillParamMenu(QMenu& menu, const QString& node, const QString& param);
 
   GraphScene* scene() const { return scene_; }
   QGraphicsView* view() const { return view_; }
@@ -52,6 +56,9 @@ class GraphEditor : public QWidget {
   void groupRequested(const QString& node, const QString& group);
   void fireSlotRequested(const QString& node, const QString& slot);
   void inspectRequested(const QString& node, const QString& port);
+  /** Tune node/param with an Optimizer; an empty `optimizer`: a new one. */
+  void optimiseRequested(const QString& node, const QString& param, const QString& optimizer);
+  void applyBestRequested(const QString& optimizer);
   void controlRequested(const QString& command);
   void undoRequested();
   void redoRequested();
@@ -66,6 +73,7 @@ class GraphEditor : public QWidget {
   void addFromPalette();
   void showNodeMenu(const QString& node, QPoint at);
   void showPortMenu(const QString& node, const QString& port, QPoint at);
+  void showParamMenu(const QString& node, const QString& param, QPoint at);
   void removeSelected();
   void duplicateSelected();
   QPointF newNodePosition();

@@ -21,6 +21,9 @@
 
 namespace apex_rviz_plugin {
 
+/** @brief The node type that tunes parameters (apex_nodes/generic/optimizer.cpp). */
+inline constexpr const char* kOptimizerType = "apex_nodes/Optimizer";
+
 /** @brief One service call of the runtime's API, with the service's name. */
 struct Call {
   std::string service;  ///< e.g. "add_node", "connect", "disconnect"
@@ -74,6 +77,17 @@ class GraphModel {
   std::optional<Edit> setEnabled(const std::string& node, bool enabled) const;
   std::optional<Edit> setThreadGroup(const std::string& node, const std::string& group) const;
   std::optional<Edit> setInteractive(const std::string& node, const std::string& param, bool interactive) const;
+  /** @brief Tunes a number parameter with an Optimizer (`optimizer`, or a new one at (x, y) if
+   *  empty): the parameter gets ports, the Optimizer a dimension named after it (its range and
+   *  step from the parameter) and the two are connected; one edit. Nothing for a parameter that
+   *  is not an int or a double, or an Optimizer that is not there. */
+  std::optional<Edit> optimise(const std::string& node, const std::string& param, const std::string& optimizer,
+                               double x, double y) const;
+  /** @brief The Optimizer's best values (its `best_values`) set on the parameters it tunes, as
+   *  one edit; undone to the values they hold now. Nothing before it has best values. */
+  std::optional<Edit> applyBest(const std::string& optimizer) const;
+  /** @brief The graph's Optimizer nodes. */
+  std::vector<std::string> optimizers() const;
 
  private:
   apex::GraphState graph_;

@@ -69,6 +69,8 @@ class NodeItem : public QGraphicsObject {
   const QString& values() const { return values_; }
   /** @brief A player's transport bar, nullptr for other nodes. */
   TransportBar* transport() const { return transport_; }
+  /** @brief An Optimizer's best fitness after each evaluation of its current run (plotted). */
+  const std::vector<double>& fitnessHistory() const { return fitness_; }
 
   QRectF boundingRect() const override;
   void paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) override;
@@ -78,6 +80,7 @@ class NodeItem : public QGraphicsObject {
   void interactiveToggled(const QString& node, const QString& param, bool interactive);
   void moved(const QString& node, QPointF pos);
   void slotFired(const QString& node, const QString& slot);
+  void paramMenuRequested(const QString& node, const QString& param, QPoint screen_pos);
 
  protected:
   void mouseReleaseEvent(QGraphicsSceneMouseEvent* e) override;
@@ -85,6 +88,9 @@ class NodeItem : public QGraphicsObject {
 
  private:
   void build();
+  bool isOptimizer() const;
+  /** An Optimizer's progress: evaluations of the budget, best fitness, and its curve. */
+  void paintProgress(QPainter* p, const QRectF& area) const;
 
   apex::NodeInfo info_;
   std::vector<PortItem*> ports_;
@@ -95,6 +101,8 @@ class NodeItem : public QGraphicsObject {
   QString waiting_;  // what a stalled node waits for (the runtime says)
   std::uint64_t firings_ = 0;
   std::map<QString, QString> scalar_values_;
+  std::vector<double> fitness_;  // Optimizer: best fitness per evaluation of the current run
+  int evaluations_ = 0;
   double height_ = 60;
   bool dragged_ = false;
 };
@@ -137,6 +145,7 @@ class GraphScene : public QGraphicsScene {
   void portMenuRequested(const QString& node, const QString& port, QPoint screen_pos);
   void inspectRequested(const QString& node, const QString& port);
   void slotFired(const QString& node, const QString& slot);
+  void paramMenuRequested(const QString& node, const QString& param, QPoint screen_pos);
 
  protected:
   void mouseMoveEvent(QGraphicsSceneMouseEvent* e) override;

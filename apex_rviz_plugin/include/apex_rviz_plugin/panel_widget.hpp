@@ -4,6 +4,8 @@
 // GraphPanel puts this in rviz; tests drive it directly.
 #pragma once
 
+#include <set>
+
 #include <QWidget>
 
 #include "apex_rviz_plugin/graph_editor.hpp"
@@ -40,6 +42,8 @@ class PanelWidget : public QWidget {
   void onGraph(const apex::GraphState& graph);
   void onInspect(const QString& node, const QString& port);
   void refreshTypes();
+  /** Inspects each Optimizer's progress (evaluations, best fitness) once, for its box to draw. */
+  void watchOptimizers();
   void report(bool ok, const std::string& message, const QString& what);
   void connectEditor();
 
@@ -48,6 +52,7 @@ class PanelWidget : public QWidget {
   EditHistory history_;
   RuntimeLink link_;
   int type_count_ = 0;
+  std::set<std::string> watched_;  // Optimizers whose progress is inspected
 };
 
 }  // namespace apex_rviz_plugin

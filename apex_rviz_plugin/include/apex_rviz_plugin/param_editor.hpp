@@ -29,6 +29,8 @@ class ParamEditor : public QWidget {
  signals:
   void edited(const QString& name, const QString& yaml);
   void interactiveToggled(const QString& name, bool interactive);
+  /** A right-click on a number parameter (e.g. to optimise it), at a screen position. */
+  void menuRequested(const QString& name, QPoint screen_pos);
 
  private:
   void build();

@@ -68,6 +68,8 @@ class RuntimeLink : public QObject {
   /** @brief Shows the values of a scalar inspection topic (std_msgs) as scalarReceived. */
   void watchScalar(const std::string& node, const std::string& port, const std::string& topic,
                    const std::string& type);
+  /** @brief Whether a scalar watched on `topic` is connected to its publisher (messages come). */
+  bool receiving(const std::string& topic) const;
 
  signals:
   void graphReceived(const apex::GraphState& graph);
