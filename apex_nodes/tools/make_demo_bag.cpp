@@ -1,21 +1,86 @@
 // Writes the demo's bag: camera frames of dark number signs on textured
 // backgrounds, seen by a camera mounted on its side (as in the paper's SICK
 // Robot Day setup), and a point cloud per frame; plus the ground truth.
-//   apex_make_demo_bag OUT.bag TRUTH.yaml [frames]
-// Deterministic: the same files every time.
+//   apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|hard]
+// Deterministic: the same files for the same options. Hard frames add uneven
+// light, shadows, blur, noise, faint and partly hidden signs, and dark shapes
+// that are not signs: data on which the shipped parameters do poorly and tuned
+// ones do well.
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl_conversions/pcl_conversions.h>
 #include <cv_bridge/cv_bridge.h>
 #include <rosbag/bag.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace {
 
 constexpr int kWidth = 640, kHeight = 480;  // the scene upright; the camera sees it turned
+constexpr int kCameraRotation = 90;         // degrees clockwise: the recorded image is the scene turned
+
+struct Options {
+  std::string bag, truth;
+  int frames = 40;
+  std::uint64_t seed = 20261121;  // the demo's: its checks expect these exact frames
+  bool hard = false;
+};
+
+/** `text` as a whole number in [lo, hi]; `what` names it in the error. */
+std::uint64_t number(const std::string& what, const std::string& text, std::uint64_t lo, std::uint64_t hi) {
+  std::size_t used = 0;
+  unsigned long long n = 0;
+  try {
+    if (!text.empty() && text[0] != '-' && text[0] != '+') n = std::stoull(text, &used);
+  } catch (const std::exception&) {
+    used = 0;  // out of range: reported below
+  }
+  if (used == 0 || used != text.size() || n < lo || n > hi)
+    throw std::invalid_argument(what + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                                ", not '" + text + "'");
+  return n;
+}
+
+/** Two paths and an optional frame count, with options anywhere among them. */
+Options parse(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> plain;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg.rfind("--", 0) != 0) {
+      plain.push_back(arg);
+      continue;
+    }
+    std::string value;
+    const auto eq = arg.find('=');  // --seed=7 as well as --seed 7
+    if (eq != std::string::npos) value = arg.substr(eq + 1), arg.resize(eq);
+    if (arg != "--seed" && arg != "--frames" && arg != "--difficulty") throw std::invalid_argument("unknown option '" + arg + "'");
+    if (eq == std::string::npos) {
+      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
+      value = argv[++i];
+    }
+    if (arg == "--seed") o.seed = number("--seed", value, 0, std::numeric_limits<std::uint64_t>::max());
+    if (arg == "--frames") o.frames = static_cast<int>(number("--frames", value, 1, 100000));
+    if (arg == "--difficulty") {
+      if (value != "easy" && value != "hard") throw std::invalid_argument("--difficulty is easy or hard, not '" + value + "'");
+      o.hard = value == "hard";
+    }
+  }
+  if (plain.size() < 2 || plain.size() > 3) throw std::invalid_argument("needs OUT.bag and TRUTH.yaml, and at most a frame count");
+  o.bag = plain[0];
+  o.truth = plain[1];
+  if (plain.size() == 3) o.frames = static_cast<int>(number("the frame count", plain[2], 1, 100000));
+  return o;
+}
 
 cv::Mat background(cv::RNG& rng) {
   cv::Mat bg(kHeight, kWidth, CV_8UC3);
@@ -46,14 +111,120 @@ std::vector<cv::Rect> placeSigns(cv::RNG& rng, int count) {
   return boxes;
 }
 
-void drawSign(cv::Mat& img, const cv::Rect& box, int number, cv::RNG& rng) {
-  cv::rectangle(img, box, cv::Scalar::all(rng.uniform(15, 45)), cv::FILLED);
+void drawNumber(cv::Mat& img, const cv::Rect& box, int number, const cv::Scalar& colour) {
   const std::string text = std::to_string(number);
   const double scale = box.height / 45.0;
   int baseline = 0;
   const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 3, &baseline);
   const cv::Point at(box.x + (box.width - size.width) / 2, box.y + (box.height + size.height) / 2);
-  cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar::all(235), 3, cv::LINE_AA);
+  cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 3, cv::LINE_AA);
+}
+
+void drawSign(cv::Mat& img, const cv::Rect& box, int number, cv::RNG& rng) {
+  cv::rectangle(img, box, cv::Scalar::all(rng.uniform(15, 45)), cv::FILLED);
+  drawNumber(img, box, number, cv::Scalar::all(235));
+}
+
+// ---- hard frames -------------------------------------------------------------------------
+
+/** A sign only somewhat darker than the background around it, its number barely lighter. */
+void drawFaintSign(cv::Mat& img, const cv::Rect& box, int number, cv::RNG& rng) {
+  const cv::Scalar around = cv::mean(img(box));
+  cv::rectangle(img, box, around * rng.uniform(0.5, 0.78), cv::FILLED);
+  drawNumber(img, box, number, around * rng.uniform(0.9, 1.1));
+}
+
+/** A light board in front of one side of the sign, reaching past it: 15-35% of the sign
+ *  hidden, the truth box unchanged. */
+void occlude(cv::Mat& img, const cv::Rect& box, cv::RNG& rng) {
+  const int side = rng.uniform(0, 4);  // left, right, top, bottom
+  const int across = cvRound((side < 2 ? box.width : box.height) * rng.uniform(0.15, 0.35));
+  const int past = rng.uniform(10, 40);  // beyond the sign's edge
+  cv::Rect hide;
+  switch (side) {
+    case 0: hide = {box.x - past, box.y - 8, past + across, box.height + 16}; break;
+    case 1: hide = {box.br().x - across, box.y - 8, across + past, box.height + 16}; break;
+    case 2: hide = {box.x - 8, box.y - past, box.width + 16, past + across}; break;
+    default: hide = {box.x - 8, box.br().y - across, box.width + 16, across + past}; break;
+  }
+  cv::rectangle(img, hide, cv::Scalar::all(rng.uniform(170, 230)), cv::FILLED);
+}
+
+/** Draws `shape(mask, grow)` into `mask` if, drawn grown by `gap`, it stays clear of `taken`
+ *  (the signs and the shapes so far, grown the same): distractors that no kernel up to
+ *  about `gap` can join to a sign or to each other, so that good parameters can reject each. */
+template <typename Shape>
+void placeApart(cv::Mat& mask, cv::Mat& taken, int gap, const Shape& shape) {
+  cv::Mat grown(mask.size(), CV_8U, cv::Scalar(0));
+  shape(grown, gap);
+  if (cv::countNonZero(grown & taken)) return;
+  taken |= grown;
+  shape(mask, 0);
+}
+
+/** Dark things that are not signs: long strokes (a cable, a crack) and round spots (dirt, bolts). */
+void drawDistractors(cv::Mat& img, const std::vector<cv::Rect>& boxes, cv::RNG& rng) {
+  constexpr int kGap = 12;  // any two dark things stay twice this apart
+  cv::Mat mask(img.size(), CV_8U, cv::Scalar(0)), taken = mask.clone();
+  for (const auto& b : boxes) cv::rectangle(taken, cv::Rect(b.x - kGap, b.y - kGap, b.width + 2 * kGap, b.height + 2 * kGap), 255, cv::FILLED);
+  const int strokes = rng.uniform(2, 6);
+  for (int i = 0; i < strokes; ++i) {
+    const cv::Point a(rng.uniform(0, kWidth), rng.uniform(0, kHeight));
+    const double angle = rng.uniform(0.0, CV_PI), length = rng.uniform(150.0, 350.0);
+    const cv::Point b(a.x + cvRound(length * std::cos(angle)), a.y + cvRound(length * std::sin(angle)));
+    const int thickness = rng.uniform(3, 7);
+    placeApart(mask, taken, kGap, [&](cv::Mat& m, int grow) { cv::line(m, a, b, 255, thickness + 2 * grow, cv::LINE_AA); });
+  }
+  const int spots = rng.uniform(4, 14);
+  for (int i = 0; i < spots; ++i) {
+    const cv::Point c(rng.uniform(0, kWidth), rng.uniform(0, kHeight));
+    const int r = rng.uniform(4, 24);
+    placeApart(mask, taken, kGap, [&](cv::Mat& m, int grow) { cv::circle(m, c, r + grow, 255, cv::FILLED, cv::LINE_AA); });
+  }
+  cv::Mat dark = img * rng.uniform(0.35, 0.6);
+  dark.copyTo(img, mask);
+}
+
+/** Light falling unevenly: a strong gradient across the scene and a few soft dark shadows. */
+cv::Mat lighting(cv::RNG& rng) {
+  const double angle = rng.uniform(0.0, 2 * CV_PI), dim = rng.uniform(0.4, 0.6), bright = rng.uniform(1.0, 1.15);
+  const double dx = std::cos(angle), dy = std::sin(angle);
+  const double lo = std::min(0.0, dx * kWidth) + std::min(0.0, dy * kHeight);
+  const double hi = std::max(0.0, dx * kWidth) + std::max(0.0, dy * kHeight);
+  cv::Mat light(kHeight, kWidth, CV_32F);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) light.at<float>(y, x) = static_cast<float>(dim + (bright - dim) * ((dx * x + dy * y - lo) / (hi - lo)));
+  cv::Mat shade(light.size(), CV_32F, cv::Scalar(1.0));
+  const int shadows = rng.uniform(1, 4);
+  for (int i = 0; i < shadows; ++i) {
+    const cv::Point centre(rng.uniform(0, kWidth), rng.uniform(0, kHeight));
+    const cv::Size axes(rng.uniform(50, 170), rng.uniform(40, 140));
+    cv::ellipse(shade, centre, axes, rng.uniform(0.0, 180.0), 0, 360, cv::Scalar(rng.uniform(0.4, 0.65)), cv::FILLED);
+  }
+  cv::GaussianBlur(shade, shade, cv::Size(), rng.uniform(12.0, 30.0));  // soft edges, some softer than others
+  return light.mul(shade);
+}
+
+/** What the camera makes of the scene: uneven light, defocus, sensor noise. */
+void photograph(cv::Mat& scene, cv::RNG& rng) {
+  cv::Mat light, f;
+  cv::cvtColor(lighting(rng), light, cv::COLOR_GRAY2BGR);
+  scene.convertTo(f, CV_32FC3);
+  f = f.mul(light);
+  cv::GaussianBlur(f, f, cv::Size(), rng.uniform(1.0, 2.2));
+  cv::Mat noise(f.size(), CV_32FC3);
+  rng.fill(noise, cv::RNG::NORMAL, 0, rng.uniform(3.0, 6.0));
+  f += noise;
+  f.convertTo(scene, CV_8UC3);
+}
+
+/** A hard frame's signs drawn faint, some partly hidden, among distractors, photographed badly. */
+void drawHardFrame(cv::Mat& scene, const std::vector<cv::Rect>& boxes, const std::vector<int>& numbers, cv::RNG& rng) {
+  for (std::size_t i = 0; i < boxes.size(); ++i) drawFaintSign(scene, boxes[i], numbers[i], rng);
+  for (const auto& b : boxes)
+    if (rng.uniform(0.0, 1.0) < 0.3) occlude(scene, b, rng);
+  drawDistractors(scene, boxes, rng);
+  photograph(scene, rng);
 }
 
 /** A floor plane, two boxes standing on it, and far clutter beyond 3 m. */
@@ -73,24 +244,29 @@ sensor_msgs::PointCloud2 cloud(cv::RNG& rng, const std_msgs::Header& header) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 3) {
-    std::cerr << "usage: apex_make_demo_bag OUT.bag TRUTH.yaml [frames]\n";
+  Options opt;
+  try {
+    opt = parse(argc, argv);
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "apex_make_demo_bag: " << e.what()
+              << "\nusage: apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|hard]\n";
     return 2;
   }
-  const int frames = argc > 3 ? std::atoi(argv[3]) : 40;
-  cv::RNG rng(20261121);
+  cv::RNG rng(opt.seed);
   rosbag::Bag bag;
   try {
-    bag.open(argv[1], rosbag::bagmode::Write);
+    bag.open(opt.bag, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
-    std::cerr << "apex_make_demo_bag: cannot write '" << argv[1] << "': " << e.what() << "\n";
+    std::cerr << "apex_make_demo_bag: cannot write '" << opt.bag << "': " << e.what() << "\n";
     return 1;
   }
-  std::ofstream truth(argv[2]);
-  truth << "# ground truth of " << argv[1] << ": per image frame, the signs in the upright scene\n"
-        << "image_topic: /camera/image_raw\ncloud_topic: /camera/points\nframes:\n";
+  std::ofstream truth(opt.truth);
+  truth << "# ground truth of " << opt.bag << ": per image frame, the signs in the upright scene\n"
+        << "image_topic: /camera/image_raw\ncloud_topic: /camera/points\n"
+        << "scene_size: [" << kWidth << ", " << kHeight << "]\ncamera_rotation: " << kCameraRotation << "\n"
+        << "difficulty: " << (opt.hard ? "hard" : "easy") << "\nseed: " << opt.seed << "\nframes:\n";
   const ros::Time start(1700000000, 0);
-  for (int f = 0; f < frames; ++f) {
+  for (int f = 0; f < opt.frames; ++f) {
     std_msgs::Header header;
     header.seq = f;
     header.stamp = start + ros::Duration(0.1 * f);
@@ -98,12 +274,15 @@ int main(int argc, char** argv) {
     cv::Mat scene = background(rng);
     const auto boxes = placeSigns(rng, 1 + f % 4);
     truth << "  - {stamp: " << header.stamp.toNSec() << ", signs: " << boxes.size() << ", boxes: [";
+    std::vector<int> numbers;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-      drawSign(scene, boxes[i], rng.uniform(0, 10), rng);
+      numbers.push_back(rng.uniform(0, 10));
+      if (!opt.hard) drawSign(scene, boxes[i], numbers.back(), rng);  // easy: the RNG calls the demo's checks rely on
       const auto& b = boxes[i];
       truth << (i ? ", " : "") << "[" << b.x << ", " << b.y << ", " << b.width << ", " << b.height << "]";
     }
     truth << "]}\n";
+    if (opt.hard) drawHardFrame(scene, boxes, numbers, rng);
     cv::Mat seen;
     cv::rotate(scene, seen, cv::ROTATE_90_CLOCKWISE);  // the camera lies on its side
     bag.write("/camera/image_raw", header.stamp, cv_bridge::CvImage(header, "bgr8", seen).toImageMsg());
@@ -112,6 +291,7 @@ int main(int argc, char** argv) {
     bag.write("/camera/points", cloud_header.stamp, cloud(rng, cloud_header));
   }
   bag.close();
-  std::cout << "wrote " << frames << " frames to " << argv[1] << " and the ground truth to " << argv[2] << "\n";
+  std::cout << "wrote " << opt.frames << (opt.hard ? " hard" : "") << " frames to " << opt.bag << " and the ground truth to "
+            << opt.truth << "\n";
   return truth ? 0 : 1;
 }
