@@ -281,6 +281,8 @@ int main(int argc, char** argv) {
       const auto& b = boxes[i];
       truth << (i ? ", " : "") << "[" << b.x << ", " << b.y << ", " << b.width << ", " << b.height << "]";
     }
+    truth << "], digits: [";  // the number on each sign, in the order of the boxes
+    for (std::size_t i = 0; i < numbers.size(); ++i) truth << (i ? ", " : "") << numbers[i];
     truth << "]}\n";
     if (opt.hard) drawHardFrame(scene, boxes, numbers, rng);
     cv::Mat seen;
