@@ -103,26 +103,29 @@ class Optimizer : public apex::Node {
     const std::string saved = state_.get();
     if (saved.rfind("running", 0) != 0) return;
     updateParam("state", "interrupted (" + saved + ")");
-    reportError("this graph was saved while a run was in progress (" + saved +
-                "): the tuned parameters hold that candidate's values, not tuned ones; start a new run");
+    fail("this graph was saved while a run was in progress (" + saved +
+         "): the tuned parameters hold that candidate's values, not tuned ones; start a new run");
   }
+
+  /** The end of a sequence stops here: the outputs are values, not frames. */
+  void endOfSequence() override { again(); }
 
   void parameterChanged(const std::string& name) override {
     if (name != "dimensions" || !running_) return;
     running_ = waiting_ = false;  // its outputs are not the run's any more: nothing to give back through them
     setState("stopped: the dimensions changed during the run");
-    reportError("the dimensions changed during a run: it stopped after " + std::to_string(search_->evaluations()) +
-                " evaluations; the tuned parameters keep the last candidate's values");
+    fail("the dimensions changed during a run: it stopped after " + std::to_string(search_->evaluations()) +
+         " evaluations; the tuned parameters keep the last candidate's values");
   }
 
   /** A fitness arrived: the evaluation asked for last is done. */
   void process() override {
-    if (!running_ || !waiting_) return;  // a score nobody asked for (e.g. a pass before the run): ignored
+    if (!running_ || !waiting_) return again();  // a score nobody asked for (e.g. a pass before the run): ignored
     waiting_ = false;
     if (const std::string lost = lostTarget(); !lost.empty()) {
       end("stopped");
-      reportError(lost + ": the run stopped after " + std::to_string(search_->evaluations()) +
-                  " evaluations (the other tuned parameters got their values back)");
+      fail(lost + ": the run stopped after " + std::to_string(search_->evaluations()) +
+           " evaluations (the other tuned parameters got their values back)");
       return;
     }
     const double f = *fitness_.get();
@@ -138,6 +141,7 @@ class Optimizer : public apex::Node {
   void start() {
     if (running_)
       throw std::invalid_argument("a run is in progress (" + state_.get() + "): stop it first, or wait for it");
+    error_.clear();
     auto dims = resolveDimensions();
     std::vector<search::Dimension> ranges;
     for (const auto& d : dims) ranges.push_back(d.range);
@@ -272,6 +276,14 @@ class Optimizer : public apex::Node {
   }
 
   void setState(const std::string& text) { updateParam("state", text); }
+  /** An error that stays until the next start, through the firings that ignore a score. */
+  void fail(const std::string& text) {
+    error_ = text;
+    reportError(text);
+  }
+  void again() {
+    if (!error_.empty()) reportError(error_);
+  }
 
   apex::Input<double> fitness_{this, "fitness"};
   apex::Output<double> best_fitness_{this, "best_fitness"};
@@ -294,6 +306,7 @@ class Optimizer : public apex::Node {
   bool running_ = false;
   bool waiting_ = false;  // a candidate is out; its fitness is not back yet
   bool minimize_ = false;
+  std::string error_;  // why the last run stopped, or the graph was saved mid-run
 };
 
 }  // namespace apex_nodes

@@ -11,7 +11,6 @@
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/Int32.h>
-#include <std_msgs/String.h>
 #include <yaml-cpp/yaml.h>
 
 #include <chrono>
@@ -78,7 +77,6 @@ class Watch {
     subs_.push_back(subscribe<std_msgs::Float64>(nh, "mean", "mean", [this](const auto& m) { ++means_, mean_ = m.data; }));
     subs_.push_back(subscribe<std_msgs::Int32>(nh, "optimizer", "evaluations", [this](const auto& m) { evaluations_ = m.data; }));
     subs_.push_back(subscribe<std_msgs::Float64>(nh, "optimizer", "best_fitness", [this](const auto& m) { best_ = m.data; }));
-    subs_.push_back(subscribe<std_msgs::String>(nh, "optimizer", "best", [this](const auto& m) { best_values_ = m.data; }));
     for (auto& s : subs_)
       while (s.getNumPublishers() == 0 && ros::ok()) ros::WallDuration(0.01).sleep();
   }
@@ -100,10 +98,6 @@ class Watch {
     std::lock_guard<std::mutex> l(m_);
     return best_;
   }
-  std::string bestValues() {
-    std::lock_guard<std::mutex> l(m_);
-    return best_values_;
-  }
 
  private:
   template <class Msg, class F>
@@ -122,7 +116,6 @@ class Watch {
   std::vector<ros::Subscriber> subs_;
   int means_ = 0, evaluations_ = 0;
   double mean_ = 0, best_ = 0;
-  std::string best_values_;
 };
 
 std::string bar(int done, int total) {
@@ -148,6 +141,23 @@ void runOptimizer(Watch& watch, int budget, Clock::time_point t0) {
                   seconds(t0));
       std::fflush(stdout);
     }
+  }
+}
+
+/** The run's best fitness and values, from the graph once the optimiser says it finished (the
+ *  inspected outputs come on separate topics: the last may not be in yet). */
+std::pair<double, std::string> finalBest() {
+  const auto until = Clock::now() + std::chrono::seconds(30);
+  for (;;) {
+    const auto g = graph();
+    const std::string state = YAML::Load(valueOf(g, "optimizer", "state")).as<std::string>();
+    if (state.rfind("finished", 0) == 0) {
+      const auto at = state.find("; best "), in = state.find(" at {");
+      const double fitness = at != std::string::npos && in != std::string::npos ? std::stod(state.substr(at + 7, in - at - 7)) : 0;
+      return {fitness, YAML::Load(valueOf(g, "optimizer", "best_values")).as<std::string>()};
+    }
+    if (Clock::now() > until) throw std::runtime_error("the optimiser did not finish: " + state);
+    ros::WallDuration(0.05).sleep();
   }
 }
 
@@ -201,8 +211,8 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
 
     runOptimizer(watch, budget, t0);
-    const std::string best = watch.bestValues();
-    std::printf("best on the training bag: F1 %.3f at %s\n", watch.best(), best.c_str());
+    const auto [best_fitness, best] = finalBest();
+    std::printf("best on the training bag: F1 %.3f at %s\n", best_fitness, best.c_str());
     fire("optimizer", "apply_best");
     waitApplied(tuned, best);
     apex::SaveGraph::Request save;

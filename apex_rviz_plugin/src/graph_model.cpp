@@ -318,7 +318,9 @@ std::vector<std::string> GraphModel::optimizers() const {
 std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std::string& param,
                                          const std::string& optimizer, double x, double y) const {
   const apex::ParamInfo* p = parameter(node_name, param);
-  if (!p || (p->type != "int" && p->type != "double")) return std::nullopt;
+  if (!p || (p->type != "int" && p->type != "double") || p->shapes_ports) return std::nullopt;
+  for (const auto& c : graph_.connections)  // a parameter input has one source
+    if (c.to_node == node_name && c.to_port == param) return std::nullopt;
   const bool make = optimizer.empty();
   const std::string opt = make ? freshName(kOptimizerType) : optimizer;
   std::vector<std::string> dims;
@@ -329,7 +331,10 @@ std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std
   }
   // A dimension is an output of the Optimizer: named after the parameter, unless taken.
   auto taken = [&](const std::string& name) {
-    static const std::vector<std::string> kFixed = {"fitness", "best_fitness", "evaluations", "best"};
+    static const std::vector<std::string> kFixed = {  // the Optimizer's own ports, events and parameters
+        "fitness", "best_fitness", "evaluations", "best", "start", "stop", "apply_best", "evaluate", "finished",
+        "enable", "disable", "processed", "dimensions", "algorithm", "budget", "seed", "population", "F", "CR",
+        "minimize", "state", "best_values"};
     if (std::find(kFixed.begin(), kFixed.end(), name) != kFixed.end()) return true;
     for (const auto& d : dims)
       if (d.substr(0, d.find(' ')) == name) return true;
@@ -364,7 +369,9 @@ std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std
 
 std::optional<Edit> GraphModel::applyBest(const std::string& opt) const {
   const apex::ParamInfo* b = parameter(opt, "best_values");
-  if (!b) return std::nullopt;
+  const apex::ParamInfo* state = parameter(opt, "state");
+  if (!b || (state && state->value.find("running") <= 1)) return std::nullopt;  // not while it runs: 'running: ...'
+
   YAML::Node best;
   try {
     best = YAML::Load(YAML::Load(b->value).as<std::string>());  // a text parameter holding a YAML map

@@ -118,6 +118,23 @@ TEST(Sequences, TheEndTravelsInStepThroughAChainAndADisabledNode) {
   EXPECT_TRUE(g.waitIdle(kWait));
 }
 
+TEST(Sequences, NeitherNothingNorTheEndOfASequenceSetsAParameter) {
+  // frames into a parameter: each sets it; the end of the sequence is no value and no error
+  Graph g(registry());
+  add(g, "test/Sequence", "seq");
+  add(g, "test/GainProbe", "probe", "two");
+  link(g, "seq", "out", "probe", "gain");
+  ASSERT_TRUE(g.setParameter("seq", "frames", "5"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("seq", "restart"));
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(kWait);
+  while (std::get<int>(g.parameterValue("probe", "gain").value()) != 4 && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(std::get<int>(g.parameterValue("probe", "gain").value()), 4);
+  EXPECT_EQ(g.nodeStats()[1].error, "");
+}
+
 TEST(Sequences, EventsLeaveAfterTheMessagesOfTheirFiringAndSlot) {
   // The setter's value reaches the probe's gain (another group) before its event reaches the probe.
   Graph g(registry());

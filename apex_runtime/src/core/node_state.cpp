@@ -134,8 +134,8 @@ void NodeState::take(InputState& in, bool optional, bool& skip) {
   } else if (e->counted()) {  // exclusive by the firing rule: no lock
     in.current = std::move(in.msg);
     in.msg = Message();
-    in.full.store(false, std::memory_order_relaxed);
-    e->unread.store(false, std::memory_order_relaxed);
+    in.full.store(false, std::memory_order_release);
+    e->unread.store(false, std::memory_order_release);  // a slot of the sender reads it (sendFromSlot)
     e->from->unblock(1, group);  // the source may fire again while we work
   } else {
     std::lock_guard<std::mutex> lock(in.m);
@@ -179,8 +179,8 @@ bool NodeState::fireIfReady() {
   }
   in_handler_ = false;
   reported_ = false;
-  if (!ok)
-    for (auto& out : outputs) out.pending = Message();
+  if (!ok)  // a failed firing sends Nothing; a failed end of a sequence still ends it downstream
+    for (auto& out : outputs) out.pending = end ? Message::endOfSequence() : Message();
   bool data = false;  // consumed or produced a frame (not Nothing, not the end token): for rates
   auto frame = [](const Message& m) { return !m.isNothing() && !m.isEndOfSequence(); };
   for (auto& in : inputs) data = data || frame(in->current);
@@ -249,6 +249,10 @@ void NodeState::deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGrou
   Edge& e = *edge;
   NodeState* to = e.to;
   if (e.to_param) {  // the mail holds the edge: a disconnect marks it dead, never frees it under us
+    if (m.isNothing() || m.isEndOfSequence()) {  // no value to set: read at once, no mail
+      if (e.counted()) unblock(1, here);
+      return;
+    }
     if (e.counted()) e.unread.store(true, std::memory_order_release);
     to->post([edge, m = std::move(m)](NodeState& n) { n.receiveParam(*edge, m); });
     return;
@@ -426,15 +430,16 @@ void NodeState::runSlot(int slot) {
   const bool ok = guarded("slot '" + slot_name + "'", [&] { manifest().slots[slot].handler(*node); });
   in_handler_ = false;
   reported_ = false;
-  if (ok) {
-    sendFromSlot(slot_name);
-  } else {
+  if (ok && !sendFromSlot(slot_name)) held_triggers_.clear();  // its events would act on values that did not go out
+  if (!ok) {
     for (auto& out : outputs) out.pending = Message();
+    held_triggers_.clear();
   }
   releaseTriggers();
 }
 
-void NodeState::sendFromSlot(const std::string& slot) {
+bool NodeState::sendFromSlot(const std::string& slot) {
+  bool all = true;
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     OutputState& out = outputs[i];
     if (out.pending.isNothing()) continue;
@@ -442,21 +447,26 @@ void NodeState::sendFromSlot(const std::string& slot) {
     out.pending = Message();
     // A counted edge may carry one message at a time: the slot cannot send while a receiver
     // still holds the last one (the firing rule's exclusivity of the receiver's input).
+    // An input whose sender is cut off from every source does not count it: nothing to send there.
+    auto reaches = [](const Edge& e) { return e.to_param || e.live; };
     const Edge* busy = nullptr;
     int counted = 0;
     for (auto& e : out.edges) {
       if (e->unread.load(std::memory_order_acquire)) busy = e.get();
-      counted += e->counted() ? 1 : 0;
+      counted += e->counted() && reaches(*e) ? 1 : 0;
     }
     if (busy) {
       setError("node '" + name + "' (" + type->id + ") slot '" + slot + "' published on output '" +
                manifest().outputs[i].name + "' while '" + busy->to->name + "' had not read its last message: not sent");
+      all = false;
       continue;
     }
     if (out.tap) out.tap(m);
     blockers.fetch_add(counted, std::memory_order_acq_rel);  // released as the receivers read, as after a firing
-    for (auto& e : out.edges) deliver(e, m);
+    for (auto& e : out.edges)
+      if (reaches(*e)) deliver(e, m);
   }
+  return all;
 }
 
 void NodeState::reportError(const std::string& text) {

@@ -216,8 +216,9 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
    *  "node 'n' (type) <what> threw: ...". False if it threw. */
   template <class F>
   bool guarded(const std::string& what, F&& fn);
-  /** Sends what a slot handler published, where every receiver has read the last message. */
-  void sendFromSlot(const std::string& slot);
+  /** Sends what a slot handler published, where every receiver has read the last message;
+   *  false if something was refused (the node reports it). */
+  bool sendFromSlot(const std::string& slot);
   void releaseTriggers();
   bool in_handler_ = false;          // group thread: process() or a slot handler runs
   bool reported_ = false;            // group thread: reportError() in this firing

@@ -80,11 +80,12 @@ class GraphModel {
   /** @brief Tunes a number parameter with an Optimizer (`optimizer`, or a new one at (x, y) if
    *  empty): the parameter gets ports, the Optimizer a dimension named after it (its range and
    *  step from the parameter) and the two are connected; one edit. Nothing for a parameter that
-   *  is not an int or a double, or an Optimizer that is not there. */
+   *  is not an int or a double, shapes the node's ports or is linked already, or an Optimizer
+   *  that is not there. */
   std::optional<Edit> optimise(const std::string& node, const std::string& param, const std::string& optimizer,
                                double x, double y) const;
   /** @brief The Optimizer's best values (its `best_values`) set on the parameters it tunes, as
-   *  one edit; undone to the values they hold now. Nothing before it has best values. */
+   *  one edit; undone to the values they hold now. Nothing before it has best values, or while it runs. */
   std::optional<Edit> applyBest(const std::string& optimizer) const;
   /** @brief The graph's Optimizer nodes. */
   std::vector<std::string> optimizers() const;
