@@ -194,6 +194,8 @@ TEST_F(PanelWidgetTest, AddMoveConnectTuneAndUndoByMouseAndKeyboard) {
   // undo (button) restores the rate; redo sets it again
   auto* undo = panel.editor()->findChild<QToolButton*>("undo");
   auto* redo = panel.editor()->findChild<QToolButton*>("redo");
+  // the edit is in the history once the runtime's answer is in (the new ~graph may come first)
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Set clock_1/rate"); }, kWaitMs)) << undo->toolTip().toStdString();
   QTest::mouseClick(undo, Qt::LeftButton);
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "clock_1", "rate") == 10; }, kWaitMs));
   EXPECT_EQ(number(runtimeGraph(), "clock_1", "rate"), 10);
@@ -323,8 +325,12 @@ TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestU
   ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "optimizer_1", "state").find("finished") != std::string::npos; }, kWaitMs))
       << param(runtimeGraph(), "optimizer_1", "state");
   NodeItem* box = panel.editor()->scene()->node("optimizer_1");
-  ASSERT_TRUE(QTest::qWaitFor([&] { return box->fitnessHistory().size() == 6; }, kWaitMs))
-      << box->fitnessHistory().size() << "; " << panel.editor()->message().toStdString();
+  // every evaluation counted; the curve has its points (the newest value of each topic is shown, so a
+  // point may be skipped on a busy machine)
+  ASSERT_TRUE(QTest::qWaitFor([&] { return box->evaluations() == 6 && box->fitnessHistory().size() >= 2; }, kWaitMs))
+      << box->evaluations() << " evaluations, " << box->fitnessHistory().size() << " points; "
+      << panel.editor()->message().toStdString();
+  EXPECT_LE(box->fitnessHistory().size(), 6u);
   EXPECT_EQ(number(runtimeGraph(), "scale", "factor"), 1.0) << "the run gives the factor its value back";
 
   // Apply the best values: one edit; Undo puts the factor back.

@@ -71,6 +71,8 @@ class NodeItem : public QGraphicsObject {
   TransportBar* transport() const { return transport_; }
   /** @brief An Optimizer's best fitness after each evaluation of its current run (plotted). */
   const std::vector<double>& fitnessHistory() const { return fitness_; }
+  /** @brief An Optimizer's evaluations so far in its current run. */
+  int evaluations() const { return evaluations_; }
 
   QRectF boundingRect() const override;
   void paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) override;
