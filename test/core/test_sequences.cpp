@@ -127,9 +127,7 @@ TEST(Sequences, NeitherNothingNorTheEndOfASequenceSetsAParameter) {
   ASSERT_TRUE(g.setParameter("seq", "frames", "5"));
   g.start();
   ASSERT_TRUE(g.fireSlot("seq", "restart"));
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(kWait);
-  while (std::get<int>(g.parameterValue("probe", "gain").value()) != 4 && std::chrono::steady_clock::now() < until)
-    std::this_thread::sleep_for(1ms);
+  ASSERT_TRUE(waitUntil([&] { return std::get<int>(g.parameterValue("probe", "gain").value()) == 4; }));
   ASSERT_TRUE(g.waitIdle(kWait));
   EXPECT_EQ(std::get<int>(g.parameterValue("probe", "gain").value()), 4);
   EXPECT_EQ(g.nodeStats()[1].error, "");
@@ -197,8 +195,7 @@ TEST(Sequences, ASlotThatCannotSendBecauseTheReceiverHoldsTheLastMessageSaysSo) 
   g.pause();  // slots still run, nothing fires: nobody reads what the first one sends
   ASSERT_TRUE(g.fireSlot("sum", "announce"));
   ASSERT_TRUE(g.fireSlot("sum", "announce"));
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(kWait);
-  while (g.nodeStats()[0].error.empty() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(1ms);
+  EXPECT_TRUE(waitUntil([&] { return !g.nodeStats()[0].error.empty(); }));
   EXPECT_THAT(g.nodeStats()[0].error, HasSubstr("slot 'announce' published on output 'sum' while 'out' had not read"));
   g.resume();
   ASSERT_TRUE(object<Collector>(g, "out")->waitFor(1));

@@ -51,12 +51,7 @@ std::string param(Graph& g, const std::string& node, const std::string& name) {
 
 /** Waits until the optimiser's state starts with `prefix`. */
 bool waitState(Graph& g, const std::string& prefix, double timeout = kWait) {
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
-  while (std::chrono::steady_clock::now() < until) {
-    if (param(g, "opt", "state").rfind(prefix, 0) == 0) return true;
-    std::this_thread::sleep_for(1ms);
-  }
-  return false;
+  return waitUntil([&] { return param(g, "opt", "state").rfind(prefix, 0) == 0; }, timeout);
 }
 
 std::vector<double> doubles(Collector* c) {

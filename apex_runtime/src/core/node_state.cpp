@@ -201,20 +201,6 @@ bool NodeState::fireIfReady() {
   return true;
 }
 
-template <class F>
-bool NodeState::guarded(const std::string& what, F&& fn) {
-  auto where = [&] { return "node '" + name + "' (" + type->id + ")" + (what.empty() ? "" : " " + what); };
-  try {
-    fn();
-    return true;
-  } catch (const std::exception& ex) {
-    setError(where() + " threw: " + ex.what());
-  } catch (...) {
-    setError(where() + " threw an exception that is not a std::exception");
-  }
-  return false;
-}
-
 void NodeState::recordFiring(std::int64_t t, std::int64_t end) {
   // One writer (the group thread): plain loads and stores, no locked instructions.
   const auto relaxed = std::memory_order_relaxed;
@@ -415,82 +401,6 @@ void NodeState::applyEnabled() {
   revision->fetch_add(1, std::memory_order_relaxed);
 }
 
-void NodeState::runSlot(int slot) {
-  if (slot == kEnableIndex || slot == kDisableIndex) {  // built-in
-    {
-      std::lock_guard<std::mutex> lock(state_mutex);
-      enabled = slot == kEnableIndex;
-    }
-    applyEnabled();
-    return;
-  }
-  if (slot >= static_cast<int>(manifest().slots.size())) return;  // posted before an interface change
-  const std::string& slot_name = manifest().slots[slot].name;
-  in_handler_ = true;
-  const bool ok = guarded("slot '" + slot_name + "'", [&] { manifest().slots[slot].handler(*node); });
-  in_handler_ = false;
-  reported_ = false;
-  if (ok && !sendFromSlot(slot_name)) held_triggers_.clear();  // its events would act on values that did not go out
-  if (!ok) {
-    for (auto& out : outputs) out.pending = Message();
-    held_triggers_.clear();
-  }
-  releaseTriggers();
-}
-
-bool NodeState::sendFromSlot(const std::string& slot) {
-  bool all = true;
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    OutputState& out = outputs[i];
-    if (out.pending.isNothing()) continue;
-    Message m = std::move(out.pending);
-    out.pending = Message();
-    // A counted edge may carry one message at a time: the slot cannot send while a receiver
-    // still holds the last one (the firing rule's exclusivity of the receiver's input).
-    // An input whose sender is cut off from every source does not count it: nothing to send there.
-    auto reaches = [](const Edge& e) { return e.to_param || e.live; };
-    const Edge* busy = nullptr;
-    int counted = 0;
-    for (auto& e : out.edges) {
-      if (e->unread.load(std::memory_order_acquire)) busy = e.get();
-      counted += e->counted() && reaches(*e) ? 1 : 0;
-    }
-    if (busy) {
-      setError("node '" + name + "' (" + type->id + ") slot '" + slot + "' published on output '" +
-               manifest().outputs[i].name + "' while '" + busy->to->name + "' had not read its last message: not sent");
-      all = false;
-      continue;
-    }
-    if (out.tap) out.tap(m);
-    blockers.fetch_add(counted, std::memory_order_acq_rel);  // released as the receivers read, as after a firing
-    for (auto& e : out.edges)
-      if (reaches(*e)) deliver(e, m);
-  }
-  return all;
-}
-
-void NodeState::reportError(const std::string& text) {
-  setError("node '" + name + "' (" + typeId() + "): " + text);
-  reported_ = in_handler_;  // outside a firing there is nothing to keep it from clearing
-}
-
-void NodeState::releaseTriggers() {
-  std::vector<int> held;
-  held.swap(held_triggers_);
-  for (int t : held) fireTrigger(t);
-}
-
-std::vector<ParamTarget> NodeState::parameterTargets(int index) const {
-  std::vector<ParamTarget> out;
-  for (const auto& e : outputs[index].edges) {
-    if (!e->to_param || e->dead) continue;
-    NodeState& to = *e->to;
-    std::lock_guard<std::mutex> lock(to.state_mutex);  // its interface and values change under it
-    out.push_back({to.name, to.manifest().params[e->to_index], to.params[e->to_index].requested});
-  }
-  return out;
-}
-
 void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) {
   auto run = [](NodeState& n) { n.runDownstreamChanged(); };
   const auto now = std::chrono::steady_clock::now();
@@ -518,17 +428,6 @@ void NodeState::runDownstreamChanged() {
     node->downstreamChanged();
   } catch (const std::exception& ex) {
     setError("node '" + name + "' (" + type->id + ") failed to re-send after a change downstream: " + ex.what());
-  }
-}
-
-void NodeState::fireTrigger(int trigger) {
-  if (in_handler_) {
-    held_triggers_.push_back(trigger);
-    return;
-  }
-  for (auto& e : trigger_edges[trigger]) {
-    const int slot = e->slot;
-    e->to->post([slot](NodeState& n) { n.runSlot(slot); });
   }
 }
 

@@ -241,5 +241,19 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void take(InputState& in, bool optional, bool& skip);
 };
 
+template <class F>
+inline bool NodeState::guarded(const std::string& what, F&& fn) {
+  auto where = [&] { return "node '" + name + "' (" + type->id + ")" + (what.empty() ? "" : " " + what); };
+  try {
+    fn();
+    return true;
+  } catch (const std::exception& ex) {
+    setError(where() + " threw: " + ex.what());
+  } catch (...) {
+    setError(where() + " threw an exception that is not a std::exception");
+  }
+  return false;
+}
+
 }  // namespace detail
 }  // namespace apex

@@ -9,6 +9,7 @@
 #include <deque>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "apex/core/graph.hpp"
@@ -212,6 +213,17 @@ inline NodeRegistry testRegistry() {
 template <class T>
 T* object(Graph& g, const std::string& name) {
   return dynamic_cast<T*>(g.nodeObject(name));
+}
+
+/** Waits until `done()` holds, checking every millisecond, for at most `timeout` seconds. */
+template <class F>
+bool waitUntil(F done, double timeout = kWait) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+  while (!done()) {
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::sleep_for(1ms);
+  }
+  return true;
 }
 
 /** Adds a node and fails the test if that is refused. */

@@ -1,0 +1,97 @@
+// Events on the group thread: slots (what a handler publishes goes out as a firing's messages
+// do), triggers held until the messages of their firing or slot have left, and what an output
+// feeds (see docs/architecture.md, "Sequences, events in order, and the tuning loop").
+#include "node_state.hpp"
+
+namespace apex {
+namespace detail {
+
+void NodeState::runSlot(int slot) {
+  if (slot == kEnableIndex || slot == kDisableIndex) {  // built-in
+    {
+      std::lock_guard<std::mutex> lock(state_mutex);
+      enabled = slot == kEnableIndex;
+    }
+    applyEnabled();
+    return;
+  }
+  if (slot >= static_cast<int>(manifest().slots.size())) return;  // posted before an interface change
+  const std::string& slot_name = manifest().slots[slot].name;
+  in_handler_ = true;
+  const bool ok = guarded("slot '" + slot_name + "'", [&] { manifest().slots[slot].handler(*node); });
+  in_handler_ = false;
+  reported_ = false;
+  if (ok && !sendFromSlot(slot_name)) held_triggers_.clear();  // its events would act on values that did not go out
+  if (!ok) {
+    for (auto& out : outputs) out.pending = Message();
+    held_triggers_.clear();
+  }
+  releaseTriggers();
+}
+
+bool NodeState::sendFromSlot(const std::string& slot) {
+  bool all = true;
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    OutputState& out = outputs[i];
+    if (out.pending.isNothing()) continue;
+    Message m = std::move(out.pending);
+    out.pending = Message();
+    // A counted edge may carry one message at a time: the slot cannot send while a receiver
+    // still holds the last one (the firing rule's exclusivity of the receiver's input).
+    // An input whose sender is cut off from every source does not count it: nothing to send there.
+    auto reaches = [](const Edge& e) { return e.to_param || e.live; };
+    const Edge* busy = nullptr;
+    int counted = 0;
+    for (auto& e : out.edges) {
+      if (e->unread.load(std::memory_order_acquire)) busy = e.get();
+      counted += e->counted() && reaches(*e) ? 1 : 0;
+    }
+    if (busy) {
+      setError("node '" + name + "' (" + type->id + ") slot '" + slot + "' published on output '" +
+               manifest().outputs[i].name + "' while '" + busy->to->name + "' had not read its last message: not sent");
+      all = false;
+      continue;
+    }
+    if (out.tap) out.tap(m);
+    blockers.fetch_add(counted, std::memory_order_acq_rel);  // released as the receivers read, as after a firing
+    for (auto& e : out.edges)
+      if (reaches(*e)) deliver(e, m);
+  }
+  return all;
+}
+
+void NodeState::reportError(const std::string& text) {
+  setError("node '" + name + "' (" + typeId() + "): " + text);
+  reported_ = in_handler_;  // outside a firing there is nothing to keep it from clearing
+}
+
+void NodeState::releaseTriggers() {
+  std::vector<int> held;
+  held.swap(held_triggers_);
+  for (int t : held) fireTrigger(t);
+}
+
+std::vector<ParamTarget> NodeState::parameterTargets(int index) const {
+  std::vector<ParamTarget> out;
+  for (const auto& e : outputs[index].edges) {
+    if (!e->to_param || e->dead) continue;
+    NodeState& to = *e->to;
+    std::lock_guard<std::mutex> lock(to.state_mutex);  // its interface and values change under it
+    out.push_back({to.name, to.manifest().params[e->to_index], to.params[e->to_index].requested});
+  }
+  return out;
+}
+
+void NodeState::fireTrigger(int trigger) {
+  if (in_handler_) {
+    held_triggers_.push_back(trigger);
+    return;
+  }
+  for (auto& e : trigger_edges[trigger]) {
+    const int slot = e->slot;
+    e->to->post([slot](NodeState& n) { n.runSlot(slot); });
+  }
+}
+
+}  // namespace detail
+}  // namespace apex
