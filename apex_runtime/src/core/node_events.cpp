@@ -66,6 +66,7 @@ void NodeState::reportError(const std::string& text) {
 }
 
 void NodeState::releaseTriggers() {
+  if (held_triggers_.empty()) return;  // every firing passes here
   std::vector<int> held;
   held.swap(held_triggers_);
   for (int t : held) fireTrigger(t);

@@ -161,9 +161,11 @@ bool NodeState::fireIfReady() {
   }
 
   bool skip = !active_enabled_;
-  for (std::size_t i = 0; i < inputs.size(); ++i) take(*inputs[i], manifest().inputs[i].optional, skip);
   bool end = false;  // the end of a sequence: passed on in step, whatever else the inputs hold
-  for (auto& in : inputs) end = end || in->current.isEndOfSequence();
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    take(*inputs[i], manifest().inputs[i].optional, skip);
+    end = end || inputs[i]->current.isEndOfSequence();
+  }
 
   bool ok = true;
   in_handler_ = true;
