@@ -10,7 +10,7 @@ namespace apex_nodes {
 class DrawRegions : public apex::Node {
  public:
   static apex::Manifest manifest() {
-    return apex::Manifest("Draws regions' bounding boxes over an image")
+    return apex::Manifest("Draws regions' bounding boxes over an image, with their labels if a classifier gave them")
         .input<Image>("image")
         .input<Regions>("regions")
         .output<Image>("image", "bgr8 with the boxes drawn")
@@ -27,13 +27,27 @@ class DrawRegions : public apex::Node {
     else if (in.encoding == "rgb8") cv::cvtColor(in.mat, out->mat, cv::COLOR_RGB2BGR);
     else in.mat.copyTo(out->mat);
     const apex::Color& c = color_.get();
-    for (const auto& r : regions.regions)
+    for (const auto& r : regions.regions) {
       cv::rectangle(out->mat, r.box, cv::Scalar(c.b, c.g, c.r), thickness_.get());
+      drawLabel(out->mat, r, cv::Scalar(c.b, c.g, c.r));
+    }
     out->encoding = "bgr8";
     image_out_.publish(out);
   }
 
  private:
+  /** A classified region's label and confidence above its box ('?' if the classifier rejected it). */
+  static void drawLabel(cv::Mat& img, const Region& r, const cv::Scalar& colour) {
+    if (r.label < 0 && r.confidence <= 0) return;  // not classified
+    const std::string text = (r.label >= 0 ? std::to_string(r.label) : std::string("?")) + " " +
+                             std::to_string(cvRound(100 * r.confidence)) + "%";
+    int baseline = 0;
+    const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, 0.6, 2, &baseline);
+    const cv::Point at(r.box.x, r.box.y > size.height + 6 ? r.box.y - 6 : r.box.br().y + size.height + 4);
+    cv::rectangle(img, cv::Rect(at.x, at.y - size.height - 2, size.width + 2, size.height + baseline + 2), cv::Scalar::all(0), cv::FILLED);
+    cv::putText(img, text, at + cv::Point(1, 0), cv::FONT_HERSHEY_SIMPLEX, 0.6, colour, 2, cv::LINE_AA);
+  }
+
   apex::Input<Image> image_in_{this, "image"};
   apex::Input<Regions> regions_{this, "regions"};
   apex::Output<Image> image_out_{this, "image"};

@@ -3,12 +3,7 @@
 // would with rosservice, shows its progress, applies and saves the best values, and compares the
 // shipped and the tuned parameters on a held-out bag.
 //   apex_tune_report TRAIN.bag TRAIN_TRUTH.yaml TEST.bag TEST_TRUTH.yaml TUNED_GRAPH.yaml
-#include <apex/FireSlot.h>
-#include <apex/GetGraph.h>
-#include <apex/Inspect.h>
 #include <apex/SaveGraph.h>
-#include <apex/SetParameter.h>
-#include <ros/ros.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/Int32.h>
 #include <yaml-cpp/yaml.h>
@@ -20,47 +15,18 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "runtime_client.hpp"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/** Calls a runtime service; a refusal or a missing service ends the demo with its message. */
-template <class Srv>
-typename Srv::Response call(const std::string& name, typename Srv::Request request) {
-  const std::string service = "/apex/" + name;
-  if (!ros::service::waitForService(service, ros::Duration(30))) throw std::runtime_error(service + " did not appear");
-  Srv srv;
-  srv.request = request;
-  if (!ros::service::call(service, srv)) throw std::runtime_error(service + " failed");
-  if (!srv.response.success) throw std::runtime_error(service + ": " + srv.response.message);
-  return srv.response;
-}
-
-void set(const std::string& node, const std::string& param, const std::string& value) {
-  apex::SetParameter::Request r;
-  r.node = node, r.parameter = param, r.value = value;
-  call<apex::SetParameter>("set_parameter", r);
-}
-
-void fire(const std::string& node, const std::string& slot) {
-  apex::FireSlot::Request r;
-  r.node = node, r.slot = slot;
-  call<apex::FireSlot>("fire_slot", r);
-}
-
-apex::GraphState graph() { return call<apex::GetGraph>("get_graph", {}).graph; }
-
-const apex::NodeInfo& nodeIn(const apex::GraphState& g, const std::string& name) {
-  for (const auto& n : g.nodes)
-    if (n.name == name) return n;
-  throw std::runtime_error("the graph has no node '" + name + "'");
-}
-
-std::string valueOf(const apex::GraphState& g, const std::string& node, const std::string& param) {
-  for (const auto& p : nodeIn(g, node).parameters)
-    if (p.name == param) return p.value;
-  throw std::runtime_error("node '" + node + "' has no parameter '" + param + "'");
-}
+using apex_tools::call;
+using apex_tools::fire;
+using apex_tools::graph;
+using apex_tools::nodeIn;
+using apex_tools::set;
+using apex_tools::valueOf;
 
 /** What the optimiser tunes: its output (dimension) → "node/parameter". */
 std::map<std::string, std::string> targets(const apex::GraphState& g) {
@@ -102,10 +68,7 @@ class Watch {
  private:
   template <class Msg, class F>
   ros::Subscriber subscribe(ros::NodeHandle& nh, const std::string& node, const std::string& port, F on) {
-    apex::Inspect::Request r;
-    r.node = node, r.port = port, r.enable = true;
-    const std::string topic = call<apex::Inspect>("inspect", r).topic;
-    return nh.subscribe<Msg>(topic, 100, [this, on](const typename Msg::ConstPtr& m) {
+    return nh.subscribe<Msg>(apex_tools::inspect(node, port), 100, [this, on](const typename Msg::ConstPtr& m) {
       std::lock_guard<std::mutex> l(m_);
       on(*m);
       cv_.notify_all();

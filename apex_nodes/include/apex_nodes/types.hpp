@@ -48,6 +48,8 @@ struct Region {
   cv::Rect box;
   double area = 0;
   cv::Point2d centroid;
+  int label = -1;         ///< a classifier's class (e.g. DigitClassifier's digit); -1: none
+  double confidence = 0;  ///< the classifier's confidence in `label`, 0..1; > 0 with label -1: rejected
 };
 
 /** @brief Regions found in one image, with that image's header and size. */

@@ -1,0 +1,95 @@
+// DigitClassifier: the digit on each region (a sign), by a model apex_train_mlp wrote. The model
+// is read when first needed, and again when the parameter is set or the file changes; a missing
+// or damaged file is an error on the node (the regions still go out, unlabelled).
+#include <sys/stat.h>
+
+#include <memory>
+
+#include "apex/core/registry.hpp"
+#include "apex_nodes/digits.hpp"
+#include "apex_nodes/image_check.hpp"
+
+namespace apex_nodes {
+
+class DigitClassifier : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Classifies the digit in each region with a trained MLP (apex_train_mlp's model file)")
+        .input<Image>("image", "the image the regions were found in")
+        .input<Regions>("regions", "e.g. BlobDetection's: one sign each")
+        .output<Regions>("regions", "the regions with label (the digit, -1 if rejected) and confidence")
+        .param(apex::param::path("model", "", apex::PathMode::Read).describe("apex_train_mlp's model file"))
+        .param(apex::param::range("min_confidence", 0.0, 1.0, 0.01, 0.5)
+                   .describe("a region whose best digit is less certain gets label -1 (shown as '?')"));
+  }
+  void parameterChanged(const std::string& name) override {
+    if (name == "model") model_.reset(), failed_.clear();
+  }
+  void process() override {
+    const Image& image = *image_.get();
+    const auto in = regions_.get();
+    requireImage(image);
+    const DigitModel* model = nullptr;
+    try {
+      model = &load();
+    } catch (const std::invalid_argument& e) {
+      reportError(e.what());
+      regions_out_.publish(in);  // the pipeline goes on, unlabelled
+      return;
+    }
+    auto out = std::make_shared<Regions>(*in);
+    const cv::Rect frame(0, 0, image.mat.cols, image.mat.rows);
+    for (auto& r : out->regions) {
+      const cv::Rect box = r.box & frame;
+      if (box.empty()) continue;
+      const DigitPrediction p = model->classify(image.mat(box));
+      r.confidence = p.confidence;
+      r.label = p.confidence >= min_confidence_.get() ? p.label : -1;
+    }
+    regions_out_.publish(std::move(out));
+  }
+
+ private:
+  const DigitModel& load() {
+    const std::string& path = model_path_.get();
+    if (path.empty()) throw std::invalid_argument("no model: set 'model' to a file apex_train_mlp wrote");
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+      model_.reset();
+      throw std::invalid_argument("the model '" + path + "' is gone");
+    }
+    const Stamp stamp{st.st_mtim.tv_sec, st.st_mtim.tv_nsec, st.st_size};
+    if (model_ && stamp == stamp_) return *model_;
+    if (!failed_.empty() && stamp == stamp_) throw std::invalid_argument(failed_);  // not read again until it changes
+    model_.reset();  // a damaged file leaves no model behind
+    failed_.clear();
+    stamp_ = stamp;
+    try {
+      model_ = std::make_unique<DigitModel>(DigitModel::load(path));
+    } catch (const std::invalid_argument& e) {
+      failed_ = e.what();
+      throw;
+    }
+    log(apex::LogLevel::Info, "loaded the model '" + path + "': " + std::to_string(model_->classes().size()) +
+                                  " classes, validation accuracy " + std::to_string(model_->validationAccuracy()));
+    return *model_;
+  }
+  struct Stamp {
+    long sec = 0, nsec = 0;
+    long long size = 0;
+    bool operator==(const Stamp& o) const { return sec == o.sec && nsec == o.nsec && size == o.size; }
+  };
+
+  apex::Input<Image> image_{this, "image"};
+  apex::Input<Regions> regions_{this, "regions"};
+  apex::Output<Regions> regions_out_{this, "regions"};
+  apex::Param<std::string> model_path_{this, "model"};
+  apex::Param<double> min_confidence_{this, "min_confidence"};
+  std::unique_ptr<DigitModel> model_;
+  Stamp stamp_;
+  std::string failed_;  // why the file at stamp_ could not be read
+};
+
+}  // namespace apex_nodes
+
+APEX_REGISTER_NODE(apex_nodes::DigitClassifier, "apex_nodes/DigitClassifier");

@@ -1,0 +1,109 @@
+// SampleExport: training samples from a running pipeline. Each region that matches a sign of
+// the ground truth is cut out of the image and written as DIGIT/STAMP_REGION.png under
+// `directory`, and listed in DIRECTORY/index.csv (file,label,stamp_ns,x,y,width,height), which
+// apex_train_mlp reads. The index is replaced whole after every frame (never half-written); a
+// second pass over the same bag rewrites the same samples, and other bags add theirs.
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
+
+#include "apex/core/graph_file.hpp"
+#include "apex/core/registry.hpp"
+#include "apex_nodes/image_check.hpp"
+#include "apex_nodes/truth.hpp"
+
+namespace apex_nodes {
+namespace fs = std::filesystem;
+
+class SampleExport : public apex::Node {
+ public:
+  static constexpr const char* kIndexHeader = "file,label,stamp_ns,x,y,width,height";
+
+  static apex::Manifest manifest() {
+    return apex::Manifest("Writes the crop of each region that matches a labelled sign of the ground truth, with an index file")
+        .input<Image>("image", "the image the regions were found in")
+        .input<Regions>("regions", "e.g. BlobDetection's")
+        .output<int>("written", "samples this frame gave")
+        .output<int>("samples", "at the end of a sequence (e.g. a pass of the bag): samples in the directory's index")
+        .param(apex::param::path("directory", "", apex::PathMode::Directory)
+                   .describe("where the samples go (made if missing): DIGIT/STAMP_REGION.png and index.csv"))
+        .param(apex::param::path("truth", "", apex::PathMode::Read).describe("the ground truth with each sign's digit"))
+        .param(apex::param::range("iou", 0.05, 1.0, 0.05, 0.5).describe("overlap a region needs to match a sign"));
+  }
+  void parameterChanged(const std::string& name) override {
+    if (name == "truth") truth_file_.reset();
+    if (name == "directory") index_dir_.clear();  // read the new folder's index first
+  }
+  void process() override {
+    const Image& image = *image_.get();
+    const Regions& in = *regions_.get();
+    requireImage(image);
+    const std::string& dir = directory_.get();
+    if (dir.empty()) throw std::invalid_argument("no directory: set 'directory' to the folder for the samples");
+    const Truth& truth = truth_file_.get(truth_.get());
+    if (!truth.has_digits)
+      throw std::invalid_argument("the ground truth '" + truth_.get() + "' lists no digits: make the bag again");
+    const std::vector<TruthSign> signs = truth.signsFor(in, truth_.get());
+    openIndex(dir);
+    const cv::Rect frame(0, 0, image.mat.cols, image.mat.rows);
+    int written = 0;
+    for (const auto& [s, r] : matchSigns(signs, in.regions, iou_.get())) {
+      const cv::Rect box = in.regions[r].box & frame;
+      if (box.empty() || signs[s].digit < 0) continue;
+      write(dir, signs[s].digit, in.header.stamp.toNSec(), r, box, image.mat(box));
+      ++written;
+    }
+    if (written) saveIndex(dir);
+    written_.publish(written);
+  }
+  void endOfSequence() override { samples_.publish(static_cast<int>(index_.size())); }  // in the token's place
+
+ private:
+  void write(const std::string& dir, int digit, std::uint64_t stamp, int region, const cv::Rect& box, const cv::Mat& crop) {
+    const std::string folder = std::to_string(digit);
+    std::error_code ec;
+    fs::create_directories(fs::path(dir) / folder, ec);
+    if (ec) throw std::runtime_error("cannot make the folder '" + dir + "/" + folder + "': " + ec.message());
+    const std::string file = folder + "/" + std::to_string(stamp) + "_" + std::to_string(region) + ".png";
+    if (!cv::imwrite(dir + "/" + file, crop)) throw std::runtime_error("cannot write '" + dir + "/" + file + "'");
+    index_[file] = file + "," + folder + "," + std::to_string(stamp) + "," + std::to_string(box.x) + "," +
+                   std::to_string(box.y) + "," + std::to_string(box.width) + "," + std::to_string(box.height);
+  }
+  /** The index already in `dir` (from an earlier run), read once per folder. */
+  void openIndex(const std::string& dir) {
+    if (index_dir_ == dir) return;
+    index_.clear();
+    std::ifstream in(dir + "/index.csv");
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      if (n == 1 && line == kIndexHeader) continue;
+      const auto comma = line.find(',');
+      if (comma == std::string::npos || comma == 0)
+        throw std::invalid_argument("'" + dir + "/index.csv' line " + std::to_string(n) + " is not 'file,label,...': move the file away");
+      index_[line.substr(0, comma)] = line;
+    }
+    index_dir_ = dir;
+  }
+  void saveIndex(const std::string& dir) const {
+    std::string text = std::string(kIndexHeader) + "\n";
+    for (const auto& [file, line] : index_) text += line + "\n";
+    const apex::Status st = apex::writeFileAtomically(dir + "/index.csv", text);
+    if (!st) throw std::runtime_error(st.message());
+  }
+
+  apex::Input<Image> image_{this, "image"};
+  apex::Input<Regions> regions_{this, "regions"};
+  apex::Output<int> written_{this, "written"};
+  apex::Output<int> samples_{this, "samples"};
+  apex::Param<std::string> directory_{this, "directory"};
+  apex::Param<std::string> truth_{this, "truth"};
+  apex::Param<double> iou_{this, "iou"};
+  TruthFile truth_file_;
+  std::map<std::string, std::string> index_;  // file → its line
+  std::string index_dir_;                      // the folder index_ belongs to
+};
+
+}  // namespace apex_nodes
+
+APEX_REGISTER_NODE(apex_nodes::SampleExport, "apex_nodes/SampleExport");

@@ -1,0 +1,131 @@
+// Trains the digit classifier (DigitClassifier's model) on samples that SampleExport wrote:
+//   apex_train_mlp SAMPLES_DIR MODEL.yaml [--hidden N[,N...]] [--epochs N] [--batch N]
+//                  [--validation F] [--size N] [--seed N]
+// Reads SAMPLES_DIR/index.csv, holds a share of the samples out, trains cv::ml::ANN_MLP (RPROP)
+// with a progress line per batch of epochs, prints the validation accuracy and the time per
+// classification, and writes the model with its feature settings (atomically).
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "apex_nodes/digits.hpp"
+
+namespace {
+
+struct Options {
+  std::string samples, model;
+  apex_nodes::DigitFeatureSettings features;
+  apex_nodes::TrainSettings train;
+};
+
+const char* kUsage =
+    "usage: apex_train_mlp SAMPLES_DIR MODEL.yaml [--hidden N[,N...]] [--epochs N] [--batch N] [--validation F]"
+    " [--size N] [--seed N]";
+
+int whole(const std::string& what, const std::string& text, int lo, int hi) {
+  std::size_t used = 0;
+  int n = 0;
+  try {
+    n = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || n < lo || n > hi)
+    throw std::invalid_argument(what + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                                ", not '" + text + "'");
+  return n;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> plain;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg.rfind("--", 0) != 0) {
+      plain.push_back(arg);
+      continue;
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
+    const std::string value = argv[++i];
+    if (arg == "--hidden") {
+      o.train.hidden.clear();
+      std::stringstream list(value);
+      for (std::string n; std::getline(list, n, ',');) o.train.hidden.push_back(whole("--hidden", n, 1, 4096));
+    } else if (arg == "--epochs") {
+      o.train.epochs = whole(arg, value, 1, 100000);
+    } else if (arg == "--batch") {
+      o.train.batch = whole(arg, value, 1, 100000);
+    } else if (arg == "--size") {
+      o.features.size = whole(arg, value, 4, 64);
+    } else if (arg == "--seed") {
+      o.train.seed = static_cast<unsigned>(whole(arg, value, 0, 1 << 30));
+    } else if (arg == "--validation") {
+      o.train.validation = whole(arg, std::to_string(std::lround(std::stod(value) * 100)), 0, 90) / 100.0;
+    } else {
+      throw std::invalid_argument("unknown option '" + arg + "'");
+    }
+  }
+  if (plain.size() != 2) throw std::invalid_argument("needs SAMPLES_DIR and MODEL.yaml");
+  o.samples = plain[0], o.model = plain[1];
+  return o;
+}
+
+/** The samples of SAMPLES_DIR/index.csv as feature rows, with their labels. */
+void load(const Options& o, cv::Mat& features, std::vector<int>& labels) {
+  const std::string index = o.samples + "/index.csv";
+  std::ifstream in(index);
+  if (!in) throw std::invalid_argument("cannot read '" + index + "' (SampleExport writes it)");
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (n == 1 && line.rfind("file,", 0) == 0) continue;
+    std::stringstream fields(line);
+    std::string file, label;
+    if (!std::getline(fields, file, ',') || !std::getline(fields, label, ','))
+      throw std::invalid_argument(index + " line " + std::to_string(n) + ": needs 'file,label,...'");
+    const cv::Mat crop = cv::imread(o.samples + "/" + file, cv::IMREAD_GRAYSCALE);
+    if (crop.empty()) throw std::invalid_argument(index + " line " + std::to_string(n) + ": cannot read '" + file + "'");
+    features.push_back(apex_nodes::digitFeatures(crop, o.features));
+    labels.push_back(whole(index + " line " + std::to_string(n) + ": the label", label, 0, 1 << 20));
+  }
+  if (labels.empty()) throw std::invalid_argument(index + " lists no samples");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  try {
+    o = parse(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "apex_train_mlp: " << e.what() << "\n" << kUsage << "\n";
+    return 2;
+  }
+  try {
+    cv::Mat features;
+    std::vector<int> labels;
+    load(o, features, labels);
+    std::printf("apex_train_mlp: %d samples from %s, %.0f%% held out for validation\n", features.rows, o.samples.c_str(),
+                100 * o.train.validation);
+    std::fflush(stdout);
+    const auto model = apex_nodes::DigitModel::train(features, labels, o.features, o.train, [](const auto& p) {
+      std::printf("epoch %5d: training accuracy %.3f, validation accuracy %.3f\n", p.epochs, p.train_accuracy,
+                  p.validation_accuracy);
+      std::fflush(stdout);
+    });
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < features.rows; ++i) (void)model.predict(features.row(i));
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() / features.rows;
+    model.save(o.model);
+    std::printf("validation accuracy: %.3f; the network: %.1f us per sample; model written to %s\n",
+                model.validationAccuracy(), us, o.model.c_str());
+  } catch (const std::exception& e) {
+    std::cerr << "apex_train_mlp: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
