@@ -148,6 +148,19 @@ DigitModel DigitModel::train(const cv::Mat& samples, const std::vector<int>& lab
   return m;
 }
 
+bool DigitModel::fits() const {
+  const cv::Mat layers = mlp_->getLayerSizes();
+  const int n = static_cast<int>(layers.total());
+  if (features_.size < 2 || features_.size > 256 || n < 2 || classes_.size() < 2 || !mlp_->isTrained() ||
+      layers.at<int>(0) != features_.size * features_.size || layers.at<int>(n - 1) != static_cast<int>(classes_.size()))
+    return false;
+  for (int i = 1; i < n; ++i) {
+    const cv::Mat w = mlp_->getWeights(i);
+    if (w.rows != layers.at<int>(i - 1) + 1 || w.cols != layers.at<int>(i) || !cv::checkRange(w)) return false;
+  }
+  return true;
+}
+
 DigitPrediction DigitModel::predict(const cv::Mat& features) const {
   cv::Mat out;
   mlp_->predict(features, out);
@@ -193,14 +206,13 @@ DigitModel DigitModel::load(const std::string& path) {
     m.validation_accuracy_ = static_cast<double>(fs["validation_accuracy"]);
     m.mlp_ = cv::ml::ANN_MLP::create();
     m.mlp_->read(fs["mlp"]);
+    // The network's weights are there, one matrix per layer after the first: a file cut short
+    // after its sizes still reads, with weights of zero.
+    if (fs["mlp"]["weights"].size() + 1 != m.mlp_->getLayerSizes().total()) throw bad("is damaged: it lacks weights (cut short?)");
   } catch (const cv::Exception& e) {
     throw bad("is damaged: " + e.err);  // e.g. a file cut short
   }
-  const cv::Mat layers = m.mlp_->getLayerSizes();
-  if (m.features_.size < 2 || m.features_.size > 256 || layers.total() < 2 || m.classes_.size() < 2 ||
-      layers.at<int>(0) != m.features_.size * m.features_.size ||
-      layers.at<int>(static_cast<int>(layers.total()) - 1) != static_cast<int>(m.classes_.size()) || !m.mlp_->isTrained())
-    throw bad("is damaged: its network does not fit its feature size and classes");
+  if (!m.fits()) throw bad("is damaged: its network does not fit its feature size and classes, or lacks weights");
   return m;
 }
 

@@ -260,7 +260,9 @@ TEST(DigitClassifier, AMissingOrDamagedModelIsAnErrorAndTheRegionsGoOnUnlabelled
     trainedModel().save(other);
     return read(other);
   }();
-  for (const std::string& bad : {text.substr(0, text.size() / 2), std::string("\x01\x02 not a model {{{")}) {
+  // (cut at a line's end, a file still parses: only its missing weights or scales show the damage)
+  for (const std::string& bad : {text.substr(0, text.find("   weights:")), text.substr(0, text.rfind('\n', text.size() / 2) + 1),
+                                 text.substr(0, text.size() / 2), std::string("\x01\x02 not a model {{{")}) {
     std::ofstream(path) << bad;
     EXPECT_TRUE(unlabelled());
     EXPECT_THAT(h.error(), HasSubstr("the model '" + path + "' is damaged"));

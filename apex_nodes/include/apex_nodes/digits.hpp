@@ -64,6 +64,7 @@ class DigitModel {
   double validationAccuracy() const { return validation_accuracy_; }
 
  private:
+  bool fits() const;  ///< the network's sizes and weights fit the features and classes
   cv::Ptr<cv::ml::ANN_MLP> mlp_;
   DigitFeatureSettings features_;
   std::vector<int> classes_;
