@@ -1,4 +1,4 @@
-// ColorConvert: cv::cvtColor between the common colour spaces.
+// ColorConvert: cv::cvtColor between the common colour spaces, and from cameras' YUV 4:2:2.
 #include <map>
 #include <opencv2/imgproc.hpp>
 
@@ -22,7 +22,10 @@ const std::map<std::string, Conversion>& conversions() {
       {"RGB2BGR", {cv::COLOR_RGB2BGR, 3, "bgr8"}},    {"BGR2HSV", {cv::COLOR_BGR2HSV, 3, "8UC3"}},
       {"RGB2HSV", {cv::COLOR_RGB2HSV, 3, "8UC3"}},    {"HSV2BGR", {cv::COLOR_HSV2BGR, 3, "bgr8"}},
       {"BGR2YUV", {cv::COLOR_BGR2YUV, 3, "8UC3"}},    {"YUV2BGR", {cv::COLOR_YUV2BGR, 3, "bgr8"}},
-      {"BGRA2BGR", {cv::COLOR_BGRA2BGR, 4, "bgr8"}},  {"BGR2BGRA", {cv::COLOR_BGR2BGRA, 3, "bgra8"}}};
+      {"BGRA2BGR", {cv::COLOR_BGRA2BGR, 4, "bgr8"}},  {"BGR2BGRA", {cv::COLOR_BGR2BGRA, 3, "bgra8"}},
+      // YUV 4:2:2 as cameras send it: ROS's "yuv422" is UYVY, "yuv422_yuy2" is YUYV (2 channels)
+      {"UYVY2BGR", {cv::COLOR_YUV2BGR_UYVY, 2, "bgr8"}}, {"UYVY2GRAY", {cv::COLOR_YUV2GRAY_UYVY, 2, "mono8"}},
+      {"YUYV2BGR", {cv::COLOR_YUV2BGR_YUYV, 2, "bgr8"}}, {"YUYV2GRAY", {cv::COLOR_YUV2GRAY_YUYV, 2, "mono8"}}};
   return table;
 }
 
@@ -46,10 +49,13 @@ class ColorConvert : public apex::Node {
     const Image& in = *image_in_.get();
     const auto& name = conversion_.get();
     const Conversion& c = conversions().at(name);
-    requireImage(in);
+    requireImage(in, "1234");
     if (in.mat.channels() != c.in_channels)
       throw std::invalid_argument(name + " needs a " + std::to_string(c.in_channels) + "-channel image, got " +
                                   std::to_string(in.mat.channels()) + " channels ('" + in.encoding + "')");
+    if (c.in_channels == 2 && (in.mat.depth() != CV_8U || in.mat.cols % 2))
+      throw std::invalid_argument(name + " needs 8-bit pixel pairs: an even width, got " + std::to_string(in.mat.cols) +
+                                  " pixels of depth " + std::to_string(in.mat.depth()) + " ('" + in.encoding + "')");
     auto out = buffer_.next(in);
     cv::cvtColor(in.mat, out->mat, c.code);
     out->encoding = c.out_encoding;

@@ -8,6 +8,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cv_bridge/cv_bridge.h>
+
+#include "apex_nodes/ros_convert.hpp"
 #include "apex_nodes/types.hpp"
 #include "apex_test/node_harness.hpp"
 
@@ -108,6 +111,45 @@ TEST(ImageNodes, ColorConvertMatchesOpenCVAndChecksChannels) {
   EXPECT_TRUE(h.run(image(gray(), "mono8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("BGR2HSV needs a 3-channel image, got 1 channels ('mono8')"));
   EXPECT_THAT(h.graph().setParameter("node", "conversion", "BGR2XYZ").message(), HasSubstr("not one of"));
+}
+
+/** A camera's YUV 4:2:2 frame (UYVY byte order: U Y0 V Y1 per pixel pair), from `scene()`. */
+cv::Mat uyvy() {
+  cv::Mat yuv, out(scene().size(), CV_8UC2);
+  cv::cvtColor(scene(), yuv, cv::COLOR_BGR2YUV);
+  for (int y = 0; y < yuv.rows; ++y)
+    for (int x = 0; x < yuv.cols; x += 2) {
+      const cv::Vec3b a = yuv.at<cv::Vec3b>(y, x), b = yuv.at<cv::Vec3b>(y, x + 1);
+      out.at<cv::Vec2b>(y, x) = {static_cast<uchar>((a[1] + b[1]) / 2), a[0]};
+      out.at<cv::Vec2b>(y, x + 1) = {static_cast<uchar>((a[2] + b[2]) / 2), b[0]};
+    }
+  return out;
+}
+
+TEST(ImageNodes, ColorConvertReadsCameraYuv422AsRosSendsIt) {
+  // A ROS "yuv422" message (UYVY) becomes a 2-channel image, and ColorConvert makes BGR or gray of it.
+  std_msgs::Header header;
+  header.stamp = ros::Time(42, 7), header.frame_id = "camera";
+  sensor_msgs::ImagePtr msg = cv_bridge::CvImage(header, "yuv422", uyvy()).toImageMsg();
+  const auto frame = apex_nodes::fromRos(msg);
+  ASSERT_EQ(frame->mat.type(), CV_8UC2);
+  NodeHarness h("apex_nodes/ColorConvert", {"image"}, "image");
+  h.set("conversion", "UYVY2BGR");
+  const Image& bgr = out(h.run(frame));
+  EXPECT_EQ(bgr.encoding, "bgr8");
+  cv::Mat want;
+  cv::cvtColor(uyvy(), want, cv::COLOR_YUV2BGR_UYVY);
+  expectSame(bgr.mat, want);
+  EXPECT_LE(cv::norm(bgr.mat, scene(), cv::NORM_L1) / bgr.mat.total() / 3, 6.0);  // the scene, but for chroma shared by pixel pairs
+  h.set("conversion", "UYVY2GRAY");
+  const Image& g = out(h.run(frame));
+  EXPECT_EQ(g.encoding, "mono8");
+  EXPECT_LE(cv::norm(g.mat, gray(), cv::NORM_INF), 2.0);  // Y is the gray level
+  // The wrong shape of input: errors naming it.
+  EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("UYVY2GRAY needs a 2-channel image, got 3 channels ('bgr8')"));
+  EXPECT_TRUE(h.run(image(uyvy().colRange(0, 159).clone(), "yuv422")).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("an even width, got 159"));
 }
 
 TEST(ImageNodes, MorphologyMatchesOpenCV) {
