@@ -2,6 +2,8 @@
 // backgrounds, seen by a camera mounted on its side (as in the paper's SICK
 // Robot Day setup), and a point cloud per frame; plus the ground truth.
 //   apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|hard]
+// Each sign's digit is drawn in one of five fonts, with its own size, stroke, slant and turn
+// (the truth lists the digits), so that reading it takes a trained classifier.
 // Deterministic: the same files for the same options. Hard frames add uneven
 // light, shadows, blur, noise, faint and partly hidden signs, and dark shapes
 // that are not signs: data on which the shipped parameters do poorly and tuned
@@ -111,27 +113,76 @@ std::vector<cv::Rect> placeSigns(cv::RNG& rng, int count) {
   return boxes;
 }
 
-void drawNumber(cv::Mat& img, const cv::Rect& box, int number, const cv::Scalar& colour) {
-  const std::string text = std::to_string(number);
-  const double scale = box.height / 45.0;
-  int baseline = 0;
-  const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, scale, 3, &baseline);
-  const cv::Point at(box.x + (box.width - size.width) / 2, box.y + (box.height + size.height) / 2);
-  cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, colour, 3, cv::LINE_AA);
+/** How a sign's digit is drawn: from a random stream of its own (`style` in main), so that the
+ *  signs, their digits and everything else in a frame are the same as without styles. */
+struct GlyphStyle {
+  int font;
+  double height;  // of the sign's
+  int stroke;     // pixels at a sign 80 pixels high
+  double shear;   // slant: x moves by shear * (centre - y)
+  double angle;   // degrees
+};
+
+GlyphStyle randomStyle(cv::RNG& style) {
+  static const int kFonts[] = {cv::FONT_HERSHEY_SIMPLEX, cv::FONT_HERSHEY_DUPLEX, cv::FONT_HERSHEY_COMPLEX,
+                               cv::FONT_HERSHEY_TRIPLEX, cv::FONT_HERSHEY_SCRIPT_SIMPLEX};
+  GlyphStyle s;
+  s.font = kFonts[style.uniform(0, 5)];
+  s.height = style.uniform(0.5, 0.75);
+  s.stroke = style.uniform(2, 6);
+  s.shear = style.uniform(-0.25, 0.25);
+  s.angle = style.uniform(-6.0, 6.0);
+  return s;
 }
 
-void drawSign(cv::Mat& img, const cv::Rect& box, int number, cv::RNG& rng) {
+/** The digit as a mask of the box's size (255: ink), slanted and turned about its centre, and
+ *  kept 12% of the box away from every edge (the sign stays one dark blob around it). */
+cv::Mat glyph(const cv::Size& box, int number, const GlyphStyle& s) {
+  cv::Mat mask(box, CV_8U, cv::Scalar(0));
+  const std::string text = std::to_string(number);
+  const int stroke = std::max(1, cvRound(s.stroke * box.height / 80.0));
+  const double scale = cv::getFontScaleFromHeight(s.font, cvRound(box.height * s.height), stroke);
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, s.font, scale, stroke, &baseline);
+  cv::putText(mask, text, {(box.width - size.width) / 2, (box.height + size.height) / 2}, s.font, scale, 255, stroke, cv::LINE_AA);
+  const cv::Point2f centre(box.width / 2.f, box.height / 2.f);
+  cv::Mat turn = cv::getRotationMatrix2D(centre, s.angle, 1.0);
+  turn.at<double>(0, 1) += s.shear;
+  turn.at<double>(0, 2) -= s.shear * centre.y;
+  cv::warpAffine(mask, mask, turn, box);
+  const int margin = cvRound(0.12 * std::min(box.width, box.height));
+  const cv::Rect inside(margin, margin, box.width - 2 * margin, box.height - 2 * margin), ink = cv::boundingRect(mask);
+  if (ink.empty() || (ink & inside) == ink) return mask;
+  const double f = std::min(static_cast<double>(inside.width) / ink.width, static_cast<double>(inside.height) / ink.height);
+  const cv::Point2d from(ink.x + ink.width / 2.0, ink.y + ink.height / 2.0), to(centre);
+  const cv::Mat fit = (cv::Mat_<double>(2, 3) << f, 0, to.x - f * from.x, 0, f, to.y - f * from.y);
+  cv::warpAffine(mask, mask, fit, box);
+  return mask;
+}
+
+void drawNumber(cv::Mat& img, const cv::Rect& box, int number, const cv::Scalar& colour, cv::RNG& style) {
+  const cv::Mat mask = glyph(box.size(), number, randomStyle(style));
+  cv::Mat sign = img(box);
+  for (int y = 0; y < sign.rows; ++y)
+    for (int x = 0; x < sign.cols; ++x) {
+      const double a = mask.at<uchar>(y, x) / 255.0;  // anti-aliased edges blend
+      auto& p = sign.at<cv::Vec3b>(y, x);
+      for (int c = 0; c < 3; ++c) p[c] = cv::saturate_cast<uchar>(p[c] * (1 - a) + colour[c] * a);
+    }
+}
+
+void drawSign(cv::Mat& img, const cv::Rect& box, int number, cv::RNG& rng, cv::RNG& style) {
   cv::rectangle(img, box, cv::Scalar::all(rng.uniform(15, 45)), cv::FILLED);
-  drawNumber(img, box, number, cv::Scalar::all(235));
+  drawNumber(img, box, number, cv::Scalar::all(235), style);
 }
 
 // ---- hard frames -------------------------------------------------------------------------
 
 /** A sign only somewhat darker than the background around it, its number barely lighter. */
-void drawFaintSign(cv::Mat& img, const cv::Rect& box, int number, cv::RNG& rng) {
+void drawFaintSign(cv::Mat& img, const cv::Rect& box, int number, cv::RNG& rng, cv::RNG& style) {
   const cv::Scalar around = cv::mean(img(box));
   cv::rectangle(img, box, around * rng.uniform(0.5, 0.78), cv::FILLED);
-  drawNumber(img, box, number, around * rng.uniform(0.9, 1.1));
+  drawNumber(img, box, number, around * rng.uniform(0.9, 1.1), style);
 }
 
 /** A light board in front of one side of the sign, reaching past it: 15-35% of the sign
@@ -219,8 +270,9 @@ void photograph(cv::Mat& scene, cv::RNG& rng) {
 }
 
 /** A hard frame's signs drawn faint, some partly hidden, among distractors, photographed badly. */
-void drawHardFrame(cv::Mat& scene, const std::vector<cv::Rect>& boxes, const std::vector<int>& numbers, cv::RNG& rng) {
-  for (std::size_t i = 0; i < boxes.size(); ++i) drawFaintSign(scene, boxes[i], numbers[i], rng);
+void drawHardFrame(cv::Mat& scene, const std::vector<cv::Rect>& boxes, const std::vector<int>& numbers, cv::RNG& rng,
+                   cv::RNG& style) {
+  for (std::size_t i = 0; i < boxes.size(); ++i) drawFaintSign(scene, boxes[i], numbers[i], rng, style);
   for (const auto& b : boxes)
     if (rng.uniform(0.0, 1.0) < 0.3) occlude(scene, b, rng);
   drawDistractors(scene, boxes, rng);
@@ -253,6 +305,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   cv::RNG rng(opt.seed);
+  cv::RNG style(opt.seed * 2654435761ULL + 12345);  // the digits' fonts, sizes, slants: a stream apart
   rosbag::Bag bag;
   try {
     bag.open(opt.bag, rosbag::bagmode::Write);
@@ -277,14 +330,14 @@ int main(int argc, char** argv) {
     std::vector<int> numbers;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
       numbers.push_back(rng.uniform(0, 10));
-      if (!opt.hard) drawSign(scene, boxes[i], numbers.back(), rng);  // easy: the RNG calls the demo's checks rely on
+      if (!opt.hard) drawSign(scene, boxes[i], numbers.back(), rng, style);  // easy: the RNG calls the demo's checks rely on
       const auto& b = boxes[i];
       truth << (i ? ", " : "") << "[" << b.x << ", " << b.y << ", " << b.width << ", " << b.height << "]";
     }
     truth << "], digits: [";  // the number on each sign, in the order of the boxes
     for (std::size_t i = 0; i < numbers.size(); ++i) truth << (i ? ", " : "") << numbers[i];
     truth << "]}\n";
-    if (opt.hard) drawHardFrame(scene, boxes, numbers, rng);
+    if (opt.hard) drawHardFrame(scene, boxes, numbers, rng, style);
     cv::Mat seen;
     cv::rotate(scene, seen, cv::ROTATE_90_CLOCKWISE);  // the camera lies on its side
     bag.write("/camera/image_raw", header.stamp, cv_bridge::CvImage(header, "bgr8", seen).toImageMsg());
