@@ -91,14 +91,35 @@ cv::Mat digitFeatures(const cv::Mat& crop, const DigitFeatureSettings& s) {
   return row;
 }
 
-DigitModel DigitModel::train(const cv::Mat& samples, const std::vector<int>& labels, const DigitFeatureSettings& features,
-                             const TrainSettings& settings, const std::function<void(const TrainProgress&)>& progress) {
-  if (samples.rows != static_cast<int>(labels.size()) || samples.empty())
-    throw std::invalid_argument("needs one label per sample (" + std::to_string(samples.rows) + " samples, " +
+cv::Mat digitFeatures(const std::vector<cv::Mat>& crops, const DigitFeatureSettings& settings) {
+  cv::Mat rows;
+  for (const auto& c : crops) rows.push_back(digitFeatures(c, settings));
+  return rows;
+}
+
+namespace {
+
+/** The crop slanted, turned and scaled a little at random, its edges extended (the sign stays around). */
+cv::Mat varied(const cv::Mat& crop, std::mt19937& rng) {
+  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const cv::Point2f centre(crop.cols / 2.f, crop.rows / 2.f);
+  cv::Mat warp = cv::getRotationMatrix2D(centre, uniform(-6, 6), uniform(0.9, 1.1));
+  const double shear = uniform(-0.15, 0.15);
+  warp.at<double>(0, 1) += shear;
+  warp.at<double>(0, 2) -= shear * centre.y;
+  cv::Mat out;
+  cv::warpAffine(crop, out, warp, crop.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  return out;
+}
+
+}  // namespace
+
+DigitModel DigitModel::train(const std::vector<cv::Mat>& crops, const std::vector<int>& labels,
+                             const DigitFeatureSettings& features, const TrainSettings& settings,
+                             const std::function<void(const TrainProgress&)>& progress) {
+  if (crops.size() != labels.size() || crops.empty())
+    throw std::invalid_argument("needs one label per crop (" + std::to_string(crops.size()) + " crops, " +
                                 std::to_string(labels.size()) + " labels)");
-  if (samples.cols != features.size * features.size)
-    throw std::invalid_argument("samples have " + std::to_string(samples.cols) + " features; the settings give " +
-                                std::to_string(features.size * features.size));
   DigitModel m;
   m.features_ = features;
   m.classes_ = labels;
@@ -108,7 +129,8 @@ DigitModel DigitModel::train(const cv::Mat& samples, const std::vector<int>& lab
 
   std::vector<int> order(labels.size());
   std::iota(order.begin(), order.end(), 0);
-  std::shuffle(order.begin(), order.end(), std::mt19937(settings.seed));
+  std::mt19937 rng(settings.seed);
+  std::shuffle(order.begin(), order.end(), rng);
   const int held = static_cast<int>(std::lround(settings.validation * order.size()));
   if (settings.validation > 0 && (held < 1 || static_cast<int>(order.size()) - held < static_cast<int>(m.classes_.size())))
     throw std::invalid_argument("too few samples (" + std::to_string(order.size()) + ") to hold " +
@@ -117,16 +139,21 @@ DigitModel DigitModel::train(const cv::Mat& samples, const std::vector<int>& lab
   std::vector<int> train_labels, val_labels;
   for (std::size_t i = 0; i < order.size(); ++i) {
     const int k = order[i];
-    const bool validation = static_cast<int>(i) < held;
-    (validation ? val_x : train_x).push_back(samples.row(k));
-    (validation ? val_labels : train_labels).push_back(labels[k]);
-    if (validation) continue;
+    if (static_cast<int>(i) < held) {
+      val_x.push_back(digitFeatures(crops[k], features));
+      val_labels.push_back(labels[k]);
+      continue;
+    }
     cv::Mat target(1, static_cast<int>(m.classes_.size()), CV_32F, cv::Scalar(0));
     target.at<float>(std::lower_bound(m.classes_.begin(), m.classes_.end(), labels[k]) - m.classes_.begin()) = 1;
-    train_y.push_back(target);
+    for (int copy = 0; copy <= std::max(0, settings.augment); ++copy) {
+      train_x.push_back(digitFeatures(copy ? varied(crops[k], rng) : crops[k], features));
+      train_labels.push_back(labels[k]);
+      train_y.push_back(target);
+    }
   }
 
-  std::vector<int> layers{samples.cols};
+  std::vector<int> layers{train_x.cols};
   layers.insert(layers.end(), settings.hidden.begin(), settings.hidden.end());
   layers.push_back(static_cast<int>(m.classes_.size()));
   m.mlp_ = cv::ml::ANN_MLP::create();
@@ -169,6 +196,10 @@ DigitPrediction DigitModel::predict(const cv::Mat& features) const {
   double sum = 0;
   for (int i = 0; i < n; ++i) sum += std::exp(kSharpness * (o[i] - o[best]));
   return {classes_[best], 1.0 / sum};
+}
+
+double DigitModel::accuracy(const std::vector<cv::Mat>& crops, const std::vector<int>& labels) const {
+  return accuracy(digitFeatures(crops, features_), labels);
 }
 
 double DigitModel::accuracy(const cv::Mat& samples, const std::vector<int>& labels) const {

@@ -1,7 +1,8 @@
 // Trains the digit classifier (DigitClassifier's model) on samples that SampleExport wrote:
 //   apex_train_mlp SAMPLES_DIR MODEL.yaml [--hidden N[,N...]] [--epochs N] [--batch N]
-//                  [--validation F] [--size N] [--seed N]
-// Reads SAMPLES_DIR/index.csv, holds a share of the samples out, trains cv::ml::ANN_MLP (RPROP)
+//                  [--validation F] [--augment N] [--size N] [--seed N]
+// Reads SAMPLES_DIR/index.csv, holds a share of the samples out, adds varied copies (slant, turn,
+// size) of the others, trains cv::ml::ANN_MLP (RPROP)
 // with a progress line per batch of epochs, prints the validation accuracy and the time per
 // classification, and writes the model with its feature settings (atomically).
 #include <chrono>
@@ -25,7 +26,7 @@ struct Options {
 
 const char* kUsage =
     "usage: apex_train_mlp SAMPLES_DIR MODEL.yaml [--hidden N[,N...]] [--epochs N] [--batch N] [--validation F]"
-    " [--size N] [--seed N]";
+    " [--augment N] [--size N] [--seed N]";
 
 int whole(const std::string& what, const std::string& text, int lo, int hi) {
   std::size_t used = 0;
@@ -60,6 +61,8 @@ Options parse(int argc, char** argv) {
       o.train.epochs = whole(arg, value, 1, 100000);
     } else if (arg == "--batch") {
       o.train.batch = whole(arg, value, 1, 100000);
+    } else if (arg == "--augment") {
+      o.train.augment = whole(arg, value, 0, 100);
     } else if (arg == "--size") {
       o.features.size = whole(arg, value, 4, 64);
     } else if (arg == "--seed") {
@@ -75,8 +78,8 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-/** The samples of SAMPLES_DIR/index.csv as feature rows, with their labels. */
-void load(const Options& o, cv::Mat& features, std::vector<int>& labels) {
+/** The crops of SAMPLES_DIR/index.csv, with their labels. */
+void load(const Options& o, std::vector<cv::Mat>& crops, std::vector<int>& labels) {
   const std::string index = o.samples + "/index.csv";
   std::ifstream in(index);
   if (!in) throw std::invalid_argument("cannot read '" + index + "' (SampleExport writes it)");
@@ -89,7 +92,7 @@ void load(const Options& o, cv::Mat& features, std::vector<int>& labels) {
       throw std::invalid_argument(index + " line " + std::to_string(n) + ": needs 'file,label,...'");
     const cv::Mat crop = cv::imread(o.samples + "/" + file, cv::IMREAD_GRAYSCALE);
     if (crop.empty()) throw std::invalid_argument(index + " line " + std::to_string(n) + ": cannot read '" + file + "'");
-    features.push_back(apex_nodes::digitFeatures(crop, o.features));
+    crops.push_back(crop);
     labels.push_back(whole(index + " line " + std::to_string(n) + ": the label", label, 0, 1 << 20));
   }
   if (labels.empty()) throw std::invalid_argument(index + " lists no samples");
@@ -106,22 +109,22 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    cv::Mat features;
+    std::vector<cv::Mat> crops;
     std::vector<int> labels;
-    load(o, features, labels);
-    std::printf("apex_train_mlp: %d samples from %s, %.0f%% held out for validation\n", features.rows, o.samples.c_str(),
-                100 * o.train.validation);
+    load(o, crops, labels);
+    std::printf("apex_train_mlp: %zu samples from %s, %.0f%% held out for validation, %d varied copies of the others\n",
+                crops.size(), o.samples.c_str(), 100 * o.train.validation, o.train.augment);
     std::fflush(stdout);
-    const auto model = apex_nodes::DigitModel::train(features, labels, o.features, o.train, [](const auto& p) {
+    const auto model = apex_nodes::DigitModel::train(crops, labels, o.features, o.train, [](const auto& p) {
       std::printf("epoch %5d: training accuracy %.3f, validation accuracy %.3f\n", p.epochs, p.train_accuracy,
                   p.validation_accuracy);
       std::fflush(stdout);
     });
     const auto start = std::chrono::steady_clock::now();
-    for (int i = 0; i < features.rows; ++i) (void)model.predict(features.row(i));
-    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() / features.rows;
+    for (const auto& c : crops) (void)model.classify(c);
+    const double us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() / crops.size();
     model.save(o.model);
-    std::printf("validation accuracy: %.3f; the network: %.1f us per sample; model written to %s\n",
+    std::printf("validation accuracy: %.3f; %.1f us per crop (features and network); model written to %s\n",
                 model.validationAccuracy(), us, o.model.c_str());
   } catch (const std::exception& e) {
     std::cerr << "apex_train_mlp: " << e.what() << "\n";

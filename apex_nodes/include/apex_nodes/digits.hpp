@@ -22,6 +22,9 @@ struct DigitFeatureSettings {
  *  one row of size*size floats in 0..1. Throws std::invalid_argument for an empty crop. */
 cv::Mat digitFeatures(const cv::Mat& crop, const DigitFeatureSettings& settings);
 
+/** @brief digitFeatures of each crop, a row each. */
+cv::Mat digitFeatures(const std::vector<cv::Mat>& crops, const DigitFeatureSettings& settings);
+
 struct DigitPrediction {
   int label = -1;
   double confidence = 0;  ///< softmax of the network's outputs, 0..1
@@ -32,6 +35,7 @@ struct TrainSettings {
   int epochs = 300;             ///< RPROP iterations in all
   int batch = 50;               ///< epochs between progress reports
   double validation = 0.2;      ///< share of the samples held out
+  int augment = 3;              ///< varied copies of each training crop (slant, turn, size): 0 for none
   unsigned seed = 1;            ///< the same seed, the same split and weights
 };
 
@@ -43,10 +47,10 @@ struct TrainProgress {
 /** @brief A trained network, its classes and feature settings. */
 class DigitModel {
  public:
-  /** @brief Trains on `samples` (one row of digitFeatures each) with `labels`; `progress` is
-   *  called after every batch of epochs. Throws std::invalid_argument if there are fewer than two
-   *  classes or too few samples to hold some out. */
-  static DigitModel train(const cv::Mat& samples, const std::vector<int>& labels, const DigitFeatureSettings& features,
+  /** @brief Trains on sign crops with their `labels`: a share held out for validation, the rest
+   *  with `augment` varied copies each; `progress` is called after every batch of epochs. Throws
+   *  std::invalid_argument if there are fewer than two classes or too few crops to hold some out. */
+  static DigitModel train(const std::vector<cv::Mat>& crops, const std::vector<int>& labels, const DigitFeatureSettings& features,
                           const TrainSettings& settings, const std::function<void(const TrainProgress&)>& progress = {});
   /** @brief Reads a model file; throws std::invalid_argument naming the file and what is wrong. */
   static DigitModel load(const std::string& path);
@@ -56,8 +60,9 @@ class DigitModel {
 
   DigitPrediction predict(const cv::Mat& features) const;
   DigitPrediction classify(const cv::Mat& crop) const { return predict(digitFeatures(crop, features_)); }
-  /** @brief Share of `samples` predicted as `labels`. */
+  /** @brief Share of `samples` (a row of digitFeatures each) predicted as `labels`. */
   double accuracy(const cv::Mat& samples, const std::vector<int>& labels) const;
+  double accuracy(const std::vector<cv::Mat>& crops, const std::vector<int>& labels) const;
 
   const DigitFeatureSettings& features() const { return features_; }
   const std::vector<int>& classes() const { return classes_; }
