@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
+
 namespace {
 
 constexpr int kWidth = 640, kHeight = 480;  // the scene upright; the camera sees it turned
@@ -37,20 +39,7 @@ struct Options {
   bool hard = false;
 };
 
-/** `text` as a whole number in [lo, hi]; `what` names it in the error. */
-std::uint64_t number(const std::string& what, const std::string& text, std::uint64_t lo, std::uint64_t hi) {
-  std::size_t used = 0;
-  unsigned long long n = 0;
-  try {
-    if (!text.empty() && text[0] != '-' && text[0] != '+') n = std::stoull(text, &used);
-  } catch (const std::exception&) {
-    used = 0;  // out of range: reported below
-  }
-  if (used == 0 || used != text.size() || n < lo || n > hi)
-    throw std::invalid_argument(what + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
-                                ", not '" + text + "'");
-  return n;
-}
+using apex_tools::number;
 
 /** Two paths and an optional frame count, with options anywhere among them. */
 Options parse(int argc, char** argv) {

@@ -6,6 +6,7 @@
 // with a progress line per batch of epochs, prints the validation accuracy and the time per
 // classification, and writes the model with its feature settings (atomically).
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "apex_nodes/digits.hpp"
+#include "cli.hpp"
 
 namespace {
 
@@ -29,17 +31,7 @@ const char* kUsage =
     " [--augment N] [--size N] [--seed N]";
 
 int whole(const std::string& what, const std::string& text, int lo, int hi) {
-  std::size_t used = 0;
-  int n = 0;
-  try {
-    n = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || n < lo || n > hi)
-    throw std::invalid_argument(what + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
-                                ", not '" + text + "'");
-  return n;
+  return static_cast<int>(apex_tools::number(what, text, lo, hi));
 }
 
 Options parse(int argc, char** argv) {
@@ -68,7 +60,11 @@ Options parse(int argc, char** argv) {
     } else if (arg == "--seed") {
       o.train.seed = static_cast<unsigned>(whole(arg, value, 0, 1 << 30));
     } else if (arg == "--validation") {
-      o.train.validation = whole(arg, std::to_string(std::lround(std::stod(value) * 100)), 0, 90) / 100.0;
+      char* end = nullptr;
+      const double share = std::strtod(value.c_str(), &end);
+      if (value.empty() || *end || !(share >= 0 && share <= 0.9))
+        throw std::invalid_argument("--validation needs a share from 0 to 0.9, not '" + value + "'");
+      o.train.validation = share;
     } else {
       throw std::invalid_argument("unknown option '" + arg + "'");
     }
