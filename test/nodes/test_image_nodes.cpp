@@ -113,42 +113,76 @@ TEST(ImageNodes, ColorConvertMatchesOpenCVAndChecksChannels) {
   EXPECT_THAT(h.graph().setParameter("node", "conversion", "BGR2XYZ").message(), HasSubstr("not one of"));
 }
 
-/** A camera's YUV 4:2:2 frame (UYVY byte order: U Y0 V Y1 per pixel pair), from `scene()`. */
-cv::Mat uyvy() {
-  cv::Mat yuv, out(scene().size(), CV_8UC2);
-  cv::cvtColor(scene(), yuv, cv::COLOR_BGR2YUV);
-  for (int y = 0; y < yuv.rows; ++y)
-    for (int x = 0; x < yuv.cols; x += 2) {
-      const cv::Vec3b a = yuv.at<cv::Vec3b>(y, x), b = yuv.at<cv::Vec3b>(y, x + 1);
-      out.at<cv::Vec2b>(y, x) = {static_cast<uchar>((a[1] + b[1]) / 2), a[0]};
-      out.at<cv::Vec2b>(y, x + 1) = {static_cast<uchar>((a[2] + b[2]) / 2), b[0]};
+/** `scene()` with the two pixels of each horizontal pair alike: what YUV 4:2:2, which gives a
+ *  pair one U and one V, keeps but for rounding. */
+cv::Mat pairedScene() {
+  cv::Mat half, out;
+  cv::resize(scene(), half, cv::Size(80, 120), 0, 0, cv::INTER_AREA);
+  cv::resize(half, out, scene().size(), 0, 0, cv::INTER_NEAREST);
+  return out;
+}
+
+/** `bgr` as a camera's YUV 4:2:2 frame in UYVY byte order (U Y0 V Y1 per pixel pair), by the
+ *  BT.601 video-range formulas (Y in 16..235) that OpenCV's 4:2:2 conversions invert. */
+cv::Mat toUyvy(const cv::Mat& bgr) {
+  auto luma = [](const cv::Vec3d& p) { return cv::saturate_cast<uchar>(16 + 0.257 * p[2] + 0.504 * p[1] + 0.098 * p[0]); };
+  cv::Mat out(bgr.size(), CV_8UC2);
+  for (int y = 0; y < bgr.rows; ++y)
+    for (int x = 0; x + 1 < bgr.cols; x += 2) {
+      const cv::Vec3d a = bgr.at<cv::Vec3b>(y, x), b = bgr.at<cv::Vec3b>(y, x + 1), m = (a + b) / 2;
+      const uchar u = cv::saturate_cast<uchar>(128 - 0.148 * m[2] - 0.291 * m[1] + 0.439 * m[0]);
+      const uchar v = cv::saturate_cast<uchar>(128 + 0.439 * m[2] - 0.368 * m[1] - 0.071 * m[0]);
+      out.at<cv::Vec2b>(y, x) = {u, luma(a)};
+      out.at<cv::Vec2b>(y, x + 1) = {v, luma(b)};
     }
+  return out;
+}
+
+/** The same frame in YUYV byte order (Y0 U Y1 V): each pixel's two bytes swapped. */
+cv::Mat toYuyv(const cv::Mat& uyvy) {
+  std::vector<cv::Mat> bytes;
+  cv::split(uyvy, bytes);
+  cv::Mat out;
+  cv::merge(std::vector<cv::Mat>{bytes[1], bytes[0]}, out);
   return out;
 }
 
 TEST(ImageNodes, ColorConvertReadsCameraYuv422AsRosSendsIt) {
   // A ROS "yuv422" message (UYVY) becomes a 2-channel image, and ColorConvert makes BGR or gray of it.
+  const cv::Mat paired = pairedScene(), uyvy = toUyvy(paired);
   std_msgs::Header header;
   header.stamp = ros::Time(42, 7), header.frame_id = "camera";
-  sensor_msgs::ImagePtr msg = cv_bridge::CvImage(header, "yuv422", uyvy()).toImageMsg();
-  const auto frame = apex_nodes::fromRos(msg);
+  const auto frame = apex_nodes::fromRos(cv_bridge::CvImage(header, "yuv422", uyvy).toImageMsg());
   ASSERT_EQ(frame->mat.type(), CV_8UC2);
+  ASSERT_EQ(frame->mat.size(), paired.size());
   NodeHarness h("apex_nodes/ColorConvert", {"image"}, "image");
   h.set("conversion", "UYVY2BGR");
   const Image& bgr = out(h.run(frame));
   EXPECT_EQ(bgr.encoding, "bgr8");
   cv::Mat want;
-  cv::cvtColor(uyvy(), want, cv::COLOR_YUV2BGR_UYVY);
-  expectSame(bgr.mat, want);
-  EXPECT_LE(cv::norm(bgr.mat, scene(), cv::NORM_L1) / bgr.mat.total() / 3, 6.0);  // the scene, but for chroma shared by pixel pairs
+  cv::cvtColor(uyvy, want, cv::COLOR_YUV2BGR_UYVY);
+  expectSame(bgr.mat, want);  // size and type too
+  EXPECT_LE(cv::norm(bgr.mat, paired, cv::NORM_INF), 3.0);  // the colours sent, but for rounding
   h.set("conversion", "UYVY2GRAY");
   const Image& g = out(h.run(frame));
   EXPECT_EQ(g.encoding, "mono8");
-  EXPECT_LE(cv::norm(g.mat, gray(), cv::NORM_INF), 2.0);  // Y is the gray level
+  ASSERT_EQ(g.mat.type(), CV_8UC1);
+  cv::Mat luma, video;
+  cv::extractChannel(uyvy, luma, 1);
+  expectSame(g.mat, luma);  // the gray image is Y as sent: video range
+  cv::cvtColor(paired, video, cv::COLOR_BGR2GRAY);
+  video.convertTo(video, CV_8U, 219 / 255.0, 16);
+  EXPECT_LE(cv::norm(g.mat, video, cv::NORM_INF), 2.0);
+  // YUYV ("yuv422_yuy2"): the same pixels from the other byte order.
+  h.set("conversion", "YUYV2BGR");
+  expectSame(out(h.run(image(toYuyv(uyvy), "yuv422_yuy2"))).mat, bgr.mat);
+  h.set("conversion", "YUYV2GRAY");
+  expectSame(out(h.run(image(toYuyv(uyvy), "yuv422_yuy2"))).mat, g.mat);
   // The wrong shape of input: errors naming it.
+  h.set("conversion", "UYVY2BGR");
   EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
-  EXPECT_THAT(h.error(), HasSubstr("UYVY2GRAY needs a 2-channel image, got 3 channels ('bgr8')"));
-  EXPECT_TRUE(h.run(image(uyvy().colRange(0, 159).clone(), "yuv422")).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("UYVY2BGR needs a 2-channel image, got 3 channels ('bgr8')"));
+  EXPECT_TRUE(h.run(image(uyvy.colRange(0, 159).clone(), "yuv422")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("an even width, got 159"));
 }
 

@@ -9,6 +9,15 @@
 
 namespace apex_nodes {
 
+/** @brief The channel counts in `channels` ("134") in words: "1, 3 or 4 channels". */
+inline std::string channelWords(const std::string& channels) {
+  if (channels == "1") return "a single-channel image";
+  std::string out;
+  for (std::size_t i = 0; i < channels.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == channels.size() ? " or " : ", ") + std::string(1, channels[i]);
+  return out + " channels";
+}
+
 /** @brief Throws std::invalid_argument naming the problem if the image is empty or has
  *  a channel count not in `channels` (e.g. "1" or "13" for one or three). */
 inline void requireImage(const Image& image, const std::string& channels = "134") {
@@ -16,7 +25,7 @@ inline void requireImage(const Image& image, const std::string& channels = "134"
   const char c = static_cast<char>('0' + image.mat.channels());
   if (channels.find(c) == std::string::npos)
     throw std::invalid_argument("cannot handle " + std::to_string(image.mat.channels()) + "-channel images (encoding '" +
-                                image.encoding + "'); needs " + (channels == "1" ? "a single-channel image" : "1, 3 or 4 channels"));
+                                image.encoding + "'); needs " + channelWords(channels));
 }
 
 /** @brief The encoding of a result with `channels` channels, following the input's. */
