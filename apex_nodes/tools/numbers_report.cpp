@@ -142,7 +142,12 @@ int main(int argc, char** argv) {
     }
     r.connect();
     apex_tools::set("bag", "playing", "true");  // only now: no result is sent before we listen
-    if (!r.wait(600)) throw std::runtime_error("the pass did not end within 600 s" + errors());
+    // The pass ends with the results; a player that cannot play (e.g. its bag is unreadable) ends it sooner.
+    for (int waited = 0; !r.wait(2); waited += 2) {
+      if (!ros::ok()) throw std::runtime_error("interrupted");
+      if (apex_tools::nodeIn(apex_tools::graph(), "bag").state == "error" || waited >= 600)
+        throw std::runtime_error((waited >= 600 ? "the pass did not end within 600 s" : "the bag does not play") + errors());
+    }
     const int rc = mode == "export" ? reportExport(r) : reportClassify(r);
     std::fflush(stdout);
     return rc;
