@@ -250,10 +250,12 @@ void ThreadGroup::run() {
     if (pause_requests_ == 0 && !timers_.empty() && timers_.begin()->first <= Clock::now()) {
       batch.push_back(std::move(timers_.begin()->second));
       timers_.erase(timers_.begin());
+      busy_ = true;  // an edit's pause() waits for it, as for any mail (found by ThreadSanitizer)
       lock.unlock();
       runMail(batch);  // like mail: not for a removed node, and on the node's group if it moved since
       batch.clear();   // drops the node reference outside the lock
       lock.lock();
+      busy_ = false;
       continue;
     }
     const int next = pause_requests_ == 0 ? firable() : -1;
