@@ -122,8 +122,10 @@ TEST(Optimizer, TheSameSeedGivesTheSameCandidatesAndApplyBestSetsTheBest) {
   g.start();
   ASSERT_TRUE(g.fireSlot("opt", "start"));
   ASSERT_TRUE(waitState(g, "finished"));
+  ASSERT_TRUE(g.waitIdle(kWait));  // the tuned parameter's value from before the run has arrived
   ASSERT_TRUE(g.fireSlot("opt", "start"));
-  ASSERT_TRUE(waitState(g, "running"));
+  // the second run may be over before a poll sees it running: wait for its candidates
+  ASSERT_TRUE(waitUntil([&] { return loop.candidates()->size() >= 26u; }));
   ASSERT_TRUE(waitState(g, "finished"));
   ASSERT_TRUE(g.waitIdle(kWait));
   const auto c = doubles(loop.candidates());
