@@ -6,6 +6,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -156,9 +157,8 @@ double tbbHopNs(int k, long messages) {
 }
 #endif
 
-double apexHopNs(int k, long messages, const char* relay = "bench/Relay") {
-  Graph g(registry());
-  chain(g, "bench/Source", k, 1 << 30, relay);
+/** Runs a built chain of k hops until its sink has `messages`: ns per message per hop. */
+double runChain(Graph& g, int k, long messages) {
   auto* sink = static_cast<Sink*>(g.nodeObject("sink"));
   const auto t0 = Clock::now();
   g.start();
@@ -166,6 +166,42 @@ double apexHopNs(int k, long messages, const char* relay = "bench/Relay") {
   const auto t1 = Clock::now();
   g.stop();
   return seconds(t0, t1) * 1e9 / double(messages) / k;
+}
+
+double apexHopNs(int k, long messages, const char* relay = "bench/Relay") {
+  Graph g(registry());
+  chain(g, "bench/Source", k, 1 << 30, relay);
+  return runChain(g, k, messages);
+}
+
+/** The same chain with every relay alone in a subgraph (its ports exported): each hop crosses
+ *  two subgraph boundaries, out of one and into the next. */
+double subgraphHopNs(int k, long messages) {
+  GraphDescription d;
+  d.nodes.push_back({});
+  d.nodes.back().name = "src", d.nodes.back().type = "bench/Source";
+  auto part = std::make_shared<GraphDescription>();
+  part->nodes.push_back({});
+  part->nodes.back().name = "r", part->nodes.back().type = "bench/Relay";
+  part->exports = {{ExportDescription::Kind::Input, "in", {"r/in"}, "", 0},
+                   {ExportDescription::Kind::Output, "out", {"r/out"}, "", 0}};
+  std::string prev = "src";
+  for (int i = 0; i < k; ++i) {
+    NodeDescription n;
+    n.name = "s" + std::to_string(i), n.type = kSubgraphType, n.subgraph = part;
+    d.nodes.push_back(n);
+    d.connections.push_back({prev, "out", n.name, "in", 0});
+    prev = n.name;
+  }
+  d.nodes.push_back({});
+  d.nodes.back().name = "sink", d.nodes.back().type = "bench/Sink";
+  d.connections.push_back({prev, "out", "sink", "in", 0});
+  Graph g(registry());
+  if (auto st = g.load(d); !st) {
+    std::fprintf(stderr, "subgraph chain: %s\n", st.message().c_str());
+    std::exit(1);
+  }
+  return runChain(g, k, messages);
 }
 
 // ---------------------------------------------------------------- 2. wake-ups per boundary
@@ -286,6 +322,22 @@ int main(int argc, char** argv) {
     std::printf("| %d | %s | %s | %s | %s | %.2fx | %.2fx | %.2fx |\n", k, apex_ns.text().c_str(), handles_ns.text().c_str(),
                 tbb.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(), t > 0 ? apex_ns.median() / t : 0.0,
                 t > 0 ? handles_ns.median() / t : 0.0, handles_ns.median() / apex_ns.median());
+  }
+
+  std::printf("\n## Overhead per hop through subgraph boundaries\n\n");
+  std::printf("The chain above (APEX, names), flat, and with every relay alone in a subgraph that exports its\n");
+  std::printf("ports, so each hop leaves one subgraph and enters the next. Subgraphs are flattened (no node\n");
+  std::printf("of their own, no hop at the boundary): target 1.0x. Interleaved, %d repetitions: median\n", reps);
+  std::printf("(min–max) ns per hop; ratio of the medians.\n\n");
+  std::printf("| k | flat | through subgraphs | subgraphs / flat |\n|---|---|---|---|\n");
+  for (int k : {4, 16}) {
+    const long m = std::max<long>(2000, hop_messages / k);
+    Spread flat, grouped;
+    for (int r = 0; r < reps; ++r) {
+      flat.add(apexHopNs(k, m));
+      grouped.add(subgraphHopNs(k, m));
+    }
+    std::printf("| %d | %s | %s | %.2fx |\n", k, flat.text().c_str(), grouped.text().c_str(), grouped.median() / flat.median());
   }
 
   std::printf("\n## Thread wake-ups per group boundary\n\n");

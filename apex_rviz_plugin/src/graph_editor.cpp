@@ -51,6 +51,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   auto* column = new QVBoxLayout(this);
   column->setContentsMargins(2, 2, 2, 2);
   column->addWidget(buildToolBar());
+  column->addWidget(buildLevelBar());
   column->addWidget(split, 1);
   column->addWidget(message_);
 
@@ -106,6 +107,31 @@ QWidget* GraphEditor::buildToolBar() {
   });
   for (QToolButton* b : {pause_, step, undo_, redo_, fit, save, load}) row->addWidget(b);
   return bar;
+}
+
+QWidget* GraphEditor::buildLevelBar() {  // where the view is inside subgraphs; hidden at the top
+  auto* bar = new QWidget;
+  auto* row = new QHBoxLayout(bar);
+  row->setContentsMargins(0, 0, 0, 0);
+  up_ = button("up", "Up", "back to the graph around this subgraph");
+  connect(up_, &QToolButton::clicked, this, [this] {
+    const std::string& at = scene_->level();
+    const auto slash = at.rfind('/');
+    scene_->setLevel(slash == std::string::npos ? "" : at.substr(0, slash));
+  });
+  level_ = new QLabel;
+  level_->setObjectName("level");
+  row->addWidget(up_);
+  row->addWidget(level_, 1);
+  bar->setVisible(false);
+  connect(scene_, &GraphScene::levelChanged, this, &GraphEditor::showLevel);
+  return bar;
+}
+
+void GraphEditor::showLevel(const QString& path) {
+  level_->parentWidget()->setVisible(!path.isEmpty());
+  level_->setText("graph / " + QString(path).replace("/", " / ") + "   (double-click a subgraph to open it)");
+  fitGraph();
 }
 
 QWidget* GraphEditor::buildPalette() {

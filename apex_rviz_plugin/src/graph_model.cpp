@@ -10,6 +10,12 @@
 namespace apex_rviz_plugin {
 namespace {
 
+/** What add_node takes to make this node again: its type, or a file-backed subgraph's file
+ *  (an inline subgraph cannot be made again from the panel: add_node says so). */
+std::string typeToAdd(const apex::NodeInfo& n) {
+  return n.subgraph.empty() || n.subgraph == "inline" ? n.type : n.subgraph;
+}
+
 std::string ui(double x, double y) {
   return "{x: " + std::to_string(static_cast<int>(x)) + ", y: " + std::to_string(static_cast<int>(y)) + "}";
 }
@@ -142,7 +148,7 @@ std::optional<Edit> GraphModel::removeNode(const std::string& name) const {
   apex::RemoveNode::Request remove;
   remove.name = name;
   apex::AddNode::Request add;
-  add.type = n->type, add.name = name, add.thread_group = n->thread_group;
+  add.type = typeToAdd(*n), add.name = name, add.thread_group = n->thread_group;
   add.parameters = parametersText(*n);
   Edit e{"Remove " + name, {{"remove_node", remove}}, {{"add_node", add}}};
   for (const auto& p : n->parameters) {
@@ -211,7 +217,7 @@ std::string GraphModel::freshName(const std::string& type) const {
 std::optional<Edit> GraphModel::duplicate(const std::string& name, double x, double y) const {
   const apex::NodeInfo* n = node(name);
   if (!n) return std::nullopt;
-  Edit e = addNode(n->type, freshName(n->type), x, y);
+  Edit e = addNode(typeToAdd(*n), freshName(n->type), x, y);
   auto& add = std::get<apex::AddNode::Request>(e.apply.front().request);
   add.parameters = parametersText(*n);
   add.thread_group = n->thread_group;

@@ -48,8 +48,16 @@ void GraphScene::show(const GraphModel& model) {
   endDrag();
   for (auto* c : connections_) delete c;  // first: they point at ports that may be rebuilt
   connections_.clear();
+  auto shown = [this](const std::string& name) {  // a node of the level shown
+    const auto slash = name.rfind('/');
+    return (slash == std::string::npos ? std::string() : name.substr(0, slash)) == level_;
+  };
+  bool level_exists = level_.empty();
+  for (const auto& n : model.graph().nodes) level_exists = level_exists || (n.name == level_ && !n.subgraph.empty());
+  if (!level_exists) return setLevel("");  // the subgraph shown is gone (removed, or a Load)
   std::set<std::string> seen;
   for (const auto& n : model.graph().nodes) {
+    if (!shown(n.name)) continue;
     seen.insert(n.name);
     NodeItem* item = node(n.name);
     if (!item) {
@@ -75,6 +83,7 @@ void GraphScene::show(const GraphModel& model) {
     it = nodes_.erase(it);
   }
   for (const auto& c : model.graph().connections) {
+    if (c.kind == "export") continue;  // a subgraph's port to the inner one: seen as the subgraph's own
     NodeItem* from = node(c.from_node);
     NodeItem* to = node(c.to_node);
     PortItem* a = from ? from->port(c.from_port, true) : nullptr;
@@ -83,6 +92,28 @@ void GraphScene::show(const GraphModel& model) {
     connections_.push_back(new ConnectionItem(c, a, b));
     addItem(connections_.back());
   }
+}
+
+void GraphScene::setLevel(const std::string& path) {
+  if (path == level_) return;
+  level_ = path;
+  endDrag();
+  for (auto* c : connections_) delete c;
+  connections_.clear();
+  for (auto& [name, item] : nodes_) delete item;
+  nodes_.clear();
+  emit levelChanged(QString::fromStdString(level_));
+  if (model_) show(*model_);
+}
+
+void GraphScene::mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) {
+  QGraphicsScene::mouseDoubleClickEvent(e);  // proxied widgets first
+  if (e->isAccepted()) return;
+  for (QGraphicsItem* i : items(e->scenePos()))
+    if (auto* n = dynamic_cast<NodeItem*>(i)) {
+      if (!n->info().subgraph.empty()) setLevel(n->info().name);
+      return e->accept();
+    }
 }
 
 void GraphScene::showStatus(const apex::RuntimeStatus& status) {

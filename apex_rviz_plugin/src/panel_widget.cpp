@@ -40,7 +40,9 @@ void PanelWidget::connectEditor() {
     if (ns.toStdString() != link_.ns()) setNamespace(ns);
   });
   connect(e, &GraphEditor::addRequested, this, [this, str](const QString& type, QPointF at) {
-    perform(model_.addNode(str(type), model_.freshName(str(type)), at.x(), at.y()));
+    const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
+    const std::string name = model_.freshName(str(type));
+    perform(model_.addNode(str(type), inside.empty() ? name : inside + "/" + name, at.x(), at.y()));
   });
   connect(e, &GraphEditor::removeRequested, this, [this, str](const QString& n) { perform(model_.removeNode(str(n))); });
   connect(e, &GraphEditor::duplicateRequested, this, [this, str](const QString& n) {

@@ -32,7 +32,7 @@ TEST(GraphFileRoundTrip, FormatParseLoadFormatGivesTheSameText) {
   Graph g(testRegistry());
   buildRichGraph(g);
   const std::string text = formatGraphText(g.describe());
-  EXPECT_TRUE(Contains(text, {"apex_graph: 1", "thread_groups: [vision]", "thread_group: vision", "enabled: false",
+  EXPECT_TRUE(Contains(text, {"apex_graph: 2", "thread_groups: [vision]", "thread_group: vision", "enabled: false",
                               "gain: 7", "every: 2", "interactive: [gain]", "ui: {x: 10, y: 20}",
                               "{from: g1/gain, to: g2/gain}", "{from: c1/every_n, to: c2/reset}",
                               "{from: feeder/out, to: g1/in}"}))

@@ -62,8 +62,8 @@ TEST_F(GraphFileErrors, EmptyFileHasNoLineZero) {
 TEST_F(GraphFileErrors, NotAGraphFileOrWrongVersion) {
   EXPECT_TRUE(Contains(loadFails("nodes: []\nconnections: []\n"), {"apex_graph"}));
   EXPECT_TRUE(Contains(loadFails("- just\n- a list\n"), {"apex_graph"}));
-  const std::string msg = loadFails("apex_graph: 2\nnodes: []\n");
-  EXPECT_TRUE(Contains(msg, {"line 1", "format 2", "not supported", "format 1"})) << msg;
+  const std::string msg = loadFails("apex_graph: 3\nnodes: []\n");
+  EXPECT_TRUE(Contains(msg, {"line 1", "format 3", "not supported", "formats 1 to 2"})) << msg;
   EXPECT_TRUE(Contains(loadFails("apex_graph: one\n"), {"line 1", "version number"}));
 }
 

@@ -4,6 +4,7 @@
 #include <apex/Connect.h>
 #include <apex/Control.h>
 #include <apex/FireSlot.h>
+#include <apex/GetGraph.h>
 #include <apex/GraphState.h>
 #include <apex/Inspect.h>
 #include <apex/ListNodeTypes.h>
@@ -16,6 +17,7 @@
 #include <apex/SetThreadGroup.h>
 #include <apex/SetUi.h>
 #include <gmock/gmock.h>
+#include <std_msgs/Float64.h>
 #include <std_msgs/Int32.h>
 
 #include <sys/stat.h>
@@ -340,6 +342,81 @@ TEST_F(Services, InspectPublishesAPortAndGraphIsLatched) {
   double rate = 0;
   ASSERT_TRUE(ros::param::get("/apex/nodes/clock/rate", rate));
   EXPECT_EQ(rate, 200.0);
+}
+
+TEST_F(Services, SubgraphsAreAddressedByPathByEveryService) {
+  ros::NodeHandle nh;
+  const std::string part = tempPath("ticker.yaml"), main = tempPath("main.yaml");
+  writeFile(part,
+            "apex_graph: 2\n"
+            "exports:\n"
+            "  - {output: time, from: scale/out}\n"
+            "  - {parameter: rate, to: clock/rate}\n"
+            "  - {parameter: factor, to: scale/factor}\n"
+            "nodes:\n"
+            "  - {name: clock, type: apex_nodes/Clock, parameters: {rate: 100}}\n"
+            "  - {name: scale, type: apex_nodes/Scale}\n"
+            "connections:\n"
+            "  - {from: clock/time, to: scale/in}\n");
+  const std::string ref = part.substr(part.rfind('/') + 1);  // relative to the file naming it
+  writeFile(main, "apex_graph: 2\nnodes:\n  - {name: ticks, subgraph: " + ref +
+                      ", parameters: {factor: 2.0}}\n  - {name: sink, type: apex_nodes/Relay}\n"
+                      "connections:\n  - {from: ticks/time, to: sink/in}\n");
+  apex::LoadGraph::Request load;
+  load.path = main;
+  auto loaded = call<apex::LoadGraph>("load_graph", load);
+  ASSERT_TRUE(loaded.success) << loaded.message;
+
+  // parameters: the inner one by its path, the exported one by the subgraph's name
+  apex::SetParameter::Request set;
+  set.node = "ticks/clock", set.parameter = "rate", set.value = "50";
+  auto inner = call<apex::SetParameter>("set_parameter", set);
+  EXPECT_TRUE(inner.success) << inner.message;
+  set.node = "ticks", set.parameter = "rate", set.value = "40";
+  auto outer = call<apex::SetParameter>("set_parameter", set);
+  EXPECT_TRUE(outer.success) << outer.message;
+  EXPECT_EQ(outer.value, "40.0");
+  set.parameter = "gain";
+  EXPECT_THAT(call<apex::SetParameter>("set_parameter", set).message, HasSubstr("exports no parameter 'gain'"));
+
+  // ~graph: the subgraph node with its file, its inner nodes by path, the exports as links
+  auto graph = call<apex::GetGraph>("get_graph");
+  const apex::NodeInfo* sub = nullptr;
+  bool clock = false, exported = false;
+  for (const auto& n : graph.graph.nodes) {
+    if (n.name == "ticks") sub = &n;
+    clock = clock || n.name == "ticks/clock";
+  }
+  for (const auto& c : graph.graph.connections)
+    exported = exported || (c.kind == "export" && c.from_node == "ticks/scale" && c.to_node == "ticks" && c.to_port == "time");
+  ASSERT_TRUE(sub);
+  EXPECT_EQ(sub->type, "subgraph");
+  EXPECT_EQ(sub->subgraph, ref);
+  EXPECT_TRUE(clock);
+  EXPECT_TRUE(exported);
+  EXPECT_THAT(graph.yaml, HasSubstr("subgraph: " + ref));
+
+  // ~status and inspect, through the boundary
+  EXPECT_TRUE(keepsFiring(nh, "ticks/clock"));
+  apex::Inspect::Request inspect;
+  inspect.node = "ticks", inspect.port = "time", inspect.enable = true;
+  auto tapped = call<apex::Inspect>("inspect", inspect);
+  ASSERT_TRUE(tapped.success) << tapped.message;
+  std_msgs::Float64 time;
+  EXPECT_TRUE(receive(nh, tapped.topic, time));
+
+  // connections by inner names; a subgraph added from its file; removed with its nodes
+  EXPECT_TRUE(connectPorts("disconnect", "ticks", "time", "sink", "in").success);
+  auto across = connectPorts("connect", "ticks/clock", "count", "sink", "in");
+  EXPECT_TRUE(across.success) << across.message;
+  auto added = addNode(part, "");
+  ASSERT_TRUE(added.success) << added.message;
+  EXPECT_EQ(added.node.subgraph, part);
+  apex::RemoveNode::Request remove;
+  remove.name = "ticks";
+  EXPECT_TRUE(call<apex::RemoveNode>("remove_node", remove).success);
+  graph = call<apex::GetGraph>("get_graph");
+  for (const auto& n : graph.graph.nodes) EXPECT_NE(n.name.rfind("ticks", 0), 0u) << n.name;
 }
 
 }  // namespace

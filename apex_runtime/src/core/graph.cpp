@@ -9,6 +9,7 @@
 #include "live.hpp"
 #include "names.hpp"
 #include "node_state.hpp"
+#include "subgraph.hpp"
 #include "yaml_text.hpp"
 
 namespace apex {
@@ -97,10 +98,8 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
     int& counter = name_counters_[base];
     do name = base + "_" + std::to_string(++counter);
     while (nodes_.count(name));
-  } else if (!validName(name)) {
-    return Status::error("node name '" + name + "' " + kNameRule);
-  } else if (nodes_.count(name)) {
-    return Status::error("a node named '" + name + "' already exists");
+  } else if (auto why = checkNewPath(name); !why.empty()) {
+    return Status::error(why);
   }
   const std::string gname = group_name.empty() ? kDefaultGroup : group_name;
   if (!validName(gname)) return Status::error("thread group name '" + gname + "' " + kNameRule);
@@ -120,6 +119,8 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   }
   state->attach(std::move(object));
   state->group = group(gname);
+  for (std::string p = detail::parentOf(name); !p.empty(); p = detail::parentOf(p))
+    if (auto sg = subgraph(p); sg && !sg->enabled) state->outer_enabled = false;
   detail::initLiveness(state.get());
   EditScope scope;
   scope.added(state.get());
@@ -131,6 +132,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
 }
 
 Result<std::string> Graph::addNode(const NodeDescription& d) {
+  if (d.type == kSubgraphType) return addSubgraph(d);
   if (!registry_.find(d.type)) return addNode(d.type, d.name, d.thread_group);  // the usual message
   auto added = addNode(d.type, d.name, d.thread_group);
   if (!added) return added;
@@ -188,11 +190,16 @@ void Graph::retire(NodeState* n, bool restructure) {
 
 Status Graph::removeNode(const std::string& name) {
   auto lock = lockEdits();
-  auto node = require(name);
-  if (!node) return node.status();
-  retire(node.value().get());
-  order_.erase(node.value()->seq);
-  nodes_.erase(name);
+  if (subgraph(name)) {
+    removeSubgraphLocked(name);
+  } else {
+    auto node = require(name);
+    if (!node) return node.status();
+    retire(node.value().get());
+    order_.erase(node.value()->seq);
+    nodes_.erase(name);
+  }
+  dropExportsOf(name);
   bump();
   dormant_.erase(std::remove_if(dormant_.begin(), dormant_.end(),
                                 [&](const auto& c) { return c.from_node == name || c.to_node == name; }),
@@ -205,12 +212,16 @@ void Graph::clearLocked() {
   nodes_.clear();
   order_.clear();
   dormant_.clear();
+  subgraphs_.clear();
 }
 
 // ------------------------------------------------------------------ node settings
 
-Result<std::string> Graph::setParameter(const std::string& node, const std::string& param, const std::string& text) {
+Result<std::string> Graph::setParameter(const std::string& outer, const std::string& outer_param, const std::string& text) {
   auto lock = lockEdits();
+  auto at = exportedParam(outer, outer_param);
+  if (!at) return at.status();
+  const auto& [node, param] = at.value();
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
@@ -246,8 +257,11 @@ void Graph::changedDownstreamOf(NodeState* node) {
   }
 }
 
-Status Graph::setInteractive(const std::string& node, const std::string& param, bool on) {
+Status Graph::setInteractive(const std::string& outer, const std::string& outer_param, bool on) {
   auto lock = lockEdits();
+  auto at = exportedParam(outer, outer_param);
+  if (!at) return at.status();
+  const auto& [node, param] = at.value();
   auto n = require(node);
   if (!n) return n.status();
   NodeState* s = n.value().get();
@@ -273,6 +287,12 @@ Status Graph::setInteractive(const std::string& node, const std::string& param, 
 
 Status Graph::setEnabled(const std::string& node, bool enabled) {
   auto lock = lockEdits();
+  if (auto sg = subgraph(node)) {  // all of its nodes, keeping their own settings
+    sg->enabled = enabled;
+    applyOuterEnabled(node);
+    bump();
+    return Status::ok();
+  }
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
@@ -288,27 +308,42 @@ Status Graph::setEnabled(const std::string& node, bool enabled) {
 
 Status Graph::setThreadGroup(const std::string& node, const std::string& group_name) {
   auto lock = lockEdits();
-  auto n = require(node);
-  if (!n) return n.status();
+  std::vector<std::string> names{node};
+  if (subgraph(node)) names = nodesUnder(node);  // all of its nodes
+  else if (auto n = require(node); !n) return n.status();
   if (!validName(group_name)) return Status::error("thread group name '" + group_name + "' " + kNameRule);
-  NodeState* s = n.value().get();
   ThreadGroup* target = group(group_name);
-  if (target == s->group) return Status::ok();
-  EditScope scope;
-  scope.involve(s);
-  scope.pause(target);
-  // Held across the switch: a notifyNewData() sees the old group with the node
-  // unqueued from it, or the new one; never queues it on the old one afterwards.
-  std::lock_guard<std::mutex> g(s->group_mutex);
-  s->group->unqueue(s);
-  s->group = target;
-  s->placeholder.thread_group = group_name;
+  for (const auto& name : names) {
+    NodeState* s = find(name).get();
+    if (target == s->group) continue;
+    EditScope scope;
+    scope.involve(s);
+    scope.pause(target);
+    // Held across the switch: a notifyNewData() sees the old group with the node
+    // unqueued from it, or the new one; never queues it on the old one afterwards.
+    std::lock_guard<std::mutex> g(s->group_mutex);
+    s->group->unqueue(s);
+    s->group = target;
+    s->placeholder.thread_group = group_name;
+  }
   bump();
   return Status::ok();
 }
 
-Status Graph::fireSlot(const std::string& node, const std::string& slot) {
+Status Graph::fireSlot(const std::string& outer, const std::string& outer_slot) {
   auto lock = lockEdits();
+  if (subgraph(outer)) {  // every slot it stands for
+    auto targets = receivers(outer, outer_slot);
+    if (!targets) return targets.status();
+    for (const auto& [node, slot] : targets.value()) {
+      lock.unlock();
+      if (auto st = fireSlot(node, slot); !st) return st;
+      lock.lock();
+    }
+    return Status::ok();
+  }
+  const std::string& node = outer;
+  const std::string& slot = outer_slot;
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
@@ -324,10 +359,13 @@ Status Graph::fireSlot(const std::string& node, const std::string& slot) {
 
 Status Graph::setUi(const std::string& node, const std::string& ui) {
   auto lock = lockEdits();
+  auto sg = subgraph(node);
   auto n = require(node);
-  if (!n) return n.status();
+  if (!n && !sg) return n.status();
   if (auto st = detail::checkYamlText(ui); !st) return Status::error("node '" + node + "': UI metadata " + st.message());
-  {
+  if (sg) {
+    sg->ui = ui;
+  } else {
     std::lock_guard<std::mutex> g(n.value()->state_mutex);
     n.value()->ui = ui;
   }
@@ -335,8 +373,11 @@ Status Graph::setUi(const std::string& node, const std::string& ui) {
   return Status::ok();
 }
 
-Status Graph::setTap(const std::string& node, const std::string& port, PortTap tap) {
+Status Graph::setTap(const std::string& outer, const std::string& outer_port, PortTap tap) {
   auto lock = lockEdits();
+  auto at = sender(outer, outer_port);
+  if (!at) return at.status();
+  const auto& [node, port] = at.value();
   auto n = require(node);
   if (!n) return n.status();
   NodeState* s = n.value().get();
@@ -398,6 +439,7 @@ std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const {
 
 std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const {
   auto lock = lockEdits();
+  if (auto sg = subgraph(node)) return facade(*sg);
   auto n = find(node);
   return n && n->type ? n->iface : nullptr;
 }
@@ -408,8 +450,11 @@ Node* Graph::nodeObject(const std::string& node) const {
   return n ? n->node.get() : nullptr;
 }
 
-Result<ParamValue> Graph::parameterValue(const std::string& node, const std::string& param) const {
+Result<ParamValue> Graph::parameterValue(const std::string& outer, const std::string& outer_param) const {
   auto lock = lockEdits();
+  auto at = exportedParam(outer, outer_param);
+  if (!at) return at.status();
+  const auto& [node, param] = at.value();
   auto n = require(node);
   if (!n) return n.status();
   const int i = n.value()->findParam(param);

@@ -119,12 +119,39 @@ Status Graph::connect(const std::string& fn, const std::string& fp, const std::s
   auto lock = lockEdits();
   auto st = connectLocked({fn, fp, tn, tp, 0});
   if (!st) return st;
-  if (auto to = find(tn)) changedDownstreamOf(to.get());  // the part it feeds now gets the held frame
+  if (auto targets = receivers(tn, tp))  // the part it feeds now gets the held frame
+    for (const auto& [node, port] : targets.value())
+      if (auto to = find(node)) changedDownstreamOf(to.get());
   bump();
   return st;
 }
 
+namespace {
+/** "detector/image (detector/blur/image): ..." when an end stands for another. */
+std::string through(const ConnectionDescription& asked, const ConnectionDescription& real, const std::string& why) {
+  if (asked == real) return why;
+  return "(" + connectionLabel(asked) + " stands for " + connectionLabel(real) + ") " + why;
+}
+}  // namespace
+
 Status Graph::connectLocked(const ConnectionDescription& c) {
+  auto from = sender(c.from_node, c.from_port);
+  if (!from) return Status::error("cannot connect " + connectionLabel(c) + ": " + from.message());
+  auto to = receivers(c.to_node, c.to_port);
+  if (!to) return Status::error("cannot connect " + connectionLabel(c) + ": " + to.message());
+  std::vector<ConnectionDescription> done;
+  for (const auto& [node, port] : to.value()) {
+    const ConnectionDescription real{from.value().first, from.value().second, node, port, c.line};
+    if (auto st = connectDirect(real); !st) {
+      for (const auto& d : done) (void)disconnectDirect(d);
+      return Status::error(through(c, real, st.message()));
+    }
+    done.push_back(real);
+  }
+  return Status::ok();
+}
+
+Status Graph::connectDirect(const ConnectionDescription& c) {
   auto checked = checkConnection(LiveView(nodes_), c);
   if (!checked) return checked.status();
   if (!checked.value().from) {  // a placeholder: keep the connection as written
@@ -171,6 +198,24 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
 Status Graph::disconnect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
   auto lock = lockEdits();
   const ConnectionDescription c{fn, fp, tn, tp, 0};
+  auto from = sender(fn, fp);
+  if (!from) return Status::error("cannot disconnect " + connectionLabel(c) + ": " + from.message());
+  auto to = receivers(tn, tp);
+  if (!to) return Status::error("cannot disconnect " + connectionLabel(c) + ": " + to.message());
+  Status result = Status::ok();
+  bool any = false;
+  for (const auto& [node, port] : to.value()) {
+    const ConnectionDescription real{from.value().first, from.value().second, node, port, 0};
+    auto st = disconnectDirect(real);
+    any = any || st.isOk();
+    if (!st && result) result = Status::error(through(c, real, st.message()));
+  }
+  if (any) bump();
+  return any ? Status::ok() : result;
+}
+
+Status Graph::disconnectDirect(const ConnectionDescription& c) {
+  const std::string &fn = c.from_node, &fp = c.from_port, &tn = c.to_node, &tp = c.to_port;
   auto fail = [&](const std::string& why) { return Status::error("cannot disconnect " + connectionLabel(c) + ": " + why); };
   auto dormant = std::find(dormant_.begin(), dormant_.end(), c);
   if (dormant != dormant_.end()) {

@@ -10,6 +10,7 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -60,15 +61,34 @@ std::string scalar(const YAML::Node& map, const char* key, const std::string& wh
   return v.as<std::string>();
 }
 
-NodeDescription parseNode(const YAML::Node& n) {
+GraphDescription parseBody(const YAML::Node& map, int version, int depth);
+
+/** A node, or (format 2) a subgraph instance: `subgraph:` a file reference or an inline graph. */
+NodeDescription parseNode(const YAML::Node& n, int version, int depth) {
   if (!n.IsMap()) fail(n, "a node must be a mapping with at least 'name' and 'type'");
   NodeDescription d;
   d.line = lineOf(n);
   d.name = scalar(n, "name", "node");
   const std::string what = "node '" + d.name + "'";
-  onlyKeys(n, {"name", "type", "thread_group", "enabled", "parameters", "interactive", "ui"}, what);
-  d.type = scalar(n, "type", what);
-  d.thread_group = scalar(n, "thread_group", what, false);
+  const YAML::Node sub = n["subgraph"];
+  if (sub && version < 2) fail(sub, what + ": subgraphs need 'apex_graph: 2'");
+  if (sub) {
+    onlyKeys(n, {"name", "subgraph", "enabled", "parameters", "interactive", "ui"}, what + " (a subgraph)");
+    d.type = kSubgraphType;
+    if (sub.IsScalar()) {
+      d.source = sub.as<std::string>();
+      if (d.source.empty()) fail(sub, what + ": 'subgraph' names no file");
+    } else if (sub.IsMap()) {
+      if (depth >= kMaxSubgraphDepth) fail(sub, what + ": subgraphs nested deeper than " + std::to_string(kMaxSubgraphDepth) + " levels");
+      d.subgraph = std::make_shared<GraphDescription>(parseBody(sub, version, depth + 1));
+    } else {
+      fail(sub, what + ": 'subgraph' must be a graph file's name or a graph (a mapping with 'nodes')");
+    }
+  } else {
+    onlyKeys(n, {"name", "type", "thread_group", "enabled", "parameters", "interactive", "ui"}, what);
+    d.type = scalar(n, "type", what);
+    d.thread_group = scalar(n, "thread_group", what, false);
+  }
   if (d.thread_group.empty()) d.thread_group = "default";
   if (const auto e = n["enabled"]) {
     if (!e.IsScalar() || !YAML::convert<bool>::decode(e, d.enabled)) fail(e, what + ": 'enabled' must be true or false");
@@ -90,12 +110,61 @@ NodeDescription parseNode(const YAML::Node& n) {
   return d;
 }
 
-std::pair<std::string, std::string> endpoint(const YAML::Node& c, const char* key) {
-  const std::string text = scalar(c, key, "connection");
-  const auto slash = text.find('/');
+/** "node/port": split at the last '/', so the node may be a path into subgraphs ("a/b/port"). */
+std::pair<std::string, std::string> splitEndpoint(const YAML::Node& at, const std::string& text, const std::string& what) {
+  const auto slash = text.rfind('/');
   if (slash == std::string::npos || slash == 0 || slash + 1 == text.size())
-    fail(c[key], "connection: '" + std::string(key) + ": " + text + "' must look like node/port");
+    fail(at, what + ": '" + text + "' must look like node/port");
   return {text.substr(0, slash), text.substr(slash + 1)};
+}
+
+std::pair<std::string, std::string> endpoint(const YAML::Node& c, const char* key) {
+  return splitEndpoint(c[key], scalar(c, key, "connection"), "connection: '" + std::string(key) + "'");
+}
+
+using ExportKind = ExportDescription::Kind;
+const std::vector<std::pair<std::string, ExportKind>>& exportKinds() {
+  static const std::vector<std::pair<std::string, ExportKind>> kinds{{"input", ExportKind::Input},
+                                                                     {"output", ExportKind::Output},
+                                                                     {"parameter", ExportKind::Parameter},
+                                                                     {"slot", ExportKind::Slot},
+                                                                     {"trigger", ExportKind::Trigger}};
+  return kinds;
+}
+
+/** `{input: image, to: blur/image}`, `{output: regions, from: find/regions}`, ... */
+ExportDescription parseExport(const YAML::Node& e) {
+  if (!e.IsMap()) fail(e, "an export must be a mapping such as {input: image, to: blur/image}");
+  ExportDescription x;
+  x.line = lineOf(e);
+  int kinds = 0;
+  for (const auto& [key, kind] : exportKinds())
+    if (e[key]) {
+      ++kinds;
+      x.kind = kind;
+      x.name = scalar(e, key.c_str(), "export");
+    }
+  if (kinds != 1) fail(e, "an export names one of input, output, parameter, slot, trigger (and what it stands for)");
+  const bool inward = x.kind != ExportKind::Output && x.kind != ExportKind::Trigger;
+  const char* side = inward ? "to" : "from";
+  const std::string what = "export '" + x.name + "'";
+  std::set<std::string> keys{"description", side};
+  for (const auto& kv : exportKinds()) keys.insert(kv.first);
+  onlyKeys(e, keys, what);
+  const YAML::Node inner = e[side];
+  if (!inner) fail(e, what + ": '" + side + "' is missing (the inner node/port it stands for)");
+  const bool many = x.kind == ExportKind::Input || x.kind == ExportKind::Slot;
+  if (inner.IsSequence() && many) {
+    for (const auto& item : inner) x.inner.push_back(item.as<std::string>());
+    if (x.inner.empty()) fail(inner, what + ": '" + side + "' is an empty list");
+  } else if (inner.IsScalar()) {
+    x.inner.push_back(inner.as<std::string>());
+  } else {
+    fail(inner, what + ": '" + side + "' must be one node/port" + (many ? " or a list of them" : ""));
+  }
+  for (const auto& i : x.inner) splitEndpoint(inner, i, what);
+  x.description = scalar(e, "description", what, false);
+  return x;
 }
 
 std::string tooMany(std::size_t n, const char* what, std::size_t limit) {
@@ -129,17 +198,8 @@ void checkTree(const YAML::Node& root) {
   }
 }
 
-GraphDescription parseRoot(const YAML::Node& root) {
-  checkTree(root);
-  if (!root.IsMap() || !root["apex_graph"])
-    fail(root, "not an APEX graph: the file must be a mapping with the key 'apex_graph: " +
-                   std::to_string(kGraphFormatVersion) + "'");
-  onlyKeys(root, {"apex_graph", "thread_groups", "nodes", "connections"}, "graph");
-  int version = 0;
-  if (!YAML::convert<int>::decode(root["apex_graph"], version)) fail(root["apex_graph"], "'apex_graph' must be a version number");
-  if (version != kGraphFormatVersion)
-    fail(root["apex_graph"], "graph format " + std::to_string(version) + " is not supported (this APEX reads format " +
-                                 std::to_string(kGraphFormatVersion) + ")");
+/** Thread groups, nodes, connections and exports: a whole graph, or an inline subgraph. */
+GraphDescription parseBody(const YAML::Node& root, int version, int depth) {
   GraphDescription d;
   if (const auto g = root["thread_groups"]) {
     if (!g.IsSequence()) fail(g, "'thread_groups' must be a list of names");
@@ -149,7 +209,7 @@ GraphDescription parseRoot(const YAML::Node& root) {
   if (const auto nodes = root["nodes"]) {
     if (!nodes.IsSequence()) fail(nodes, "'nodes' must be a list");
     if (nodes.size() > kMaxGraphNodes) fail(nodes, tooMany(nodes.size(), "nodes", kMaxGraphNodes));
-    for (const auto& n : nodes) d.nodes.push_back(parseNode(n));
+    for (const auto& n : nodes) d.nodes.push_back(parseNode(n, version, depth));
   }
   if (const auto conns = root["connections"]) {
     if (!conns.IsSequence()) fail(conns, "'connections' must be a list");
@@ -162,7 +222,26 @@ GraphDescription parseRoot(const YAML::Node& root) {
       d.connections.push_back({fn, fp, tn, tp, lineOf(c)});
     }
   }
+  if (const auto exports = root["exports"]) {
+    if (version < 2) fail(exports, "'exports' needs 'apex_graph: 2'");
+    if (!exports.IsSequence()) fail(exports, "'exports' must be a list such as [{input: image, to: blur/image}]");
+    for (const auto& e : exports) d.exports.push_back(parseExport(e));
+  }
   return d;
+}
+
+GraphDescription parseRoot(const YAML::Node& root) {
+  checkTree(root);
+  if (!root.IsMap() || !root["apex_graph"])
+    fail(root, "not an APEX graph: the file must be a mapping with the key 'apex_graph: " +
+                   std::to_string(kGraphFormatVersion) + "'");
+  onlyKeys(root, {"apex_graph", "thread_groups", "nodes", "connections", "exports"}, "graph");
+  int version = 0;
+  if (!YAML::convert<int>::decode(root["apex_graph"], version)) fail(root["apex_graph"], "'apex_graph' must be a version number");
+  if (version < 1 || version > kGraphFormatVersion)
+    fail(root["apex_graph"], "graph format " + std::to_string(version) + " is not supported (this APEX reads formats 1 to " +
+                                 std::to_string(kGraphFormatVersion) + ")");
+  return parseBody(root, version, 0);
 }
 
 // The style goes on the node: YAML::Flow on the emitter would leak into what follows.
@@ -237,33 +316,65 @@ Result<GraphDescription> parseGraphText(const std::string& text) {
   }
 }
 
-std::string formatGraphText(const GraphDescription& d) {
-  YAML::Emitter out;
-  out << YAML::BeginMap << YAML::Key << "apex_graph" << YAML::Value << kGraphFormatVersion;
-  if (!d.thread_groups.empty()) out << YAML::Key << "thread_groups" << YAML::Value << YAML::Flow << d.thread_groups;
-  out << YAML::Key << "nodes" << YAML::Value;
-  if (d.nodes.empty()) out << YAML::Flow;  // "nodes: []"
-  out << YAML::BeginSeq;
-  for (const auto& n : d.nodes) {
-    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << n.name << YAML::Key << "type" << YAML::Value
-        << n.type;
+namespace {
+
+void emitBody(YAML::Emitter& out, const GraphDescription& d);
+
+void emitNode(YAML::Emitter& out, const NodeDescription& n) {
+  out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << n.name;
+  if (!n.source.empty()) {
+    out << YAML::Key << "subgraph" << YAML::Value << n.source;
+  } else if (n.subgraph) {
+    out << YAML::Key << "subgraph" << YAML::Value << YAML::BeginMap;
+    emitBody(out, *n.subgraph);
+    out << YAML::EndMap;
+  } else {
+    out << YAML::Key << "type" << YAML::Value << n.type;
     if (n.thread_group != "default") out << YAML::Key << "thread_group" << YAML::Value << n.thread_group;
-    if (!n.enabled) out << YAML::Key << "enabled" << YAML::Value << false;
-    if (!n.parameters.empty()) {
-      out << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;
-      for (const auto& [name, text] : n.parameters) {
-        out << YAML::Key << name << YAML::Value;
-        emitValue(out, text);
-      }
-      out << YAML::EndMap;
-    }
-    if (!n.interactive.empty()) out << YAML::Key << "interactive" << YAML::Value << YAML::Flow << n.interactive;
-    if (!n.ui.empty()) {
-      out << YAML::Key << "ui" << YAML::Value;
-      emitValue(out, n.ui);
+  }
+  if (!n.enabled) out << YAML::Key << "enabled" << YAML::Value << false;
+  if (!n.parameters.empty()) {
+    out << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;
+    for (const auto& [name, text] : n.parameters) {
+      out << YAML::Key << name << YAML::Value;
+      emitValue(out, text);
     }
     out << YAML::EndMap;
   }
+  if (!n.interactive.empty()) out << YAML::Key << "interactive" << YAML::Value << YAML::Flow << n.interactive;
+  if (!n.ui.empty()) {
+    out << YAML::Key << "ui" << YAML::Value;
+    emitValue(out, n.ui);
+  }
+  out << YAML::EndMap;
+}
+
+void emitExport(YAML::Emitter& out, const ExportDescription& e) {
+  const bool inward = e.kind != ExportDescription::Kind::Output && e.kind != ExportDescription::Kind::Trigger;
+  std::string key;
+  for (const auto& [k, kind] : exportKinds()) if (kind == e.kind) key = k;
+  out << YAML::Flow << YAML::BeginMap << YAML::Key << key << YAML::Value << e.name << YAML::Key
+      << (inward ? "to" : "from") << YAML::Value;
+  if (e.inner.size() == 1) {
+    out << e.inner.front();
+  } else {
+    out << YAML::Flow << e.inner;
+  }
+  if (!e.description.empty()) out << YAML::Key << "description" << YAML::Value << e.description;
+  out << YAML::EndMap;
+}
+
+void emitBody(YAML::Emitter& out, const GraphDescription& d) {
+  if (!d.thread_groups.empty()) out << YAML::Key << "thread_groups" << YAML::Value << YAML::Flow << d.thread_groups;
+  if (!d.exports.empty()) {
+    out << YAML::Key << "exports" << YAML::Value << YAML::BeginSeq;
+    for (const auto& e : d.exports) emitExport(out, e);
+    out << YAML::EndSeq;
+  }
+  out << YAML::Key << "nodes" << YAML::Value;
+  if (d.nodes.empty()) out << YAML::Flow;  // "nodes: []"
+  out << YAML::BeginSeq;
+  for (const auto& n : d.nodes) emitNode(out, n);
   out << YAML::EndSeq << YAML::Key << "connections" << YAML::Value;
   if (d.connections.empty()) out << YAML::Flow;  // "connections: []"
   out << YAML::BeginSeq;
@@ -271,7 +382,16 @@ std::string formatGraphText(const GraphDescription& d) {
     out << YAML::Flow << YAML::BeginMap << YAML::Key << "from" << YAML::Value << c.from_node + "/" + c.from_port
         << YAML::Key << "to" << YAML::Value << c.to_node + "/" + c.to_port << YAML::EndMap;
   }
-  out << YAML::EndSeq << YAML::EndMap;
+  out << YAML::EndSeq;
+}
+
+}  // namespace
+
+std::string formatGraphText(const GraphDescription& d) {
+  YAML::Emitter out;
+  out << YAML::BeginMap << YAML::Key << "apex_graph" << YAML::Value << kGraphFormatVersion;
+  emitBody(out, d);
+  out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }
 
@@ -302,16 +422,92 @@ Result<std::string> readGraphFile(const std::string& path) {
   return text;
 }
 
-Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path,
-                                 const std::function<Status(NodeDescription&)>& check) {
+std::string joinReference(const std::string& ref, const std::string& from) {
+  const bool as_is = ref.empty() || ref[0] == '/' || ref[0] == '~' || ref.rfind("package://", 0) == 0 ||
+                     ref.rfind("$(find ", 0) == 0;
+  if (as_is) return ref;
+  const auto slash = from.rfind('/');
+  return slash == std::string::npos ? ref : from.substr(0, slash + 1) + ref;
+}
+
+namespace {
+
+std::string at(const std::string& file, int line) {
+  return "'" + file + "', " + (line > 0 ? "line " + std::to_string(line) + ": " : "");
+}
+
+Status expandFile(NodeDescription& node, const std::string& file, const GraphFileOptions& options,
+                  std::vector<std::string>& chain);
+
+/** Fills in the file-backed subgraphs of `d` (read from `file`) and checks its nodes; `chain`
+ *  holds the files being read, outermost first, to refuse a file that includes itself. */
+Status expand(GraphDescription& d, const std::string& file, const GraphFileOptions& options,
+              std::vector<std::string>& chain) {
+  for (auto& node : d.nodes) {
+    if (node.type != kSubgraphType) {
+      if (options.check)
+        if (auto st = options.check(node); !st) return Status::error(at(file, node.line) + st.message());
+      continue;
+    }
+    const std::string where = at(file, node.line) + "subgraph '" + node.name + "'";
+    if (node.source.empty()) {  // inline: its nodes are in this file
+      auto inner = std::make_shared<GraphDescription>(*node.subgraph);
+      if (auto st = expand(*inner, file, options, chain); !st) return st;
+      node.subgraph = inner;
+    } else if (auto st = expandFile(node, file, options, chain); !st) {
+      return st;
+    }
+    if (options.check)  // a subgraph's own parameters: now that its exports are known
+      if (auto st = options.check(node); !st) return Status::error(where + ": " + st.message());
+  }
+  return Status::ok();
+}
+
+Status expandFile(NodeDescription& node, const std::string& file, const GraphFileOptions& options,
+                std::vector<std::string>& chain) {
+  const std::string where = at(file, node.line) + "subgraph '" + node.name + "'";
+  std::string path = joinReference(node.source, file);
+  if (options.open) {
+    auto opened = options.open(path);
+    if (!opened) return Status::error(where + ": " + opened.message());
+    path = opened.value();
+  } else if (path.rfind("package://", 0) == 0 || path.rfind("$(find ", 0) == 0) {
+    return Status::error(where + ": '" + node.source + "' names a ROS package, which only the ROS runtime resolves");
+  }
+  if (std::find(chain.begin(), chain.end(), path) != chain.end()) {
+    std::string loop;
+    for (const auto& f : chain) loop += "'" + f + "' -> ";
+    return Status::error(where + ": the file includes itself (" + loop + "'" + path + "')");
+  }
+  if (chain.size() > static_cast<std::size_t>(kMaxSubgraphDepth))
+    return Status::error(where + ": subgraph files nested deeper than " + std::to_string(kMaxSubgraphDepth) + " levels");
+  auto text = readGraphFile(path);
+  if (!text) return Status::error(where + ": " + text.message());
+  auto inner = parseGraphText(text.value());
+  if (!inner) return Status::error(where + ": '" + path + "', " + inner.message());
+  chain.push_back(path);
+  auto st = expand(inner.value(), path, options, chain);
+  chain.pop_back();
+  if (!st) return Status::error(where + ": " + st.message());
+  node.subgraph = std::make_shared<GraphDescription>(std::move(inner.value()));
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<GraphDescription> readGraphDescription(const std::string& path, const GraphFileOptions& options) {
   auto read = readGraphFile(path);
   if (!read) return read.status();
   auto description = parseGraphText(read.value());
   if (!description) return Status::error("'" + path + "', " + description.message());
-  if (check)
-    for (auto& node : description.value().nodes)
-      if (auto st = check(node); !st)
-        return Status::error("'" + path + "', " + (node.line ? "line " + std::to_string(node.line) + ": " : "") + st.message());
+  std::vector<std::string> chain{path};
+  if (auto st = expand(description.value(), path, options, chain); !st) return st;
+  return description;
+}
+
+Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path, const GraphFileOptions& options) {
+  auto description = readGraphDescription(path, options);
+  if (!description) return description.status();
   auto report = graph.load(description.value());
   if (!report) return Status::error("'" + path + "', " + report.message());
   LoadReport named = report.value();

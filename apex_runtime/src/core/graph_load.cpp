@@ -9,6 +9,7 @@
 #include "edit_scope.hpp"
 #include "names.hpp"
 #include "node_state.hpp"
+#include "subgraph.hpp"
 
 namespace apex {
 
@@ -64,20 +65,48 @@ void describeConnections(const NodeState& n, std::vector<ConnectionDescription>&
 
 GraphDescription Graph::describe() const {
   auto lock = lockEdits();
-  GraphDescription d;
-  for (auto& [name, g] : groups_) if (name != "default") d.thread_groups.push_back(name);
+  return describeLocked();
+}
+
+GraphDescription Graph::describeLocked() const {
+  GraphDescription flat;
+  for (auto& [name, g] : groups_) if (name != "default") flat.thread_groups.push_back(name);
+  std::map<std::uint64_t, NodeDescription> nodes;  // insertion order, subgraphs among the nodes
   for (auto& [seq, n] : order_) {
-    d.nodes.push_back(describeNode(*n));
-    if (n->type) d.nodes.back().error = n->error();
+    nodes[seq] = describeNode(*n);
+    if (n->type) nodes[seq].error = n->error();
   }
-  for (auto& [seq, n] : order_) describeConnections(*n, d.connections);
-  d.connections.insert(d.connections.end(), dormant_.begin(), dormant_.end());
-  return d;
+  for (auto& [path, sg] : subgraphs_) {
+    NodeDescription d;
+    d.name = path;
+    d.type = kSubgraphType;
+    d.source = sg->source;
+    d.enabled = sg->enabled;
+    d.ui = sg->ui;
+    d.interface = facade(*sg);
+    for (const auto& spec : d.interface->params) {
+      auto at = exportedParam(path, spec.name);
+      auto n = at ? find(at.value().first) : nullptr;
+      const int i = n && n->type ? n->findParam(at.value().second) : -1;
+      if (i < 0) continue;
+      std::lock_guard<std::mutex> g(n->state_mutex);
+      d.parameters.emplace_back(spec.name, toText(n->params[i].requested));
+      if (n->params[i].interactive) d.interactive.push_back(spec.name);
+    }
+    auto inner = std::make_shared<GraphDescription>();
+    inner->thread_groups = sg->thread_groups;
+    inner->exports = sg->exports;
+    d.subgraph = inner;
+    nodes[sg->seq] = std::move(d);
+  }
+  for (auto& [seq, d] : nodes) flat.nodes.push_back(std::move(d));
+  for (auto& [seq, n] : order_) describeConnections(*n, flat.connections);
+  flat.connections.insert(flat.connections.end(), dormant_.begin(), dormant_.end());
+  return nest(flat);
 }
 
 Result<std::string> Graph::addPlaceholder(const NodeDescription& d) {
-  if (!validName(d.name)) return Status::error("node name '" + d.name + "' " + kNameRule);
-  if (nodes_.count(d.name)) return Status::error("a node named '" + d.name + "' already exists");
+  if (auto why = checkNewPath(d.name); !why.empty()) return Status::error(why);
   auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revision_);
   state->placeholder = d;
   state->ui = d.ui;
@@ -94,6 +123,10 @@ Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
   auto fail = [&](const std::string& why) { return Status::error(at(d.line) + why); };
   if (!d.thread_group.empty() && !validName(d.thread_group))
     return fail("thread group name '" + d.thread_group + "' " + kNameRule);
+  if (d.type == kSubgraphType) {
+    auto added = addSubgraph(d);
+    return added ? Status::ok() : fail(added.message());
+  }
   if (!validTypeId(d.type)) return fail("node '" + d.name + "': type '" + d.type + "' " + kTypeIdRule);
   if (!registry_.find(d.type)) {
     auto lock = lockEdits();
@@ -160,10 +193,12 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
   nodes_ = std::move(staged.nodes_);
   order_ = std::move(staged.order_);
   dormant_ = std::move(staged.dormant_);
+  subgraphs_ = std::move(staged.subgraphs_);
   name_counters_ = std::move(staged.name_counters_);
   next_seq_ = staged.next_seq_;
   staged.nodes_.clear();
   staged.order_.clear();
+  staged.subgraphs_.clear();
   // Staged mail (setup, parameter and enable changes) was never run: post it for every
   // node before any node may fire (a group runs mail before firing), so a node
   // disabled in the file never fires enabled.

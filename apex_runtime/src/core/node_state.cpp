@@ -227,7 +227,7 @@ NodeStats NodeState::stats() const {
   s.mean_ns = s.firings ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / s.firings : 0;
   std::lock_guard<std::mutex> lock(state_mutex);
   s.error = error_;
-  s.enabled = enabled;
+  s.enabled = enabled && outer_enabled;
   return s;
 }
 
@@ -394,7 +394,7 @@ void NodeState::applyEnabled() {
   bool want;
   {
     std::lock_guard<std::mutex> lock(state_mutex);
-    want = enabled;
+    want = enabled && outer_enabled;
   }
   if (want == active_enabled_) return;
   const int before = gates();

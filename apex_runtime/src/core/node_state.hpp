@@ -141,6 +141,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // shared with other threads
   mutable std::mutex state_mutex;
   bool enabled = true;  // requested
+  bool outer_enabled = true;  // every subgraph it lies in is enabled (edits only)
   std::string ui;
   NodeDescription placeholder;  // for placeholders: the description, kept verbatim
   std::string error() const;

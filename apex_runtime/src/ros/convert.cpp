@@ -97,6 +97,7 @@ NodeInfo toNodeInfo(const NodeDescription& n) {
   info.state = state(n);
   info.error = n.error;
   info.ui = n.ui;
+  if (n.subgraph) info.subgraph = n.source.empty() ? "inline" : n.source;
   if (!n.interface) return info;  // a placeholder: no ports known
   info.ports = ports(*n.interface);
   for (const auto& s : n.interface->params) {
@@ -111,6 +112,47 @@ NodeInfo toNodeInfo(const NodeDescription& n) {
   return info;
 }
 
+namespace {
+
+/** Every level of subgraphs into one list: nodes by their paths, each level's connections
+ *  with paths, and each subgraph's exports as connections of kind "export". */
+void flatten(const GraphDescription& d, const std::string& prefix, GraphState& g,
+             std::map<std::string, const Manifest*>& ifaces, std::vector<ConnectionDescription>& connections) {
+  auto path = [&](const std::string& name) { return prefix.empty() ? name : prefix + "/" + name; };
+  for (const auto& n : d.nodes) {
+    NodeInfo info = toNodeInfo(n);
+    info.name = path(n.name);
+    g.nodes.push_back(info);
+    ifaces[info.name] = n.interface.get();
+  }
+  for (auto c : d.connections) {
+    c.from_node = path(c.from_node);
+    c.to_node = path(c.to_node);
+    connections.push_back(c);
+  }
+  for (const auto& n : d.nodes) {
+    if (!n.subgraph) continue;
+    const std::string self = path(n.name);
+    flatten(*n.subgraph, self, g, ifaces, connections);
+    for (const auto& e : n.subgraph->exports)
+      for (const auto& inner : e.inner) {
+        const auto slash = inner.rfind('/');
+        Connection link;
+        const bool inward = e.kind == ExportDescription::Kind::Input || e.kind == ExportDescription::Kind::Slot ||
+                            e.kind == ExportDescription::Kind::Parameter;
+        const std::string node = self + "/" + inner.substr(0, slash), port = inner.substr(slash + 1);
+        link.from_node = inward ? self : node;
+        link.from_port = inward ? e.name : port;
+        link.to_node = inward ? node : self;
+        link.to_port = inward ? port : e.name;
+        link.kind = "export";
+        g.connections.push_back(link);
+      }
+  }
+}
+
+}  // namespace
+
 GraphState toGraphState(const Graph& graph, std::uint64_t revision) {
   const GraphDescription d = graph.describe();
   GraphState g;
@@ -119,11 +161,9 @@ GraphState toGraphState(const Graph& graph, std::uint64_t revision) {
   g.thread_groups.push_back("default");
   for (const auto& name : d.thread_groups) g.thread_groups.push_back(name);
   std::map<std::string, const Manifest*> ifaces;
-  for (const auto& n : d.nodes) {
-    g.nodes.push_back(toNodeInfo(n));
-    ifaces[n.name] = n.interface.get();
-  }
-  for (const auto& c : d.connections) {
+  std::vector<ConnectionDescription> connections;
+  flatten(d, "", g, ifaces, connections);
+  for (const auto& c : connections) {
     Connection msg;
     msg.from_node = c.from_node;
     msg.from_port = c.from_port;

@@ -35,8 +35,8 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
   if (auto it = taps_.find(key); it != taps_.end())
     return std::make_pair(it->second->pub ? it->second->pub.getTopic() : nh_.resolveName(it->second->topic),
                           it->second->inspector.message_type);
-  if (!graph.nodeObject(node)) return Status::error("no node named '" + node + "'");
-  auto iface = graph.nodeInterface(node);
+  auto iface = graph.nodeInterface(node);  // a subgraph's: its exports
+  if (!iface && !findNode(graph.describe(), node)) return Status::error("no node named '" + node + "'");
   if (!iface) return Status::error("node '" + node + "' has a type unknown here: it has no ports to inspect");
   const TypeInfo* port_type = nullptr;
   if (auto* out = iface->findOutput(port)) port_type = out->type;

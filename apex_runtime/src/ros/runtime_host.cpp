@@ -109,10 +109,35 @@ struct RuntimeHost::Impl {
     return true;
   }
 
+  /** A graph file as a node type: `add_node type:=package://apex/graphs/x.yaml` adds a subgraph. */
+  static bool namesGraphFile(const std::string& type) {
+    const auto dot = type.rfind('.');
+    const std::string ext = dot == std::string::npos ? "" : type.substr(dot);
+    return ext == ".yaml" || ext == ".yml";
+  }
+
   bool addNode(AddNode::Request& req, AddNode::Response& res) {
     NodeDescription d;
     d.type = req.type;
     d.name = req.name;
+    if (req.type == kSubgraphType)
+      return answered(res, Status::error("a subgraph is added from its graph file: add_node with type "
+                                         "'package://apex/graphs/camera_detector.yaml' or a path ending in .yaml"));
+    if (namesGraphFile(req.type)) {
+      auto path = roots.resolve(req.type);
+      if (!path) return answered(res, path.status());
+      auto inner = readGraphDescription(path.value(), fileOptions(true));
+      if (!inner) return answered(res, inner.status());
+      d.type = kSubgraphType;
+      d.source = req.type.rfind("package://", 0) == 0 ? req.type : path.value();
+      d.subgraph = std::make_shared<GraphDescription>(std::move(inner.value()));
+      if (d.name.empty()) {  // the file's name: camera_detector, camera_detector_2, ...
+        const std::string stem = std::filesystem::path(path.value()).stem().string();
+        const GraphDescription now = graph.describe();
+        d.name = stem;
+        for (int i = 2; findNode(now, d.name); ++i) d.name = stem + "_" + std::to_string(i);
+      }
+    }
     d.thread_group = req.thread_group;
     auto params = parseParameterMap(req.parameters);
     if (!params) return answered(res, Status::error("parameters: " + params.message()));
@@ -123,8 +148,11 @@ struct RuntimeHost::Impl {
     auto added = graph.addNode(d);
     if (added) {
       res.name = added.value();
-      for (const auto& n : graph.describe().nodes)
-        if (n.name == res.name) res.node = toNodeInfo(n);
+      const GraphDescription now = graph.describe();
+      if (const NodeDescription* n = findNode(now, res.name)) {
+        res.node = toNodeInfo(*n);
+        res.node.name = res.name;
+      }
     }
     return answered(res, added.status());
   }
@@ -178,7 +206,7 @@ struct RuntimeHost::Impl {
   bool loadGraph(LoadGraph::Request& req, LoadGraph::Response& res) {
     auto path = roots.resolve(req.path);
     if (!path) return answered(res, path.status());
-    auto report = loadGraphFile(graph, path.value(), [this](NodeDescription& d) { return confine(d); });
+    auto report = loadGraphFile(graph, path.value(), fileOptions(true));
     if (report) {
       res.warnings = report.value().warnings;
       inspection.clear();
@@ -211,13 +239,50 @@ struct RuntimeHost::Impl {
   }
 
   Status confine(NodeDescription& d) {
-    const auto type = graph.registry().find(d.type);
     for (auto& [param, text] : d.parameters) {
-      auto value = confinedValue(type ? type->manifest : nullptr, d.name, param, text);
+      auto value = confinedValue(specOf(d, param), d.name, param, text);
       if (!value) return value.status();
       text = value.value();
     }
     return Status::ok();
+  }
+
+  /** A parameter's declaration in a description: its type's, or for a subgraph the inner
+   *  parameter its export stands for. nullptr if unknown. */
+  std::shared_ptr<const Manifest> specOf(const NodeDescription& d, const std::string& param) const {
+    if (!d.subgraph) {
+      const auto type = graph.registry().find(d.type);
+      return type ? type->manifest : nullptr;
+    }
+    for (const auto& e : d.subgraph->exports) {
+      if (e.kind != ExportDescription::Kind::Parameter || e.name != param) continue;
+      const std::string& inner = e.inner.front();
+      const auto slash = inner.rfind('/');
+      if (const NodeDescription* n = findNode(*d.subgraph, inner.substr(0, slash))) {
+        auto m = specOf(*n, inner.substr(slash + 1));
+        if (!m || !m->findParam(inner.substr(slash + 1))) return nullptr;
+        auto renamed = std::make_shared<Manifest>();
+        renamed->params.push_back(*m->findParam(inner.substr(slash + 1)));
+        renamed->params.back().name = param;
+        return renamed;
+      }
+    }
+    return nullptr;
+  }
+
+  /** Graph files from services (`confined`) may name subgraph files in the roots only; the
+   *  start-up graph, given by whoever launched us, anywhere. package:// is understood. */
+  GraphFileOptions fileOptions(bool confined) {
+    GraphFileOptions o;
+    if (confined) {
+      o.check = [this](NodeDescription& d) { return confine(d); };
+      o.open = [this](const std::string& path) { return roots.resolve(path); };
+    } else {
+      o.open = [](const std::string& path) {
+        return FileRoots({"/"}, [](const std::string& pkg) { return ros::package::getPath(pkg); }).resolve(path);
+      };
+    }
+    return o;
   }
 
   /** ~file_roots, or: the package's graphs/, $ROS_HOME/apex (made if missing) and the
@@ -311,7 +376,7 @@ struct RuntimeHost::Impl {
   void loadStartupGraph() {
     std::string path;
     if (!pnh.getParam("graph", path) || path.empty()) return;
-    auto report = loadGraphFile(graph, path);
+    auto report = loadGraphFile(graph, path, fileOptions(false));
     if (!report) {
       ROS_ERROR_STREAM_NAMED("apex", "cannot load the graph: " << report.message() << "; starting with an empty graph");
       return;

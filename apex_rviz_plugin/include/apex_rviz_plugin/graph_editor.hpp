@@ -68,6 +68,7 @@ class GraphEditor : public QWidget {
 
  private:
   QWidget* buildToolBar();
+  QWidget* buildLevelBar();
   QWidget* buildPalette();
   void filterPalette(const QString& text);
   void addFromPalette();
@@ -77,6 +78,7 @@ class GraphEditor : public QWidget {
   void removeSelected();
   void duplicateSelected();
   QPointF newNodePosition();
+  void showLevel(const QString& path);
 
   GraphScene* scene_;
   QGraphicsView* view_;
@@ -86,6 +88,8 @@ class GraphEditor : public QWidget {
   QListWidget* palette_;
   QLabel* message_;
   QLabel* connection_;
+  QLabel* level_ = nullptr;      ///< where the view is: "graph / camera_detector"
+  QToolButton* up_ = nullptr;    ///< back to the enclosing level
   QToolButton *pause_, *undo_, *redo_;
   int added_ = 0;
   bool fit_pending_ = true;

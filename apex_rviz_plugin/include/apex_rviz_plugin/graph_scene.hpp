@@ -131,6 +131,10 @@ class GraphScene : public QGraphicsScene {
   void showStatus(const apex::RuntimeStatus& status);
   void showValue(const QString& node, const QString& port, const QString& text);
   NodeItem* node(const std::string& name) const;
+  /** @brief The subgraph shown ("" the top level): its nodes and the connections between them. */
+  const std::string& level() const { return level_; }
+  /** @brief Shows another level (a subgraph's path, or "" for the top). */
+  void setLevel(const std::string& path);
   const std::vector<ConnectionItem*>& connections() const { return connections_; }
 
   /** @brief Starts dragging a connection from a port (called by the port). */
@@ -148,11 +152,13 @@ class GraphScene : public QGraphicsScene {
   void inspectRequested(const QString& node, const QString& port);
   void slotFired(const QString& node, const QString& slot);
   void paramMenuRequested(const QString& node, const QString& param, QPoint screen_pos);
+  void levelChanged(const QString& path);
 
  protected:
   void mouseMoveEvent(QGraphicsSceneMouseEvent* e) override;
   void mouseReleaseEvent(QGraphicsSceneMouseEvent* e) override;
   void contextMenuEvent(QGraphicsSceneContextMenuEvent* e) override;
+  void mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) override;  ///< on a subgraph: opens it
 
  private:
   void reroute();
@@ -160,6 +166,7 @@ class GraphScene : public QGraphicsScene {
   void endDrag();
 
   const GraphModel* model_ = nullptr;
+  std::string level_;
   std::map<std::string, NodeItem*> nodes_;
   std::vector<ConnectionItem*> connections_;
   std::map<std::string, std::pair<std::uint64_t, double>> last_status_;  ///< firings at a stamp

@@ -11,6 +11,7 @@
 namespace apex {
 
 struct Manifest;
+struct GraphDescription;
 
 /** @brief One node as saved: parameter values are YAML text. */
 struct NodeDescription {
@@ -26,6 +27,31 @@ struct NodeDescription {
    *  interface function made of it for these parameters; nullptr for placeholders. */
   std::shared_ptr<const Manifest> interface;
   int line = 0;                  ///< where it was read from, for messages (0: not from a file)
+  /** A subgraph instance (type kSubgraphType): its inner graph, with its exports; `parameters`
+   *  and `interactive` then name exported parameters. nullptr for ordinary nodes. */
+  std::shared_ptr<const GraphDescription> subgraph;
+  /** A file-backed subgraph: the reference as written (`package://apex/graphs/x.yaml`, a path
+   *  relative to the file that names it, or absolute); "" for an inline one. */
+  std::string source;
+};
+
+/** The type a subgraph instance shows (not a registered type id: it cannot clash with one). */
+inline constexpr const char* kSubgraphType = "subgraph";
+
+/** @brief What a graph offers when used as a subgraph: one port, parameter or event of the
+ *  subgraph node, and the inner ones it stands for ("node/port", relative to the graph). */
+struct ExportDescription {
+  enum class Kind { Input, Output, Parameter, Slot, Trigger };
+  Kind kind = Kind::Input;
+  std::string name;
+  /** Inputs and slots may stand for several inner ones (they all get what arrives); outputs,
+   *  triggers and parameters for exactly one. Each "node/port", node possibly "a/b". */
+  std::vector<std::string> inner;
+  std::string description;  ///< "" : the inner one's
+  int line = 0;
+  bool operator==(const ExportDescription& o) const {
+    return kind == o.kind && name == o.name && inner == o.inner && description == o.description;
+  }
 };
 
 /** @brief A connection "from_node/from_port → to_node/to_port": data, parameter or event. */
@@ -41,6 +67,7 @@ struct GraphDescription {
   std::vector<std::string> thread_groups;  ///< user groups; "default" always exists
   std::vector<NodeDescription> nodes;
   std::vector<ConnectionDescription> connections;
+  std::vector<ExportDescription> exports;  ///< used when the graph is a subgraph; ignored at the top
 };
 
 /** @brief Profiling of one node; times in nanoseconds. */

@@ -26,10 +26,14 @@ class ThreadGroup;
 struct Edge;
 struct EventEdge;
 class Restructure;
+struct Subgraph;
 }  // namespace detail
 
 /** @brief Sees every message sent on one port; runs on the node's thread group, so it must be quick. */
 using PortTap = std::function<void(const Message&)>;
+
+/** @brief The node `path` names ("a" or "a/b/c" inside subgraphs), or nullptr. */
+const NodeDescription* findNode(const GraphDescription& graph, const std::string& path);
 
 /** @brief What a load reports besides success: e.g. nodes kept as placeholders. */
 struct LoadReport {
@@ -54,7 +58,14 @@ class Graph {
   Result<std::string> addNode(const std::string& type, const std::string& name = "",
                               const std::string& thread_group = "");
   /** @brief Adds a node with the settings of a description (parameters, interactive set,
-   *  enabled, group, UI), all or nothing: if one setting is refused, no node is added. */
+   *  enabled, group, UI), all or nothing: if one setting is refused, no node is added.
+   *  A description of type kSubgraphType adds a subgraph: its inner nodes, connections and
+   *  exports, then the settings of its exported parameters.
+   *
+   *  Subgraphs (docs/architecture.md): inner nodes are ordinary nodes of this graph named
+   *  "<subgraph>/<node>", addressed so by every call; a subgraph's own name stands for its
+   *  exports (connect, setParameter, setInteractive, fireSlot, setTap) and for all of its
+   *  nodes (removeNode, setEnabled, setThreadGroup). */
   Result<std::string> addNode(const NodeDescription& description);
   Status removeNode(const std::string& name);
   /** @brief Connects an output, parameter or trigger to an input, parameter or slot. */
@@ -135,7 +146,30 @@ class Graph {
   Result<NodePtr> require(const std::string& name) const;
   detail::ThreadGroup* group(const std::string& name);  // creates
   Result<std::string> addPlaceholder(const NodeDescription& d);
+  // --- subgraphs (graph_subgraph.cpp) ---
+  std::shared_ptr<detail::Subgraph> subgraph(const std::string& path) const;
+  /** "" if `path` may name a new node or subgraph: free, each part a name, its parent a subgraph. */
+  std::string checkNewPath(const std::string& path) const;
+  Result<std::string> addSubgraph(const NodeDescription& d);
+  Status checkExports(const detail::Subgraph& sg) const;
+  /** What "node/port" stands for as a sender (outputs, parameter outputs, triggers) or as
+   *  receivers (inputs, parameter inputs, slots): itself, or the inner ones a subgraph exports. */
+  Result<std::pair<std::string, std::string>> sender(const std::string& node, const std::string& port) const;
+  Result<std::vector<std::pair<std::string, std::string>>> receivers(const std::string& node, const std::string& port) const;
+  /** An exported parameter's inner node and parameter (through nested subgraphs). */
+  Result<std::pair<std::string, std::string>> exportedParam(const std::string& node, const std::string& param) const;
+  std::vector<std::string> nodesUnder(const std::string& path) const;  // every node inside, nested too
+  void removeSubgraphLocked(const std::string& path);
+  void dropExportsOf(const std::string& node);
+  void applyOuterEnabled(const std::string& path);
+  std::shared_ptr<const Manifest> facade(const detail::Subgraph& sg) const;
+  GraphDescription describeLocked() const;
+  /** The flat description (every node by its path) nested into subgraphs. */
+  GraphDescription nest(const GraphDescription& flat) const;
+  /** Connects what the two ends stand for (through subgraph exports), all or nothing. */
   Status connectLocked(const ConnectionDescription& c);
+  Status connectDirect(const ConnectionDescription& c);
+  Status disconnectDirect(const ConnectionDescription& c);
   Status applyNode(const NodeDescription& d, LoadReport& report);
   void adoptLocked(Graph& staged, const GraphDescription& description);
   void clearLocked();
@@ -167,6 +201,7 @@ class Graph {
   std::uint64_t next_seq_ = 0;
   std::map<std::string, int> name_counters_;  // generated names: gaussian_blur_1, _2, ...
   std::map<std::string, std::shared_ptr<detail::ThreadGroup>> groups_;
+  std::map<std::string, std::shared_ptr<detail::Subgraph>> subgraphs_;  // by path
   std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
   bool running_ = false;
   bool ran_ = false;  // started at least once: messages may be in flight

@@ -11,7 +11,9 @@
 
 namespace apex {
 
-inline constexpr int kGraphFormatVersion = 1;
+/** 2: subgraphs and exports (docs/graph_format.md); files of format 1 load unchanged. */
+inline constexpr int kGraphFormatVersion = 2;
+inline constexpr int kMaxSubgraphDepth = 16;  ///< subgraphs within subgraphs, inline or from files
 /** Limits of a graph file, far above real graphs (the demo has 12 nodes); beyond them a file
  *  is refused with a message naming the limit, before it is built. */
 inline constexpr long kMaxGraphFileBytes = 16L << 20;       ///< checked before reading
@@ -33,11 +35,27 @@ Result<std::vector<std::pair<std::string, std::string>>> parseParameterMap(const
 /** @brief The text of a graph file: only a regular file of at most kMaxGraphFileBytes
  *  (a FIFO or a device is refused at once, never waited on). */
 Result<std::string> readGraphFile(const std::string& path);
-/** @brief Reads and loads a graph file into `graph`, all or nothing. `check`, if given, sees
- *  each node's description first and may refuse it (the load is then refused, naming the
- *  line) or rewrite its parameters (e.g. resolve paths). */
-Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path,
-                                 const std::function<Status(NodeDescription&)>& check = {});
+/** @brief How a graph file and the subgraph files it names are read. */
+struct GraphFileOptions {
+  /** Sees each ordinary node's description first, at every level of subgraphs; may refuse it
+   *  (the load is then refused, naming the file and line) or rewrite its parameters (e.g.
+   *  resolve paths). */
+  std::function<Status(NodeDescription&)> check;
+  /** The file to open for a subgraph reference, given as joinReference() made it; may refuse
+   *  it. Default: the path as it is (package:// is then refused: only a ROS host knows packages). */
+  std::function<Result<std::string>(const std::string& path)> open;
+};
+
+/** @brief A subgraph reference as a path: a relative one is relative to the folder of the file
+ *  `from` that names it; absolute paths, `package://`, `$(find pkg)` and `~` stay as they are. */
+std::string joinReference(const std::string& ref, const std::string& from);
+
+/** @brief Reads a graph file and, into each file-backed subgraph node, the file it names
+ *  (recursively; a file that includes itself, or nesting deeper than kMaxSubgraphDepth, is
+ *  refused). Errors name the file and line, through every level. */
+Result<GraphDescription> readGraphDescription(const std::string& path, const GraphFileOptions& options = {});
+/** @brief readGraphDescription(), then Graph::load: all or nothing. */
+Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path, const GraphFileOptions& options = {});
 /** @brief Saves the graph atomically: the file is either the old one or the whole new one. */
 Status saveGraphFile(const Graph& graph, const std::string& path);
 /** @brief Writes a temporary file beside `path`, flushes it to disk, renames it over `path`.

@@ -1,0 +1,342 @@
+// Subgraphs: a group of nodes used as one node through the ports, parameters and
+// events it exports; inline or from a file; flattened, so they run like any node.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "apex/core/graph.hpp"
+#include "apex/core/graph_file.hpp"
+#include "apex_test/graph_file_helpers.hpp"
+#include "apex_test/test_nodes.hpp"
+
+namespace {
+
+using namespace apex;
+using apex_test::Collector;
+using apex_test::Contains;
+using apex_test::Feeder;
+using apex_test::object;
+using apex_test::TempDir;
+using apex_test::testRegistry;
+using apex_test::writeFile;
+
+// in × a × b, as a file other graphs use
+const char* kScale =
+    "apex_graph: 2\n"
+    "exports:\n"
+    "  - {input: in, to: first/in}\n"
+    "  - {output: out, from: second/out}\n"
+    "  - {parameter: factor, to: second/gain, description: the second factor}\n"
+    "nodes:\n"
+    "  - {name: first, type: test/Gain, parameters: {gain: 3}}\n"
+    "  - {name: second, type: test/Gain, parameters: {gain: 2}}\n"
+    "connections:\n"
+    "  - {from: first/out, to: second/in}\n";
+
+std::string twoInstances(const std::string& ref) {
+  return "apex_graph: 2\n"
+         "nodes:\n"
+         "  - {name: feeder, type: test/Feeder}\n"
+         "  - {name: a, subgraph: " + ref + ", parameters: {factor: 5}}\n"
+         "  - {name: b, subgraph: " + ref + "}\n"
+         "  - {name: sink_a, type: test/Collector}\n"
+         "  - {name: sink_b, type: test/Collector}\n"
+         "connections:\n"
+         "  - {from: feeder/out, to: a/in}\n"
+         "  - {from: feeder/out, to: b/in}\n"
+         "  - {from: a/out, to: sink_a/in}\n"
+         "  - {from: b/out, to: sink_b/in}\n";
+}
+
+/** Feeds 1..n and returns what `sink` got. */
+std::vector<int> run(Graph& g, const std::string& sink, int n = 4) {
+  g.start();
+  for (int i = 1; i <= n; ++i) object<Feeder>(g, "feeder")->feed(i);
+  EXPECT_TRUE(object<Collector>(g, sink)->waitFor(n));
+  EXPECT_TRUE(g.waitIdle(apex_test::kWait));
+  g.stop();
+  return object<Collector>(g, sink)->ints();
+}
+
+Result<LoadReport> loadText(Graph& g, TempDir& dir, const std::string& name, const std::string& text) {
+  writeFile(dir.file(name), text);
+  return loadGraphFile(g, dir.file(name));
+}
+
+TEST(Subgraph, InlineSubgraphRunsLikeTheFlatChain) {
+  const std::string nested =
+      "apex_graph: 2\n"
+      "nodes:\n"
+      "  - name: feeder\n    type: test/Feeder\n"
+      "  - name: scale\n    subgraph:\n"
+      "      exports:\n"
+      "        - {input: in, to: first/in}\n"
+      "        - {output: out, from: second/out}\n"
+      "      nodes:\n"
+      "        - {name: first, type: test/Gain, parameters: {gain: 3}}\n"
+      "        - {name: second, type: test/Gain, parameters: {gain: 2}}\n"
+      "      connections:\n"
+      "        - {from: first/out, to: second/in}\n"
+      "  - name: sink\n    type: test/Collector\n"
+      "connections:\n"
+      "  - {from: feeder/out, to: scale/in}\n"
+      "  - {from: scale/out, to: sink/in}\n";
+  const std::string flat =
+      "apex_graph: 1\n"
+      "nodes:\n"
+      "  - {name: feeder, type: test/Feeder}\n"
+      "  - {name: first, type: test/Gain, parameters: {gain: 3}}\n"
+      "  - {name: second, type: test/Gain, parameters: {gain: 2}}\n"
+      "  - {name: sink, type: test/Collector}\n"
+      "connections:\n"
+      "  - {from: feeder/out, to: first/in}\n"
+      "  - {from: first/out, to: second/in}\n"
+      "  - {from: second/out, to: sink/in}\n";
+  Graph grouped(testRegistry()), plain(testRegistry());
+  auto parsed = parseGraphText(nested);
+  ASSERT_TRUE(parsed) << parsed.message();
+  auto loaded = grouped.load(parsed.value());
+  ASSERT_TRUE(loaded) << loaded.message();
+  ASSERT_TRUE(plain.load(parseGraphText(flat).value()));
+  EXPECT_EQ(grouped.size(), 4u);  // the inner nodes are nodes of the graph: no node of its own
+  EXPECT_EQ(run(grouped, "sink"), run(plain, "sink"));
+  EXPECT_EQ(run(plain, "sink"), (std::vector<int>{6, 12, 18, 24, 6, 12, 18, 24}));
+
+  const std::string text = formatGraphText(grouped.describe());
+  EXPECT_TRUE(Contains(text, {"apex_graph: 2", "subgraph:", "{input: in, to: first/in}", "{from: scale/out, to: sink/in}",
+                              "{from: first/out, to: second/in}"}))
+      << text;
+  Graph again(testRegistry());
+  ASSERT_TRUE(again.load(parseGraphText(text).value()));
+  EXPECT_EQ(formatGraphText(again.describe()), text);
+}
+
+TEST(Subgraph, InnerNodesAreAddressedByPathByEveryEdit) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph g(testRegistry());
+  auto loaded = loadText(g, dir, "main.yaml", twoInstances("scale.yaml"));
+  ASSERT_TRUE(loaded) << loaded.message();
+
+  // the exported parameter and the inner one are the same value
+  EXPECT_EQ(std::get<int>(g.parameterValue("a", "factor").value()), 5);
+  EXPECT_EQ(std::get<int>(g.parameterValue("a/second", "gain").value()), 5);
+  ASSERT_TRUE(g.setParameter("a/first", "gain", "4"));
+  ASSERT_TRUE(g.setParameter("a", "factor", "1"));
+  EXPECT_EQ(std::get<int>(g.parameterValue("a/second", "gain").value()), 1);
+  auto iface = g.nodeInterface("a");
+  ASSERT_TRUE(iface);
+  ASSERT_TRUE(iface->findParam("factor"));
+  EXPECT_EQ(iface->findParam("factor")->description, "the second factor");
+  EXPECT_EQ(std::get<int>(iface->findParam("factor")->default_value), 2);  // what the file gives
+  EXPECT_TRUE(iface->findInput("in") && iface->findOutput("out"));
+
+  std::vector<std::string> names;
+  for (const auto& s : g.nodeStats()) names.push_back(s.name);
+  EXPECT_TRUE(std::find(names.begin(), names.end(), "b/second") != names.end());
+
+  // connect and disconnect inside, and across the boundary by an inner name
+  ASSERT_TRUE(g.disconnect("a", "out", "sink_a", "in"));
+  ASSERT_TRUE(g.connect("a/first", "out", "sink_a", "in"));
+  EXPECT_EQ(run(g, "sink_a", 2), (std::vector<int>{4, 8}));
+  // a node added inside a subgraph is part of it
+  auto added = g.addNode("test/Relay", "a/extra");
+  ASSERT_TRUE(added) << added.message();
+  EXPECT_TRUE(findNode(g.describe(), "a/extra"));
+  auto nowhere = g.addNode("test/Relay", "nope/extra");
+  EXPECT_TRUE(Contains(nowhere.message(), {"no subgraph 'nope'"})) << nowhere.message();
+  auto wrong = g.connect("feeder", "out", "a", "image");
+  EXPECT_TRUE(Contains(wrong.message(), {"subgraph 'a' exports no input, slot or parameter 'image'", "in (input)"}))
+      << wrong.message();
+  auto no_param = g.setParameter("a", "gain", "2");
+  EXPECT_TRUE(Contains(no_param.message(), {"exports no parameter 'gain'", "factor"})) << no_param.message();
+}
+
+TEST(Subgraph, TwoInstancesOfOneFileKeepTheirOwnParameters) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph g(testRegistry());
+  auto loaded = loadText(g, dir, "main.yaml", twoInstances("scale.yaml"));
+  ASSERT_TRUE(loaded) << loaded.message();
+  g.start();
+  for (int i = 1; i <= 3; ++i) object<Feeder>(g, "feeder")->feed(i);
+  ASSERT_TRUE(object<Collector>(g, "sink_a")->waitFor(3));
+  ASSERT_TRUE(object<Collector>(g, "sink_b")->waitFor(3));
+  g.stop();
+  EXPECT_EQ(object<Collector>(g, "sink_a")->ints(), (std::vector<int>{15, 30, 45}));
+  EXPECT_EQ(object<Collector>(g, "sink_b")->ints(), (std::vector<int>{6, 12, 18}));
+
+  // saved as references with their own values, and read back the same
+  const std::string text = formatGraphText(g.describe());
+  EXPECT_TRUE(Contains(text, {"subgraph: scale.yaml", "factor: 5", "factor: 2", "{from: feeder/out, to: a/in}"})) << text;
+  EXPECT_EQ(text.find("first/out"), std::string::npos) << text;  // nothing of the inner graph
+  ASSERT_TRUE(saveGraphFile(g, dir.file("saved.yaml")));
+  Graph again(testRegistry());
+  ASSERT_TRUE(loadGraphFile(again, dir.file("saved.yaml")));
+  EXPECT_EQ(formatGraphText(again.describe()), text);
+}
+
+TEST(Subgraph, AnEditInsideAFileBackedSubgraphIsSavedInline) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph g(testRegistry());
+  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  ASSERT_TRUE(g.setParameter("b/first", "gain", "7"));  // not exported: the file no longer says it
+  const std::string text = formatGraphText(g.describe());
+  EXPECT_TRUE(Contains(text, {"subgraph: scale.yaml", "gain: 7", "{input: in, to: first/in}"})) << text;
+  Graph again(testRegistry());
+  auto loaded = loadText(again, dir, "edited.yaml", text);
+  ASSERT_TRUE(loaded) << loaded.message();
+  EXPECT_EQ(run(again, "sink_b", 1), (std::vector<int>{14}));
+  EXPECT_EQ(object<Collector>(again, "sink_a")->ints(), (std::vector<int>{15}));
+}
+
+TEST(Subgraph, ThreeLevelsSaveAndLoad) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  writeFile(dir.file("middle.yaml"),
+            "apex_graph: 2\n"
+            "exports:\n"
+            "  - {input: in, to: inner/in}\n"
+            "  - {output: out, from: inner/out}\n"
+            "  - {parameter: factor, to: inner/factor}\n"
+            "nodes:\n"
+            "  - name: inner\n    subgraph:\n"
+            "      exports:\n"
+            "        - {input: in, to: deep/in}\n"
+            "        - {output: out, from: deep/out}\n"
+            "        - {parameter: factor, to: deep/factor}\n"
+            "      nodes:\n"
+            "        - {name: deep, subgraph: scale.yaml}\n");
+  const std::string main =
+      "apex_graph: 2\n"
+      "nodes:\n"
+      "  - {name: feeder, type: test/Feeder}\n"
+      "  - {name: top, subgraph: middle.yaml, parameters: {factor: 10}}\n"
+      "  - {name: sink, type: test/Collector}\n"
+      "connections:\n"
+      "  - {from: feeder/out, to: top/in}\n"
+      "  - {from: top/out, to: sink/in}\n";
+  Graph g(testRegistry());
+  auto loaded = loadText(g, dir, "main.yaml", main);
+  ASSERT_TRUE(loaded) << loaded.message();
+  EXPECT_EQ(std::get<int>(g.parameterValue("top/inner/deep/second", "gain").value()), 10);
+  const std::string text = formatGraphText(g.describe());
+  EXPECT_TRUE(Contains(text, {"subgraph: middle.yaml", "factor: 10"})) << text;
+  EXPECT_EQ(run(g, "sink", 2), (std::vector<int>{30, 60}));
+
+  // edited three levels down: the whole chain is written inline, down to that level
+  ASSERT_TRUE(g.setParameter("top/inner/deep/first", "gain", "1"));
+  const std::string edited = formatGraphText(g.describe());
+  ASSERT_TRUE(writeFileAtomically(dir.file("edited.yaml"), edited));
+  Graph again(testRegistry());
+  auto reloaded = loadGraphFile(again, dir.file("edited.yaml"));
+  ASSERT_TRUE(reloaded) << reloaded.message() << "\n" << edited;
+  EXPECT_EQ(formatGraphText(again.describe()), edited);
+  EXPECT_EQ(run(again, "sink", 2), (std::vector<int>{10, 20}));
+}
+
+TEST(Subgraph, ARenamedExportedPortIsAClearErrorAndNothingChanges) {
+  TempDir dir;
+  std::string broken = kScale;
+  broken.replace(broken.find("from: second/out"), 16, "from: second/result");
+  writeFile(dir.file("scale.yaml"), broken);
+  Graph g(testRegistry());
+  apex_test::add(g, "test/Ticker", "keep");
+  auto loaded = loadText(g, dir, "main.yaml", twoInstances("scale.yaml"));
+  ASSERT_FALSE(loaded);
+  EXPECT_TRUE(Contains(loaded.message(), {"main.yaml", "line 4", "subgraph 'a'", "scale.yaml",
+                                          "export 'out' stands for 'second/result'", "no output 'result'"}))
+      << loaded.message();
+  EXPECT_EQ(g.size(), 1u);  // all or nothing: the graph is as it was
+  EXPECT_TRUE(g.nodeObject("keep"));
+
+  writeFile(dir.file("scale.yaml"), kScale);  // and an outer connection to a port it does not export
+  std::string text = twoInstances("scale.yaml");
+  text.replace(text.find("to: b/in"), 8, "to: b/input");
+  auto wrong = loadText(g, dir, "main.yaml", text);
+  EXPECT_TRUE(Contains(wrong.message(), {"line 10", "subgraph 'b' exports no input, slot or parameter 'input'"}))
+      << wrong.message();
+}
+
+TEST(Subgraph, AFileThatIncludesItselfIsRefused) {
+  TempDir dir;
+  writeFile(dir.file("loop.yaml"), "apex_graph: 2\nnodes:\n  - {name: again, subgraph: loop.yaml}\n");
+  Graph g(testRegistry());
+  auto loaded = loadGraphFile(g, dir.file("loop.yaml"));
+  EXPECT_TRUE(Contains(loaded.message(), {"subgraph 'again'", "includes itself"})) << loaded.message();
+  auto old = parseGraphText("apex_graph: 1\nnodes:\n  - {name: s, subgraph: x.yaml}\n");
+  EXPECT_TRUE(Contains(old.message(), {"line 3", "subgraphs need 'apex_graph: 2'"})) << old.message();
+}
+
+TEST(Subgraph, DisablingASubgraphDisablesItsNodesAndKeepsTheirOwnSetting) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph g(testRegistry());
+  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  ASSERT_TRUE(g.setEnabled("b/first", false));
+  ASSERT_TRUE(g.setEnabled("b", false));
+  auto enabled = [&](const std::string& name) {
+    for (const auto& s : g.nodeStats()) if (s.name == name) return s.enabled;
+    return true;
+  };
+  EXPECT_FALSE(enabled("b/second"));
+  EXPECT_TRUE(enabled("a/second"));
+  EXPECT_TRUE(Contains(formatGraphText(g.describe()), {"enabled: false"}));
+  ASSERT_TRUE(g.setEnabled("b", true));
+  EXPECT_TRUE(enabled("b/second"));
+  EXPECT_FALSE(enabled("b/first"));  // its own setting stays
+}
+
+TEST(Subgraph, RemovingASubgraphRemovesItsNodesAndConnections) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph g(testRegistry());
+  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  ASSERT_TRUE(g.removeNode("a"));
+  EXPECT_EQ(g.size(), 5u);  // feeder, two sinks, b's two nodes
+  EXPECT_FALSE(findNode(g.describe(), "a"));
+  EXPECT_EQ(run(g, "sink_b", 1), (std::vector<int>{6}));
+  EXPECT_TRUE(g.size() == 5u);
+  // an exported inner node removed: its export goes with it
+  ASSERT_TRUE(g.removeNode("b/second"));
+  EXPECT_FALSE(g.nodeInterface("b")->findOutput("out"));
+}
+
+TEST(Subgraph, LiveEditsInsideARunningSubgraphNeverStallTheGraph) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  std::string main = twoInstances("scale.yaml");
+  main.replace(main.find("test/Feeder"), 11, "test/Ticker");  // free-running: data always flows
+  Graph g(testRegistry());
+  auto loaded = loadText(g, dir, "main.yaml", main);
+  ASSERT_TRUE(loaded) << loaded.message();
+  auto* sink_b = object<Collector>(g, "sink_b");
+  auto flows = [&] {
+    const std::size_t before = sink_b->size();
+    return sink_b->waitFor(before + 5);
+  };
+  g.start();
+  ASSERT_TRUE(flows());
+  for (int round = 0; round < 20; ++round) {  // each edit while the other instance and the feeder run on
+    ASSERT_TRUE(g.disconnect("a/first", "out", "a/second", "in"));
+    ASSERT_TRUE(flows()) << "round " << round << ": a cut inside 'a' stalled 'b'";
+    ASSERT_TRUE(g.connect("a/first", "out", "a/second", "in"));
+    ASSERT_TRUE(g.removeNode("a/second"));
+    ASSERT_TRUE(flows()) << "round " << round << ": removing a node inside 'a' stalled 'b'";
+    ASSERT_TRUE(g.addNode("test/Gain", "a/second"));
+    ASSERT_TRUE(g.connect("a/first", "out", "a/second", "in"));
+    ASSERT_TRUE(g.connect("a/second", "out", "sink_a", "in"));
+    ASSERT_TRUE(g.setEnabled("a", round % 2 == 0));
+    ASSERT_TRUE(g.setParameter("b", "factor", std::to_string(round % 5 + 1)));
+    ASSERT_TRUE(flows()) << "round " << round;
+  }
+  ASSERT_TRUE(g.setEnabled("a", true));
+  auto* sink_a = object<Collector>(g, "sink_a");
+  const std::size_t before = sink_a->size();
+  EXPECT_TRUE(sink_a->waitFor(before + 5)) << "the edited subgraph runs again once whole";
+  g.stop();
+}
+
+}  // namespace
