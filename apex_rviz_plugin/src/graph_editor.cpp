@@ -260,6 +260,16 @@ void GraphEditor::showNodeMenu(const QString& node, QPoint at) {
   menu.addAction(info.enabled ? "Disable" : "Enable", this, [this, node, on = !info.enabled] { emit enabledRequested(node, on); });
   menu.addAction("Duplicate", this, [this, node] { emit duplicateRequested(node); });
   menu.addAction("Remove", this, [this, node] { emit removeRequested(node); });
+  QStringList selected;  // the node and the others selected with it
+  for (QGraphicsItem* i : scene_->selectedItems())
+    if (auto* n = dynamic_cast<NodeItem*>(i)) selected << QString::fromStdString(n->info().name);
+  if (!selected.contains(node)) selected = QStringList{node};
+  menu.addAction(selected.size() > 1 ? QString("Group %1 nodes into a subgraph").arg(selected.size()) : "Group into a subgraph",
+                 this, [this, selected] { emit groupIntoSubgraphRequested(selected); });
+  if (!info.subgraph.empty()) {
+    menu.addAction("Open subgraph", this, [this, node] { scene_->setLevel(node.toStdString()); });
+    menu.addAction("Ungroup", this, [this, node] { emit ungroupRequested(node); });
+  }
   QMenu* groups = menu.addMenu("Thread group");
   for (const auto& g : model_->graph().thread_groups) {
     QAction* a = groups->addAction(QString::fromStdString(g), this, [this, node, g] { emit groupRequested(node, QString::fromStdString(g)); });

@@ -214,6 +214,39 @@ std::string GraphModel::freshName(const std::string& type) const {
   }
 }
 
+namespace {
+std::string parentOf(const std::string& path) {
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash);
+}
+std::string join(const std::string& parent, const std::string& name) { return parent.empty() ? name : parent + "/" + name; }
+}  // namespace
+
+std::optional<Edit> GraphModel::group(const std::vector<std::string>& nodes) const {
+  if (nodes.empty()) return std::nullopt;
+  const std::string parent = parentOf(nodes.front());
+  std::string name;
+  for (int i = 1; name.empty() || node(join(parent, name)); ++i) name = "subgraph_" + std::to_string(i);
+  apex::Group::Request g;
+  g.nodes = nodes, g.name = name;
+  apex::Ungroup::Request u;
+  u.name = join(parent, name);
+  return Edit{"Group into " + name, {{"group", g}}, {{"ungroup", u}}};
+}
+
+std::optional<Edit> GraphModel::ungroup(const std::string& path) const {
+  const apex::NodeInfo* n = node(path);
+  if (!n || n->subgraph.empty()) return std::nullopt;
+  const std::string parent = parentOf(path);
+  apex::Group::Request g;  // its nodes, as they will be named beside it
+  g.name = path.substr(parent.empty() ? 0 : parent.size() + 1);
+  for (const auto& m : graph_.nodes)
+    if (parentOf(m.name) == path) g.nodes.push_back(join(parent, m.name.substr(path.size() + 1)));
+  apex::Ungroup::Request u;
+  u.name = path;
+  return Edit{"Ungroup " + g.name, {{"ungroup", u}}, {{"group", g}}};
+}
+
 std::optional<Edit> GraphModel::duplicate(const std::string& name, double x, double y) const {
   const apex::NodeInfo* n = node(name);
   if (!n) return std::nullopt;

@@ -1,5 +1,7 @@
 #include "apex_rviz_plugin/graph_scene.hpp"
 
+#include <QGraphicsProxyWidget>
+
 #include <QGraphicsSceneContextMenuEvent>
 #include <QGraphicsSceneMouseEvent>
 #include <QGraphicsView>
@@ -107,13 +109,15 @@ void GraphScene::setLevel(const std::string& path) {
 }
 
 void GraphScene::mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) {
-  QGraphicsScene::mouseDoubleClickEvent(e);  // proxied widgets first
-  if (e->isAccepted()) return;
-  for (QGraphicsItem* i : items(e->scenePos()))
-    if (auto* n = dynamic_cast<NodeItem*>(i)) {
-      if (!n->info().subgraph.empty()) setLevel(n->info().name);
-      return e->accept();
-    }
+  for (QGraphicsItem* i : items(e->scenePos())) {  // topmost first
+    if (dynamic_cast<PortItem*>(i) || dynamic_cast<QGraphicsProxyWidget*>(i)) break;  // theirs
+    auto* n = dynamic_cast<NodeItem*>(i);
+    if (!n) continue;
+    if (n->info().subgraph.empty()) break;
+    setLevel(n->info().name);
+    return e->accept();
+  }
+  QGraphicsScene::mouseDoubleClickEvent(e);
 }
 
 void GraphScene::showStatus(const apex::RuntimeStatus& status) {

@@ -45,6 +45,12 @@ void PanelWidget::connectEditor() {
     perform(model_.addNode(str(type), inside.empty() ? name : inside + "/" + name, at.x(), at.y()));
   });
   connect(e, &GraphEditor::removeRequested, this, [this, str](const QString& n) { perform(model_.removeNode(str(n))); });
+  connect(e, &GraphEditor::groupIntoSubgraphRequested, this, [this, str](const QStringList& nodes) {
+    std::vector<std::string> names;
+    for (const auto& n : nodes) names.push_back(str(n));
+    perform(model_.group(names));
+  });
+  connect(e, &GraphEditor::ungroupRequested, this, [this, str](const QString& n) { perform(model_.ungroup(str(n))); });
   connect(e, &GraphEditor::duplicateRequested, this, [this, str](const QString& n) {
     const auto [x, y] = model_.position(str(n));
     perform(model_.duplicate(str(n), x + 40, y + 40));

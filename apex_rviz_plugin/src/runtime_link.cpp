@@ -27,6 +27,8 @@ template <> struct ServiceOf<apex::SetEnabled::Request> { using type = apex::Set
 template <> struct ServiceOf<apex::SetInteractive::Request> { using type = apex::SetInteractive; };
 template <> struct ServiceOf<apex::SetThreadGroup::Request> { using type = apex::SetThreadGroup; };
 template <> struct ServiceOf<apex::SetUi::Request> { using type = apex::SetUi; };
+template <> struct ServiceOf<apex::Group::Request> { using type = apex::Group; };
+template <> struct ServiceOf<apex::Ungroup::Request> { using type = apex::Ungroup; };
 
 /** Calls a service; the response, and in `message` why it failed if it did. */
 template <class Srv>

@@ -304,6 +304,74 @@ TEST(Subgraph, RemovingASubgraphRemovesItsNodesAndConnections) {
   EXPECT_FALSE(g.nodeInterface("b")->findOutput("out"));
 }
 
+TEST(Subgraph, GroupAndUngroupWhileRunningKeepTheOutputsAndGiveTheFlatGraphBack) {
+  Graph g(testRegistry());
+  apex_test::add(g, "test/Feeder", "feeder");
+  apex_test::add(g, "test/Gain", "first");
+  apex_test::add(g, "test/Gain", "second");
+  apex_test::add(g, "test/Collector", "sink");
+  apex_test::add(g, "test/Collector", "tap");
+  ASSERT_TRUE(g.setParameter("first", "gain", "3"));
+  ASSERT_TRUE(g.setParameter("second", "gain", "2"));
+  apex_test::link(g, "feeder", "out", "first", "in");
+  apex_test::link(g, "first", "out", "second", "in");
+  apex_test::link(g, "second", "out", "sink", "in");
+  apex_test::link(g, "first", "out", "tap", "in");  // an inner sender also feeds outside
+  const std::string flat = formatGraphText(g.describe());
+  g.start();
+  auto* feeder = object<Feeder>(g, "feeder");
+  auto* sink = object<Collector>(g, "sink");
+  feeder->feed(1);
+  ASSERT_TRUE(sink->waitFor(1));
+
+  auto grouped = g.group({"first", "second"}, "scale");
+  ASSERT_TRUE(grouped) << grouped.message();
+  feeder->feed(2);  // data flows on through the same edges: nothing was rebuilt
+  ASSERT_TRUE(sink->waitFor(2));
+  const std::string text = formatGraphText(g.describe());
+  // exports named after the inner ports, the node's name added where two share one
+  EXPECT_TRUE(Contains(text, {"name: scale", "{input: in, to: first/in}", "{output: out, from: first/out}",
+                              "{output: second_out, from: second/out}", "{from: feeder/out, to: scale/in}",
+                              "{from: scale/second_out, to: sink/in}", "{from: scale/out, to: tap/in}",
+                              "{from: first/out, to: second/in}"}))
+      << text;
+  EXPECT_TRUE(g.setParameter("scale/first", "gain", "3"));
+  EXPECT_TRUE(g.nodeInterface("scale")->findInput("in"));
+  // the grouped graph, saved and loaded, runs the same
+  Graph again(testRegistry());
+  ASSERT_TRUE(again.load(parseGraphText(text).value()));
+  EXPECT_EQ(formatGraphText(again.describe()), text);
+  EXPECT_EQ(run(again, "sink", 2), (std::vector<int>{6, 12}));
+
+  auto ungrouped = g.ungroup("scale");
+  ASSERT_TRUE(ungrouped) << ungrouped.message();
+  feeder->feed(3);
+  ASSERT_TRUE(sink->waitFor(3));
+  ASSERT_TRUE(g.waitIdle(apex_test::kWait));
+  g.stop();
+  EXPECT_EQ(sink->ints(), (std::vector<int>{6, 12, 18}));
+  EXPECT_EQ(formatGraphText(g.describe()), flat);  // the round trip gives the flat graph back
+
+  auto apart = g.group({"first", "nope"}, "x");
+  EXPECT_TRUE(Contains(apart.message(), {"cannot group into 'x'", "no node named 'nope'"})) << apart.message();
+  auto taken = g.group({"first"}, "sink");
+  EXPECT_TRUE(Contains(taken.message(), {"a node named 'sink' already exists"})) << taken.message();
+  EXPECT_TRUE(Contains(g.ungroup("first").message(), {"not a subgraph"}));
+}
+
+TEST(Subgraph, GroupingInsideASubgraphAndUngroupingKeepTheExportsWorking) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph g(testRegistry());
+  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  ASSERT_TRUE(g.group({"a/second"}, "stage"));  // a level down: a's exports now pass through 'stage'
+  EXPECT_EQ(std::get<int>(g.parameterValue("a", "factor").value()), 5);
+  EXPECT_TRUE(g.nodeInterface("a")->findOutput("out"));
+  ASSERT_TRUE(g.ungroup("a/stage"));
+  EXPECT_TRUE(g.nodeInterface("a")->findOutput("out"));
+  EXPECT_EQ(run(g, "sink_a", 1), (std::vector<int>{15}));
+}
+
 TEST(Subgraph, LiveEditsInsideARunningSubgraphNeverStallTheGraph) {
   TempDir dir;
   writeFile(dir.file("scale.yaml"), kScale);

@@ -45,7 +45,7 @@ if ! wait_for 30 test -e "/tmp/.X11-unix/X$display"; then failure="Xvfb did not 
 elif ! wait_for 60 rosparam get /rosdistro; then failure="the ROS master did not start"
 else
   rosparam set /apex/overrides "{bag: {file: '$bag', loop: true}}"
-  rosrun apex apex_runtime_node __name:=apex _graph:="$root/graphs/paper_pipeline.yaml" >"$work/runtime.log" 2>&1 &
+  rosrun apex apex_runtime_node __name:=apex _graph:="$root/graphs/demo.yaml" >"$work/runtime.log" 2>&1 &
   pids+=($!)
   rosrun rviz rviz -d "$root/launch/apex_panel.rviz" >"$work/rviz.log" 2>&1 &
   pids+=($!)

@@ -263,6 +263,36 @@ TEST(GraphModel, ApplyingTheBestValuesIsOneEditUndoneToTheValuesBefore) {
   EXPECT_FALSE(m.applyBest("tuner"));
 }
 
+TEST(GraphModel, GroupingIsOneEditUndoneByUngroupingAndTheOtherWayRound) {
+  GraphModel m;
+  ASSERT_TRUE(m.update(graph(1)));
+  auto grouped = m.group({"relay", "count"});
+  ASSERT_TRUE(grouped);
+  ASSERT_EQ(grouped->apply.size(), 1u);
+  const auto& g = std::get<apex::Group::Request>(grouped->apply[0].request);
+  EXPECT_EQ(grouped->apply[0].service, "group");
+  EXPECT_EQ(g.name, "subgraph_1");
+  EXPECT_EQ(g.nodes, (std::vector<std::string>{"relay", "count"}));
+  ASSERT_EQ(grouped->revert.size(), 1u);
+  EXPECT_EQ(std::get<apex::Ungroup::Request>(grouped->revert[0].request).name, "subgraph_1");
+
+  // as the runtime then describes it: the subgraph and its nodes by path
+  auto state = graph(2);
+  state.nodes[1].name = "subgraph_1/relay", state.nodes[2].name = "subgraph_1/count";
+  apex::NodeInfo sub;
+  sub.name = "subgraph_1", sub.type = "subgraph", sub.subgraph = "inline";
+  state.nodes.push_back(sub);
+  ASSERT_TRUE(m.update(state));
+  EXPECT_FALSE(m.ungroup("clock")) << "not a subgraph";
+  auto ungrouped = m.ungroup("subgraph_1");
+  ASSERT_TRUE(ungrouped);
+  EXPECT_EQ(std::get<apex::Ungroup::Request>(ungrouped->apply[0].request).name, "subgraph_1");
+  const auto& again = std::get<apex::Group::Request>(ungrouped->revert[0].request);
+  EXPECT_EQ(again.name, "subgraph_1");
+  EXPECT_EQ(again.nodes, (std::vector<std::string>{"relay", "count"}));
+  EXPECT_EQ(std::get<apex::Group::Request>(m.group({"clock"})->apply[0].request).name, "subgraph_2");
+}
+
 TEST(EditHistory, UndoRedoAndANewEditClearsRedo) {
   GraphModel m;
   m.update(graph(1));

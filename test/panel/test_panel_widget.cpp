@@ -251,6 +251,41 @@ TEST_F(PanelWidgetTest, ARefusedEditShowsTheRuntimesMessage) {
   EXPECT_EQ(number(runtimeGraph(), "clock_2", "rate"), 10);
 }
 
+TEST_F(PanelWidgetTest, GroupIntoASubgraphOpenItWithADoubleClickGoUpAndUndo) {
+  addByKeyboard("Clock", "clock_3");
+  addByKeyboard("apex_nodes/Print", "print_1");
+  ASSERT_TRUE(link("clock_3", "count", "print_1", "in"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->connections().size() == 1; }, kWaitMs));
+  scene->node("clock_3")->setSelected(true);
+  scene->node("print_1")->setSelected(true);
+  emit panel.editor()->groupIntoSubgraphRequested({"clock_3", "print_1"});  // what the node menu's entry sends
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("subgraph_1") && !scene->node("clock_3"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_TRUE(find(runtimeGraph(), "subgraph_1/clock_3"));
+
+  // a double-click on it opens it: its nodes and the connection between them; Up goes back
+  NodeItem* sub = scene->node("subgraph_1");
+  sub->setZValue(10);
+  mouse(view, QEvent::MouseButtonDblClick, sub->scenePos() + QPointF(60, 10), Qt::LeftButton);
+  ASSERT_EQ(scene->level(), "subgraph_1");
+  ASSERT_TRUE(scene->node("subgraph_1/clock_3") && scene->node("subgraph_1/print_1"));
+  EXPECT_EQ(scene->connections().size(), 1u);
+  auto* level = panel.editor()->findChild<QLabel*>("level");
+  ASSERT_TRUE(level);
+  EXPECT_TRUE(level->isVisible());
+  EXPECT_TRUE(level->text().contains("subgraph_1")) << level->text().toStdString();
+  QTest::mouseClick(panel.editor()->findChild<QToolButton*>("up"), Qt::LeftButton);
+  EXPECT_EQ(scene->level(), "");
+  EXPECT_TRUE(scene->node("subgraph_1"));
+
+  // one undo step: the nodes are back beside each other, still connected
+  QTest::mouseClick(panel.editor()->findChild<QToolButton*>("undo"), Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("clock_3") && !scene->node("subgraph_1"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_TRUE(connected(runtimeGraph(), "clock_3", "count", "print_1", "in"));
+}
+
 TEST_F(PanelWidgetTest, ANodeThatCannotFireSaysWhatItWaitsFor) {
   addByKeyboard("Counter", "counter_2");  // its input is not connected: cut off from every source
   NodeItem* counter = panel.editor()->scene()->node("counter_2");

@@ -6,6 +6,7 @@
 #include <apex/FireSlot.h>
 #include <apex/GetGraph.h>
 #include <apex/GraphState.h>
+#include <apex/Group.h>
 #include <apex/Inspect.h>
 #include <apex/ListNodeTypes.h>
 #include <apex/LoadGraph.h>
@@ -16,6 +17,7 @@
 #include <apex/SetParameter.h>
 #include <apex/SetThreadGroup.h>
 #include <apex/SetUi.h>
+#include <apex/Ungroup.h>
 #include <gmock/gmock.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/Int32.h>
@@ -412,6 +414,18 @@ TEST_F(Services, SubgraphsAreAddressedByPathByEveryService) {
   auto added = addNode(part, "");
   ASSERT_TRUE(added.success) << added.message;
   EXPECT_EQ(added.node.subgraph, part);
+  // group and ungroup: one call each, names follow
+  apex::Group::Request group;
+  group.nodes = {"ticks", "sink"}, group.name = "both";
+  auto grouped = call<apex::Group>("group", group);
+  ASSERT_TRUE(grouped.success) << grouped.message;
+  EXPECT_TRUE(keepsFiring(nh, "both/ticks/clock"));
+  apex::Ungroup::Request ungroup;
+  ungroup.name = "both";
+  auto ungrouped = call<apex::Ungroup>("ungroup", ungroup);
+  ASSERT_TRUE(ungrouped.success) << ungrouped.message;
+  ungroup.name = "sink";
+  EXPECT_THAT(call<apex::Ungroup>("ungroup", ungroup).message, HasSubstr("not a subgraph"));
   apex::RemoveNode::Request remove;
   remove.name = "ticks";
   EXPECT_TRUE(call<apex::RemoveNode>("remove_node", remove).success);

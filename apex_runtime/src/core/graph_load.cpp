@@ -71,10 +71,11 @@ GraphDescription Graph::describe() const {
 GraphDescription Graph::describeLocked() const {
   GraphDescription flat;
   for (auto& [name, g] : groups_) if (name != "default") flat.thread_groups.push_back(name);
-  std::map<std::uint64_t, NodeDescription> nodes;  // insertion order, subgraphs among the nodes
+  // insertion order, subgraphs among the nodes (a grouped one where its first node was)
+  std::map<std::pair<std::uint64_t, int>, NodeDescription> nodes;
   for (auto& [seq, n] : order_) {
-    nodes[seq] = describeNode(*n);
-    if (n->type) nodes[seq].error = n->error();
+    auto& d = nodes[{seq, 1}] = describeNode(*n);
+    if (n->type) d.error = n->error();
   }
   for (auto& [path, sg] : subgraphs_) {
     NodeDescription d;
@@ -97,7 +98,7 @@ GraphDescription Graph::describeLocked() const {
     inner->thread_groups = sg->thread_groups;
     inner->exports = sg->exports;
     d.subgraph = inner;
-    nodes[sg->seq] = std::move(d);
+    nodes[{sg->seq, 0}] = std::move(d);
   }
   for (auto& [seq, d] : nodes) flat.nodes.push_back(std::move(d));
   for (auto& [seq, n] : order_) describeConnections(*n, flat.connections);

@@ -2,10 +2,12 @@
 // stand for, its façade interface, and nesting the flat graph back into
 // subgraphs to describe or save it. See subgraph.hpp for the model.
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include "apex/core/graph.hpp"
 #include "apex/core/graph_file.hpp"
+#include "edit_scope.hpp"
 #include "names.hpp"
 #include "node_state.hpp"
 #include "subgraph.hpp"
@@ -130,6 +132,10 @@ std::string Graph::checkNewPath(const std::string& path) const {
 
 std::vector<std::string> Graph::nodesUnder(const std::string& path) const {
   std::vector<std::string> out;
+  if (path.empty()) {  // the whole graph
+    for (const auto& [name, n] : nodes_) out.push_back(name);
+    return out;
+  }
   const std::string prefix = path + "/";
   for (auto it = nodes_.lower_bound(prefix); it != nodes_.end() && it->first.compare(0, prefix.size(), prefix) == 0; ++it)
     out.push_back(it->first);
@@ -342,6 +348,179 @@ void Graph::applyOuterEnabled(const std::string& path) {
   }
 }
 
+// ------------------------------------------------------------------ grouping
+
+namespace {
+std::string unique(std::set<std::string>& taken, const std::string& node, const std::string& port) {
+  std::string name = port;
+  if (taken.count(name)) name = node.substr(node.rfind('/') + 1) + "_" + port;
+  for (int i = 2; taken.count(name); ++i) name = port + "_" + std::to_string(i);
+  taken.insert(name);
+  return name;
+}
+}  // namespace
+
+Status Graph::group(const std::vector<std::string>& members, const std::string& name) {
+  auto lock = lockEdits();
+  auto fail = [&](const std::string& why) { return Status::error("cannot group into '" + name + "': " + why); };
+  if (members.empty()) return fail("no nodes given");
+  const std::string parent = parentOf(members.front());
+  std::set<std::string> seen;
+  for (const auto& m : members) {
+    if (!find(m) && !subgraph(m)) return fail("no node named '" + m + "'");
+    if (parentOf(m) != parent)
+      return fail("'" + m + "' and '" + members.front() + "' are not beside each other (group nodes of one level)");
+    if (!seen.insert(m).second) return fail("'" + m + "' is named twice");
+  }
+  const std::string path = join(parent, name);
+  if (auto why = checkNewPath(path); !why.empty()) return fail(why);
+  auto inside = [&](const std::string& node) {
+    for (const auto& m : members)
+      if (node == m || node.compare(0, m.size() + 1, m + "/") == 0) return true;
+    return false;
+  };
+  auto rel = [&](const std::string& node, const std::string& port) {
+    return node.substr(parent.empty() ? 0 : parent.size() + 1) + "/" + port;
+  };
+  // Each crossing connection through an export: one per outside sender (it may feed several
+  // inner receivers), one per inner sender (it may feed several outside).
+  auto sg = std::make_shared<Subgraph>();
+  std::set<std::string> sending, receiving;
+  std::map<std::string, std::size_t> by_sender;  // "node/port" → index in exports
+  auto cross = [&](const std::string& from, const std::string& from_port, const std::string& to,
+                   const std::string& to_port, bool event) {
+    if (inside(from) == inside(to)) return;
+    const std::string key = from + "/" + from_port;
+    auto it = by_sender.find(key);
+    if (it != by_sender.end()) {
+      auto& e = sg->exports[it->second];
+      if (inside(to)) e.inner.push_back(rel(to, to_port));
+      return;
+    }
+    ExportDescription e;
+    if (inside(to)) {
+      e.kind = event ? Kind::Slot : Kind::Input;
+      e.name = unique(receiving, to, to_port);
+      e.inner = {rel(to, to_port)};
+    } else {
+      e.kind = event ? Kind::Trigger : Kind::Output;
+      e.name = unique(sending, from, from_port);
+      e.inner = {rel(from, from_port)};
+    }
+    by_sender[key] = sg->exports.size();
+    sg->exports.push_back(std::move(e));
+  };
+  for (auto& [seq, n] : order_) {
+    const Manifest& m = n->manifest();
+    auto target = [](const detail::Edge& e) {
+      return e.to_param ? e.to->manifest().params[e.to_index].name : e.to->manifest().inputs[e.to_index].name;
+    };
+    if (!n->type) continue;
+    for (std::size_t i = 0; i < n->outputs.size(); ++i)
+      for (auto& e : n->outputs[i].edges) cross(n->name, m.outputs[i].name, e->to->name, target(*e), false);
+    for (std::size_t i = 0; i < n->params.size(); ++i)
+      for (auto& e : n->params[i].out_edges) cross(n->name, m.params[i].name, e->to->name, target(*e), false);
+    for (std::size_t i = 0; i < n->trigger_edges.size(); ++i)
+      for (auto& e : n->trigger_edges[i])
+        cross(n->name, m.triggers[i].name, e->to->name, e->to->manifest().slots[e->slot].name, true);
+  }
+  sg->path = path;
+  sg->seq = ~0ull;  // before the first of its nodes, where it stands in the order
+  for (const auto& m : members) {
+    if (auto n = find(m)) sg->seq = std::min(sg->seq, n->seq);
+    if (auto s = subgraph(m)) sg->seq = std::min(sg->seq, s->seq);
+    for (const auto& under : nodesUnder(m)) sg->seq = std::min(sg->seq, find(under)->seq);
+  }
+  if (auto first = find(members.front())) {
+    std::lock_guard<std::mutex> g(first->state_mutex);
+    sg->ui = first->ui;
+  } else {
+    sg->ui = subgraph(members.front())->ui;
+  }
+  subgraphs_[path] = sg;
+  for (const auto& m : members) moveLocked(m, join(path, m.substr(parent.empty() ? 0 : parent.size() + 1)));
+  bump();
+  return Status::ok();
+}
+
+Status Graph::ungroup(const std::string& path) {
+  auto lock = lockEdits();
+  auto sg = subgraph(path);
+  if (!sg) return Status::error("cannot ungroup '" + path + "': " + (find(path) ? "it is not a subgraph" : "no node named '" + path + "'"));
+  const std::string parent = parentOf(path);
+  std::vector<std::string> children;
+  for (const auto& [name, n] : nodes_) if (parentOf(name) == path) children.push_back(name);
+  for (const auto& [name, s] : subgraphs_) if (parentOf(name) == path) children.push_back(name);
+  for (const auto& c : children) {
+    const std::string to = join(parent, c.substr(path.size() + 1));
+    if (to != path && (find(to) || subgraph(to)))
+      return Status::error("cannot ungroup '" + path + "': its node '" + c.substr(path.size() + 1) +
+                           "' would take the name of the node '" + to + "' beside it (rename one first)");
+  }
+  if (auto around = subgraph(parent)) {  // its exports that stood for this one's: for what those stood for
+    const std::string self = path.substr(parent.size() + 1);
+    for (auto& e : around->exports) {
+      std::vector<std::string> inner;
+      for (const auto& i : e.inner) {
+        auto [node, port] = splitEnd(i);
+        if (node != self) {
+          inner.push_back(i);
+          continue;
+        }
+        for (const auto& x : sg->exports)
+          if (x.name == port && (detail::sendingExport(e.kind) ? detail::sendingExport(x.kind) : detail::receivingExport(x.kind)))
+            inner.insert(inner.end(), x.inner.begin(), x.inner.end());
+      }
+      e.inner = std::move(inner);
+    }
+  }
+  subgraphs_.erase(path);
+  for (const auto& c : children) moveLocked(c, join(parent, c.substr(path.size() + 1)));
+  if (!sg->enabled) applyOuterEnabled(parent);  // its nodes are no longer inside a disabled subgraph
+  bump();
+  return Status::ok();
+}
+
+void Graph::moveLocked(const std::string& from, const std::string& to) {
+  auto renamed = [&](const std::string& p) {
+    return p == from ? to : p.compare(0, from.size() + 1, from + "/") == 0 ? to + p.substr(from.size()) : p;
+  };
+  std::vector<std::string> names = nodesUnder(from);
+  if (find(from)) names.push_back(from);
+  for (const auto& name : names) {
+    NodePtr n = find(name);
+    detail::EditScope scope;  // node code and neighbours' messages read names on their groups
+    scope.involveWithNeighbours(n.get());
+    nodes_.erase(name);
+    n->name = renamed(name);
+    nodes_[n->name] = n;
+  }
+  std::vector<std::shared_ptr<Subgraph>> moved;
+  for (auto it = subgraphs_.begin(); it != subgraphs_.end();) {
+    if (renamed(it->first) == it->first) {
+      ++it;
+      continue;
+    }
+    moved.push_back(it->second);
+    it = subgraphs_.erase(it);
+  }
+  for (auto& s : moved) {
+    s->path = renamed(s->path);
+    subgraphs_[s->path] = s;
+  }
+  for (auto& c : dormant_) {
+    c.from_node = renamed(c.from_node);
+    c.to_node = renamed(c.to_node);
+  }
+  for (auto& [path, s] : subgraphs_)  // exports naming what moved, e.g. "stage/blur/image"
+    for (auto& e : s->exports)
+      for (auto& i : e.inner) {
+        auto [node, port] = splitEnd(i);
+        const std::string full = renamed(join(path, node));
+        if (full.compare(0, path.size() + 1, path + "/") == 0) i = full.substr(path.size() + 1) + "/" + port;
+      }
+}
+
 // ------------------------------------------------------------------ describing
 
 std::shared_ptr<const Manifest> Graph::facade(const Subgraph& sg) const {
@@ -402,16 +581,14 @@ GraphDescription Graph::nest(const GraphDescription& flat) const {
   root.thread_groups = flat.thread_groups;
   std::map<std::string, std::shared_ptr<GraphDescription>> levels;
   auto level = [&](const std::string& path) { return path.empty() ? &root : levels.at(path).get(); };
-  for (const auto& n : flat.nodes) {  // in insertion order: a subgraph before what is inside it
+  for (const auto& n : flat.nodes)
+    if (n.subgraph) levels[n.name] = std::make_shared<GraphDescription>(*n.subgraph);
+  for (const auto& n : flat.nodes) {  // in insertion order
     const std::string parent = parentOf(n.name);
     if (!parent.empty() && !levels.count(parent)) continue;
     NodeDescription copy = n;
     copy.name = parent.empty() ? n.name : n.name.substr(parent.size() + 1);
-    if (n.subgraph) {
-      auto inner = std::make_shared<GraphDescription>(*n.subgraph);
-      levels[n.name] = inner;
-      copy.subgraph = inner;
-    }
+    if (n.subgraph) copy.subgraph = levels[n.name];
     level(parent)->nodes.push_back(std::move(copy));
   }
   // A connection lives in the innermost subgraph holding both ends; an end inside a

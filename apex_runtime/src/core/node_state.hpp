@@ -99,7 +99,9 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
             std::shared_ptr<std::atomic<std::uint64_t>> revision);
   ~NodeState();
 
-  const std::string name;
+  /** Its path in the graph. Changed only by group/ungroup (Graph::moveLocked), with its
+   *  group and its neighbours' paused: node code reads it on its own thread group. */
+  std::string name;
   const std::shared_ptr<const NodeType> type;  // nullptr: placeholder
   /** The instance's interface: its type's manifest, or what Manifest::shape made of it.
    *  Replaced by edits only (graph_interface.cpp), with the node's group paused. */

@@ -9,6 +9,7 @@
 #include <apex/Control.h>
 #include <apex/FireSlot.h>
 #include <apex/GetGraph.h>
+#include <apex/Group.h>
 #include <apex/Inspect.h>
 #include <apex/ListNodeTypes.h>
 #include <apex/LoadGraph.h>
@@ -19,6 +20,7 @@
 #include <apex/SetParameter.h>
 #include <apex/SetThreadGroup.h>
 #include <apex/SetUi.h>
+#include <apex/Ungroup.h>
 
 #include <ros/package.h>
 
@@ -192,6 +194,16 @@ struct RuntimeHost::Impl {
     return answered(res, graph.setThreadGroup(req.node, req.group));
   }
   bool setUi(SetUi::Request& req, SetUi::Response& res) { return answered(res, graph.setUi(req.node, req.ui)); }
+  bool group(Group::Request& req, Group::Response& res) {
+    auto st = graph.group(req.nodes, req.name);
+    if (st) inspection.clear();  // taps follow names: inspect again under the new ones
+    return answered(res, st);
+  }
+  bool ungroup(Ungroup::Request& req, Ungroup::Response& res) {
+    auto st = graph.ungroup(req.name);
+    if (st) inspection.clear();
+    return answered(res, st);
+  }
   bool fireSlot(FireSlot::Request& req, FireSlot::Response& res) {
     return answered(res, graph.fireSlot(req.node, req.slot));
   }
@@ -352,6 +364,8 @@ struct RuntimeHost::Impl {
     serve("set_thread_group", &Impl::setThreadGroup);
     serve("set_ui", &Impl::setUi);
     serve("fire_slot", &Impl::fireSlot);
+    serve("group", &Impl::group);
+    serve("ungroup", &Impl::ungroup);
     serve("get_graph", &Impl::getGraph);
     serve("load_graph", &Impl::loadGraph);
     serve("save_graph", &Impl::saveGraph);

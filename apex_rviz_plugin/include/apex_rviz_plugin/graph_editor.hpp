@@ -4,6 +4,7 @@
 // signals; it makes no calls itself (no ROS here).
 #pragma once
 
+#include <QStringList>
 #include <QWidget>
 
 #include <apex/NodeTypeInfo.h>
@@ -51,6 +52,8 @@ class GraphEditor : public QWidget {
   void namespaceChanged(const QString& ns);
   void addRequested(const QString& type, QPointF pos);
   void removeRequested(const QString& node);
+  void groupIntoSubgraphRequested(const QStringList& nodes);
+  void ungroupRequested(const QString& subgraph);
   void duplicateRequested(const QString& node);
   void enabledRequested(const QString& node, bool enabled);
   void groupRequested(const QString& node, const QString& group);

@@ -7,12 +7,14 @@
 #include <apex/AddNode.h>
 #include <apex/Connect.h>
 #include <apex/GraphState.h>
+#include <apex/Group.h>
 #include <apex/RemoveNode.h>
 #include <apex/SetEnabled.h>
 #include <apex/SetInteractive.h>
 #include <apex/SetParameter.h>
 #include <apex/SetThreadGroup.h>
 #include <apex/SetUi.h>
+#include <apex/Ungroup.h>
 
 #include <optional>
 #include <string>
@@ -29,7 +31,7 @@ struct Call {
   std::string service;  ///< e.g. "add_node", "connect", "disconnect"
   std::variant<apex::AddNode::Request, apex::RemoveNode::Request, apex::Connect::Request, apex::SetParameter::Request,
                apex::SetEnabled::Request, apex::SetInteractive::Request, apex::SetThreadGroup::Request,
-               apex::SetUi::Request>
+               apex::SetUi::Request, apex::Group::Request, apex::Ungroup::Request>
       request;
   /** connect only: restoring a connection that may still be there (undo of an edit that may
    *  have dropped it); "already connected" is then success. */
@@ -74,6 +76,11 @@ class GraphModel {
   std::optional<Edit> move(const std::string& node, double x, double y) const;
   /** @brief A copy of a node (type, parameters, group; not its connections) under a fresh name. */
   std::optional<Edit> duplicate(const std::string& node, double x, double y) const;
+  /** @brief Nodes beside each other into a new subgraph (named subgraph_1, _2, ... at their
+   *  level), one edit: undone by ungrouping it. */
+  std::optional<Edit> group(const std::vector<std::string>& nodes) const;
+  /** @brief A subgraph's nodes up one level, one edit: undone by grouping them again. */
+  std::optional<Edit> ungroup(const std::string& subgraph) const;
   std::optional<Edit> setEnabled(const std::string& node, bool enabled) const;
   std::optional<Edit> setThreadGroup(const std::string& node, const std::string& group) const;
   std::optional<Edit> setInteractive(const std::string& node, const std::string& param, bool interactive) const;

@@ -68,6 +68,14 @@ class Graph {
    *  nodes (removeNode, setEnabled, setThreadGroup). */
   Result<std::string> addNode(const NodeDescription& description);
   Status removeNode(const std::string& name);
+  /** @brief Makes `nodes` (all beside each other: at the top, or in one subgraph) a new
+   *  subgraph `name` in their place, as one live edit: nothing is rebuilt, no message is
+   *  lost, and every connection crossing its boundary goes through an export named after
+   *  the inner port (one export per outside sender it receives from, one per inner sender). */
+  Status group(const std::vector<std::string>& nodes, const std::string& name);
+  /** @brief The opposite: the subgraph's nodes move up beside where it was, its exports go,
+   *  every connection stays. Refused if one of its nodes' names is taken there. */
+  Status ungroup(const std::string& name);
   /** @brief Connects an output, parameter or trigger to an input, parameter or slot. */
   Status connect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
                  const std::string& to_port);
@@ -160,6 +168,8 @@ class Graph {
   Result<std::pair<std::string, std::string>> exportedParam(const std::string& node, const std::string& param) const;
   std::vector<std::string> nodesUnder(const std::string& path) const;  // every node inside, nested too
   void removeSubgraphLocked(const std::string& path);
+  /** Renames a node or a subgraph and everything in it (`from` and `to` are paths). */
+  void moveLocked(const std::string& from, const std::string& to);
   void dropExportsOf(const std::string& node);
   void applyOuterEnabled(const std::string& path);
   std::shared_ptr<const Manifest> facade(const detail::Subgraph& sg) const;
