@@ -210,31 +210,45 @@ long envOr(const char* name, long fallback) {
   return v && *v ? std::atol(v) : fallback;
 }
 
+// With subgraphs: these nodes are grouped into A and B (inner names A/p1, ...), and random
+// edits also ungroup and group them again while the data flows.
+const std::map<std::string, std::vector<std::string>> kSubgraphs = {{"A", {"p1", "p2", "p3"}}, {"B", {"q2", "q3", "j2"}}};
+
+std::string base(const std::string& path) { return path.substr(path.rfind('/') + 1); }
+
 class Soak {
  public:
-  explicit Soak(std::uint64_t seed) : rng_(seed), g_(soakRegistry()) {}
+  Soak(std::uint64_t seed, bool subgraphs) : rng_(seed), g_(soakRegistry()), subgraphs_(subgraphs) {}
 
   void build() {
     for (const auto& n : kNodes) addNode(n);
     restore();
   }
 
+  /** Where a node of the design is now: "A/p1" while A is grouped, else "p1". */
+  std::string path(const std::string& node) const {
+    for (const auto& [sub, members] : kSubgraphs)
+      if (grouped_.count(sub) && std::find(members.begin(), members.end(), node) != members.end()) return sub + "/" + node;
+    return node;
+  }
+
   /** One random edit; refused edits are fine (they must change nothing). */
   void randomEdit() {
-    const std::string node = kNodes[pick(kNodes.size())].name;
-    switch (pick(13)) {
+    const std::string name = kNodes[pick(kNodes.size())].name;
+    const std::string node = path(name);
+    switch (pick(subgraphs_ ? 14 : 13)) {
       case 0: case 1: {
         const Link& l = kLinks[pick(kLinks.size())];
-        (void)g_.disconnect(l.from, l.from_port, l.to, l.to_port);
+        (void)g_.disconnect(path(l.from), l.from_port, path(l.to), l.to_port);
         break;
       }
       case 2: case 3: {
         const Link& l = kLinks[pick(kLinks.size())];
-        (void)g_.connect(l.from, l.from_port, l.to, l.to_port);
+        (void)g_.connect(path(l.from), l.from_port, path(l.to), l.to_port);
         break;
       }
       case 4: remove(node); break;
-      case 5: if (!exists(node)) addNode(spec(node)); break;
+      case 5: if (!exists(node)) addNode(spec(name)); break;
       case 6: (void)g_.setThreadGroup(node, kGroups[pick(kGroups.size())]); break;
       case 7: (void)g_.setEnabled(node, pick(3) != 0); break;
       case 8: {
@@ -245,12 +259,13 @@ class Soak {
       case 9: (void)g_.fireSlot(node, pick(2) ? "poke" : "enable"); break;
       case 10: {
         const Link& l = kStray[pick(kStray.size())];
-        (void)g_.connect(l.from, l.from_port, l.to, l.to_port);
+        (void)g_.connect(path(l.from), l.from_port, path(l.to), l.to_port);
         break;
       }
       case 12:
-        if (node[0] == 'j') (void)g_.setParameter(node, "extra", pick(2) ? "true" : "false");
+        if (name[0] == 'j') (void)g_.setParameter(node, "extra", pick(2) ? "true" : "false");
         break;
+      case 13: toggleSubgraph(std::next(kSubgraphs.begin(), static_cast<long>(pick(kSubgraphs.size())))->first); break;
       case 11:
         if (!g_.paused()) {
           if (pick(4) == 0) g_.pause();
@@ -267,31 +282,33 @@ class Soak {
    *  source joined to a sink's part by a stray link holds it like a silent sensor (a join
    *  waits for every live input): such a sink is not checked. */
   std::vector<std::string> wholeSinks() {
-    const GraphDescription d = g_.describe();
+    const std::vector<ConnectionDescription> connections = g_.connections();  // by the nodes' paths
     std::set<std::string> enabled;
-    for (const auto& n : d.nodes)
+    for (const auto& n : g_.nodeStats())
       if (n.enabled) enabled.insert(n.name);
     auto has = [&](const Link& l) {
-      for (const auto& c : d.connections)
-        if (c.from_node == l.from && c.from_port == l.from_port && c.to_node == l.to && c.to_port == l.to_port) return true;
+      for (const auto& c : connections)
+        if (c.from_node == path(l.from) && c.from_port == l.from_port && c.to_node == path(l.to) && c.to_port == l.to_port)
+          return true;
       return false;
     };
     std::vector<std::string> out;
-    for (const auto& [sink, path] : kSinkPaths) {
-      bool whole = enabled.count(sink) > 0;
-      for (int i : path) whole = whole && has(kLinks[i]) && enabled.count(kLinks[i].from) && enabled.count(kLinks[i].to);
-      for (const auto& source : dataPart(d, sink)) whole = whole && (source[0] != 's' || enabled.count(source));
+    for (const auto& [sink, links] : kSinkPaths) {
+      bool whole = enabled.count(path(sink)) > 0;
+      for (int i : links)
+        whole = whole && has(kLinks[i]) && enabled.count(path(kLinks[i].from)) && enabled.count(path(kLinks[i].to));
+      for (const auto& source : dataPart(connections, path(sink))) whole = whole && (base(source)[0] != 's' || enabled.count(source));
       if (whole) out.push_back(sink);
     }
     return out;
   }
 
   /** The nodes joined to `node` by data connections (not events, not into parameters). */
-  static std::set<std::string> dataPart(const GraphDescription& d, const std::string& node) {
+  static std::set<std::string> dataPart(const std::vector<ConnectionDescription>& connections, const std::string& node) {
     std::set<std::string> part{node};
     for (bool grew = true; grew;) {
       grew = false;
-      for (const auto& c : d.connections) {
+      for (const auto& c : connections) {
         if (c.from_port == "processed" || (!paramOf(c.to_node).empty() && c.to_port == paramOf(c.to_node))) continue;
         if (part.count(c.from_node) != part.count(c.to_node)) grew = part.insert(c.from_node).second | part.insert(c.to_node).second;
       }
@@ -302,15 +319,18 @@ class Soak {
   /** Puts the designed graph back: every node, enabled, interactive, every link, no stray one; running. */
   void restore() {
     for (const auto& n : kNodes) {
-      if (!exists(n.name)) addNode(n);
-      ASSERT_TRUE(g_.setEnabled(n.name, true));
+      if (!exists(path(n.name))) addNode(n);
+      ASSERT_TRUE(g_.setEnabled(path(n.name), true));
       if (!paramOf(n.name).empty()) {
-        ASSERT_TRUE(g_.setInteractive(n.name, paramOf(n.name), true));
+        ASSERT_TRUE(g_.setInteractive(path(n.name), paramOf(n.name), true));
       }
     }
-    for (const auto& l : kStray) (void)g_.disconnect(l.from, l.from_port, l.to, l.to_port);
+    if (subgraphs_)
+      for (const auto& [sub, members] : kSubgraphs)
+        if (!grouped_.count(sub)) toggleSubgraph(sub);
+    for (const auto& l : kStray) (void)g_.disconnect(path(l.from), l.from_port, path(l.to), l.to_port);
     for (const auto& l : kLinks) {
-      auto st = g_.connect(l.from, l.from_port, l.to, l.to_port);
+      auto st = g_.connect(path(l.from), l.from_port, path(l.to), l.to_port);
       ASSERT_TRUE(st || st.message().find("already connected") != std::string::npos) << st.message();
     }
     if (g_.paused()) g_.resume();
@@ -345,16 +365,31 @@ class Soak {
   std::size_t pick(std::size_t n) { return std::uniform_int_distribution<std::size_t>(0, n - 1)(rng_); }
   bool exists(const std::string& n) { return g_.nodeObject(n) != nullptr; }
   /** The interactive parameter of a node, "" if none. */
-  static std::string paramOf(const std::string& node) {
-    if (node[0] == 's') return "gain";
-    return node[0] == 'p' || node[0] == 'q' ? "offset" : "";
+  static std::string paramOf(const std::string& path) {
+    const char kind = base(path)[0];
+    if (kind == 's') return "gain";
+    return kind == 'p' || kind == 'q' ? "offset" : "";
+  }
+  /** Groups a set of the design's nodes (those there now) into its subgraph, or ungroups it. */
+  void toggleSubgraph(const std::string& sub) {
+    if (grouped_.count(sub)) {
+      ASSERT_TRUE(g_.ungroup(sub));
+      grouped_.erase(sub);
+      return;
+    }
+    std::vector<std::string> present;
+    for (const auto& m : kSubgraphs.at(sub)) if (exists(m)) present.push_back(m);
+    if (present.size() != kSubgraphs.at(sub).size()) return;  // grouped whole, so that paths stay simple
+    auto st = g_.group(present, sub);
+    ASSERT_TRUE(st) << st.message();
+    grouped_.insert(sub);
   }
   static const Spec& spec(const std::string& name) {
     for (const auto& n : kNodes) if (n.name == name) return n;
     throw std::logic_error("no spec " + name);
   }
   void addNode(const Spec& n) {
-    auto r = g_.addNode(n.type, n.name, n.group);
+    auto r = g_.addNode(n.type, path(n.name), n.group);
     ASSERT_TRUE(r) << r.message();
     if (n.name == "s2") {
       ASSERT_TRUE(g_.setParameter("s2", "id", "2"));
@@ -371,14 +406,16 @@ class Soak {
 
   std::mt19937_64 rng_;
   Graph g_;
+  const bool subgraphs_;
+  std::set<std::string> grouped_;  // subgraphs of kSubgraphs that are there now
 };
 
-TEST(Soak, RandomEditsWhileDataFlowsNeverStallOrMixFrames) {
-  const long edits = envOr("APEX_SOAK_EDITS", 100000);
+void soakTest(bool subgraphs) {
+  const long edits = envOr("APEX_SOAK_EDITS", 100000) / (subgraphs ? 2 : 1);
   const std::uint64_t seed = static_cast<std::uint64_t>(envOr("APEX_SOAK_SEED", static_cast<long>(std::random_device{}() & 0x7fffffff)));
   SCOPED_TRACE("replay with APEX_SOAK_SEED=" + std::to_string(seed) + " APEX_SOAK_EDITS=" + std::to_string(edits));
   std::printf("soak: %ld edits, seed %llu\n", edits, static_cast<unsigned long long>(seed));
-  Soak soak(seed);
+  Soak soak(seed, subgraphs);
   soak.build();
   soak.graph().start();
   ASSERT_EQ(soak.flowing({"k1", "k2", "k3"}, 5.0), "");
@@ -403,5 +440,10 @@ TEST(Soak, RandomEditsWhileDataFlowsNeverStallOrMixFrames) {
   std::printf("soak: %ld batches; frames at the sinks: k1 %ld, k2 %ld, k3 %ld\n", batches, board.count("k1"),
               board.count("k2"), board.count("k3"));
 }
+
+TEST(Soak, RandomEditsWhileDataFlowsNeverStallOrMixFrames) { soakTest(false); }
+
+// The same inside subgraphs, with grouping and ungrouping among the edits.
+TEST(Soak, RandomEditsInsideSubgraphsAndGroupingWhileDataFlowsNeverStallOrMixFrames) { soakTest(true); }
 
 }  // namespace

@@ -68,6 +68,14 @@ GraphDescription Graph::describe() const {
   return describeLocked();
 }
 
+std::vector<ConnectionDescription> Graph::connections() const {
+  auto lock = lockEdits();
+  std::vector<ConnectionDescription> out;
+  for (auto& [seq, n] : order_) describeConnections(*n, out);
+  out.insert(out.end(), dormant_.begin(), dormant_.end());
+  return out;
+}
+
 GraphDescription Graph::describeLocked() const {
   GraphDescription flat;
   for (auto& [name, g] : groups_) if (name != "default") flat.thread_groups.push_back(name);

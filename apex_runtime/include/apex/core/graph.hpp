@@ -118,6 +118,9 @@ class Graph {
   // --- reading ---
   /** @brief The whole graph as plain data (nodes in insertion order). */
   GraphDescription describe() const;
+  /** @brief Every connection between the nodes themselves, by their paths (what a subgraph's
+   *  ports stand for, not the ports): the flat graph that runs. */
+  std::vector<ConnectionDescription> connections() const;
   /** @brief Replaces the whole graph, all or nothing: on any error the graph is untouched. */
   Result<LoadReport> load(const GraphDescription& description);
   /** @brief Every node's profile and state. A node that has not fired for `stall_after_s`
