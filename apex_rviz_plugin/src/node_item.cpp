@@ -232,14 +232,17 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   f.setBold(true);
   f.setPointSizeF(9.5);
   p->setFont(f);
-  QString title = QString::fromStdString(info_.name);
+  QString title = QString::fromStdString(info_.name.substr(info_.name.rfind('/') + 1));  // inside a subgraph: its own name
   if (!info_.enabled) title += "  (disabled)";
   p->drawText(QRectF(kPad, 2, kWidth - 2 * kPad, 18), Qt::AlignLeft | Qt::AlignVCenter, title);
   f.setBold(false);
   f.setPointSizeF(7.5);
   p->setFont(f);
-  p->drawText(QRectF(kPad, 18, kWidth - 2 * kPad, 14), Qt::AlignLeft | Qt::AlignVCenter,
-              QString::fromStdString(info_.type + "  [" + (info_.thread_group.empty() ? "default" : info_.thread_group) + "]"));
+  const std::string kind = info_.subgraph.empty()  // a subgraph has no group of its own: its nodes do
+                               ? info_.type + "  [" + (info_.thread_group.empty() ? "default" : info_.thread_group) + "]"
+                               : "subgraph  " + (info_.subgraph == "inline" ? std::string("(inline)") : info_.subgraph) +
+                                     "  · double-click to open";
+  p->drawText(QRectF(kPad, 18, kWidth - 2 * kPad, 14), Qt::AlignLeft | Qt::AlignVCenter, QString::fromStdString(kind));
   const double bottom = height_ - 2 * kRow;
   if (isOptimizer()) paintProgress(p, QRectF(kPad, bottom - kPlot, kWidth - 2 * kPad, kPlot - 4));
   p->setPen(QColor(200, 200, 200));

@@ -260,6 +260,16 @@ TEST(Subgraph, ARenamedExportedPortIsAClearErrorAndNothingChanges) {
       << wrong.message();
 }
 
+TEST(Subgraph, ASubgraphFileRunsOnItsOwnAsAGraph) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph solo(testRegistry());
+  auto loaded = loadGraphFile(solo, dir.file("scale.yaml"));
+  ASSERT_TRUE(loaded) << loaded.message();
+  EXPECT_EQ(solo.size(), 2u);  // its exports are unused here
+  EXPECT_EQ(std::get<int>(solo.parameterValue("second", "gain").value()), 2);
+}
+
 TEST(Subgraph, AFileThatIncludesItselfIsRefused) {
   TempDir dir;
   writeFile(dir.file("loop.yaml"), "apex_graph: 2\nnodes:\n  - {name: again, subgraph: loop.yaml}\n");

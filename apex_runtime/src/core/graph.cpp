@@ -221,7 +221,7 @@ Result<std::string> Graph::setParameter(const std::string& outer, const std::str
   auto lock = lockEdits();
   auto at = exportedParam(outer, outer_param);
   if (!at) return at.status();
-  const auto& [node, param] = at.value();
+  const std::string node = at.value().first, param = at.value().second;
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
@@ -261,7 +261,7 @@ Status Graph::setInteractive(const std::string& outer, const std::string& outer_
   auto lock = lockEdits();
   auto at = exportedParam(outer, outer_param);
   if (!at) return at.status();
-  const auto& [node, param] = at.value();
+  const std::string node = at.value().first, param = at.value().second;
   auto n = require(node);
   if (!n) return n.status();
   NodeState* s = n.value().get();
@@ -377,7 +377,7 @@ Status Graph::setTap(const std::string& outer, const std::string& outer_port, Po
   auto lock = lockEdits();
   auto at = sender(outer, outer_port);
   if (!at) return at.status();
-  const auto& [node, port] = at.value();
+  const std::string node = at.value().first, port = at.value().second;
   auto n = require(node);
   if (!n) return n.status();
   NodeState* s = n.value().get();
@@ -454,7 +454,7 @@ Result<ParamValue> Graph::parameterValue(const std::string& outer, const std::st
   auto lock = lockEdits();
   auto at = exportedParam(outer, outer_param);
   if (!at) return at.status();
-  const auto& [node, param] = at.value();
+  const std::string node = at.value().first, param = at.value().second;
   auto n = require(node);
   if (!n) return n.status();
   const int i = n.value()->findParam(param);

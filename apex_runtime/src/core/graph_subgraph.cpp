@@ -204,7 +204,8 @@ Status Graph::checkExports(const Subgraph& sg) const {
     if (detail::receivingExport(e.kind) && e.kind != Kind::Parameter && !seen.insert({false, e.name}).second)
       return Status::error(what + ": the name is exported twice as an input or slot");
     for (const auto& inner : e.inner) {
-      auto [rel, port] = splitEnd(inner);
+      const auto split = splitEnd(inner);
+      const std::string rel = split.first, port = split.second;
       const std::string path = join(sg.path, rel);
       const std::string says = what + " stands for '" + inner + "', but ";
       if (auto nested = subgraph(path)) {
