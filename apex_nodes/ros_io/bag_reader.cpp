@@ -149,6 +149,7 @@ class BagReader : public apex::Node {
   }
 
   void process() override {
+    if (!open_error_.empty()) return reportError(open_error_);  // stays in error until a file opens
     if (!bag_ || frames_.empty()) return;
     if (end_pending_) {  // the pass's end, one firing behind its last frame: in step with it
       end_pending_ = false;
@@ -198,9 +199,15 @@ class BagReader : public apex::Node {
     closeBag(bag_);
     frames_.clear();
     current_ = request_ = -1;
+    open_error_.clear();
     const std::string file = file_.get();
     if (file.empty()) return;
-    bag_ = openBag(file);
+    try {
+      bag_ = openBag(file);
+    } catch (const std::exception& e) {
+      open_error_ = e.what();  // also for the firings to come: "playing" must not make it look fine
+      throw;
+    }
     ports_.clear();
     played_topics_.clear();
     for (const auto& [port, topic] : playedTopics(topics_.get(), image_topic_.get(), cloud_topic_.get())) {
@@ -306,6 +313,7 @@ class BagReader : public apex::Node {
   int next_ = 0;               // the frame playing sends next
   int request_ = -1;           // a frame asked for by a seek, a slot or a change downstream
   bool opened_ = false;
+  std::string open_error_;  // why the file did not open ("" if it did, or there is none)
   bool seek_on_open_ = false;
   bool end_pending_ = false;  // the last frame of a pass went out: the end-of-sequence token follows
   std::chrono::steady_clock::time_point due_;

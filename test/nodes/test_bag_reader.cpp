@@ -228,6 +228,35 @@ TEST(BagReader, AMissingBagLeavesOutputsThatCarryAnythingAndSaysWhy) {
   g.start();
   ASSERT_TRUE(g.waitIdle(kWait));
   EXPECT_THAT(g.nodeStats(0).at(0).error, HasSubstr("cannot open bag '/nonexistent/x.bag': no such file"));
+  // pressing play or next does not make it look fine: it stays in error until a file opens
+  ASSERT_TRUE(g.setParameter("bag", "playing", "false"));
+  ASSERT_TRUE(g.waitIdle(kWait));  // two values set at once would apply as one: no change
+  ASSERT_TRUE(g.setParameter("bag", "playing", "true"));
+  ASSERT_TRUE(g.fireSlot("bag", "next"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats(0).at(0).error, HasSubstr("cannot open bag '/nonexistent/x.bag': no such file"));
+  ASSERT_TRUE(g.setParameter("bag", "file", writeBag(3)));
+  ASSERT_TRUE(waitUntil([&] { return g.nodeStats(0).at(0).error.empty(); }));
+}
+
+TEST(BagReader, ABagSwitchedToAMissingFileStaysInErrorWhilePlaying) {
+  Graph g(pluginRegistry());
+  NodeDescription d;
+  d.name = "bag", d.type = "apex_nodes/BagReader";
+  d.parameters = {{"file", writeBag(3)}, {"image_topic", "/camera/image_raw"}, {"loop", "true"}, {"rate", "50"}};
+  ASSERT_TRUE(g.addNode(d));
+  add(g, "test/Collector", "images");
+  link(g, "bag", "image", "images", "in");
+  g.start();
+  ASSERT_TRUE(object<Collector>(g, "images")->waitFor(2));
+  (void)g.setParameter("bag", "file", "/nonexistent/y.bag");  // the node says why, and keeps saying it
+  ASSERT_TRUE(waitUntil([&] { return !g.nodeStats(0).at(0).error.empty(); }));
+  ASSERT_TRUE(g.setParameter("bag", "playing", "false"));
+  ASSERT_TRUE(g.waitIdle(kWait));  // two values set at once would apply as one: no change
+  ASSERT_TRUE(g.setParameter("bag", "playing", "true"));
+  ASSERT_TRUE(g.fireSlot("bag", "next"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats(0).at(0).error, HasSubstr("cannot open bag '/nonexistent/y.bag'"));
 }
 
 /** Median wall time from setting `frame` to that frame's stamp arriving. */
