@@ -249,7 +249,14 @@ class Soak {
       }
       case 4: remove(node); break;
       case 5: if (!exists(node)) addNode(spec(name)); break;
-      case 6: (void)g_.setThreadGroup(node, kGroups[pick(kGroups.size())]); break;
+      case 6:
+        if (pick(3) != 0) {
+          (void)g_.setThreadGroup(node, kGroups[pick(kGroups.size())]);
+        } else if (g_.rename(node, name + "_renamed")) {  // and back: the design's names stay
+          const std::string renamed = node.substr(0, node.size() - name.size()) + name + "_renamed";
+          EXPECT_TRUE(g_.rename(renamed, name)) << renamed;
+        }
+        break;
       case 7: (void)g_.setEnabled(node, pick(3) != 0); break;
       case 8: {
         (void)g_.setParameter(node, paramOf(node), std::to_string(pick(100)));

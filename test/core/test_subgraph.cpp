@@ -382,6 +382,41 @@ TEST(Subgraph, GroupingInsideASubgraphAndUngroupingKeepTheExportsWorking) {
   EXPECT_EQ(run(g, "sink_a", 1), (std::vector<int>{15}));
 }
 
+TEST(Subgraph, RenamingANodeOrASubgraphWhileRunningKeepsItsConnectionsAndExports) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph g(testRegistry());
+  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  g.start();
+  auto* feeder = object<Feeder>(g, "feeder");
+  auto* sink = object<Collector>(g, "sink_a");
+  feeder->feed(1);
+  ASSERT_TRUE(sink->waitFor(1));
+
+  auto inner = g.rename("a/second", "last");  // named by a's exports 'out' and 'factor'
+  ASSERT_TRUE(inner) << inner.message();
+  auto outer = g.rename("a", "five");
+  ASSERT_TRUE(outer) << outer.message();
+  ASSERT_TRUE(g.rename("sink_a", "sink"));
+  feeder->feed(2);  // the same edges: nothing was rebuilt
+  ASSERT_TRUE(sink->waitFor(2));
+  EXPECT_EQ(std::get<int>(g.parameterValue("five", "factor").value()), 5);
+  EXPECT_EQ(std::get<int>(g.parameterValue("five/last", "gain").value()), 5);
+  const std::string text = formatGraphText(g.describe());
+  EXPECT_TRUE(Contains(text, {"name: five", "{output: out, from: last/out}", "{parameter: factor, to: last/gain",
+                              "{from: first/out, to: last/in}", "{from: five/out, to: sink/in}"}))
+      << text;
+  EXPECT_FALSE(Contains(text, {"name: a,"})) << text;
+
+  EXPECT_TRUE(Contains(g.rename("b", "five").message(), {"cannot rename 'b'", "a node named 'five' already exists"}));
+  EXPECT_TRUE(Contains(g.rename("nope", "x").message(), {"no node named 'nope'"}));
+  EXPECT_TRUE(Contains(g.rename("b", "x/y").message(), {"a name, not a path"}));
+  EXPECT_TRUE(Contains(g.rename("b", "two words").message(), {"node name 'two words'"}));
+  ASSERT_TRUE(g.waitIdle(apex_test::kWait));
+  g.stop();
+  EXPECT_EQ(sink->ints(), (std::vector<int>{15, 30}));
+}
+
 TEST(Subgraph, LiveEditsInsideARunningSubgraphNeverStallTheGraph) {
   TempDir dir;
   writeFile(dir.file("scale.yaml"), kScale);

@@ -11,6 +11,7 @@
 #include <apex/ListNodeTypes.h>
 #include <apex/LoadGraph.h>
 #include <apex/RemoveNode.h>
+#include <apex/RenameNode.h>
 #include <apex/SaveGraph.h>
 #include <apex/SetEnabled.h>
 #include <apex/SetInteractive.h>
@@ -426,6 +427,20 @@ TEST_F(Services, SubgraphsAreAddressedByPathByEveryService) {
   ASSERT_TRUE(ungrouped.success) << ungrouped.message;
   ungroup.name = "sink";
   EXPECT_THAT(call<apex::Ungroup>("ungroup", ungroup).message, HasSubstr("not a subgraph"));
+  // rename: an inner node in its place, the subgraph with all inside it; data goes on
+  apex::RenameNode::Request rename;
+  rename.name = "ticks/clock", rename.new_name = "timer";
+  auto renamed = call<apex::RenameNode>("rename_node", rename);
+  ASSERT_TRUE(renamed.success) << renamed.message;
+  EXPECT_EQ(renamed.path, "ticks/timer");
+  rename.name = "ticks", rename.new_name = "ticker";
+  ASSERT_TRUE(call<apex::RenameNode>("rename_node", rename).success);
+  EXPECT_TRUE(keepsFiring(nh, "ticker/timer"));
+  EXPECT_THAT(call<apex::GetGraph>("get_graph").yaml, HasSubstr("{from: ticker/timer/count, to: sink/in}"));
+  rename.name = "sink", rename.new_name = "ticker";
+  EXPECT_THAT(call<apex::RenameNode>("rename_node", rename).message, HasSubstr("a node named 'ticker' already exists"));
+  rename.name = "ticker", rename.new_name = "ticks";
+  ASSERT_TRUE(call<apex::RenameNode>("rename_node", rename).success);
   apex::RemoveNode::Request remove;
   remove.name = "ticks";
   EXPECT_TRUE(call<apex::RemoveNode>("remove_node", remove).success);

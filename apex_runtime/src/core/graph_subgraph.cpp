@@ -482,6 +482,20 @@ Status Graph::ungroup(const std::string& path) {
   return Status::ok();
 }
 
+Status Graph::rename(const std::string& path, const std::string& new_name) {
+  auto lock = lockEdits();
+  const std::string what = "cannot rename '" + path + "'";
+  if (!find(path) && !subgraph(path)) return Status::error(what + ": no node named '" + path + "'");
+  if (new_name.find('/') != std::string::npos)
+    return Status::error(what + " to '" + new_name + "': give a name, not a path (group or ungroup to move a node)");
+  const std::string to = join(parentOf(path), new_name);
+  if (to == path) return Status::ok();
+  if (auto why = checkNewPath(to); !why.empty()) return Status::error(what + ": " + why);
+  moveLocked(path, to);
+  bump();
+  return Status::ok();
+}
+
 void Graph::moveLocked(const std::string& from, const std::string& to) {
   auto renamed = [&](const std::string& p) {
     return p == from ? to : p.compare(0, from.size() + 1, from + "/") == 0 ? to + p.substr(from.size()) : p;

@@ -14,6 +14,7 @@
 #include <apex/ListNodeTypes.h>
 #include <apex/LoadGraph.h>
 #include <apex/RemoveNode.h>
+#include <apex/RenameNode.h>
 #include <apex/SaveGraph.h>
 #include <apex/SetEnabled.h>
 #include <apex/SetInteractive.h>
@@ -204,6 +205,15 @@ struct RuntimeHost::Impl {
     if (st) inspection.clear();
     return answered(res, st);
   }
+  bool renameNode(RenameNode::Request& req, RenameNode::Response& res) {
+    auto st = graph.rename(req.name, req.new_name);
+    if (st) {
+      inspection.forgetNode(req.name);
+      const auto slash = req.name.rfind('/');
+      res.path = (slash == std::string::npos ? "" : req.name.substr(0, slash + 1)) + req.new_name;
+    }
+    return answered(res, st);
+  }
   bool fireSlot(FireSlot::Request& req, FireSlot::Response& res) {
     return answered(res, graph.fireSlot(req.node, req.slot));
   }
@@ -366,6 +376,7 @@ struct RuntimeHost::Impl {
     serve("fire_slot", &Impl::fireSlot);
     serve("group", &Impl::group);
     serve("ungroup", &Impl::ungroup);
+    serve("rename_node", &Impl::renameNode);
     serve("get_graph", &Impl::getGraph);
     serve("load_graph", &Impl::loadGraph);
     serve("save_graph", &Impl::saveGraph);

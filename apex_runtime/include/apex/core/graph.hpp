@@ -76,6 +76,10 @@ class Graph {
   /** @brief The opposite: the subgraph's nodes move up beside where it was, its exports go,
    *  every connection stays. Refused if one of its nodes' names is taken there. */
   Status ungroup(const std::string& name);
+  /** @brief Gives a node (or a subgraph, with everything in it) a new name in its place, as one
+   *  live edit: its connections, settings and the exports naming it follow; nothing is rebuilt.
+   *  `new_name` is a name, not a path: the node stays where it is (group or ungroup to move it). */
+  Status rename(const std::string& name, const std::string& new_name);
   /** @brief Connects an output, parameter or trigger to an input, parameter or slot. */
   Status connect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
                  const std::string& to_port);
