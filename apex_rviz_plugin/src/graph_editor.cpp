@@ -1,5 +1,6 @@
 #include "apex_rviz_plugin/graph_editor.hpp"
 
+#include <QCursor>
 #include <QFileDialog>
 #include <QGraphicsView>
 #include <QHBoxLayout>
@@ -59,6 +60,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   connect(scene_, &GraphScene::nodeMenuRequested, this, &GraphEditor::showNodeMenu);
   connect(scene_, &GraphScene::portMenuRequested, this, &GraphEditor::showPortMenu);
   connect(scene_, &GraphScene::paramMenuRequested, this, &GraphEditor::showParamMenu);
+  connect(scene_, &GraphScene::canvasMenuRequested, this, &GraphEditor::showCanvasMenu);
   connect(scene_, &GraphScene::inspectRequested, this, &GraphEditor::inspectRequested);
   auto shortcut = [this](const QKeySequence& keys, auto fn) {
     auto* s = new QShortcut(keys, this);
@@ -196,6 +198,13 @@ QPointF GraphEditor::newNodePosition() {  // the middle of the view, a little fu
 void GraphEditor::showGraph(const GraphModel& model) {
   model_ = &model;
   scene_->show(model);
+  const bool all_shown = std::all_of(select_when_shown_.begin(), select_when_shown_.end(),
+                                     [this](const QString& n) { return scene_->node(n.toStdString()) != nullptr; });
+  if (!select_when_shown_.isEmpty() && all_shown) {  // a paste may show up over several graphs: at its end
+    scene_->clearSelection();
+    for (const auto& n : select_when_shown_) scene_->node(n.toStdString())->setSelected(true);
+    select_when_shown_.clear();
+  }
   if (fit_pending_ && !model.graph().nodes.empty()) {
     fit_pending_ = false;
     fitGraph();
@@ -219,15 +228,21 @@ bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
   if (watched == view_ && event->type() == QEvent::KeyPress && !scene_->focusItem()) {  // not while typing in a widget
     auto* key = static_cast<QKeyEvent*>(event);
     if (key->key() == Qt::Key_Delete || key->key() == Qt::Key_Backspace) return removeSelected(), true;
-    if (key->key() == Qt::Key_D && key->modifiers() & Qt::ControlModifier) return duplicateSelected(), true;
-  }
-  if (watched == view_->viewport() && event->type() == QEvent::Wheel) {
-    auto* wheel = static_cast<QWheelEvent*>(event);
-    if (wheel->modifiers() & Qt::ControlModifier) {
-      const double f = std::pow(1.15, wheel->angleDelta().y() / 120.0);
-      view_->scale(f, f);
-      return true;
+    const bool ctrl = key->modifiers() & Qt::ControlModifier;
+    if (ctrl && key->key() == Qt::Key_D) return emit duplicateRequested(selectedNodes()), true;
+    if (ctrl && key->key() == Qt::Key_C) return emit copyRequested(selectedNodes()), true;
+    if (ctrl && key->key() == Qt::Key_V) {
+      const QPoint cursor = view_->viewport()->mapFromGlobal(QCursor::pos());
+      const bool inside = view_->viewport()->rect().contains(cursor);
+      return emit pasteRequested(inside ? view_->mapToScene(cursor) : newNodePosition()), true;
     }
+  }
+  if (watched == view_->viewport() && event->type() == QEvent::Wheel) {  // zooms around the cursor
+    auto* wheel = static_cast<QWheelEvent*>(event);
+    const double now = view_->transform().m11();
+    const double f = std::clamp(std::pow(1.15, wheel->angleDelta().y() / 120.0), 0.1 / now, 3.0 / now);
+    view_->scale(f, f);
+    return true;
   }
   return QWidget::eventFilter(watched, event);
 }
@@ -253,17 +268,24 @@ void GraphEditor::showHistory(const QString& undo_label, bool can_undo, bool can
 void GraphEditor::setNamespace(const QString& ns) { namespace_->setText(ns); }
 
 void GraphEditor::showNodeMenu(const QString& node, QPoint at) {
+  QMenu menu;
+  fillNodeMenu(menu, node);
+  if (!menu.isEmpty()) menu.exec(at);
+}
+
+void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
   const NodeItem* item = scene_->node(node.toStdString());
   if (!item || !model_) return;
   const apex::NodeInfo& info = item->info();
-  QMenu menu;
-  menu.addAction(info.enabled ? "Disable" : "Enable", this, [this, node, on = !info.enabled] { emit enabledRequested(node, on); });
-  menu.addAction("Duplicate", this, [this, node] { emit duplicateRequested(node); });
-  menu.addAction("Remove", this, [this, node] { emit removeRequested(node); });
-  QStringList selected;  // the node and the others selected with it
-  for (QGraphicsItem* i : scene_->selectedItems())
-    if (auto* n = dynamic_cast<NodeItem*>(i)) selected << QString::fromStdString(n->info().name);
+  QStringList selected = selectedNodes();  // the node and the others selected with it
   if (!selected.contains(node)) selected = QStringList{node};
+  menu.addAction(info.enabled ? "Disable" : "Enable", this, [this, node, on = !info.enabled] { emit enabledRequested(node, on); });
+  menu.addAction("Rename...", this, [this, node] { askNewName(node); });
+  menu.addAction("Copy", this, [this, selected] { emit copyRequested(selected); });
+  menu.addAction("Duplicate", this, [this, selected] { emit duplicateRequested(selected); });
+  menu.addAction("Remove", this, [this, node] { emit removeRequested(node); });
+  QAction* reset = menu.addAction("Reset parameters to defaults", this, [this, node] { emit resetRequested(node, QString()); });
+  reset->setEnabled(model_->resetToDefault(info.name).has_value());
   menu.addAction(selected.size() > 1 ? QString("Group %1 nodes into a subgraph").arg(selected.size()) : "Group into a subgraph",
                  this, [this, selected] { emit groupIntoSubgraphRequested(selected); });
   if (!info.subgraph.empty()) {
@@ -296,7 +318,6 @@ void GraphEditor::showNodeMenu(const QString& node, QPoint at) {
     if (p.kind == "output" || p.kind == "param_out")
       inspect->addAction(port, this, [this, node, port] { emit inspectRequested(node, port); });
   }
-  menu.exec(at);
 }
 
 void GraphEditor::showPortMenu(const QString& node, const QString& port, QPoint at) {
@@ -310,6 +331,12 @@ void GraphEditor::showPortMenu(const QString& node, const QString& port, QPoint 
 }
 
 void GraphEditor::fillParamMenu(QMenu& menu, const QString& node, const QString& param) {
+  const apex::ParamInfo* p = model_ ? model_->parameter(node.toStdString(), param.toStdString()) : nullptr;
+  if (!p) return;
+  QAction* reset = menu.addAction("Reset to default (" + QString::fromStdString(p->default_value) + ")", this,
+                                  [this, node, param] { emit resetRequested(node, param); });
+  reset->setEnabled(p->value != p->default_value);
+  if (p->type != "int" && p->type != "double") return;  // a number can be tuned
   QMenu* with = menu.addMenu("Optimise with");
   with->setObjectName("optimise_with");
   if (model_)
@@ -331,9 +358,32 @@ void GraphEditor::removeSelected() {
     if (auto* n = dynamic_cast<NodeItem*>(i)) emit removeRequested(QString::fromStdString(n->info().name));
 }
 
-void GraphEditor::duplicateSelected() {
+QStringList GraphEditor::selectedNodes() const {
+  QStringList out;
   for (QGraphicsItem* i : scene_->selectedItems())
-    if (auto* n = dynamic_cast<NodeItem*>(i)) emit duplicateRequested(QString::fromStdString(n->info().name));
+    if (auto* n = dynamic_cast<NodeItem*>(i)) out << QString::fromStdString(n->info().name);
+  return out;
+}
+
+void GraphEditor::selectWhenShown(const QStringList& nodes) { select_when_shown_ = nodes; }
+
+void GraphEditor::showCanvasMenu(QPointF scene_pos, QPoint at) {
+  QMenu menu;
+  menu.addAction("Paste", this, [this, scene_pos] { emit pasteRequested(scene_pos); });
+  menu.exec(at);
+}
+
+void GraphEditor::askNewName(const QString& node) {
+  auto* ask = new QInputDialog(this);
+  ask->setObjectName("rename_dialog");
+  ask->setAttribute(Qt::WA_DeleteOnClose);
+  ask->setWindowTitle("Rename " + node);
+  ask->setLabelText("New name (its connections are kept):");
+  ask->setTextValue(node.mid(node.lastIndexOf('/') + 1));
+  connect(ask, &QInputDialog::textValueSelected, this, [this, node](const QString& name) {
+    if (!name.isEmpty()) emit renameRequested(node, name);
+  });
+  ask->open();  // not modal to the event loop: rviz goes on drawing
 }
 
 QString GraphEditor::defaultGraphFolder() {

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "apex/core/connection_rules.hpp"
+#include "calls.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -10,26 +11,12 @@
 namespace apex_rviz_plugin {
 namespace {
 
+using namespace calls;
+
 /** What add_node takes to make this node again: its type, or a file-backed subgraph's file
  *  (an inline subgraph cannot be made again from the panel: add_node says so). */
 std::string typeToAdd(const apex::NodeInfo& n) {
   return n.subgraph.empty() || n.subgraph == "inline" ? n.type : n.subgraph;
-}
-
-std::string ui(double x, double y) {
-  return "{x: " + std::to_string(static_cast<int>(x)) + ", y: " + std::to_string(static_cast<int>(y)) + "}";
-}
-
-Call connectCall(const std::string& service, const apex::Connection& c) {
-  apex::Connect::Request r;
-  r.from_node = c.from_node, r.from_port = c.from_port, r.to_node = c.to_node, r.to_port = c.to_port;
-  return {service, r};
-}
-
-Call setUi(const std::string& node, const std::string& text) {
-  apex::SetUi::Request r;
-  r.node = node, r.ui = text;
-  return {"set_ui", r};
 }
 
 std::string parametersText(const apex::NodeInfo& n) {
@@ -163,22 +150,22 @@ std::optional<Edit> GraphModel::removeNode(const std::string& name) const {
   }
   if (!n->ui.empty()) e.revert.push_back(setUi(name, n->ui));
   for (const auto& c : graph_.connections)
-    if (c.from_node == name || c.to_node == name) e.revert.push_back(connectCall("connect", c));
+    if (c.from_node == name || c.to_node == name) e.revert.push_back(calls::connect("connect", c));
   return e;
 }
 
 Edit GraphModel::connect(const apex::Connection& c) const {
   return {"Connect " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port,
-          {connectCall("connect", c)}, {connectCall("disconnect", c)}};
+          {calls::connect("connect", c)}, {calls::connect("disconnect", c)}};
 }
 
 Edit GraphModel::disconnect(const apex::Connection& c) const {
   return {"Disconnect " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port,
-          {connectCall("disconnect", c)}, {connectCall("connect", c)}};
+          {calls::connect("disconnect", c)}, {calls::connect("connect", c)}};
 }
 
 std::optional<Edit> GraphModel::setParameter(const std::string& node_name, const std::string& param,
-                                             const std::string& value) const {
+                                             const std::string& value, bool dragging) const {
   const apex::ParamInfo* p = parameter(node_name, param);
   if (!p) return std::nullopt;
   apex::SetParameter::Request set, back;
@@ -187,13 +174,39 @@ std::optional<Edit> GraphModel::setParameter(const std::string& node_name, const
   set.value = value;
   back.value = p->value;
   Edit e{"Set " + node_name + "/" + param, {{"set_parameter", set}}, {{"set_parameter", back}}};
+  e.merge_key = "set " + node_name + "/" + param;
+  e.open = dragging;
   if (p->shapes_ports)  // the new ports may lack some that are connected now: undo connects them again
     for (const auto& c : graph_.connections)
       if (c.from_node == node_name || c.to_node == node_name) {
-        e.revert.push_back(connectCall("connect", c));
+        e.revert.push_back(calls::connect("connect", c));
         e.revert.back().if_missing = true;
       }
   return e;
+}
+
+std::optional<Edit> GraphModel::resetToDefault(const std::string& node_name, const std::string& param) const {
+  const apex::NodeInfo* n = node(node_name);
+  if (!n) return std::nullopt;
+  Edit all{"Reset " + node_name + (param.empty() ? "" : "/" + param) + " to default", {}, {}};
+  for (const auto& p : n->parameters) {
+    if ((!param.empty() && p.name != param) || p.value == p.default_value) continue;
+    auto e = setParameter(node_name, p.name, p.default_value);
+    all.apply.insert(all.apply.end(), e->apply.begin(), e->apply.end());
+    all.revert.insert(all.revert.begin(), e->revert.begin(), e->revert.end());  // undone in reverse
+  }
+  if (all.apply.empty()) return std::nullopt;
+  return all;
+}
+
+std::optional<Edit> GraphModel::rename(const std::string& node_name, const std::string& new_name) const {
+  if (!node(node_name) || new_name.empty()) return std::nullopt;
+  const auto slash = node_name.rfind('/');
+  const std::string parent = slash == std::string::npos ? "" : node_name.substr(0, slash + 1);
+  apex::RenameNode::Request to, back;
+  to.name = node_name, to.new_name = new_name;
+  back.name = parent + new_name, back.new_name = node_name.substr(parent.size());
+  return Edit{"Rename " + node_name + " to " + new_name, {{"rename_node", to}}, {{"rename_node", back}}};
 }
 
 std::optional<Edit> GraphModel::move(const std::string& node_name, double x, double y) const {
@@ -213,14 +226,6 @@ std::string GraphModel::freshName(const std::string& type) const {
     if (!node(name)) return name;
   }
 }
-
-namespace {
-std::string parentOf(const std::string& path) {
-  const auto slash = path.rfind('/');
-  return slash == std::string::npos ? std::string() : path.substr(0, slash);
-}
-std::string join(const std::string& parent, const std::string& name) { return parent.empty() ? name : parent + "/" + name; }
-}  // namespace
 
 std::optional<Edit> GraphModel::group(const std::vector<std::string>& nodes) const {
   if (nodes.empty()) return std::nullopt;
@@ -247,16 +252,6 @@ std::optional<Edit> GraphModel::ungroup(const std::string& path) const {
   return Edit{"Ungroup " + g.name, {{"ungroup", u}}, {{"group", g}}};
 }
 
-std::optional<Edit> GraphModel::duplicate(const std::string& name, double x, double y) const {
-  const apex::NodeInfo* n = node(name);
-  if (!n) return std::nullopt;
-  Edit e = addNode(typeToAdd(*n), freshName(n->type), x, y);
-  auto& add = std::get<apex::AddNode::Request>(e.apply.front().request);
-  add.parameters = parametersText(*n);
-  add.thread_group = n->thread_group;
-  e.label = "Duplicate " + name + " as " + add.name;
-  return e;
-}
 
 std::optional<Edit> GraphModel::setEnabled(const std::string& name, bool enabled) const {
   const apex::NodeInfo* n = node(name);
@@ -289,19 +284,27 @@ std::optional<Edit> GraphModel::setInteractive(const std::string& name, const st
   if (!interactive)  // hiding the ports drops their connections: undo restores them
     for (const auto& c : graph_.connections)
       if ((c.from_node == name && c.from_port == param) || (c.to_node == name && c.to_port == param))
-        e.revert.push_back(connectCall("connect", c));
+        e.revert.push_back(calls::connect("connect", c));
   return e;
 }
 
 void EditHistory::done(Edit edit) {
-  undo_.push_back(std::move(edit));
   redo_.clear();
+  if (!undo_.empty() && undo_.back().open && !edit.merge_key.empty() && undo_.back().merge_key == edit.merge_key) {
+    Edit& gesture = undo_.back();  // its revert goes back to before the gesture
+    gesture.apply = std::move(edit.apply);
+    gesture.open = edit.open;
+    return;
+  }
+  if (!undo_.empty()) undo_.back().open = false;  // another edit ends a gesture
+  undo_.push_back(std::move(edit));
 }
 
 std::vector<Call> EditHistory::undo() {
   if (undo_.empty()) return {};
   redo_.push_back(std::move(undo_.back()));
   undo_.pop_back();
+  redo_.back().open = false;  // a gesture undone is over
   return redo_.back().revert;
 }
 
@@ -331,18 +334,6 @@ std::string yamlList(const std::vector<std::string>& items) {
   YAML::Emitter out;
   out << YAML::Flow << items;
   return out.c_str();
-}
-
-Call setParam(const std::string& node, const std::string& param, const std::string& value) {
-  apex::SetParameter::Request r;
-  r.node = node, r.parameter = param, r.value = value;
-  return {"set_parameter", r};
-}
-
-Call interactive(const std::string& node, const std::string& param, bool on) {
-  apex::SetInteractive::Request r;
-  r.node = node, r.parameter = param, r.interactive = on;
-  return {"set_interactive", r};
 }
 
 }  // namespace
@@ -393,8 +384,8 @@ std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std
     c.from_node = opt, c.from_port = dim, c.to_node = node_name, c.to_port = param;
     return c;
   }();
-  e.apply.push_back(connectCall("connect", link));
-  e.revert.push_back(connectCall("disconnect", link));
+  e.apply.push_back(calls::connect("connect", link));
+  e.revert.push_back(calls::connect("disconnect", link));
   if (make) {
     apex::RemoveNode::Request remove;
     remove.name = opt;

@@ -208,6 +208,8 @@ void GraphScene::contextMenuEvent(QGraphicsSceneContextMenuEvent* e) {
       return e->accept();
     }
   }
+  emit canvasMenuRequested(e->scenePos(), e->screenPos());
+  e->accept();
 }
 
 }  // namespace apex_rviz_plugin

@@ -155,7 +155,8 @@ void NodeItem::build() {
       auto* e = new ParamEditor(p);
       editors_[p.name] = e;
       column->addWidget(e);
-      connect(e, &ParamEditor::edited, this, [this, node](const QString& n, const QString& v) { emit parameterEdited(node, n, v); });
+      connect(e, &ParamEditor::edited, this,
+              [this, node](const QString& n, const QString& v, bool dragging) { emit parameterEdited(node, n, v, dragging); });
       connect(e, &ParamEditor::interactiveToggled, this,
               [this, node](const QString& n, bool on) { emit interactiveToggled(node, n, on); });
       connect(e, &ParamEditor::menuRequested, this,

@@ -1,5 +1,7 @@
 #include "apex_rviz_plugin/panel_widget.hpp"
 
+#include <QClipboard>
+#include <QGuiApplication>
 #include <QVBoxLayout>
 
 namespace apex_rviz_plugin {
@@ -16,7 +18,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
   connect(&link_, &RuntimeLink::connectionChanged, this, [this](bool up, const QString& text) {
     editor_->showConnection(up, text);
-    if (!up) model_.reset(), watched_.clear();  // a runtime that comes back starts its revisions anew
+    if (!up) model_.reset(), watched_.clear(), forgetHistory();  // a runtime that comes back starts anew
     if (up) refreshTypes(), editor_->fitNextGraph();
   });
   connectEditor();
@@ -28,6 +30,8 @@ void PanelWidget::setNamespace(const QString& ns) {
   if (!changed) return;
   model_.reset();
   watched_.clear();
+  inspected_.clear();
+  forgetHistory();
   editor_->showGraph(model_);
   emit namespaceChanged(QString::fromStdString(link_.ns()));
 }
@@ -51,9 +55,30 @@ void PanelWidget::connectEditor() {
     perform(model_.group(names));
   });
   connect(e, &GraphEditor::ungroupRequested, this, [this, str](const QString& n) { perform(model_.ungroup(str(n))); });
-  connect(e, &GraphEditor::duplicateRequested, this, [this, str](const QString& n) {
-    const auto [x, y] = model_.position(str(n));
-    perform(model_.duplicate(str(n), x + 40, y + 40));
+  auto names = [str](const QStringList& nodes) {
+    std::vector<std::string> out;
+    for (const auto& n : nodes) out.push_back(str(n));
+    return out;
+  };
+  connect(e, &GraphEditor::duplicateRequested, this, [this, names](const QStringList& nodes) {
+    if (!nodes.isEmpty()) pasted(model_.duplicate(names(nodes), 40, 40));
+  });
+  connect(e, &GraphEditor::copyRequested, this, [this, names](const QStringList& nodes) {
+    if (nodes.isEmpty()) return;
+    std::string left_out;
+    QGuiApplication::clipboard()->setText(QString::fromStdString(model_.copy(names(nodes), &left_out)));
+    if (!left_out.empty()) return editor_->showMessage(QString::fromStdString(left_out + " is an inline subgraph: save it to a file to copy it"), true);
+    editor_->showMessage(nodes.size() == 1 ? "copied " + nodes.front() : QString("copied %1 nodes").arg(nodes.size()), false);
+  });
+  connect(e, &GraphEditor::pasteRequested, this, [this](QPointF at) {
+    const std::string text = QGuiApplication::clipboard()->text().toStdString();
+    pasted(model_.paste(text, editor_->scene()->level(), at.x(), at.y()));
+  });
+  connect(e, &GraphEditor::renameRequested, this, [this, str](const QString& n, const QString& to) {
+    perform(model_.rename(str(n), str(to)));
+  });
+  connect(e, &GraphEditor::resetRequested, this, [this, str](const QString& n, const QString& p) {
+    perform(model_.resetToDefault(str(n), str(p)));
   });
   connect(e, &GraphEditor::enabledRequested, this, [this, str](const QString& n, bool on) { perform(model_.setEnabled(str(n), on)); });
   connect(e, &GraphEditor::groupRequested, this, [this, str](const QString& n, const QString& g) {
@@ -61,9 +86,10 @@ void PanelWidget::connectEditor() {
   });
   connect(s, &GraphScene::connectRequested, this, [this](const apex::Connection& c) { perform(model_.connect(c)); });
   connect(s, &GraphScene::disconnectRequested, this, [this](const apex::Connection& c) { perform(model_.disconnect(c)); });
-  connect(s, &GraphScene::parameterEdited, this, [this, str](const QString& n, const QString& p, const QString& v) {
-    perform(model_.setParameter(str(n), str(p), str(v)));
-  });
+  connect(s, &GraphScene::parameterEdited, this,
+          [this, str](const QString& n, const QString& p, const QString& v, bool dragging) {
+            perform(model_.setParameter(str(n), str(p), str(v), dragging));
+          });
   connect(s, &GraphScene::interactiveToggled, this, [this, str](const QString& n, const QString& p, bool on) {
     perform(model_.setInteractive(str(n), str(p), on));
   });
@@ -82,7 +108,10 @@ void PanelWidget::connectEditor() {
     link_.saveGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "saved " + path); });
   });
   connect(e, &GraphEditor::loadRequested, this, [this](const QString& path) {
-    link_.loadGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "loaded " + path); });
+    link_.loadGraph(path.toStdString(), [this, path](bool ok, const std::string& m) {
+      report(ok, m, "loaded " + path);
+      if (ok) afterLoad();
+    });
   });
   connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
   connect(e, &GraphEditor::optimiseRequested, this, [this, str](const QString& n, const QString& p, const QString& opt) {
@@ -99,7 +128,9 @@ void PanelWidget::connectEditor() {
 
 void PanelWidget::perform(const std::optional<Edit>& edit) {
   if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
+  ++pending_;
   link_.run(edit->apply, [this, edit = *edit](bool ok, const std::string& message) {
+    --pending_;
     if (ok) history_.done(edit);
     editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
     report(ok, message, QString::fromStdString(edit.label));
@@ -107,10 +138,31 @@ void PanelWidget::perform(const std::optional<Edit>& edit) {
   });
 }
 
+void PanelWidget::pasted(const Pasted& p) {
+  if (!p.edit) return editor_->showMessage(QString::fromStdString(p.error), true);
+  QStringList names;
+  for (const auto& n : p.names) names << QString::fromStdString(n);
+  editor_->selectWhenShown(names);  // the copies, not the originals: Delete and Ctrl+D act on them
+  perform(p.edit);
+  if (!p.error.empty()) editor_->showMessage(QString::fromStdString(p.error), true);
+}
+
 void PanelWidget::replay(std::vector<Call> calls, const QString& what) {
   editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
   if (calls.empty()) return;
   link_.run(std::move(calls), [this, what](bool ok, const std::string& m) { report(ok, m, what); });
+}
+
+void PanelWidget::forgetHistory() {
+  history_.clear();
+  editor_->showHistory("", false, false);
+}
+
+void PanelWidget::afterLoad() {
+  forgetHistory();  // the edits before were of another graph
+  watched_.clear();  // a load ends every inspection: the Optimizers' progress and the displays
+  for (const auto& [node, port] : inspected_)  // displays showing a port go on if the new graph has it
+    link_.inspect(node, port, [](bool, const std::string&, const std::string&, const std::string&) {});
 }
 
 void PanelWidget::report(bool ok, const std::string& message, const QString& what) {
@@ -121,6 +173,7 @@ void PanelWidget::onGraph(const apex::GraphState& graph) {
   if (!model_.update(graph)) {
     if (graph.revision >= model_.graph().revision) return;
     model_.reset();  // older than what is shown: a restarted runtime
+    forgetHistory();
     model_.update(graph);
   }
   editor_->showGraph(model_);
@@ -149,6 +202,7 @@ void PanelWidget::refreshTypes() {
 }
 
 void PanelWidget::onInspect(const QString& node, const QString& port) {
+  inspected_.insert({node.toStdString(), port.toStdString()});
   link_.inspect(node.toStdString(), port.toStdString(),
                 [this, node, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
                   if (!ok) return report(false, m, "inspect " + node + "/" + port);

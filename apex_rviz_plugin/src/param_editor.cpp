@@ -65,7 +65,8 @@ ParamEditor::ParamEditor(const apex::ParamInfo& param, QWidget* parent) : QWidge
   setToolTip(QString::fromStdString(param.name + " (" + param.kind + "): " + param.description));
   throttle_.setSingleShot(true);
   connect(&throttle_, &QTimer::timeout, this, [this] {
-    if (!pending_.isEmpty()) emit edited(QString::fromStdString(param_.name), pending_);
+    if (!pending_.isEmpty()) emit edited(QString::fromStdString(param_.name), pending_, true);
+    drag_sent_ = drag_sent_ || !pending_.isEmpty();
     pending_.clear();
   });
   auto* row = new QHBoxLayout(this);
@@ -74,11 +75,9 @@ ParamEditor::ParamEditor(const apex::ParamInfo& param, QWidget* parent) : QWidge
   auto* label = new QLabel(QString::fromStdString(param.name));
   label->setMinimumWidth(70);
   row->addWidget(label);
-  if (param.type == "int" || param.type == "double") {  // a number can be tuned: right-click offers it
-    setContextMenuPolicy(Qt::CustomContextMenu);
-    connect(this, &QWidget::customContextMenuRequested, this,
-            [this](const QPoint& at) { emit menuRequested(QString::fromStdString(param_.name), mapToGlobal(at)); });
-  }
+  setContextMenuPolicy(Qt::CustomContextMenu);  // reset to default; a number can be tuned too
+  connect(this, &QWidget::customContextMenuRequested, this,
+          [this](const QPoint& at) { emit menuRequested(QString::fromStdString(param_.name), mapToGlobal(at)); });
   build();
   if (!param.type.empty()) {  // a parameter with a port type can be linked: show its ports
     interactive_ = new QCheckBox;
@@ -107,9 +106,11 @@ void ParamEditor::showApplied(const apex::ParamInfo& param) {
 void ParamEditor::send(const QString& yaml, bool dragging) {
   if (updating_) return;
   if (!dragging) {
-    if (yaml.toStdString() == param_.value && !throttle_.isActive()) return;  // unchanged: no edit
+    const bool ends_drag = drag_sent_ || throttle_.isActive();
+    if (yaml.toStdString() == param_.value && !ends_drag) return;  // unchanged: no edit
     throttle_.stop();
     pending_.clear();
+    drag_sent_ = false;
     emit edited(QString::fromStdString(param_.name), yaml);
     return;
   }

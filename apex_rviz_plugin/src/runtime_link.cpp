@@ -29,6 +29,7 @@ template <> struct ServiceOf<apex::SetThreadGroup::Request> { using type = apex:
 template <> struct ServiceOf<apex::SetUi::Request> { using type = apex::SetUi; };
 template <> struct ServiceOf<apex::Group::Request> { using type = apex::Group; };
 template <> struct ServiceOf<apex::Ungroup::Request> { using type = apex::Ungroup; };
+template <> struct ServiceOf<apex::RenameNode::Request> { using type = apex::RenameNode; };
 
 /** Calls a service; the response, and in `message` why it failed if it did. */
 template <class Srv>

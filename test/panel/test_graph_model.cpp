@@ -124,20 +124,101 @@ TEST(GraphModel, FreshNamesFollowTheTypeAndAreUnused) {
   EXPECT_EQ(m.freshName("apex_nodes/Clock"), "clock_2");
 }
 
-TEST(GraphModel, DuplicateCopiesTypeParametersAndGroupNotConnections) {
+TEST(GraphModel, DuplicateCopiesNodesWithTheirSettingsAndTheConnectionsAmongThem) {
   GraphModel m;
   m.update(graph(1));
-  auto e = m.duplicate("relay", 50, 60);
-  ASSERT_TRUE(e);
-  ASSERT_EQ(e->apply.size(), 2u);
-  const auto& add = std::get<apex::AddNode::Request>(e->apply[0].request);
+  auto one = m.duplicate({"relay"}, 40, 40);
+  ASSERT_TRUE(one.edit) << one.error;
+  EXPECT_EQ(one.names, (std::vector<std::string>{"relay_1"}));
+  EXPECT_EQ(one.edit->label, "Duplicate relay as relay_1");
+  const auto& add = std::get<apex::AddNode::Request>(one.edit->apply[0].request);
   EXPECT_EQ(add.type, "apex_nodes/Relay");
-  EXPECT_EQ(add.name, "relay_1");
   EXPECT_EQ(add.thread_group, "vision");
-  EXPECT_EQ(std::get<apex::SetUi::Request>(e->apply[1].request).ui, "{x: 50, y: 60}");
-  ASSERT_EQ(e->revert.size(), 1u);
-  EXPECT_EQ(e->revert[0].service, "remove_node");
-  EXPECT_FALSE(m.duplicate("nobody", 0, 0));
+  EXPECT_EQ(one.edit->apply[1].service, "set_enabled");  // it was disabled: so is the copy
+  EXPECT_EQ(std::get<apex::SetUi::Request>(one.edit->apply[2].request).ui, "{x: 40, y: 40}");
+  ASSERT_EQ(one.edit->revert.size(), 1u);
+  EXPECT_EQ(one.edit->revert[0].service, "remove_node");
+
+  // two connected nodes: the copies are connected the same way, not to the originals
+  auto two = m.duplicate({"clock", "count"}, 40, 40);
+  ASSERT_TRUE(two.edit) << two.error;
+  EXPECT_EQ(two.names, (std::vector<std::string>{"clock_1", "count_1"}));
+  std::vector<std::string> links;
+  for (const auto& c : two.edit->apply)
+    if (c.service == "connect") {
+      const auto& r = std::get<apex::Connect::Request>(c.request);
+      links.push_back(r.from_node + "/" + r.from_port + " " + r.to_node + "/" + r.to_port);
+    }
+  EXPECT_EQ(links, (std::vector<std::string>{"clock_1/processed count_1/reset"}));
+  bool rate_ports = false;  // the copy's parameter keeps its ports
+  for (const auto& c : two.edit->apply)
+    rate_ports = rate_ports || (c.service == "set_interactive" && std::get<apex::SetInteractive::Request>(c.request).node == "clock_1");
+  EXPECT_TRUE(rate_ports);
+  EXPECT_EQ(std::get<apex::SetUi::Request>(two.edit->apply[2].request).ui, "{x: 50, y: 60}");
+  EXPECT_FALSE(m.duplicate({"nobody"}, 0, 0).edit);
+}
+
+TEST(GraphModel, CopiedTextIsAGraphFileThatPastesIntoAnotherGraphUnderFreeNames) {
+  GraphModel m;
+  m.update(graph(1));
+  const std::string text = m.copy({"clock", "relay"});
+  EXPECT_THAT(text, HasSubstr("apex_graph: 2"));
+  EXPECT_THAT(text, HasSubstr("{from: clock/count, to: relay/in}"));
+  EXPECT_EQ(text.find("count/"), std::string::npos) << text;  // not copied: its connections neither
+
+  GraphModel other;  // another graph: the names are free there, so they stay
+  apex::GraphState empty;
+  empty.revision = 1;
+  other.update(empty);
+  auto p = other.paste(text, "", 100, 200);
+  ASSERT_TRUE(p.edit) << p.error;
+  EXPECT_EQ(p.names, (std::vector<std::string>{"clock", "relay"}));
+  EXPECT_EQ(std::get<apex::AddNode::Request>(p.edit->apply[0].request).parameters, "{rate: 20.0}");
+  // inside a subgraph level, and pasted again where the names are taken
+  auto in = m.paste(text, "sub", 0, 0);
+  EXPECT_EQ(in.names, (std::vector<std::string>{"sub/clock", "sub/relay"}));
+  auto again = m.paste(text, "", 0, 0);
+  EXPECT_EQ(again.names, (std::vector<std::string>{"clock_1", "relay_1"}));
+  EXPECT_EQ(again.edit->revert.size(), 2u);  // undone by removing them
+
+  EXPECT_THAT(m.paste("hello", "", 0, 0).error, HasSubstr("the clipboard holds no APEX nodes"));
+  EXPECT_THAT(m.paste("apex_graph: 2\nnodes:\n  - {name: s, subgraph: {nodes: []}}\n", "", 0, 0).error,
+              HasSubstr("'s' is an inline subgraph"));
+}
+
+TEST(GraphModel, RenameIsOneEditUndoneByRenamingBack) {
+  GraphModel m;
+  m.update(graph(1));
+  auto e = m.rename("relay", "pass");
+  ASSERT_TRUE(e);
+  const auto& to = std::get<apex::RenameNode::Request>(e->apply[0].request);
+  EXPECT_EQ(to.name, "relay");
+  EXPECT_EQ(to.new_name, "pass");
+  const auto& back = std::get<apex::RenameNode::Request>(e->revert[0].request);
+  EXPECT_EQ(back.name, "pass");
+  EXPECT_EQ(back.new_name, "relay");
+  EXPECT_FALSE(m.rename("nobody", "x"));
+}
+
+TEST(GraphModel, ResetToDefaultSetsOneOrAllParametersAndIsUndoneToTheValuesBefore) {
+  GraphModel m;
+  auto g = graph(1);
+  g.nodes[0].parameters = {param("rate", "20.0"), param("offset", "3"), param("name", "x")};
+  g.nodes[0].parameters[0].default_value = "10.0";
+  g.nodes[0].parameters[1].default_value = "0";
+  g.nodes[0].parameters[2].default_value = "x";
+  m.update(g);
+  auto one = m.resetToDefault("clock", "rate");
+  ASSERT_TRUE(one);
+  ASSERT_EQ(one->apply.size(), 1u);
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(one->apply[0].request).value, "10.0");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(one->revert[0].request).value, "20.0");
+  auto all = m.resetToDefault("clock");
+  ASSERT_TRUE(all);
+  EXPECT_EQ(all->apply.size(), 2u);  // 'name' is at its default already
+  EXPECT_EQ(all->revert.size(), 2u);
+  EXPECT_FALSE(m.resetToDefault("clock", "name"));
+  EXPECT_FALSE(m.resetToDefault("nobody"));
 }
 
 TEST(GraphModel, EnableGroupAndInteractiveEditsAreUndoneToTheOldState) {
@@ -312,6 +393,33 @@ TEST(EditHistory, UndoRedoAndANewEditClearsRedo) {
   h.done(m.connect(graph(1).connections[0]));
   EXPECT_FALSE(h.canRedo());
   EXPECT_FALSE(m.setParameter("clock", "speed", "1"));
+}
+
+TEST(EditHistory, OneSliderDragIsOneUndoStepAndTheNextDragAnother) {
+  GraphModel m;
+  m.update(graph(1));
+  EditHistory h;
+  for (const char* v : {"21", "22", "23"}) h.done(*m.setParameter("clock", "rate", v, true));  // dragging
+  h.done(*m.setParameter("clock", "rate", "24"));  // released
+  h.done(*m.setParameter("clock", "rate", "30", true));  // another drag
+  h.done(*m.setParameter("clock", "rate", "31"));
+  auto undo = h.undo();
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(undo[0].request).value, "20.0");  // the model still says 20
+  undo = h.undo();
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(undo[0].request).value, "20.0");
+  EXPECT_FALSE(h.canUndo());  // two drags, two steps
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(h.redo()[0].request).value, "24");  // the drag's last value
+
+  // typed values are one step each; another parameter's drag does not join this one's
+  h.clear();
+  h.done(*m.setParameter("clock", "rate", "40"));
+  h.done(*m.setParameter("clock", "rate", "41"));
+  h.done(*m.setParameter("clock", "rate", "42", true));
+  h.done(m.addNode("apex_nodes/Relay", "r", 0, 0));
+  h.done(*m.setParameter("clock", "rate", "43", true));
+  int steps = 0;
+  while (h.canUndo()) h.undo(), ++steps;
+  EXPECT_EQ(steps, 5);
 }
 
 }  // namespace

@@ -17,7 +17,11 @@
 #include <QTest>
 #include <QToolButton>
 
+#include <QInputDialog>
 #include <QMenu>
+#include <QSlider>
+
+#include <filesystem>
 
 #include <apex/AddNode.h>
 #include <apex/Connect.h>
@@ -323,6 +327,129 @@ TEST_F(PanelWidgetTest, APlayerHasATransportBar) {
       << player->transport()->text().toStdString();
   // The node's parameter box with its transport bar (docs/panel_transport.png).
   player->transport()->parentWidget()->grab().save(QString::fromStdString(g_shot).replace(".png", "_transport.png"));
+}
+
+/** The action of a menu whose text starts with `text`, or nullptr. */
+QAction* action(const QMenu& menu, const QString& text) {
+  for (QAction* a : menu.actions()) if (a->text().startsWith(text)) return a;
+  return nullptr;
+}
+
+TEST_F(PanelWidgetTest, ASliderDragIsOneUndoStepAndResetToDefaultAnother) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "drag_clock", "{rate: 10.0}"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("drag_clock") != nullptr; }, kWaitMs));
+  ParamEditor* rate = scene->node("drag_clock")->editor("rate");
+  auto* slider = rate->findChild<QSlider*>();
+  auto* spin = rate->findChild<QDoubleSpinBox*>("spin");
+  ASSERT_TRUE(slider && spin);
+  // a drag as QSlider sees one: held down, moved over several throttle intervals, released
+  slider->setSliderDown(true);
+  for (int i = 1; i <= 6; ++i) {
+    slider->setValue(slider->value() + 25);
+    QTest::qWait(ParamEditor::kThrottleMs + 20);
+  }
+  slider->setSliderDown(false);
+  const double dragged = spin->value();
+  ASSERT_GT(dragged, 100);
+  ASSERT_TRUE(QTest::qWaitFor([&] {
+    return panel.editsPending() == 0 && std::abs(number(runtimeGraph(), "drag_clock", "rate") - dragged) < 1e-3;
+  }, kWaitMs)) << number(runtimeGraph(), "drag_clock", "rate") << " vs " << dragged;
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  auto* redo = panel.editor()->findChild<QToolButton*>("redo");
+  QTest::mouseClick(undo, Qt::LeftButton);  // the whole drag, in one step
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "drag_clock", "rate") == 10; }, kWaitMs));
+  EXPECT_FALSE(undo->isEnabled()) << "more than one undo step for one drag: " << undo->toolTip().toStdString();
+  QTest::mouseClick(redo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return std::abs(number(panel.model().graph(), "drag_clock", "rate") - dragged) < 1e-3; }, kWaitMs));
+
+  // the parameter's menu: back to the default, one more step
+  QMenu menu;
+  panel.editor()->fillParamMenu(menu, "drag_clock", "rate");
+  QAction* reset = action(menu, "Reset to default");
+  ASSERT_TRUE(reset && reset->isEnabled());
+  reset->trigger();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "drag_clock", "rate") == 10 && panel.editsPending() == 0; }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return spin->value() == 10.0; }, kWaitMs));
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return std::abs(number(runtimeGraph(), "drag_clock", "rate") - dragged) < 1e-3; }, kWaitMs));
+}
+
+TEST_F(PanelWidgetTest, RenameCopyPasteAndDuplicateAndTheCopiesAreWhatIsSelected) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "src", "{rate: 50.0}"));
+  ASSERT_TRUE(addNode("apex_nodes/Counter", "sink", ""));
+  ASSERT_TRUE(link("src", "count", "sink", "in"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("src") && scene->node("sink"); }, kWaitMs));
+
+  // rename from the node's menu: a dialog asks the name; the connection is kept
+  QMenu menu;
+  panel.editor()->fillNodeMenu(menu, "src");
+  ASSERT_TRUE(action(menu, "Rename"));
+  action(menu, "Rename")->trigger();
+  auto* ask = panel.editor()->findChild<QInputDialog*>("rename_dialog");
+  ASSERT_TRUE(ask);
+  EXPECT_EQ(ask->textValue(), "src");
+  ask->setTextValue("ticker");
+  ask->accept();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("ticker") && !scene->node("src"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_TRUE(connected(runtimeGraph(), "ticker", "count", "sink", "in"));
+
+  // copy both, paste: the copies are connected to each other and are the selection
+  scene->clearSelection();
+  scene->node("ticker")->setSelected(true);
+  scene->node("sink")->setSelected(true);
+  view->setFocus();
+  QTest::keyClick(view, Qt::Key_C, Qt::ControlModifier);
+  QTest::keyClick(view, Qt::Key_V, Qt::ControlModifier);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("ticker_1") && scene->node("sink_1"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_TRUE(connected(runtimeGraph(), "ticker_1", "count", "sink_1", "in"));
+  EXPECT_EQ(param(runtimeGraph(), "ticker_1", "rate"), "50.0");
+  EXPECT_TRUE(scene->node("ticker_1")->isSelected() && scene->node("sink_1")->isSelected());
+  EXPECT_FALSE(scene->node("ticker")->isSelected() || scene->node("sink")->isSelected());
+
+  // Ctrl+D duplicates the selection and selects the duplicates: Delete then removes those
+  QTest::keyClick(view, Qt::Key_D, Qt::ControlModifier);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("ticker_2") && scene->node("ticker_2")->isSelected(); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_FALSE(scene->node("ticker_1")->isSelected());
+  QTest::keyClick(view, Qt::Key_Delete);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !find(runtimeGraph(), "ticker_2") && !find(runtimeGraph(), "sink_2"); }, kWaitMs));
+  EXPECT_TRUE(find(runtimeGraph(), "ticker_1") && find(runtimeGraph(), "sink_1"));
+
+  // the rename is undone like any edit: back to its old name, still connected
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0; }, kWaitMs));
+  for (int i = 0; i < 4; ++i) QTest::mouseClick(undo, Qt::LeftButton);  // the two removals, Ctrl+D, the paste
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !find(runtimeGraph(), "ticker_1") && !find(runtimeGraph(), "ticker_2"); }, kWaitMs));
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return find(runtimeGraph(), "src") != nullptr; }, kWaitMs));
+  EXPECT_TRUE(connected(runtimeGraph(), "src", "count", "sink", "in"));
+}
+
+TEST_F(PanelWidgetTest, ABagThatIsGoneIsAnErrorOnTheNodeAndStaysOneWhenPlayed) {
+  namespace fs = std::filesystem;
+  const std::string gone = fs::path(g_bag).parent_path() / "panel_gone.bag";
+  fs::copy_file(g_bag, gone, fs::copy_options::overwrite_existing);
+  ASSERT_TRUE(addNode("apex_nodes/BagReader", "gone", "{file: '" + gone + "', topics: [/camera/image_raw]}"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("gone") != nullptr; }, kWaitMs));
+  fs::remove(gone);
+  ASSERT_TRUE(setParameter("gone", "topics", "[/camera/points]"));  // opens the file again: it is not there
+  NodeItem* node = scene->node("gone");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return node->info().state == "error"; }, kWaitMs));
+  EXPECT_TRUE(node->toolTip().contains("cannot open bag")) << node->toolTip().toStdString();
+  auto* play = node->transport()->findChild<QToolButton*>("play");
+  QTest::mouseClick(play, Qt::LeftButton);  // pause, and play again: still in error
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "gone", "playing") == "false"; }, kWaitMs));
+  QTest::mouseClick(play, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "gone", "playing") == "true"; }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !find(runtimeGraph(), "gone")->error.empty(); }, kWaitMs));
+  QTest::qWait(300);  // a firing after play would have cleared it: give it the time to
+  EXPECT_EQ(find(runtimeGraph(), "gone")->state, "error");
+  EXPECT_EQ(node->info().state, "error");
 }
 
 TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestUndoably) {

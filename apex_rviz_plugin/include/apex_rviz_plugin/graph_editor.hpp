@@ -29,6 +29,13 @@ class GraphEditor : public QWidget {
   /** @brief The menu of a right-click on a number parameter: "Optimise with" an Optimizer of the
    *  graph or a new one. Filled for tests to read; shown by a right-click. */
   void fillParamMenu(QMenu& menu, const QString& node, const QString& param);
+  /** @brief The menu of a right-click on a node. Filled for tests to read; shown by a right-click. */
+  void fillNodeMenu(QMenu& menu, const QString& node);
+  /** @brief The names of the selected nodes. */
+  QStringList selectedNodes() const;
+  /** @brief Selects these nodes (only these) once the graph shows them: what a paste or a
+   *  duplicate made. */
+  void selectWhenShown(const QStringList& nodes);
 
   GraphScene* scene() const { return scene_; }
   QGraphicsView* view() const { return view_; }
@@ -46,7 +53,8 @@ class GraphEditor : public QWidget {
   void fitNextGraph() { fit_pending_ = true; }
 
  protected:
-  bool eventFilter(QObject* watched, QEvent* event) override;  ///< Ctrl + wheel zooms
+  /** The wheel zooms around the cursor; Delete, Ctrl+C, Ctrl+V, Ctrl+D on the selection. */
+  bool eventFilter(QObject* watched, QEvent* event) override;
 
  signals:
   void namespaceChanged(const QString& ns);
@@ -54,7 +62,13 @@ class GraphEditor : public QWidget {
   void removeRequested(const QString& node);
   void groupIntoSubgraphRequested(const QStringList& nodes);
   void ungroupRequested(const QString& subgraph);
-  void duplicateRequested(const QString& node);
+  void duplicateRequested(const QStringList& nodes);
+  void copyRequested(const QStringList& nodes);
+  /** Paste what the clipboard holds, its top-left node at `at` (scene). */
+  void pasteRequested(QPointF at);
+  void renameRequested(const QString& node, const QString& new_name);
+  /** Parameters back to their defaults: `param`, or all of the node's if empty. */
+  void resetRequested(const QString& node, const QString& param);
   void enabledRequested(const QString& node, bool enabled);
   void groupRequested(const QString& node, const QString& group);
   void fireSlotRequested(const QString& node, const QString& slot);
@@ -79,7 +93,8 @@ class GraphEditor : public QWidget {
   void showPortMenu(const QString& node, const QString& port, QPoint at);
   void showParamMenu(const QString& node, const QString& param, QPoint at);
   void removeSelected();
-  void duplicateSelected();
+  void showCanvasMenu(QPointF scene_pos, QPoint at);
+  void askNewName(const QString& node);
   QPointF newNodePosition();
   void showLevel(const QString& path);
 
@@ -95,6 +110,7 @@ class GraphEditor : public QWidget {
   QToolButton* up_ = nullptr;    ///< back to the enclosing level
   QToolButton *pause_, *undo_, *redo_;
   int added_ = 0;
+  QStringList select_when_shown_;
   bool fit_pending_ = true;
   QString last_path_ = defaultGraphFolder();  // where a runtime saves and loads by default (~file_roots)
   static QString defaultGraphFolder();

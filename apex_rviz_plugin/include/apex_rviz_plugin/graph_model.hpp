@@ -9,6 +9,7 @@
 #include <apex/GraphState.h>
 #include <apex/Group.h>
 #include <apex/RemoveNode.h>
+#include <apex/RenameNode.h>
 #include <apex/SetEnabled.h>
 #include <apex/SetInteractive.h>
 #include <apex/SetParameter.h>
@@ -31,7 +32,7 @@ struct Call {
   std::string service;  ///< e.g. "add_node", "connect", "disconnect"
   std::variant<apex::AddNode::Request, apex::RemoveNode::Request, apex::Connect::Request, apex::SetParameter::Request,
                apex::SetEnabled::Request, apex::SetInteractive::Request, apex::SetThreadGroup::Request,
-               apex::SetUi::Request, apex::Group::Request, apex::Ungroup::Request>
+               apex::SetUi::Request, apex::Group::Request, apex::Ungroup::Request, apex::RenameNode::Request>
       request;
   /** connect only: restoring a connection that may still be there (undo of an edit that may
    *  have dropped it); "already connected" is then success. */
@@ -40,9 +41,23 @@ struct Call {
 
 /** @brief An edit as done, and the calls that undo it. */
 struct Edit {
+  Edit() = default;
+  Edit(std::string label, std::vector<Call> apply, std::vector<Call> revert)
+      : label(std::move(label)), apply(std::move(apply)), revert(std::move(revert)) {}
   std::string label;           ///< for a menu: "Add gaussian_blur_1"
   std::vector<Call> apply;     ///< redo: the calls in order
   std::vector<Call> revert;    ///< undo: the calls in order
+  /** Edits of one gesture share a key ("node/param" for a slider): an open edit (a drag going
+   *  on) takes the next one of its key into the same undo step. */
+  std::string merge_key;
+  bool open = false;
+};
+
+/** @brief What a paste adds: the edit, or why there is none; and the new nodes' names. */
+struct Pasted {
+  std::optional<Edit> edit;
+  std::vector<std::string> names;
+  std::string error;
 };
 
 class GraphModel {
@@ -72,10 +87,26 @@ class GraphModel {
   std::optional<Edit> removeNode(const std::string& name) const;
   Edit connect(const apex::Connection& c) const;
   Edit disconnect(const apex::Connection& c) const;
-  std::optional<Edit> setParameter(const std::string& node, const std::string& param, const std::string& value) const;
+  /** @brief `dragging`: one value of a drag going on; the drag's edits are one undo step, closed
+   *  by its last value (dragging false). */
+  std::optional<Edit> setParameter(const std::string& node, const std::string& param, const std::string& value,
+                                   bool dragging = false) const;
+  /** @brief Parameters back to their defaults: `param`, or every parameter of the node if empty;
+   *  one edit. Nothing if the node or parameter is not there, or all are at their defaults. */
+  std::optional<Edit> resetToDefault(const std::string& node, const std::string& param = "") const;
+  /** @brief A new name for a node in its place (a name, not a path), one edit. */
+  std::optional<Edit> rename(const std::string& node, const std::string& new_name) const;
   std::optional<Edit> move(const std::string& node, double x, double y) const;
-  /** @brief A copy of a node (type, parameters, group; not its connections) under a fresh name. */
-  std::optional<Edit> duplicate(const std::string& node, double x, double y) const;
+  /** @brief `nodes` (of one level) as graph file text, for the clipboard: types, parameters,
+   *  ports shown, enabled, groups, positions and the connections among them. An inline
+   *  subgraph is left out (add_node makes subgraphs from files): `left_out` names it. */
+  std::string copy(const std::vector<std::string>& nodes, std::string* left_out = nullptr) const;
+  /** @brief Copied nodes (graph file text) added at `level` under names free there (their own if
+   *  it is), moved by (dx, dy), connected among themselves as they were; one edit, undone by
+   *  removing them. */
+  Pasted paste(const std::string& text, const std::string& level, double dx, double dy) const;
+  /** @brief A copy and a paste beside the originals, as one edit. */
+  Pasted duplicate(const std::vector<std::string>& nodes, double dx, double dy) const;
   /** @brief Nodes beside each other into a new subgraph (named subgraph_1, _2, ... at their
    *  level), one edit: undone by ungrouping it. */
   std::optional<Edit> group(const std::vector<std::string>& nodes) const;
@@ -105,7 +136,10 @@ class GraphModel {
 /** @brief Undo and redo of done edits. A new edit clears what could be redone. */
 class EditHistory {
  public:
+  /** @brief Adds an edit, or folds it into the open edit of its gesture (same merge key). */
   void done(Edit edit);
+  /** @brief Forgets everything (a graph loaded, another runtime). */
+  void clear() { undo_.clear(), redo_.clear(); }
   bool canUndo() const { return !undo_.empty(); }
   bool canRedo() const { return !redo_.empty(); }
   /** @brief The calls that undo the last edit (and moves it to the redo list). */

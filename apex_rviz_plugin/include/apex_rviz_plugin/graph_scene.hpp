@@ -78,7 +78,8 @@ class NodeItem : public QGraphicsObject {
   void paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) override;
 
  signals:
-  void parameterEdited(const QString& node, const QString& param, const QString& yaml);
+  /** `dragging`: a value of a slider drag going on (one undo step with the drag's last value). */
+  void parameterEdited(const QString& node, const QString& param, const QString& yaml, bool dragging = false);
   void interactiveToggled(const QString& node, const QString& param, bool interactive);
   void moved(const QString& node, QPointF pos);
   void slotFired(const QString& node, const QString& slot);
@@ -144,10 +145,13 @@ class GraphScene : public QGraphicsScene {
   void connectRequested(const apex::Connection& c);
   void disconnectRequested(const apex::Connection& c);
   void refused(const QString& why);
-  void parameterEdited(const QString& node, const QString& param, const QString& yaml);
+  /** `dragging`: a value of a slider drag going on (one undo step with the drag's last value). */
+  void parameterEdited(const QString& node, const QString& param, const QString& yaml, bool dragging = false);
   void interactiveToggled(const QString& node, const QString& param, bool interactive);
   void nodeMoved(const QString& node, QPointF pos);
   void nodeMenuRequested(const QString& node, QPoint screen_pos);
+  /** A right-click on empty canvas, at a scene and a screen position. */
+  void canvasMenuRequested(QPointF scene_pos, QPoint screen_pos);
   void portMenuRequested(const QString& node, const QString& port, QPoint screen_pos);
   void inspectRequested(const QString& node, const QString& port);
   void slotFired(const QString& node, const QString& slot);

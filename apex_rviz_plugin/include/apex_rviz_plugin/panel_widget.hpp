@@ -25,6 +25,8 @@ class PanelWidget : public QWidget {
   const GraphModel& model() const { return model_; }
   const RuntimeLink& link() const { return link_; }
   int nodeTypeCount() const { return type_count_; }
+  /** @brief Edits sent whose answer has not come back yet. */
+  int editsPending() const { return pending_; }
   QSize sizeHint() const override { return QSize(1000, 650); }  ///< room for a few nodes side by side
 
  signals:
@@ -39,6 +41,11 @@ class PanelWidget : public QWidget {
  private:
   void perform(const std::optional<Edit>& edit);
   void replay(std::vector<Call> calls, const QString& what);
+  /** Adds what a paste or duplicate made, and selects it once shown. */
+  void pasted(const Pasted& p);
+  void forgetHistory();
+  /** A graph was loaded: a fresh history, the inspected ports inspected again. */
+  void afterLoad();
   void onGraph(const apex::GraphState& graph);
   void onInspect(const QString& node, const QString& port);
   void refreshTypes();
@@ -52,7 +59,9 @@ class PanelWidget : public QWidget {
   EditHistory history_;
   RuntimeLink link_;
   int type_count_ = 0;
+  int pending_ = 0;
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
+  std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
 };
 
 }  // namespace apex_rviz_plugin

@@ -27,9 +27,10 @@ class ParamEditor : public QWidget {
   void showApplied(const apex::ParamInfo& param);
 
  signals:
-  void edited(const QString& name, const QString& yaml);
+  /** `dragging`: one of the values sent while a slider is held; its release sends the last one. */
+  void edited(const QString& name, const QString& yaml, bool dragging = false);
   void interactiveToggled(const QString& name, bool interactive);
-  /** A right-click on a number parameter (e.g. to optimise it), at a screen position. */
+  /** A right-click on the parameter (to reset it, or optimise a number), at a screen position. */
   void menuRequested(const QString& name, QPoint screen_pos);
 
  private:
@@ -49,6 +50,7 @@ class ParamEditor : public QWidget {
   bool updating_ = false;                         ///< true while show_ runs: no signals out
   QTimer throttle_;
   QString pending_;
+  bool drag_sent_ = false;  ///< values went out during the drag: its release must end it
   QCheckBox* interactive_ = nullptr;
 };
 
