@@ -97,6 +97,8 @@ QWidget* GraphEditor::buildToolBar() {
   connect(redo_, &QToolButton::clicked, this, [this] { emit redoRequested(); });
   auto* fit = button("fit", "Fit", "show the whole graph");
   connect(fit, &QToolButton::clicked, this, &GraphEditor::fitGraph);
+  auto* tidy = button("tidy", "Tidy", "lay the nodes out in layers, sources left, sinks right (one undo step)");
+  connect(tidy, &QToolButton::clicked, this, &GraphEditor::tidyRequested);
   auto* save = button("save", "Save...", "save the graph to a file (written by the runtime)");
   auto* load = button("load", "Load...", "load a graph file into the runtime (all or nothing)");
   connect(save, &QToolButton::clicked, this, [this] {
@@ -107,7 +109,7 @@ QWidget* GraphEditor::buildToolBar() {
     const QString path = QFileDialog::getOpenFileName(this, "Load graph", last_path_, "APEX graphs (*.yaml)");
     if (!path.isEmpty()) emit loadRequested(last_path_ = path);
   });
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, save, load}) row->addWidget(b);
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, save, load}) row->addWidget(b);
   return bar;
 }
 

@@ -209,6 +209,30 @@ std::optional<Edit> GraphModel::rename(const std::string& node_name, const std::
   return Edit{"Rename " + node_name + " to " + new_name, {{"rename_node", to}}, {{"rename_node", back}}};
 }
 
+bool GraphModel::hasPosition(const std::string& name) const {
+  const apex::NodeInfo* n = node(name);
+  if (!n || n->ui.empty()) return false;
+  try {
+    const YAML::Node u = YAML::Load(n->ui);
+    return u.IsMap() && u["x"] && u["y"];
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+
+std::optional<Edit> GraphModel::arrange(const std::map<std::string, std::pair<double, double>>& positions,
+                                        const std::string& label) const {
+  Edit e(label, {}, {});
+  for (const auto& [name, at] : positions) {
+    const apex::NodeInfo* n = node(name);
+    if (!n) continue;
+    e.apply.push_back(setUi(name, ui(at.first, at.second)));
+    e.revert.push_back(setUi(name, n->ui.empty() ? ui(0, 0) : n->ui));
+  }
+  if (e.apply.empty()) return std::nullopt;
+  return e;
+}
+
 std::optional<Edit> GraphModel::move(const std::string& node_name, double x, double y) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return std::nullopt;

@@ -96,6 +96,21 @@ void GraphScene::show(const GraphModel& model) {
   }
 }
 
+std::map<std::string, Box> GraphScene::boxes() const {
+  std::map<std::string, Box> out;
+  for (const auto& [name, item] : nodes_) {
+    const QRectF r = item->sceneBoundingRect();
+    out[name] = Box{item->x(), item->y(), r.width(), r.height()};
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> GraphScene::edges() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const ConnectionItem* c : connections_) out.emplace_back(c->connection().from_node, c->connection().to_node);
+  return out;
+}
+
 void GraphScene::setLevel(const std::string& path) {
   if (path == level_) return;
   level_ = path;

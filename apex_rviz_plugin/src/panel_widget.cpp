@@ -2,6 +2,7 @@
 
 #include <QClipboard>
 #include <QGuiApplication>
+#include <QTimer>
 #include <QVBoxLayout>
 
 namespace apex_rviz_plugin {
@@ -19,7 +20,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   connect(&link_, &RuntimeLink::connectionChanged, this, [this](bool up, const QString& text) {
     editor_->showConnection(up, text);
     if (!up) model_.reset(), watched_.clear(), forgetHistory();  // a runtime that comes back starts anew
-    if (up) refreshTypes(), editor_->fitNextGraph();
+    if (up) refreshTypes(), editor_->fitNextGraph(), untangle_ = true;
   });
   connectEditor();
 }
@@ -46,7 +47,10 @@ void PanelWidget::connectEditor() {
   connect(e, &GraphEditor::addRequested, this, [this, str](const QString& type, QPointF at) {
     const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
     const std::string name = model_.freshName(str(type));
-    perform(model_.addNode(str(type), inside.empty() ? name : inside + "/" + name, at.x(), at.y()));
+    std::vector<Box> taken;
+    for (const auto& [n, box] : editor_->scene()->boxes()) taken.push_back(box);
+    const Box free = freePlace({at.x(), at.y(), NodeItem::kWidth, 120}, taken);  // not on top of another
+    perform(model_.addNode(str(type), inside.empty() ? name : inside + "/" + name, free.x, free.y));
   });
   connect(e, &GraphEditor::removeRequested, this, [this, str](const QString& n) { perform(model_.removeNode(str(n))); });
   connect(e, &GraphEditor::groupIntoSubgraphRequested, this, [this, str](const QStringList& nodes) {
@@ -124,6 +128,11 @@ void PanelWidget::connectEditor() {
     perform(edit);
   });
   connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
+  connect(e, &GraphEditor::tidyRequested, this, &PanelWidget::tidy);
+  connect(s, &GraphScene::levelChanged, this, [this] {
+    untangle_ = true;
+    QTimer::singleShot(0, this, [this] { placeUnplaced(); });  // once the level's nodes are shown
+  });
 }
 
 void PanelWidget::perform(const std::optional<Edit>& edit) {
@@ -153,6 +162,57 @@ void PanelWidget::replay(std::vector<Call> calls, const QString& what) {
   link_.run(std::move(calls), [this, what](bool ok, const std::string& m) { report(ok, m, what); });
 }
 
+void PanelWidget::tidy() {
+  const auto boxes = editor_->scene()->boxes();
+  if (boxes.empty()) return;
+  double left = 1e18, top = 1e18;
+  for (const auto& [name, b] : boxes) left = std::min(left, b.x), top = std::min(top, b.y);
+  auto at = layeredLayout(boxes, editor_->scene()->edges());
+  for (auto& [name, p] : at) p.first += left, p.second += top;
+  perform(model_.arrange(at, "Tidy"));
+}
+
+void PanelWidget::placeUnplaced() {
+  const auto boxes = editor_->scene()->boxes();
+  if (untangle_ && !boxes.empty()) {  // positions written for other box sizes (by hand, another panel)
+    untangle_ = false;
+    bool overlap = false;
+    for (auto a = boxes.begin(); a != boxes.end() && !overlap; ++a)
+      for (auto b = std::next(a); b != boxes.end() && !overlap; ++b) overlap = a->second.overlaps(b->second);
+    if (overlap) {
+      editor_->fitNextGraph();  // the view shows them where they go
+      return place(layeredLayout(boxes, editor_->scene()->edges()));
+    }
+  }
+  std::map<std::string, Box> unplaced;
+  std::vector<Box> placed;
+  for (const auto& [name, box] : boxes) {
+    if (model_.hasPosition(name)) placing_.erase(name), placed.push_back(box);
+    else if (!placing_.count(name)) unplaced[name] = box;
+  }
+  if (unplaced.empty()) return;
+  double right = 0, top = 0;  // beside what has a place
+  for (const Box& b : placed) right = std::max(right, b.x + b.width + 80);
+  for (const Box& b : placed) top = std::min(top, b.y);
+  auto at = layeredLayout(unplaced, editor_->scene()->edges());
+  for (auto& [name, p] : at) {
+    const Box& b = unplaced[name];
+    const Box free = freePlace({right + p.first, top + p.second, b.width, b.height}, placed);
+    placed.push_back(free);
+    p = {free.x, free.y};
+  }
+  place(at);
+}
+
+void PanelWidget::place(const std::map<std::string, std::pair<double, double>>& positions) {
+  auto edit = model_.arrange(positions, "");
+  if (!edit) return;
+  for (const auto& [name, p] : positions) placing_.insert(name);
+  link_.run(std::move(edit->apply), [this](bool ok, const std::string& m) {
+    if (!ok) report(false, m, "placing nodes");
+  });
+}
+
 void PanelWidget::forgetHistory() {
   history_.clear();
   editor_->showHistory("", false, false);
@@ -160,6 +220,7 @@ void PanelWidget::forgetHistory() {
 
 void PanelWidget::afterLoad() {
   forgetHistory();  // the edits before were of another graph
+  untangle_ = true;
   watched_.clear();  // a load ends every inspection: the Optimizers' progress and the displays
   for (const auto& [node, port] : inspected_)  // displays showing a port go on if the new graph has it
     link_.inspect(node, port, [](bool, const std::string&, const std::string&, const std::string&) {});
@@ -177,6 +238,7 @@ void PanelWidget::onGraph(const apex::GraphState& graph) {
     model_.update(graph);
   }
   editor_->showGraph(model_);
+  placeUnplaced();
   watchOptimizers();
   emit graphShown(graph.revision);
 }

@@ -1,7 +1,7 @@
 // The panel widget (what GraphPanel shows in rviz) driven by simulated mouse and
 // keyboard input against a real runtime, offscreen. Each step is checked in the
 // runtime's own graph (~get_graph), not in the panel. A screenshot is written.
-//   test_panel_widget SCREENSHOT.png
+//   test_panel_widget SCREENSHOT.png DEMO_BAG GRAPHS_FOLDER
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -22,6 +22,7 @@
 #include <QSlider>
 
 #include <filesystem>
+#include <fstream>
 
 #include <apex/AddNode.h>
 #include <apex/Connect.h>
@@ -39,7 +40,7 @@ using namespace apex_rviz_plugin;
 
 namespace {
 
-std::string g_shot, g_bag;
+std::string g_shot, g_bag, g_graphs;
 
 /** Sets a parameter through the runtime's service, as a script would. */
 bool setParameter(const std::string& node, const std::string& param, const std::string& value) {
@@ -452,6 +453,65 @@ TEST_F(PanelWidgetTest, ABagThatIsGoneIsAnErrorOnTheNodeAndStaysOneWhenPlayed) {
   EXPECT_EQ(node->info().state, "error");
 }
 
+/** The boxes shown that lie on each other, as text; "" if none. */
+std::string overlapping(const GraphScene& scene) {
+  const auto boxes = scene.boxes();
+  std::string out;
+  for (auto a = boxes.begin(); a != boxes.end(); ++a)
+    for (auto b = std::next(a); b != boxes.end(); ++b)
+      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + "; ";
+  return out;
+}
+
+/** A graph of 200 nodes with no positions, as a script or an editor would write it: a clock
+ *  and a tree of relays. */
+std::string writeBigGraph() {
+  const std::string path = std::filesystem::path(g_bag).parent_path() / "panel_big.yaml";
+  std::ofstream out(path);
+  out << "apex_graph: 2\nnodes:\n  - {name: clock, type: apex_nodes/Clock, parameters: {rate: 1.0}}\n";
+  for (int i = 1; i < 200; ++i) out << "  - {name: r" << i << ", type: apex_nodes/Relay}\n";
+  out << "connections:\n";
+  for (int i = 1; i < 200; ++i)
+    out << "  - {from: " << (i < 4 ? std::string("clock/count") : "r" + std::to_string(i / 4) + "/out") << ", to: r" << i << "/in}\n";
+  return path;
+}
+
+TEST_F(PanelWidgetTest, LoadedGraphsAreLaidOutWithNoBoxOnAnotherAndTidyIsOneUndoStep) {
+  GraphScene* scene = panel.editor()->scene();
+  auto laid_out = [&](std::size_t nodes) {
+    const auto boxes = scene->boxes();
+    if (boxes.size() != nodes || panel.editsPending() > 0) return false;
+    for (const auto& [name, box] : boxes)
+      if (!panel.model().hasPosition(name)) return false;
+    return overlapping(*scene).empty();
+  };
+  // the demo graph as shipped (its positions were written by hand), then 200 nodes with none
+  emit panel.editor()->loadRequested(QString::fromStdString(g_graphs + "/demo.yaml"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return laid_out(5); }, kWaitMs))
+      << overlapping(*scene) << panel.editor()->message().toStdString();
+  emit panel.editor()->loadRequested(QString::fromStdString(writeBigGraph()));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return laid_out(200); }, kWaitMs))
+      << scene->boxes().size() << " boxes; " << overlapping(*scene) << panel.editor()->message().toStdString();
+  EXPECT_LT(scene->node("clock")->x(), scene->node("r1")->x());  // sources left, sinks right
+  EXPECT_LT(scene->node("r1")->x(), scene->node("r4")->x());
+
+  // Tidy after a node was dragged onto another: laid out again, one undo step
+  scene->node("r5")->setPos(scene->node("r6")->pos());
+  emit scene->nodeMoved("r5", scene->node("r6")->pos());
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && !overlapping(*scene).empty(); }, kWaitMs));
+  QTest::mouseClick(panel.editor()->findChild<QToolButton*>("tidy"), Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return laid_out(200); }, kWaitMs)) << overlapping(*scene);
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  EXPECT_TRUE(undo->toolTip().contains("Tidy")) << undo->toolTip().toStdString();
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && !overlapping(*scene).empty(); }, kWaitMs));
+
+  const std::string empty = std::filesystem::path(g_bag).parent_path() / "panel_empty.yaml";
+  std::ofstream(empty) << "apex_graph: 2\nnodes: []\n";
+  emit panel.editor()->loadRequested(QString::fromStdString(empty));  // the tests after start from nothing
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty(); }, kWaitMs));
+}
+
 TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestUndoably) {
   // A loop through services, as a script would make it: the bag's stamps, scaled, averaged per
   // pass; the Optimizer is what the panel adds.
@@ -577,6 +637,7 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "test_panel_widget");
   g_shot = argc > 1 ? argv[1] : "panel_widget.png";
   g_bag = argc > 2 ? argv[2] : "";
+  g_graphs = argc > 3 ? argv[3] : "";
   qputenv("QT_QPA_PLATFORM", "offscreen");
   QApplication app(argc, argv);
   return RUN_ALL_TESTS();

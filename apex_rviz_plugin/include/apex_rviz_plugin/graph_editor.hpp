@@ -82,6 +82,8 @@ class GraphEditor : public QWidget {
   void saveRequested(const QString& path);
   void loadRequested(const QString& path);
   void typesRequested();
+  /** Lay the nodes shown out in layers, left to right. */
+  void tidyRequested();
 
  private:
   QWidget* buildToolBar();

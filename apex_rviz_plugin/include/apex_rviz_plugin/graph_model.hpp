@@ -17,6 +17,7 @@
 #include <apex/SetUi.h>
 #include <apex/Ungroup.h>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <variant>
@@ -78,6 +79,8 @@ class GraphModel {
                      const std::string& to_port) const;
   /** @brief The node's position from its UI metadata ({x: .., y: ..}); (0, 0) if none. */
   std::pair<double, double> position(const std::string& node) const;
+  /** @brief Whether the node's UI metadata holds a position (a graph written without a panel has none). */
+  bool hasPosition(const std::string& node) const;
   /** @brief A name for a new node of a type not used in the graph: GaussianBlur -> gaussian_blur_1. */
   std::string freshName(const std::string& type) const;
 
@@ -97,6 +100,9 @@ class GraphModel {
   /** @brief A new name for a node in its place (a name, not a path), one edit. */
   std::optional<Edit> rename(const std::string& node, const std::string& new_name) const;
   std::optional<Edit> move(const std::string& node, double x, double y) const;
+  /** @brief Nodes moved to new positions (name -> x, y) as one edit, e.g. "Tidy". */
+  std::optional<Edit> arrange(const std::map<std::string, std::pair<double, double>>& positions,
+                              const std::string& label) const;
   /** @brief `nodes` (of one level) as graph file text, for the clipboard: types, parameters,
    *  ports shown, enabled, groups, positions and the connections among them. An inline
    *  subgraph is left out (add_node makes subgraphs from files): `left_out` names it. */

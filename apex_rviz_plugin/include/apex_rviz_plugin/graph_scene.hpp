@@ -13,6 +13,7 @@
 #include <map>
 
 #include "apex_rviz_plugin/graph_model.hpp"
+#include "apex_rviz_plugin/layout.hpp"
 
 class QGraphicsProxyWidget;
 
@@ -137,6 +138,10 @@ class GraphScene : public QGraphicsScene {
   /** @brief Shows another level (a subgraph's path, or "" for the top). */
   void setLevel(const std::string& path);
   const std::vector<ConnectionItem*>& connections() const { return connections_; }
+  /** @brief The boxes of the nodes shown (position and size), by name. */
+  std::map<std::string, Box> boxes() const;
+  /** @brief The connections shown, as (from node, to node). */
+  std::vector<std::pair<std::string, std::string>> edges() const;
 
   /** @brief Starts dragging a connection from a port (called by the port). */
   void beginConnect(PortItem* from);

@@ -44,6 +44,14 @@ class PanelWidget : public QWidget {
   /** Adds what a paste or duplicate made, and selects it once shown. */
   void pasted(const Pasted& p);
   void forgetHistory();
+  /** Tidy: the nodes shown in layers, where their top-left corner was; one edit. */
+  void tidy();
+  /** Gives nodes shown without a position one (a graph written by hand, a node added by a
+   *  script): laid out in layers beside the others, never on top of one. Not an edit of the
+   *  person's: not in the history. */
+  void placeUnplaced();
+  /** Sends positions for nodes (set_ui), outside the history. */
+  void place(const std::map<std::string, std::pair<double, double>>& positions);
   /** A graph was loaded: a fresh history, the inspected ports inspected again. */
   void afterLoad();
   void onGraph(const apex::GraphState& graph);
@@ -62,6 +70,8 @@ class PanelWidget : public QWidget {
   int pending_ = 0;
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
   std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
+  std::set<std::string> placing_;  // nodes given a position, until the graph shows it
+  bool untangle_ = true;  // next graph shown: boxes on top of each other are laid out (a Load, a new level)
 };
 
 }  // namespace apex_rviz_plugin
