@@ -162,6 +162,9 @@ void NodeItem::build() {
       connect(e, &ParamEditor::menuRequested, this,
               [this, node](const QString& n, QPoint at) { emit paramMenuRequested(node, n, at); });
     }
+    QFont small = box->font();  // as the node's own text: rviz's default font is larger
+    small.setPointSizeF(8);
+    box->setFont(small);
     box->setFixedWidth(static_cast<int>(kWidth - 2 * kPad));
     box->adjustSize();
     params_ = new QGraphicsProxyWidget(this);

@@ -15,6 +15,9 @@
 #include <QPushButton>
 #include <QSlider>
 #include <QSpinBox>
+#include <QVBoxLayout>
+
+#include <algorithm>
 
 #include <cmath>
 
@@ -43,38 +46,70 @@ QString number(double v) { return QString::number(v, 'g', 10); }
 /** A YAML single-quoted string: reads back as exactly `s`. */
 QString quoted(const QString& s) { return "'" + QString(s).replace("'", "''") + "'"; }
 
-/** A slider over [min, max] in at most 1000 steps, for a double value. */
+/** A slider over [min, max] in at most 1000 steps, for a double value; logarithmic for a
+ *  positive range over more than two decades (0.01 to 1000: each decade as wide as the next). */
 struct SliderScale {
   double min, max, step;
-  int steps() const { return std::max(1, std::min(1000, static_cast<int>(std::lround((max - min) / step)))); }
-  int toSlider(double v) const { return static_cast<int>(std::lround((v - min) / (max - min) * steps())); }
-  double fromSlider(int i) const { return min + (max - min) * i / steps(); }
+  bool log() const { return min > 0 && max / min > 100; }
+  int steps() const {
+    return log() ? 1000 : std::max(1, std::min(1000, static_cast<int>(std::lround((max - min) / step))));
+  }
+  int toSlider(double v) const {
+    const double f = log() ? std::log(std::max(v, min) / min) / std::log(max / min) : (v - min) / (max - min);
+    return static_cast<int>(std::lround(f * steps()));
+  }
+  double fromSlider(int i) const {
+    const double f = static_cast<double>(i) / steps();
+    if (!log()) return min + (max - min) * f;
+    const double v = min * std::pow(max / min, f);
+    return std::clamp(min + std::round((v - min) / step) * step, min, max);  // on the parameter's steps
+  }
 };
 
 QSlider* makeSlider(const SliderScale& s) {
   auto* slider = new QSlider(Qt::Horizontal);
   slider->setRange(0, s.steps());
-  slider->setMinimumWidth(80);
+  slider->setMinimumWidth(60);
+  if (s.log()) slider->setToolTip("logarithmic: each decade takes the same width");
   return slider;
+}
+
+/** What the parameter is: its kind, range, default and description. */
+QString tip(const apex::ParamInfo& p) {
+  QString t = QString::fromStdString(p.name + " (" + p.kind + ")");
+  if (p.kind.find("range") != std::string::npos || p.kind == "interval")
+    t += QString(": %1 to %2").arg(number(p.min), number(p.max)) + (p.step > 0 ? ", step " + number(p.step) : "");
+  if (!p.options.empty()) {
+    QStringList o;
+    for (const auto& x : p.options) o << QString::fromStdString(x);
+    t += ": one of " + o.join(", ");
+  }
+  t += "\ndefault " + QString::fromStdString(p.default_value);
+  if (!p.description.empty()) t += "\n" + QString::fromStdString(p.description);
+  return t + "\n(right-click: reset to default)";
 }
 
 }  // namespace
 
 ParamEditor::ParamEditor(const apex::ParamInfo& param, QWidget* parent) : QWidget(parent), param_(param) {
   setObjectName(QString::fromStdString("param_" + param.name));
-  setToolTip(QString::fromStdString(param.name + " (" + param.kind + "): " + param.description));
+  setToolTip(tip(param));
   throttle_.setSingleShot(true);
   connect(&throttle_, &QTimer::timeout, this, [this] {
     if (!pending_.isEmpty()) emit edited(QString::fromStdString(param_.name), pending_, true);
     drag_sent_ = drag_sent_ || !pending_.isEmpty();
     pending_.clear();
   });
-  auto* row = new QHBoxLayout(this);
+  auto* column = new QVBoxLayout(this);  // the name and value on one line; a slider below, full width
+  column->setContentsMargins(0, 0, 0, 0);
+  column->setSpacing(0);
+  auto* row = row_ = new QHBoxLayout;
   row->setContentsMargins(0, 0, 0, 0);
   row->setSpacing(4);
+  column->addLayout(row);
   auto* label = new QLabel(QString::fromStdString(param.name));
-  label->setMinimumWidth(70);
-  row->addWidget(label);
+  label->setMinimumWidth(50);
+  row->addWidget(label, 1);
   setContextMenuPolicy(Qt::CustomContextMenu);  // reset to default; a number can be tuned too
   connect(this, &QWidget::customContextMenuRequested, this,
           [this](const QPoint& at) { emit menuRequested(QString::fromStdString(param_.name), mapToGlobal(at)); });
@@ -122,7 +157,7 @@ void ParamEditor::build() {
   const std::string& k = param_.kind;
   if (k == "bool") {
     auto* box = new QCheckBox;
-    layout()->addWidget(box);
+    row_->addWidget(box);
     connect(box, &QCheckBox::toggled, this, [this](bool on) { send(on ? "true" : "false", false); });
     show_ = [box](const std::string& v) { box->setChecked(as<bool>(parse(v), false)); };
   } else if (k == "int" || k == "int range") {
@@ -154,13 +189,13 @@ void ParamEditor::buildNumber(bool integer) {
   spin->setRange(lo, hi);
   spin->setSingleStep(step);
   spin->setKeyboardTracking(false);  // typed digits go out on Enter or focus loss
-  spin->setMinimumWidth(72);
+  spin->setMinimumWidth(76);
   auto text = [integer](double v) { return integer ? QString::number(std::lround(v)) : number(v); };
   QSlider* slider = nullptr;
   const SliderScale scale{lo, hi, step};
   if (ranged && hi > lo) {
     slider = makeSlider(scale);
-    layout()->addWidget(slider);
+    static_cast<QBoxLayout*>(layout())->addWidget(slider);  // below the line
     connect(slider, &QSlider::valueChanged, this, [this, spin, slider, scale, text](int i) {
       const double v = scale.fromSlider(i);
       QSignalBlocker block(spin);
@@ -170,7 +205,7 @@ void ParamEditor::buildNumber(bool integer) {
     connect(slider, &QSlider::sliderReleased, this,
             [this, slider, scale, text] { send(text(scale.fromSlider(slider->value())), false); });
   }
-  layout()->addWidget(spin);
+  row_->addWidget(spin);
   connect(spin, QOverload<double>::of(&QDoubleSpinBox::valueChanged), this, [this, slider, scale, text](double v) {
     if (slider) {
       QSignalBlocker block(slider);
@@ -195,7 +230,8 @@ void ParamEditor::buildInterval() {
   QSlider* high = makeSlider(scale);
   low->setObjectName("low"), high->setObjectName("high");
   auto* values = new QLabel;
-  layout()->addWidget(low), layout()->addWidget(high), layout()->addWidget(values);
+  row_->addWidget(values);
+  for (QSlider* s : {low, high}) static_cast<QBoxLayout*>(layout())->addWidget(s);
   auto value = [scale, low, high] {
     return "[" + number(scale.fromSlider(low->value())) + ", " + number(scale.fromSlider(high->value())) + "]";
   };
@@ -219,7 +255,7 @@ void ParamEditor::buildInterval() {
 void ParamEditor::buildSet() {
   auto* combo = new QComboBox;
   for (const auto& o : param_.options) combo->addItem(QString::fromStdString(o));
-  layout()->addWidget(combo);
+  row_->addWidget(combo);
   connect(combo, QOverload<int>::of(&QComboBox::activated), this,
           [this, combo](int) { send(quoted(combo->currentText()), false); });
   show_ = [combo](const std::string& v) {
@@ -238,7 +274,7 @@ void ParamEditor::buildAngle() {
   spin->setSuffix(QString::fromUtf8("\u00b0"));
   spin->setRange(param_.max > param_.min ? param_.min * 180 / M_PI : -360, param_.max > param_.min ? param_.max * 180 / M_PI : 360);
   spin->setKeyboardTracking(false);
-  layout()->addWidget(dial), layout()->addWidget(spin);
+  row_->addWidget(dial), row_->addWidget(spin);
   auto radians = [](double deg) { return number(deg * M_PI / 180); };
   connect(dial, &QDial::valueChanged, this, [this, dial, spin, radians](int deg) {
     QSignalBlocker block(spin);
@@ -263,7 +299,7 @@ void ParamEditor::buildPath() {
   auto* line = new QLineEdit;
   auto* browse = new QPushButton("...");
   browse->setFixedWidth(28);
-  layout()->addWidget(line), layout()->addWidget(browse);
+  row_->addWidget(line), row_->addWidget(browse);
   connect(line, &QLineEdit::editingFinished, this, [this, line] { send(quoted(line->text()), false); });
   connect(browse, &QPushButton::clicked, this, [this, line] {
     const QString mode = QString::fromStdString(param_.path_mode);
@@ -280,7 +316,7 @@ void ParamEditor::buildPath() {
 void ParamEditor::buildColor() {
   auto* button = new QPushButton;
   button->setFixedWidth(48);
-  layout()->addWidget(button);
+  row_->addWidget(button);
   auto paint = [button](const QColor& c) { button->setStyleSheet("background-color: " + c.name()); };
   auto current = std::make_shared<QColor>();
   connect(button, &QPushButton::clicked, this, [this, current, paint] {
@@ -301,7 +337,7 @@ void ParamEditor::buildColor() {
 void ParamEditor::buildText() {  // strings as text; pairs and lists as their YAML
   const bool is_string = param_.kind == "string";
   auto* line = new QLineEdit;
-  layout()->addWidget(line);
+  row_->addWidget(line);
   connect(line, &QLineEdit::editingFinished, this, [this, line, is_string] {
     send(is_string ? quoted(line->text()) : line->text(), false);
   });

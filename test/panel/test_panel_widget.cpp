@@ -344,6 +344,10 @@ TEST_F(PanelWidgetTest, ASliderDragIsOneUndoStepAndResetToDefaultAnother) {
   auto* slider = rate->findChild<QSlider*>();
   auto* spin = rate->findChild<QDoubleSpinBox*>("spin");
   ASSERT_TRUE(slider && spin);
+  // 0.01 to 1000 spans five decades: the slider is logarithmic, 10 is three decades along
+  EXPECT_NEAR(slider->value(), 600, 1);
+  EXPECT_TRUE(rate->toolTip().contains("0.01 to 1000")) << rate->toolTip().toStdString();
+  EXPECT_TRUE(rate->toolTip().contains("ticks per second")) << rate->toolTip().toStdString();
   // a drag as QSlider sees one: held down, moved over several throttle intervals, released
   slider->setSliderDown(true);
   for (int i = 1; i <= 6; ++i) {
@@ -352,7 +356,7 @@ TEST_F(PanelWidgetTest, ASliderDragIsOneUndoStepAndResetToDefaultAnother) {
   }
   slider->setSliderDown(false);
   const double dragged = spin->value();
-  ASSERT_GT(dragged, 100);
+  ASSERT_GT(dragged, 20);
   ASSERT_TRUE(QTest::qWaitFor([&] {
     return panel.editsPending() == 0 && std::abs(number(runtimeGraph(), "drag_clock", "rate") - dragged) < 1e-3;
   }, kWaitMs)) << number(runtimeGraph(), "drag_clock", "rate") << " vs " << dragged;
@@ -439,18 +443,17 @@ TEST_F(PanelWidgetTest, ABagThatIsGoneIsAnErrorOnTheNodeAndStaysOneWhenPlayed) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("gone") != nullptr; }, kWaitMs));
   fs::remove(gone);
   ASSERT_TRUE(setParameter("gone", "topics", "[/camera/points]"));  // opens the file again: it is not there
-  NodeItem* node = scene->node("gone");
-  ASSERT_TRUE(QTest::qWaitFor([&] { return node->info().state == "error"; }, kWaitMs));
-  EXPECT_TRUE(node->toolTip().contains("cannot open bag")) << node->toolTip().toStdString();
-  auto* play = node->transport()->findChild<QToolButton*>("play");
-  QTest::mouseClick(play, Qt::LeftButton);  // pause, and play again: still in error
-  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "gone", "playing") == "false"; }, kWaitMs));
-  QTest::mouseClick(play, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("gone")->info().state == "error"; }, kWaitMs));
+  EXPECT_TRUE(scene->node("gone")->toolTip().contains("cannot open bag")) << scene->node("gone")->toolTip().toStdString();
+  auto play = [&] { return scene->node("gone")->transport()->findChild<QToolButton*>("play"); };  // rebuilt with its ports
+  QTest::mouseClick(play(), Qt::LeftButton);  // pause, and play again: still in error
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(panel.model().graph(), "gone", "playing") == "false"; }, kWaitMs));
+  QTest::mouseClick(play(), Qt::LeftButton);
   ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "gone", "playing") == "true"; }, kWaitMs));
   ASSERT_TRUE(QTest::qWaitFor([&] { return !find(runtimeGraph(), "gone")->error.empty(); }, kWaitMs));
   QTest::qWait(300);  // a firing after play would have cleared it: give it the time to
   EXPECT_EQ(find(runtimeGraph(), "gone")->state, "error");
-  EXPECT_EQ(node->info().state, "error");
+  EXPECT_EQ(scene->node("gone")->info().state, "error");
 }
 
 /** The boxes shown that lie on each other, as text; "" if none. */

@@ -12,6 +12,7 @@
 #include <functional>
 
 class QCheckBox;
+class QHBoxLayout;
 
 namespace apex_rviz_plugin {
 
@@ -52,6 +53,7 @@ class ParamEditor : public QWidget {
   QString pending_;
   bool drag_sent_ = false;  ///< values went out during the drag: its release must end it
   QCheckBox* interactive_ = nullptr;
+  QHBoxLayout* row_ = nullptr;  ///< the name, the value's widgets, the ports check box
 };
 
 }  // namespace apex_rviz_plugin
