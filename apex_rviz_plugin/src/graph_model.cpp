@@ -75,6 +75,10 @@ class StateView : public apex::ConnectionView {
   const apex::GraphState& graph_;
 };
 
+bool same(const apex::Connection& a, const apex::Connection& b) {
+  return a.from_node == b.from_node && a.from_port == b.from_port && a.to_node == b.to_node && a.to_port == b.to_port;
+}
+
 }  // namespace
 
 bool GraphModel::update(const apex::GraphState& graph) {
@@ -108,6 +112,25 @@ std::string GraphModel::whyNot(const std::string& fn, const std::string& fp, con
                                const std::string& tp) const {
   auto checked = apex::checkConnection(StateView(graph_), {fn, fp, tn, tp, 0});
   return checked ? "" : checked.message();
+}
+
+std::string GraphModel::whyNotReplacing(const std::string& fn, const std::string& fp, const std::string& tn,
+                                        const std::string& tp) const {
+  const auto old = feeding(tn, tp);
+  if (!old) return whyNot(fn, fp, tn, tp);
+  apex::GraphState without = graph_;  // as if the link into it were gone
+  auto& cs = without.connections;
+  cs.erase(std::remove_if(cs.begin(), cs.end(), [&](const apex::Connection& c) { return same(c, *old); }), cs.end());
+  auto checked = apex::checkConnection(StateView(without), {fn, fp, tn, tp, 0});
+  return checked ? "" : checked.message();
+}
+
+std::optional<apex::Connection> GraphModel::feeding(const std::string& node_name, const std::string& port_name) const {
+  const apex::PortInfo* p = port(node_name, port_name, "");
+  if (!p || p->kind == "slot" || p->kind == "trigger") return std::nullopt;
+  for (const auto& c : graph_.connections)
+    if (c.to_node == node_name && c.to_port == port_name && c.kind != "export") return c;
+  return std::nullopt;
 }
 
 std::pair<double, double> GraphModel::position(const std::string& name) const {
@@ -155,8 +178,36 @@ std::optional<Edit> GraphModel::removeNode(const std::string& name) const {
 }
 
 Edit GraphModel::connect(const apex::Connection& c) const {
-  return {"Connect " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port,
-          {calls::connect("connect", c)}, {calls::connect("disconnect", c)}};
+  const std::string what = c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port;
+  const auto old = feeding(c.to_node, c.to_port);
+  if (!old || same(*old, c)) return {"Connect " + what, {calls::connect("connect", c)}, {calls::connect("disconnect", c)}};
+  return {"Connect " + what + " (instead of " + old->from_node + "/" + old->from_port + ")",
+          {calls::connect("disconnect", *old), calls::connect("connect", c)},
+          {calls::connect("disconnect", c), calls::connect("connect", *old)}};
+}
+
+std::optional<Edit> GraphModel::insert(const std::string& name, const apex::Connection& c, double x, double y) const {
+  const apex::NodeInfo* n = node(name);
+  if (!n || c.from_node == name || c.to_node == name) return std::nullopt;
+  for (const auto& k : graph_.connections)
+    if (k.from_node == name || k.to_node == name) return std::nullopt;  // a node in use stays as it is
+  GraphModel without;  // the graph without c: the node takes its place
+  without.graph_ = graph_;
+  auto& cs = without.graph_.connections;
+  cs.erase(std::remove_if(cs.begin(), cs.end(), [&](const apex::Connection& k) { return same(k, c); }), cs.end());
+  apex::Connection in = c, out = c;
+  in.to_node = out.from_node = name;
+  in.to_port = out.from_port = "";
+  for (const auto& p : n->ports) {
+    if (in.to_port.empty() && p.kind == "input" && without.whyNot(c.from_node, c.from_port, name, p.name).empty()) in.to_port = p.name;
+    if (out.from_port.empty() && p.kind == "output" && without.whyNot(name, p.name, c.to_node, c.to_port).empty()) out.from_port = p.name;
+  }
+  if (in.to_port.empty() || out.from_port.empty()) return std::nullopt;
+  Edit e("Insert " + name + " into " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port, {}, {});
+  e.apply = {setUi(name, ui(x, y)), calls::connect("disconnect", c), calls::connect("connect", in), calls::connect("connect", out)};
+  e.revert = {calls::connect("disconnect", out), calls::connect("disconnect", in), calls::connect("connect", c),
+              setUi(name, n->ui.empty() ? ui(0, 0) : n->ui)};
+  return e;
 }
 
 Edit GraphModel::disconnect(const apex::Connection& c) const {

@@ -68,7 +68,7 @@ void GraphScene::show(const GraphModel& model) {
       nodes_[n.name] = item;
       connect(item, &NodeItem::parameterEdited, this, &GraphScene::parameterEdited);
       connect(item, &NodeItem::interactiveToggled, this, &GraphScene::interactiveToggled);
-      connect(item, &NodeItem::moved, this, &GraphScene::nodeMoved);
+      connect(item, &NodeItem::moved, this, &GraphScene::dropped);
       connect(item, &NodeItem::slotFired, this, &GraphScene::slotFired);
       connect(item, &NodeItem::paramMenuRequested, this, &GraphScene::paramMenuRequested);
       connect(item, &QGraphicsObject::xChanged, this, &GraphScene::reroute);
@@ -109,6 +109,19 @@ std::vector<std::pair<std::string, std::string>> GraphScene::edges() const {
   std::vector<std::pair<std::string, std::string>> out;
   for (const ConnectionItem* c : connections_) out.emplace_back(c->connection().from_node, c->connection().to_node);
   return out;
+}
+
+void GraphScene::dropped(const QString& name, QPointF pos) {
+  NodeItem* item = node(name.toStdString());
+  const QRectF box = item ? item->sceneBoundingRect() : QRectF();
+  for (const ConnectionItem* c : connections_) {  // onto a connection: put in it, if it can be
+    if (!item || c->connection().from_node == name.toStdString() || c->connection().to_node == name.toStdString()) continue;
+    bool crosses = false;
+    for (int i = 1; i < 40 && !crosses; ++i) crosses = box.contains(c->path().pointAtPercent(i / 40.0));
+    if (crosses && model_ && model_->insert(name.toStdString(), c->connection(), pos.x(), pos.y()))
+      return emit insertRequested(name, c->connection(), pos);
+  }
+  emit nodeMoved(name, pos);
 }
 
 void GraphScene::setLevel(const std::string& path) {
@@ -172,7 +185,7 @@ void GraphScene::beginConnect(PortItem* from) {
   for (const auto& [name, item] : nodes_) {
     for (PortItem* p : item->ports()) {
       if (p->isSource()) continue;
-      const std::string why = model_ ? model_->whyNot(from->node()->info().name, src.name, name, p->port().name) : "";
+      const std::string why = model_ ? model_->whyNotReplacing(from->node()->info().name, src.name, name, p->port().name) : "";
       p->setMark(why.empty() ? PortItem::Mark::Accepts : PortItem::Mark::Refuses, QString::fromStdString(why));
     }
   }
@@ -192,7 +205,7 @@ void GraphScene::mouseReleaseEvent(QGraphicsSceneMouseEvent* e) {
   endDrag();
   if (!target || target->isSource()) return;
   c.to_node = target->node()->info().name, c.to_port = target->port().name;
-  const std::string why = model_ ? model_->whyNot(c.from_node, c.from_port, c.to_node, c.to_port) : "";
+  const std::string why = model_ ? model_->whyNotReplacing(c.from_node, c.from_port, c.to_node, c.to_port) : "";
   if (!why.empty()) emit refused(QString::fromStdString("cannot connect: " + why));
   else emit connectRequested(c);
 }

@@ -98,6 +98,9 @@ void PanelWidget::connectEditor() {
     perform(model_.setInteractive(str(n), str(p), on));
   });
   connect(s, &GraphScene::nodeMoved, this, [this, str](const QString& n, QPointF at) { perform(model_.move(str(n), at.x(), at.y())); });
+  connect(s, &GraphScene::insertRequested, this, [this, str](const QString& n, const apex::Connection& c, QPointF at) {
+    perform(model_.insert(str(n), c, at.x(), at.y()));
+  });
   connect(e, &GraphEditor::undoRequested, this, [this] { replay(history_.undo(), "undo"); });
   connect(e, &GraphEditor::redoRequested, this, [this] { replay(history_.redo(), "redo"); });
   connect(e, &GraphEditor::controlRequested, this, [this](const QString& cmd) {
@@ -187,8 +190,15 @@ void PanelWidget::placeUnplaced() {
   std::map<std::string, Box> unplaced;
   std::vector<Box> placed;
   for (const auto& [name, box] : boxes) {
-    if (model_.hasPosition(name)) placing_.erase(name), placed.push_back(box);
-    else if (!placing_.count(name)) unplaced[name] = box;
+    auto sent = placing_.find(name);
+    if (model_.hasPosition(name)) {
+      if (sent != placing_.end()) placing_.erase(sent);
+      placed.push_back(box);
+    } else if (sent != placing_.end()) {
+      placed.push_back(sent->second);  // where it goes: taken for the next ones
+    } else {
+      unplaced[name] = box;
+    }
   }
   if (unplaced.empty()) return;
   double right = 0, top = 0;  // beside what has a place
@@ -207,7 +217,12 @@ void PanelWidget::placeUnplaced() {
 void PanelWidget::place(const std::map<std::string, std::pair<double, double>>& positions) {
   auto edit = model_.arrange(positions, "");
   if (!edit) return;
-  for (const auto& [name, p] : positions) placing_.insert(name);
+  const auto boxes = editor_->scene()->boxes();
+  for (const auto& [name, p] : positions) {
+    auto b = boxes.find(name);
+    placing_[name] = Box{p.first, p.second, b == boxes.end() ? NodeItem::kWidth : b->second.width,
+                         b == boxes.end() ? 120 : b->second.height};
+  }
   link_.run(std::move(edit->apply), [this](bool ok, const std::string& m) {
     if (!ok) report(false, m, "placing nodes");
   });

@@ -221,6 +221,52 @@ TEST(GraphModel, ResetToDefaultSetsOneOrAllParametersAndIsUndoneToTheValuesBefor
   EXPECT_FALSE(m.resetToDefault("nobody"));
 }
 
+TEST(GraphModel, ALinkOntoAnInputInUseReplacesTheOldOneInOneEdit) {
+  GraphModel m;
+  m.update(graph(1));
+  EXPECT_THAT(m.whyNot("clock", "time", "count", "in"), HasSubstr("already connected"));
+  EXPECT_EQ(m.whyNotReplacing("clock", "time", "count", "in"), "");  // the drag may end there
+  EXPECT_THAT(m.whyNotReplacing("clock", "processed", "count", "in"), HasSubstr("a trigger connects only to slots"));
+  apex::Connection c;
+  c.from_node = "clock", c.from_port = "time", c.to_node = "count", c.to_port = "in";
+  const Edit e = m.connect(c);
+  ASSERT_EQ(e.apply.size(), 2u);
+  EXPECT_EQ(e.apply[0].service, "disconnect");
+  EXPECT_EQ(std::get<apex::Connect::Request>(e.apply[0].request).from_node, "relay");
+  EXPECT_EQ(e.apply[1].service, "connect");
+  ASSERT_EQ(e.revert.size(), 2u);
+  EXPECT_EQ(e.revert[1].service, "connect");  // the old link back
+  EXPECT_EQ(std::get<apex::Connect::Request>(e.revert[1].request).from_node, "relay");
+  c.to_port = "reset";  // a slot takes many events: nothing replaced
+  c.from_port = "processed";
+  EXPECT_EQ(m.connect(c).apply.size(), 1u);
+}
+
+TEST(GraphModel, ANodeDroppedOntoALinkIsPutInItInOneEdit) {
+  GraphModel m;
+  auto g = graph(1);
+  apex::NodeInfo scale;
+  scale.name = "scale", scale.type = "apex_nodes/Relay", scale.enabled = true;
+  scale.ports = {port("in", "input", "any"), port("out", "output", "any")};
+  scale.ui = "{x: 1, y: 2}";
+  g.nodes.push_back(scale);
+  m.update(g);
+  const apex::Connection c = g.connections[1];  // relay/out -> count/in
+  auto e = m.insert("scale", c, 300, 40);
+  ASSERT_TRUE(e);
+  std::vector<std::string> calls;
+  for (const auto& k : e->apply) {
+    if (k.service == "set_ui") { calls.push_back("set_ui"); continue; }
+    const auto& r = std::get<apex::Connect::Request>(k.request);
+    calls.push_back(k.service + " " + r.from_node + "/" + r.from_port + " " + r.to_node + "/" + r.to_port);
+  }
+  EXPECT_EQ(calls, (std::vector<std::string>{"set_ui", "disconnect relay/out count/in", "connect relay/out scale/in",
+                                             "connect scale/out count/in"}));
+  EXPECT_EQ(std::get<apex::SetUi::Request>(e->revert.back().request).ui, "{x: 1, y: 2}");
+  EXPECT_FALSE(m.insert("relay", g.connections[0], 0, 0));  // connected already: it stays as it is
+  EXPECT_FALSE(m.insert("clock", c, 0, 0));                 // no input
+}
+
 TEST(GraphModel, EnableGroupAndInteractiveEditsAreUndoneToTheOldState) {
   GraphModel m;
   m.update(graph(1));

@@ -434,6 +434,50 @@ TEST_F(PanelWidgetTest, RenameCopyPasteAndDuplicateAndTheCopiesAreWhatIsSelected
   EXPECT_TRUE(connected(runtimeGraph(), "src", "count", "sink", "in"));
 }
 
+TEST_F(PanelWidgetTest, DropANodeOntoALinkToPutItInAndDragALinkOntoAnInputInUseToReplaceIt) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "ins_clock", "{rate: 20.0}"));
+  ASSERT_TRUE(addNode("apex_nodes/Counter", "ins_count", ""));
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "ins_mid", ""));
+  ASSERT_TRUE(link("ins_clock", "count", "ins_count", "in"));
+  GraphScene* scene = panel.editor()->scene();
+  auto link_item = [&]() -> ConnectionItem* {
+    for (ConnectionItem* c : scene->connections())
+      if (c->connection().from_node == "ins_clock" && c->connection().to_node == "ins_count") return c;
+    return nullptr;
+  };
+  ASSERT_TRUE(QTest::qWaitFor([&] {  // placed by the panel (added by a script, with no position)
+    for (const char* n : {"ins_clock", "ins_count", "ins_mid"})
+      if (!scene->node(n) || !panel.model().hasPosition(n)) return false;
+    return link_item() && panel.editsPending() == 0;
+  }, kWaitMs));
+  const auto boxes = scene->boxes();  // three nodes added at once by a script: side by side
+  EXPECT_FALSE(boxes.at("ins_mid").overlaps(boxes.at("ins_count")) || boxes.at("ins_mid").overlaps(boxes.at("ins_clock")) ||
+               boxes.at("ins_clock").overlaps(boxes.at("ins_count")));
+  panel.editor()->fitGraph();
+  NodeItem* mid = scene->node("ins_mid");
+  mid->setZValue(10);
+  const QPointF on_link = link_item()->path().pointAtPercent(0.5);
+  const auto before = panel.model().position("ins_mid");
+  drag(view, mid->scenePos() + QPointF(60, 10), on_link);  // its title onto the link
+  ASSERT_TRUE(QTest::qWaitFor([&] { return connected(runtimeGraph(), "ins_mid", "out", "ins_count", "in"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_TRUE(connected(runtimeGraph(), "ins_clock", "count", "ins_mid", "in"));
+  EXPECT_FALSE(connected(runtimeGraph(), "ins_clock", "count", "ins_count", "in"));
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Insert ins_mid"); }, kWaitMs)) << undo->toolTip().toStdString();
+  QTest::mouseClick(undo, Qt::LeftButton);  // one step: the link as it was
+  ASSERT_TRUE(QTest::qWaitFor([&] { return connected(runtimeGraph(), "ins_clock", "count", "ins_count", "in"); }, kWaitMs));
+  EXPECT_FALSE(connected(runtimeGraph(), "ins_mid", "out", "ins_count", "in"));
+
+  // a new link dragged onto the input in use takes its place
+  ASSERT_TRUE(QTest::qWaitFor([&] { return link_item() && panel.model().position("ins_mid") == before; }, kWaitMs));
+  panel.editor()->fitGraph();
+  drag(view, portAt("ins_clock", "time", true), portAt("ins_count", "in", false));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return connected(runtimeGraph(), "ins_clock", "time", "ins_count", "in"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_FALSE(connected(runtimeGraph(), "ins_clock", "count", "ins_count", "in"));
+}
+
 TEST_F(PanelWidgetTest, ABagThatIsGoneIsAnErrorOnTheNodeAndStaysOneWhenPlayed) {
   namespace fs = std::filesystem;
   const std::string gone = fs::path(g_bag).parent_path() / "panel_gone.bag";

@@ -77,6 +77,11 @@ class GraphModel {
    *  or parameter input), with the runtime's rules; if not, why. Empty when it may. */
   std::string whyNot(const std::string& from_node, const std::string& from_port, const std::string& to_node,
                      const std::string& to_port) const;
+  /** @brief As whyNot, for a new link that replaces the one feeding the input (as connect() does). */
+  std::string whyNotReplacing(const std::string& from_node, const std::string& from_port, const std::string& to_node,
+                              const std::string& to_port) const;
+  /** @brief The connection feeding an input or parameter input, if any (slots take many). */
+  std::optional<apex::Connection> feeding(const std::string& node, const std::string& port) const;
   /** @brief The node's position from its UI metadata ({x: .., y: ..}); (0, 0) if none. */
   std::pair<double, double> position(const std::string& node) const;
   /** @brief Whether the node's UI metadata holds a position (a graph written without a panel has none). */
@@ -88,7 +93,12 @@ class GraphModel {
   Edit addNode(const std::string& type, const std::string& name, double x, double y) const;
   /** @brief Removing a node, undone by adding it back with its parameters, group, UI and connections. */
   std::optional<Edit> removeNode(const std::string& name) const;
+  /** @brief A new connection; one into an input fed already replaces that link (one edit). */
   Edit connect(const apex::Connection& c) const;
+  /** @brief A node with no connections put into `c` (from its first input that takes c's sender
+   *  to its first output c's receiver takes) and moved to (x, y); one edit. Nothing if it has
+   *  connections or no such ports. */
+  std::optional<Edit> insert(const std::string& node, const apex::Connection& c, double x, double y) const;
   Edit disconnect(const apex::Connection& c) const;
   /** @brief `dragging`: one value of a drag going on; the drag's edits are one undo step, closed
    *  by its last value (dragging false). */

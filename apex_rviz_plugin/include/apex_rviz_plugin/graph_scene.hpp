@@ -154,6 +154,8 @@ class GraphScene : public QGraphicsScene {
   void parameterEdited(const QString& node, const QString& param, const QString& yaml, bool dragging = false);
   void interactiveToggled(const QString& node, const QString& param, bool interactive);
   void nodeMoved(const QString& node, QPointF pos);
+  /** A node with no connections dropped onto connection `c`: to be put in it. */
+  void insertRequested(const QString& node, const apex::Connection& c, QPointF pos);
   void nodeMenuRequested(const QString& node, QPoint screen_pos);
   /** A right-click on empty canvas, at a scene and a screen position. */
   void canvasMenuRequested(QPointF scene_pos, QPoint screen_pos);
@@ -171,6 +173,8 @@ class GraphScene : public QGraphicsScene {
 
  private:
   void reroute();
+  /** A node dragged and let go: onto a connection it fits in, an insert; else a move. */
+  void dropped(const QString& node, QPointF pos);
   PortItem* portAt(QPointF pos) const;
   void endDrag();
 

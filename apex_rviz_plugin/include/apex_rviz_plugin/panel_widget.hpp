@@ -70,7 +70,7 @@ class PanelWidget : public QWidget {
   int pending_ = 0;
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
   std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
-  std::set<std::string> placing_;  // nodes given a position, until the graph shows it
+  std::map<std::string, Box> placing_;  // where nodes were sent, until the graph shows them there
   bool untangle_ = true;  // next graph shown: boxes on top of each other are laid out (a Load, a new level)
 };
 
