@@ -115,9 +115,11 @@ void PanelWidget::connectEditor() {
     link_.saveGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "saved " + path); });
   });
   connect(e, &GraphEditor::loadRequested, this, [this](const QString& path) {
+    untangle_ = true;  // for the loaded graph's first ~graph, which may come before the answer
     link_.loadGraph(path.toStdString(), [this, path](bool ok, const std::string& m) {
       report(ok, m, "loaded " + path);
       if (ok) afterLoad();
+      else untangle_ = false;
     });
   });
   connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
@@ -235,7 +237,6 @@ void PanelWidget::forgetHistory() {
 
 void PanelWidget::afterLoad() {
   forgetHistory();  // the edits before were of another graph
-  untangle_ = true;
   watched_.clear();  // a load ends every inspection: the Optimizers' progress and the displays
   for (const auto& [node, port] : inspected_)  // displays showing a port go on if the new graph has it
     link_.inspect(node, port, [](bool, const std::string&, const std::string&, const std::string&) {});
