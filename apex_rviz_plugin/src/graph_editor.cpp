@@ -68,6 +68,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
     connect(s, &QShortcut::activated, this, fn);
   };
   shortcut(QKeySequence::Undo, [this] { emit undoRequested(); });
+  shortcut(QKeySequence::Find, [this] { find_->setFocus(), find_->selectAll(); });
   shortcut(QKeySequence::Redo, [this] { emit redoRequested(); });
 }
 
@@ -95,6 +96,14 @@ QWidget* GraphEditor::buildToolBar() {
   undo_->setEnabled(false), redo_->setEnabled(false);
   connect(undo_, &QToolButton::clicked, this, [this] { emit undoRequested(); });
   connect(redo_, &QToolButton::clicked, this, [this] { emit redoRequested(); });
+  find_ = new QLineEdit;
+  find_->setObjectName("find");
+  find_->setPlaceholderText("Find node (Ctrl+F)");
+  find_->setToolTip("a node by name or type, also inside subgraphs; Enter shows the next");
+  find_->setMaximumWidth(160);
+  connect(find_, &QLineEdit::returnPressed, this, &GraphEditor::findNext);
+  connect(find_, &QLineEdit::textChanged, this, [this] { found_ = -1; });
+  row->addWidget(find_);
   auto* fit = button("fit", "Fit", "show the whole graph");
   connect(fit, &QToolButton::clicked, this, &GraphEditor::fitGraph);
   auto* tidy = button("tidy", "Tidy", "lay the nodes out in layers, sources left, sinks right (one undo step)");
@@ -358,6 +367,27 @@ void GraphEditor::showParamMenu(const QString& node, const QString& param, QPoin
 void GraphEditor::removeSelected() {
   for (QGraphicsItem* i : scene_->selectedItems())
     if (auto* n = dynamic_cast<NodeItem*>(i)) emit removeRequested(QString::fromStdString(n->info().name));
+}
+
+void GraphEditor::findNext() {
+  const QString text = find_->text().trimmed();
+  if (!model_ || text.isEmpty()) return;
+  std::vector<std::string> matches;
+  for (const auto& n : model_->graph().nodes)
+    if (QString::fromStdString(n.name).contains(text, Qt::CaseInsensitive) ||
+        QString::fromStdString(n.type).contains(text, Qt::CaseInsensitive))
+      matches.push_back(n.name);
+  if (matches.empty()) return showMessage("no node's name or type contains '" + text + "'", true);
+  found_ = (found_ + 1) % static_cast<int>(matches.size());
+  const std::string& name = matches[found_];
+  const auto slash = name.rfind('/');
+  scene_->setLevel(slash == std::string::npos ? "" : name.substr(0, slash));  // its subgraph, opened
+  NodeItem* item = scene_->node(name);
+  if (!item) return;
+  scene_->clearSelection();
+  item->setSelected(true);
+  view_->centerOn(item);
+  showMessage(QString("'%1': %2 (%3 of %4)").arg(text, QString::fromStdString(name)).arg(found_ + 1).arg(matches.size()), false);
 }
 
 QStringList GraphEditor::selectedNodes() const {

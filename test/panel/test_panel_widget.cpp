@@ -28,6 +28,7 @@
 #include <apex/Connect.h>
 #include <apex/FireSlot.h>
 #include <apex/GetGraph.h>
+#include <apex/Group.h>
 #include <apex/SetParameter.h>
 #include <ros/ros.h>
 #include <yaml-cpp/yaml.h>
@@ -476,6 +477,34 @@ TEST_F(PanelWidgetTest, DropANodeOntoALinkToPutItInAndDragALinkOntoAnInputInUseT
   ASSERT_TRUE(QTest::qWaitFor([&] { return connected(runtimeGraph(), "ins_clock", "time", "ins_count", "in"); }, kWaitMs))
       << panel.editor()->message().toStdString();
   EXPECT_FALSE(connected(runtimeGraph(), "ins_clock", "count", "ins_count", "in"));
+}
+
+TEST_F(PanelWidgetTest, FindANodeByNameOrTypeAlsoInsideASubgraph) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "needle_clock", ""));
+  apex::Group group;
+  group.request.nodes = {"needle_clock"}, group.request.name = "haystack";
+  ASSERT_TRUE(ros::service::call("/apex/group", group) && group.response.success) << group.response.message;
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("haystack") != nullptr; }, kWaitMs));
+  auto* find = panel.editor()->findChild<QLineEdit*>("find");
+  ASSERT_TRUE(find);
+  QTest::keyClick(view, Qt::Key_F, Qt::ControlModifier);  // Ctrl+F: to the find field
+  EXPECT_TRUE(find->hasFocus());
+  QTest::keyClicks(find, "needle");
+  QTest::keyClick(find, Qt::Key_Return);
+  EXPECT_EQ(scene->level(), "haystack");  // its subgraph is opened
+  ASSERT_TRUE(scene->node("haystack/needle_clock"));
+  EXPECT_TRUE(scene->node("haystack/needle_clock")->isSelected());
+  EXPECT_TRUE(panel.editor()->message().contains("(1 of 1)")) << panel.editor()->message().toStdString();
+  find->clear();
+  QTest::keyClicks(find, "apex_nodes/Clock");  // by type: every clock, one after the other
+  QTest::keyClick(find, Qt::Key_Return);
+  QTest::keyClick(find, Qt::Key_Return);
+  EXPECT_TRUE(panel.editor()->message().contains("(2 of ")) << panel.editor()->message().toStdString();
+  find->clear();
+  QTest::keyClicks(find, "no such thing");
+  QTest::keyClick(find, Qt::Key_Return);
+  EXPECT_TRUE(panel.editor()->message().contains("no node's name or type contains")) << panel.editor()->message().toStdString();
 }
 
 TEST_F(PanelWidgetTest, ABagThatIsGoneIsAnErrorOnTheNodeAndStaysOneWhenPlayed) {

@@ -99,12 +99,17 @@ class GraphEditor : public QWidget {
   void askNewName(const QString& node);
   QPointF newNodePosition();
   void showLevel(const QString& path);
+  /** Shows the next node whose name or type contains the find field's text (in its subgraph),
+   *  selected and centred; says which of how many. */
+  void findNext();
 
   GraphScene* scene_;
   QGraphicsView* view_;
   const GraphModel* model_ = nullptr;
   QLineEdit* namespace_;
   QLineEdit* search_;
+  QLineEdit* find_ = nullptr;  ///< finds nodes on the canvas by name or type
+  int found_ = -1;             ///< the match shown last
   QListWidget* palette_;
   QLabel* message_;
   QLabel* connection_;
