@@ -17,6 +17,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
     emit statusShown();
   });
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
+  connect(&link_, &RuntimeLink::answerOverdue, this, [this](const QString& text) { editor_->showConnection(true, text); });
   connect(&link_, &RuntimeLink::connectionChanged, this, [this](bool up, const QString& text) {
     editor_->showConnection(up, text);
     if (!up) model_.reset(), watched_.clear(), forgetHistory();  // a runtime that comes back starts anew

@@ -59,7 +59,9 @@ JobThread::JobThread() : thread_([this] {
       auto job = std::move(jobs_.front());
       jobs_.pop_front();
       lock.unlock();
+      started_ns_ = std::chrono::steady_clock::now().time_since_epoch().count();
       job();
+      started_ns_ = 0;
       lock.lock();
     }
   }) {}
@@ -71,6 +73,13 @@ JobThread::~JobThread() {
   }
   cv_.notify_all();
   thread_.join();
+}
+
+double JobThread::busyFor() const {
+  const std::int64_t start = started_ns_;
+  if (start == 0) return 0;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch() -
+                                       std::chrono::steady_clock::duration(start)).count();
 }
 
 void JobThread::post(std::function<void()> job) {
@@ -134,9 +143,15 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
 void RuntimeLink::checkConnection() {
   if (!nh_) return;
   const bool up = graph_sub_.getNumPublishers() > 0;
+  const double waiting = jobs_.busyFor();
+  const QString ns = QString::fromStdString(ns_);
+  if (up && connected_ && (waiting > 1.0 || overdue_)) {  // slow: said, and the panel goes on
+    overdue_ = waiting > 1.0;
+    emit answerOverdue(overdue_ ? QString("connected to %1; no answer for %2 s").arg(ns).arg(waiting, 0, 'f', 0)
+                                : QString("connected to %1").arg(ns));
+  }
   if (up == connected_) return;
   connected_ = up;
-  const QString ns = QString::fromStdString(ns_);
   emit connectionChanged(up, up ? QString("connected to %1").arg(ns)
                                 : QString("the runtime at %1 is gone; reconnecting when it is back").arg(ns));
 }

@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include <QApplication>
+#include <QElapsedTimer>
+#include <QTimer>
 #include <QLabel>
 #include <QDoubleSpinBox>
 #include <QGraphicsView>
@@ -28,9 +30,15 @@
 #include <apex/Connect.h>
 #include <apex/FireSlot.h>
 #include <apex/GetGraph.h>
+#include <apex/ListNodeTypes.h>
 #include <apex/Group.h>
 #include <apex/SetParameter.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
 #include <yaml-cpp/yaml.h>
 
 #include "apex_rviz_plugin/panel_widget.hpp"
@@ -704,6 +712,69 @@ TEST(PanelWidgetReconnect, SaysWhenTheRuntimeIsGoneAndPicksItUpWhenItIsBack) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs))
       << status->text().toStdString();
   EXPECT_GT(panel.nodeTypeCount(), 0);
+}
+
+/** A runtime that answers every edit after a second and a half: only ~graph, list_node_types
+ *  and set_parameter, served on a thread of its own. */
+class SlowRuntime {
+ public:
+  SlowRuntime() : nh_("/slow") {
+    nh_.setCallbackQueue(&queue_);
+    graph_ = nh_.advertise<apex::GraphState>("graph", 1, true);
+    apex::GraphState g;
+    g.revision = 1;
+    apex::NodeInfo n;
+    n.name = "n", n.type = "apex_nodes/Scale", n.enabled = true, n.state = "ok";
+    apex::ParamInfo p;
+    p.name = "factor", p.kind = "double range", p.type = "double", p.value = "1.0", p.default_value = "1.0";
+    p.min = 0, p.max = 10, p.step = 0.1;
+    n.parameters = {p};
+    g.nodes = {n};
+    graph_.publish(g);
+    types_ = nh_.advertiseService<apex::ListNodeTypes::Request, apex::ListNodeTypes::Response>(
+        "list_node_types", [](auto&, auto& res) { return res.success = true; });
+    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>("set_parameter", [this](auto&, auto& res) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+      ++calls;
+      res.success = true;
+      return true;
+    });
+    spinner_.start();
+  }
+  std::atomic<int> calls{0};
+
+ private:
+  ros::NodeHandle nh_;
+  ros::CallbackQueue queue_;
+  ros::AsyncSpinner spinner_{1, &queue_};
+  ros::Publisher graph_;
+  ros::ServiceServer types_, set_;
+};
+
+TEST(PanelWidgetSlowRuntime, TheGuiThreadNeverWaitsAndSaysTheRuntimeIsSlow) {
+  SlowRuntime slow;
+  PanelWidget panel;
+  panel.show();
+  panel.setNamespace("/slow");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.editor()->scene()->node("n"); }, kWaitMs));
+  // the GUI thread's event loop, ticking every 5 ms: the longest gap between ticks is how long it waited
+  QElapsedTimer clock;
+  clock.start();
+  qint64 last = 0, longest = 0;
+  QTimer ticker;
+  QObject::connect(&ticker, &QTimer::timeout, [&] {
+    longest = std::max(longest, clock.elapsed() - last);
+    last = clock.elapsed();
+  });
+  ticker.start(5);
+  ParamEditor* factor = panel.editor()->scene()->node("n")->editor("factor");
+  for (const char* v : {"2", "3", "4"}) emit factor->edited("factor", v);  // each answered 1.5 s later
+  auto* status = panel.editor()->findChild<QLabel*>("connection");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return status->text().contains("no answer for"); }, kWaitMs)) << status->text().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return slow.calls == 3 && panel.editsPending() == 0; }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !status->text().contains("no answer"); }, kWaitMs)) << status->text().toStdString();
+  ticker.stop();
+  EXPECT_LT(longest, 50) << "the GUI thread waited " << longest << " ms";
 }
 
 }  // namespace

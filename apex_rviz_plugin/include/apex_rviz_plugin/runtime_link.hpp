@@ -13,7 +13,9 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 
+#include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -32,12 +34,15 @@ class JobThread {
   JobThread();
   ~JobThread();  ///< finishes the running job, drops the rest
   void post(std::function<void()> job);
+  /** @brief Seconds the running job has taken so far; 0 when idle. */
+  double busyFor() const;
 
  private:
   std::mutex mutex_;
   std::condition_variable cv_;
   std::deque<std::function<void()>> jobs_;
   bool stop_ = false;
+  std::atomic<std::int64_t> started_ns_{0};  // steady clock, of the running job; 0 when idle
   std::thread thread_;
 };
 
@@ -76,6 +81,8 @@ class RuntimeLink : public QObject {
   void statusReceived(const apex::RuntimeStatus& status);
   /** The runtime appeared (up) or is gone; `text` says which, for the user. */
   void connectionChanged(bool up, const QString& text);
+  /** A call has waited more than a second for its answer (or the answer came): what to show. */
+  void answerOverdue(const QString& text);
   void scalarReceived(const QString& node, const QString& port, const QString& text);
 
  private:
@@ -90,6 +97,7 @@ class RuntimeLink : public QObject {
 
   std::string ns_;
   bool connected_ = false;
+  bool overdue_ = false;  // a call has waited for its answer more than a second
   ros::CallbackQueue queue_;
   std::unique_ptr<ros::NodeHandle> nh_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;
