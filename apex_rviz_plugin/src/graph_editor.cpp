@@ -10,6 +10,7 @@
 #include <QLineEdit>
 #include <QListWidget>
 #include <QMenu>
+#include <QMessageBox>
 #include <QShortcut>
 #include <QSplitter>
 #include <QToolButton>
@@ -108,6 +109,14 @@ QWidget* GraphEditor::buildToolBar() {
   connect(fit, &QToolButton::clicked, this, &GraphEditor::fitGraph);
   auto* tidy = button("tidy", "Tidy", "lay the nodes out in layers, sources left, sinks right (one undo step)");
   connect(tidy, &QToolButton::clicked, this, &GraphEditor::tidyRequested);
+  auto* presets = button("presets", "Presets", "named snapshots of parameter values: save, compare with now, restore");
+  presets->setPopupMode(QToolButton::InstantPopup);
+  auto* preset_menu = new QMenu(presets);
+  connect(preset_menu, &QMenu::aboutToShow, this, [this, preset_menu] {
+    preset_menu->clear();
+    fillPresetMenu(*preset_menu);
+  });
+  presets->setMenu(preset_menu);
   auto* save = button("save", "Save...", "save the graph to a file (written by the runtime)");
   auto* load = button("load", "Load...", "load a graph file into the runtime (all or nothing)");
   connect(save, &QToolButton::clicked, this, [this] {
@@ -118,7 +127,7 @@ QWidget* GraphEditor::buildToolBar() {
     const QString path = QFileDialog::getOpenFileName(this, "Load graph", last_path_, "APEX graphs (*.yaml)");
     if (!path.isEmpty()) emit loadRequested(last_path_ = path);
   });
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, save, load}) row->addWidget(b);
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, presets, save, load}) row->addWidget(b);
   return bar;
 }
 
@@ -293,6 +302,7 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
   menu.addAction(info.enabled ? "Disable" : "Enable", this, [this, node, on = !info.enabled] { emit enabledRequested(node, on); });
   menu.addAction("Rename...", this, [this, node] { askNewName(node); });
   menu.addAction("Copy", this, [this, selected] { emit copyRequested(selected); });
+  menu.addAction("Save parameters as preset...", this, [this, selected] { askPresetName(selected); });
   menu.addAction("Duplicate", this, [this, selected] { emit duplicateRequested(selected); });
   menu.addAction("Remove", this, [this, node] { emit removeRequested(node); });
   QAction* reset = menu.addAction("Reset parameters to defaults", this, [this, node] { emit resetRequested(node, QString()); });
@@ -403,6 +413,37 @@ void GraphEditor::showCanvasMenu(QPointF scene_pos, QPoint at) {
   QMenu menu;
   menu.addAction("Paste", this, [this, scene_pos] { emit pasteRequested(scene_pos); });
   menu.exec(at);
+}
+
+void GraphEditor::fillPresetMenu(QMenu& menu) {
+  menu.addAction("Save all parameters as...", this, [this] { askPresetName({}); });
+  if (!presets_.isEmpty()) menu.addSeparator();
+  for (const QString& name : presets_) {
+    QMenu* one = menu.addMenu(name);
+    one->addAction("Restore", this, [this, name] { emit presetRestoreRequested(name); });
+    one->addAction("Compare with now", this, [this, name] { emit presetCompareRequested(name); });
+  }
+}
+
+void GraphEditor::askPresetName(const QStringList& nodes) {
+  auto* ask = new QInputDialog(this);
+  ask->setObjectName("preset_dialog");
+  ask->setAttribute(Qt::WA_DeleteOnClose);
+  ask->setWindowTitle("Save preset");
+  ask->setLabelText(nodes.isEmpty() ? "Name for the parameters of the whole graph:"
+                                    : QString("Name for the parameters of %1:").arg(nodes.join(", ")));
+  connect(ask, &QInputDialog::textValueSelected, this, [this, nodes](const QString& name) {
+    if (!name.trimmed().isEmpty()) emit presetSaveRequested(name.trimmed(), nodes);
+  });
+  ask->open();
+}
+
+void GraphEditor::showPresetDiff(const QString& name, const QString& text) {
+  auto* box = new QMessageBox(QMessageBox::Information, "Preset " + name, text, QMessageBox::Close, this);
+  box->setObjectName("preset_diff");
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->setModal(false);
+  box->show();
 }
 
 void GraphEditor::askNewName(const QString& node) {

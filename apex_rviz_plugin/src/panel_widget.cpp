@@ -1,6 +1,9 @@
 #include "apex_rviz_plugin/panel_widget.hpp"
 
 #include <QClipboard>
+#include <QDir>
+#include <QFileInfo>
+#include <QSaveFile>
 #include <QGuiApplication>
 #include <QTimer>
 #include <QVBoxLayout>
@@ -135,6 +138,28 @@ void PanelWidget::connectEditor() {
   });
   connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
   connect(e, &GraphEditor::tidyRequested, this, &PanelWidget::tidy);
+  connect(e, &GraphEditor::presetSaveRequested, this, &PanelWidget::savePreset);
+  connect(e, &GraphEditor::presetRestoreRequested, this, [this](const QString& name) {
+    const std::string text = readPreset(name);
+    if (text.empty()) return;
+    std::string error;
+    auto edit = model_.restore(text, name.toStdString(), &error);
+    if (!edit) return editor_->showMessage(error.empty() ? "the parameters are as preset " + name + " has them already"
+                                                         : QString::fromStdString(error), !error.empty());
+    perform(edit);
+  });
+  connect(e, &GraphEditor::presetCompareRequested, this, [this](const QString& name) {
+    const std::string text = readPreset(name);
+    if (text.empty()) return;
+    std::string error;
+    const auto changes = model_.compare(text, &error);
+    if (!error.empty()) return editor_->showMessage(QString::fromStdString(error), true);
+    QString out = changes.empty() ? "Every parameter is as the preset has it." : "now -> preset " + name + ":\n";
+    for (const auto& c : changes)
+      out += QString::fromStdString("\n" + c.node + "/" + c.param + ": " + (c.now.empty() ? "(not in the graph)" : c.now) + " -> " + c.then);
+    editor_->showPresetDiff(name, out);
+  });
+  listPresets();
   connect(s, &GraphScene::levelChanged, this, [this] {
     untangle_ = true;
     QTimer::singleShot(0, this, [this] { placeUnplaced(); });  // once the level's nodes are shown
@@ -229,6 +254,37 @@ void PanelWidget::place(const std::map<std::string, std::pair<double, double>>& 
   link_.run(std::move(edit->apply), [this](bool ok, const std::string& m) {
     if (!ok) report(false, m, "placing nodes");
   });
+}
+
+QString PanelWidget::presetFolder() { return GraphEditor::defaultGraphFolder() + "presets"; }
+
+void PanelWidget::listPresets() {
+  QStringList names;
+  for (const QFileInfo& f : QDir(presetFolder()).entryInfoList({"*.yaml"}, QDir::Files, QDir::Name)) names << f.completeBaseName();
+  editor_->showPresets(names);
+}
+
+void PanelWidget::savePreset(const QString& name, const QStringList& nodes) {
+  if (name.contains('/') || name.startsWith('.'))
+    return editor_->showMessage("a preset's name cannot hold '/' or start with '.': " + name, true);
+  std::vector<std::string> names;
+  for (const auto& n : nodes) names.push_back(n.toStdString());
+  QDir().mkpath(presetFolder());
+  QSaveFile file(presetFolder() + "/" + name + ".yaml");  // whole or not at all
+  const std::string text = model_.preset(names) + "\n";
+  if (!file.open(QIODevice::WriteOnly) || file.write(text.data(), static_cast<qint64>(text.size())) < 0 || !file.commit())
+    return editor_->showMessage("cannot save preset " + name + ": " + file.errorString(), true);
+  listPresets();
+  editor_->showMessage("saved preset " + name + " in " + presetFolder(), false);
+}
+
+std::string PanelWidget::readPreset(const QString& name) {
+  QFile file(presetFolder() + "/" + name + ".yaml");
+  if (!file.open(QIODevice::ReadOnly)) {
+    editor_->showMessage("cannot read preset " + name + ": " + file.errorString(), true);
+    return "";
+  }
+  return file.readAll().toStdString();
 }
 
 void PanelWidget::forgetHistory() {

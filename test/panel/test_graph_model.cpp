@@ -267,6 +267,39 @@ TEST(GraphModel, ANodeDroppedOntoALinkIsPutInItInOneEdit) {
   EXPECT_FALSE(m.insert("clock", c, 0, 0));                 // no input
 }
 
+TEST(GraphModel, APresetIsComparedWithTheGraphAndRestoredInOneEdit) {
+  GraphModel m;
+  auto g = graph(1);
+  g.nodes[2].parameters = {param("mode", "'fast'"), param("limits", "[1, 2]")};
+  m.update(g);
+  const std::string all = m.preset({});
+  EXPECT_THAT(all, HasSubstr("apex_preset: 1"));
+  EXPECT_THAT(all, HasSubstr("clock: {rate: 20.0}"));
+  EXPECT_TRUE(m.compare(all).empty());  // saved now: nothing differs
+  const std::string only_count = m.preset({"count"});
+  EXPECT_EQ(only_count.find("clock"), std::string::npos) << only_count;
+
+  g.revision = 2;  // then the graph changes
+  g.nodes[0].parameters[0].value = "35.5";
+  g.nodes[2].parameters[1].value = "[1, 3]";
+  m.update(g);
+  auto changes = m.compare(all);
+  ASSERT_EQ(changes.size(), 2u);
+  EXPECT_EQ(changes[0].node + "/" + changes[0].param + ": " + changes[0].now + " -> " + changes[0].then, "clock/rate: 35.5 -> 20.0");
+  EXPECT_EQ(changes[1].then, "[1, 2]");
+  auto e = m.restore(all, "tuned");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->label, "Restore preset tuned");
+  ASSERT_EQ(e->apply.size(), 2u);
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(e->apply[0].request).value, "20.0");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(e->revert[1].request).value, "35.5");  // undone to now
+
+  std::string error;
+  EXPECT_TRUE(m.compare("just: text", &error).empty());
+  EXPECT_THAT(error, HasSubstr("not an APEX preset"));
+  EXPECT_FALSE(m.restore(m.preset({}), "same"));  // nothing differs: no edit
+}
+
 TEST(GraphModel, EnableGroupAndInteractiveEditsAreUndoneToTheOldState) {
   GraphModel m;
   m.update(graph(1));

@@ -21,6 +21,8 @@
 
 #include <QInputDialog>
 #include <QMenu>
+#include <QMessageBox>
+#include <QFile>
 #include <QSlider>
 
 #include <filesystem>
@@ -513,6 +515,40 @@ TEST_F(PanelWidgetTest, FindANodeByNameOrTypeAlsoInsideASubgraph) {
   QTest::keyClicks(find, "no such thing");
   QTest::keyClick(find, Qt::Key_Return);
   EXPECT_TRUE(panel.editor()->message().contains("no node's name or type contains")) << panel.editor()->message().toStdString();
+}
+
+TEST_F(PanelWidgetTest, APresetIsSavedComparedWithNowAndRestoredInOneUndoStep) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "preset_clock", "{rate: 12.0}"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("preset_clock") != nullptr; }, kWaitMs));
+  // the node's menu: save its parameters under a name
+  QMenu menu;
+  panel.editor()->fillNodeMenu(menu, "preset_clock");
+  ASSERT_TRUE(action(menu, "Save parameters as preset"));
+  action(menu, "Save parameters as preset")->trigger();
+  auto* ask = panel.editor()->findChild<QInputDialog*>("preset_dialog");
+  ASSERT_TRUE(ask);
+  ask->setTextValue("slow_clock");
+  ask->accept();
+  EXPECT_TRUE(QFile::exists(PanelWidget::presetFolder() + "/slow_clock.yaml"));
+
+  ASSERT_TRUE(setParameter("preset_clock", "rate", "40"));  // then it changes
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "preset_clock", "rate") == 40; }, kWaitMs));
+  QMenu presets;
+  panel.editor()->fillPresetMenu(presets);
+  QAction* entry = action(presets, "slow_clock");
+  ASSERT_TRUE(entry && entry->menu());
+  action(*entry->menu(), "Compare with now")->trigger();
+  auto* diff = panel.editor()->findChild<QMessageBox*>("preset_diff");
+  ASSERT_TRUE(diff);
+  EXPECT_TRUE(diff->text().contains("preset_clock/rate: 40.0 -> 12.0")) << diff->text().toStdString();
+  diff->close();
+  action(*entry->menu(), "Restore")->trigger();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "preset_clock", "rate") == 12; }, kWaitMs));
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Restore preset slow_clock"); }, kWaitMs));
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "preset_clock", "rate") == 40; }, kWaitMs));
 }
 
 TEST_F(PanelWidgetTest, ABagThatIsGoneIsAnErrorOnTheNodeAndStaysOneWhenPlayed) {

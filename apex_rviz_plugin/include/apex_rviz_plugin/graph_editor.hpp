@@ -31,6 +31,13 @@ class GraphEditor : public QWidget {
   void fillParamMenu(QMenu& menu, const QString& node, const QString& param);
   /** @brief The menu of a right-click on a node. Filled for tests to read; shown by a right-click. */
   void fillNodeMenu(QMenu& menu, const QString& node);
+  /** @brief The Presets button's menu: save all, and per saved preset restore or compare.
+   *  Filled for tests to read; shown by the button. */
+  void fillPresetMenu(QMenu& menu);
+  /** @brief The presets saved (names), for the Presets menu. */
+  void showPresets(const QStringList& names) { presets_ = names; }
+  /** @brief What differs between a preset and the graph now, in a window of its own. */
+  void showPresetDiff(const QString& name, const QString& text);
   /** @brief The names of the selected nodes. */
   QStringList selectedNodes() const;
   /** @brief Selects these nodes (only these) once the graph shows them: what a paste or a
@@ -38,6 +45,8 @@ class GraphEditor : public QWidget {
   void selectWhenShown(const QStringList& nodes);
 
   GraphScene* scene() const { return scene_; }
+  /** @brief $ROS_HOME/apex/ (~/.ros/apex/): where graphs and presets go by default. */
+  static QString defaultGraphFolder();
   QGraphicsView* view() const { return view_; }
 
   void showGraph(const GraphModel& model);
@@ -84,6 +93,10 @@ class GraphEditor : public QWidget {
   void typesRequested();
   /** Lay the nodes shown out in layers, left to right. */
   void tidyRequested();
+  /** Save the parameters of `nodes` (all if empty) as preset `name`. */
+  void presetSaveRequested(const QString& name, const QStringList& nodes);
+  void presetRestoreRequested(const QString& name);
+  void presetCompareRequested(const QString& name);
 
  private:
   QWidget* buildToolBar();
@@ -97,6 +110,8 @@ class GraphEditor : public QWidget {
   void removeSelected();
   void showCanvasMenu(QPointF scene_pos, QPoint at);
   void askNewName(const QString& node);
+  /** Asks a preset's name, then saves the parameters of `nodes` (all if empty) under it. */
+  void askPresetName(const QStringList& nodes);
   QPointF newNodePosition();
   void showLevel(const QString& path);
   /** Shows the next node whose name or type contains the find field's text (in its subgraph),
@@ -118,9 +133,9 @@ class GraphEditor : public QWidget {
   QToolButton *pause_, *undo_, *redo_;
   int added_ = 0;
   QStringList select_when_shown_;
+  QStringList presets_;
   bool fit_pending_ = true;
   QString last_path_ = defaultGraphFolder();  // where a runtime saves and loads by default (~file_roots)
-  static QString defaultGraphFolder();
 };
 
 }  // namespace apex_rviz_plugin

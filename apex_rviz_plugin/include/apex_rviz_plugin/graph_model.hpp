@@ -54,6 +54,13 @@ struct Edit {
   bool open = false;
 };
 
+/** @brief A parameter whose value differs from a preset's. */
+struct PresetChange {
+  std::string node, param;
+  std::string now;   ///< "" if the node or parameter is no longer there
+  std::string then;  ///< as the preset has it
+};
+
 /** @brief What a paste adds: the edit, or why there is none; and the new nodes' names. */
 struct Pasted {
   std::optional<Edit> edit;
@@ -121,6 +128,13 @@ class GraphModel {
    *  it is), moved by (dx, dy), connected among themselves as they were; one edit, undone by
    *  removing them. */
   Pasted paste(const std::string& text, const std::string& level, double dx, double dy) const;
+  /** @brief The parameter values of `nodes` (every node if empty) as preset text (YAML). */
+  std::string preset(const std::vector<std::string>& nodes) const;
+  /** @brief The parameters whose values differ from the preset's; `error` if it is not one. */
+  std::vector<PresetChange> compare(const std::string& preset_text, std::string* error = nullptr) const;
+  /** @brief The preset's values set where they differ, as one edit named after it; nothing if
+   *  none differs or the text is not a preset (`error` says which). */
+  std::optional<Edit> restore(const std::string& preset_text, const std::string& name, std::string* error = nullptr) const;
   /** @brief A copy and a paste beside the originals, as one edit. */
   Pasted duplicate(const std::vector<std::string>& nodes, double dx, double dy) const;
   /** @brief Nodes beside each other into a new subgraph (named subgraph_1, _2, ... at their

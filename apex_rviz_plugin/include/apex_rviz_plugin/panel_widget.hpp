@@ -27,6 +27,8 @@ class PanelWidget : public QWidget {
   int nodeTypeCount() const { return type_count_; }
   /** @brief Edits sent whose answer has not come back yet. */
   int editsPending() const { return pending_; }
+  /** @brief Where presets are saved, one YAML file per name: $ROS_HOME/apex/presets. */
+  static QString presetFolder();
   QSize sizeHint() const override { return QSize(1000, 650); }  ///< room for a few nodes side by side
 
  signals:
@@ -44,6 +46,11 @@ class PanelWidget : public QWidget {
   /** Adds what a paste or duplicate made, and selects it once shown. */
   void pasted(const Pasted& p);
   void forgetHistory();
+  /** Presets are files in $ROS_HOME/apex/presets, one per name: the editor's menu lists them. */
+  void listPresets();
+  void savePreset(const QString& name, const QStringList& nodes);
+  /** The preset's text, or "" with the reason shown. */
+  std::string readPreset(const QString& name);
   /** Tidy: the nodes shown in layers, where their top-left corner was; one edit. */
   void tidy();
   /** Gives nodes shown without a position one (a graph written by hand, a node added by a
