@@ -2,6 +2,8 @@
 // as sensor_msgs/PointCloud2, scans as themselves (see apex/ros/inspect.hpp).
 #include <sensor_msgs/LaserScan.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "apex/ros/inspect.hpp"
 #include "apex_nodes/ros_convert.hpp"
 
@@ -10,6 +12,14 @@ namespace {
 
 const bool kRegistered = [] {
   apex::addInspector<Image, sensor_msgs::Image>([](const Image& i) { return *toRos(i); });
+  apex::addShrink<Image>([](const Image& i, int max_width) {  // a thumbnail: scaled down, never up
+    if (i.mat.cols <= max_width || i.mat.empty()) return i;
+    Image small = i;
+    const double f = static_cast<double>(max_width) / i.mat.cols;
+    cv::resize(i.mat, small.mat, cv::Size(), f, f, cv::INTER_AREA);
+    small.owner = nullptr;
+    return small;
+  });
   apex::addInspector<Cloud, sensor_msgs::PointCloud2>([](const Cloud& c) { return *toRos(c); });
   apex::addInspector<sensor_msgs::LaserScan, sensor_msgs::LaserScan>([](const sensor_msgs::LaserScan& s) { return s; });
   return true;

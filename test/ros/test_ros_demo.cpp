@@ -69,12 +69,24 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
   EXPECT_EQ(cloud_topic.message_type, "sensor_msgs/PointCloud2");
   sensor_msgs::PointCloud2 filtered;
   std::thread cloud_waiter([&] { EXPECT_TRUE(receive(nh, cloud_topic.topic, filtered)) << "no filtered cloud"; });
+  // previews of the overlay, as the panel's thumbnails: throttled and scaled down
+  inspect.node = "overlay", inspect.port = "image", inspect.preview = true;
+  auto preview_topic = call<apex::Inspect>("inspect", inspect);
+  ASSERT_TRUE(preview_topic.success) << preview_topic.message;
+  EXPECT_EQ(preview_topic.topic, "/apex/preview/overlay/image");
+  inspect.preview = false;
+  std::vector<std::pair<ros::WallTime, sensor_msgs::ImageConstPtr>> previews;
+  auto preview_sub = nh.subscribe<sensor_msgs::Image>(preview_topic.topic, 100, [&](const sensor_msgs::ImageConstPtr& img) {
+    std::lock_guard<std::mutex> l(m);
+    previews.emplace_back(ros::WallTime::now(), img);
+  });
   auto count_sub = nh.subscribe<std_msgs::Int32>("/apex/inspect/blobs/count", 100, [&](const std_msgs::Int32::ConstPtr& c) {
     std::lock_guard<std::mutex> l(m);
     counts.push_back(c->data);
   });
   ros::Time deadline = ros::Time::now() + ros::Duration(30);
-  while ((sub.getNumPublishers() == 0 || count_sub.getNumPublishers() == 0) && ros::Time::now() < deadline)
+  while ((sub.getNumPublishers() == 0 || count_sub.getNumPublishers() == 0 || preview_sub.getNumPublishers() == 0) &&
+         ros::Time::now() < deadline)
     ros::WallDuration(0.01).sleep();  // until both connections stand: no frame may pass before
   if (g_source == "bag") {  // BagReader inside the graph: start it
     apex::SetParameter::Request play;
@@ -116,6 +128,13 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
   EXPECT_GT(filtered.width * filtered.height, 100u);
   std::lock_guard<std::mutex> l(m);
   EXPECT_EQ(counts.size(), truth.size());
+  ASSERT_GE(previews.size(), 2u);  // while 40 overlays went out whole
+  const double seconds = (previews.back().first - previews.front().first).toSec();
+  EXPECT_LE(previews.size(), 2 + 5 * seconds * 1.2) << previews.size() << " previews in " << seconds << " s";
+  for (const auto& [at, img] : previews) {
+    EXPECT_EQ(img->width, 160u);  // 640 wide, scaled down, aspect kept
+    EXPECT_EQ(img->height, 120u);
+  }
 }
 
 }  // namespace

@@ -50,6 +50,14 @@ bool registerInspector(const TypeInfo* type, Inspector inspector) {
   return true;
 }
 
+bool registerShrink(const TypeInfo* type, std::function<Message(const Message&, int)> shrink) {
+  std::lock_guard<std::mutex> lock(tableMutex());
+  auto it = table().find(type);
+  if (it == table().end()) return false;
+  it->second.shrink = std::move(shrink);
+  return true;
+}
+
 Inspector findInspector(const TypeInfo* type) {
   (void)kBuiltins;
   {
@@ -64,7 +72,8 @@ Inspector findInspector(const TypeInfo* type) {
                      std_msgs::String s;
                      s.data = "<" + m.typeName() + ">";
                      pub.publish(s);
-                   }};
+                   },
+                   nullptr};
 }
 
 }  // namespace apex

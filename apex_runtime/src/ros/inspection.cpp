@@ -1,59 +1,86 @@
 #include "inspection.hpp"
 
+#include <chrono>
+
 namespace apex {
 namespace ros_host {
 
-/** One inspected port. A port that carries any type advertises on its first message. */
+/** One inspected port, published whole on inspect/<node>/<port> and, for the panel's
+ *  previews, at most kPreviewRate times a second and shrunk on preview/<node>/<port>. A port
+ *  that carries any type advertises on its first message. */
 struct Inspection::Tap {
+  struct Topic {
+    bool wanted = false;
+    std::string name;
+    ros::Publisher pub;
+  };
   ros::NodeHandle nh;
-  std::string topic;
   std::mutex mutex;
   Inspector inspector;
-  ros::Publisher pub;
+  bool typed = false;  // inspector known (from the port's type, or the first message)
+  Topic whole, preview;
+  std::chrono::steady_clock::time_point next_preview{};
+
+  void advertise() {  // under mutex, once the inspector is known
+    for (Topic* t : {&whole, &preview})
+      if (t->wanted && !t->pub) t->pub = inspector.advertise(nh, t->name);
+  }
 
   void onMessage(const Message& m) {  // on the node's thread group
     if (m.isNothing() || m.isEndOfSequence()) return;  // no frame to show
     std::lock_guard<std::mutex> lock(mutex);
-    if (!pub) {
-      inspector = findInspector(m.type());
-      pub = inspector.advertise(nh, topic);
-    }
-    if (pub.getNumSubscribers() == 0) return;
-    inspector.publish(pub, m);
+    if (!typed) inspector = findInspector(m.type()), typed = true;
+    advertise();
+    if (whole.pub && whole.pub.getNumSubscribers() > 0) inspector.publish(whole.pub, m);
+    if (!preview.pub || preview.pub.getNumSubscribers() == 0) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_preview) return;  // throttled: the graph pays a clock read
+    next_preview = now + std::chrono::milliseconds(1000 / kPreviewRate);
+    inspector.publish(preview.pub, inspector.shrink ? inspector.shrink(m, kPreviewWidth) : m);
   }
 };
 
 Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const std::string& node,
-                                                             const std::string& port, bool enable) {
+                                                             const std::string& port, bool enable, bool preview) {
   const std::string key = node + "/" + port;
   std::lock_guard<std::mutex> lock(mutex_);
+  auto it = taps_.find(key);
   if (!enable) {
-    if (taps_.count(key)) (void)graph.setTap(node, port, nullptr);
-    taps_.erase(key);
+    if (it == taps_.end()) return std::make_pair(std::string(), std::string());
+    {
+      std::lock_guard<std::mutex> tap_lock(it->second->mutex);
+      Tap::Topic& t = preview ? it->second->preview : it->second->whole;
+      t.wanted = false, t.pub = ros::Publisher();
+      if (it->second->whole.wanted || it->second->preview.wanted) return std::make_pair(std::string(), std::string());
+    }
+    (void)graph.setTap(node, port, nullptr);
+    taps_.erase(it);
     return std::make_pair(std::string(), std::string());
   }
-  if (auto it = taps_.find(key); it != taps_.end())
-    return std::make_pair(it->second->pub ? it->second->pub.getTopic() : nh_.resolveName(it->second->topic),
-                          it->second->inspector.message_type);
-  auto iface = graph.nodeInterface(node);  // a subgraph's: its exports
-  if (!iface && !findNode(graph.describe(), node)) return Status::error("no node named '" + node + "'");
-  if (!iface) return Status::error("node '" + node + "' has a type unknown here: it has no ports to inspect");
-  const TypeInfo* port_type = nullptr;
-  if (auto* out = iface->findOutput(port)) port_type = out->type;
-  if (auto* p = iface->findParam(port)) port_type = p->portType();
-  auto tap = std::make_shared<Tap>();
-  tap->nh = nh_;
-  tap->topic = "inspect/" + node + "/" + port;
-  if (port_type && port_type != typeOf<Any>()) {
-    tap->inspector = findInspector(port_type);
-    tap->pub = tap->inspector.advertise(nh_, tap->topic);
+  std::shared_ptr<Tap> tap;
+  if (it != taps_.end()) {
+    tap = it->second;
   } else {
-    tap->inspector.message_type = "";  // decided by the first message
+    auto iface = graph.nodeInterface(node);  // a subgraph's: its exports
+    if (!iface && !findNode(graph.describe(), node)) return Status::error("no node named '" + node + "'");
+    if (!iface) return Status::error("node '" + node + "' has a type unknown here: it has no ports to inspect");
+    const TypeInfo* port_type = nullptr;
+    if (auto* out = iface->findOutput(port)) port_type = out->type;
+    if (auto* p = iface->findParam(port)) port_type = p->portType();
+    tap = std::make_shared<Tap>();
+    tap->nh = nh_;
+    tap->whole.name = "inspect/" + key;
+    tap->preview.name = "preview/" + key;
+    if (port_type && port_type != typeOf<Any>()) tap->inspector = findInspector(port_type), tap->typed = true;
+    auto st = graph.setTap(node, port, [tap](const Message& m) { tap->onMessage(m); });
+    if (!st) return st;
+    taps_[key] = tap;
   }
-  auto st = graph.setTap(node, port, [tap](const Message& m) { tap->onMessage(m); });
-  if (!st) return st;
-  taps_[key] = tap;
-  return std::make_pair(nh_.resolveName(tap->topic), tap->inspector.message_type);
+  std::lock_guard<std::mutex> tap_lock(tap->mutex);
+  Tap::Topic& t = preview ? tap->preview : tap->whole;
+  t.wanted = true;
+  if (tap->typed) tap->advertise();
+  return std::make_pair(t.pub ? t.pub.getTopic() : nh_.resolveName(t.name), tap->typed ? tap->inspector.message_type : "");
 }
 
 void Inspection::forgetNode(const std::string& node) {

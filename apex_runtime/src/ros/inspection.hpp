@@ -1,5 +1,6 @@
 // ~inspect: publishes one port's messages on ~inspect/<node>/<port> while
-// enabled. Costs nothing while off (no tap) or while nobody subscribes.
+// enabled, and previews (throttled, shrunk) on ~preview/<node>/<port>. Costs
+// nothing while off (no tap) or while nobody subscribes.
 #pragma once
 
 #include <ros/ros.h>
@@ -19,9 +20,13 @@ namespace ros_host {
 class Inspection {
  public:
   explicit Inspection(ros::NodeHandle private_nh) : nh_(private_nh) {}
-  /** @brief Enables or disables a port; returns (topic, ROS message type), empty when disabled. */
+  /** Previews: at most this many messages a second, images at most this many pixels wide. */
+  static constexpr int kPreviewRate = 5;
+  static constexpr int kPreviewWidth = 160;
+  /** @brief Enables or disables a port's inspection (or its preview); returns (topic, ROS
+   *  message type), empty when disabled. */
   Result<std::pair<std::string, std::string>> set(Graph& graph, const std::string& node, const std::string& port,
-                                                  bool enable);
+                                                  bool enable, bool preview = false);
   void forgetNode(const std::string& node);
   void clear();
 

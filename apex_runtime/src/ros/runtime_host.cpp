@@ -345,7 +345,7 @@ struct RuntimeHost::Impl {
   }
 
   bool inspect(Inspect::Request& req, Inspect::Response& res) {
-    auto topic = inspection.set(graph, req.node, req.port, req.enable);
+    auto topic = inspection.set(graph, req.node, req.port, req.enable, req.preview);
     if (topic) {
       res.topic = topic.value().first;
       res.message_type = topic.value().second;

@@ -17,10 +17,23 @@ struct Inspector {
   std::string message_type;  ///< e.g. "std_msgs/Int32"
   std::function<ros::Publisher(ros::NodeHandle&, const std::string& topic)> advertise;
   std::function<void(const ros::Publisher&, const Message&)> publish;
+  /** For previews (the panel's thumbnails): a smaller message at most `max_width` wide, e.g.
+   *  an image scaled down; none: previews are the messages themselves. */
+  std::function<Message(const Message&, int max_width)> shrink;
 };
 
 /** @brief Registers the converter for messages of `type` (the last registration wins). */
 bool registerInspector(const TypeInfo* type, Inspector inspector);
+/** @brief How a preview of `type` is made smaller (see Inspector::shrink); after its inspector. */
+bool registerShrink(const TypeInfo* type, std::function<Message(const Message&, int max_width)> shrink);
+
+template <class T, class Shrink>
+bool addShrink(Shrink shrink) {
+  return registerShrink(typeOf<T>(), [shrink](const Message& m, int max_width) {
+    auto p = m.as<T>();
+    return p ? Message::make<T>(shrink(*p, max_width)) : m;
+  });
+}
 /** @brief The converter for `type`; a YAML-text std_msgs/String one if none is registered. */
 Inspector findInspector(const TypeInfo* type);
 
@@ -31,7 +44,8 @@ bool addInspector(Convert convert) {
                              [](ros::NodeHandle& nh, const std::string& topic) { return nh.advertise<RosMsg>(topic, 1); },
                              [convert](const ros::Publisher& pub, const Message& m) {
                                if (auto p = m.as<T>()) pub.publish(convert(*p));
-                             }});
+                             },
+                             nullptr});
 }
 
 }  // namespace apex
