@@ -109,6 +109,10 @@ QWidget* GraphEditor::buildToolBar() {
   connect(fit, &QToolButton::clicked, this, &GraphEditor::fitGraph);
   auto* tidy = button("tidy", "Tidy", "lay the nodes out in layers, sources left, sinks right (one undo step)");
   connect(tidy, &QToolButton::clicked, this, &GraphEditor::tidyRequested);
+  auto* previews = button("previews", "Previews", "thumbnails of images and sparklines of numbers on the nodes in view "
+                                                  "(at most 5 a second; nodes out of view cost nothing)");
+  previews->setCheckable(true);
+  connect(previews, &QToolButton::toggled, this, &GraphEditor::previewsToggled);
   auto* presets = button("presets", "Presets", "named snapshots of parameter values: save, compare with now, restore");
   presets->setPopupMode(QToolButton::InstantPopup);
   auto* preset_menu = new QMenu(presets);
@@ -127,7 +131,7 @@ QWidget* GraphEditor::buildToolBar() {
     const QString path = QFileDialog::getOpenFileName(this, "Load graph", last_path_, "APEX graphs (*.yaml)");
     if (!path.isEmpty()) emit loadRequested(last_path_ = path);
   });
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, presets, save, load}) row->addWidget(b);
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, previews, presets, save, load}) row->addWidget(b);
   return bar;
 }
 

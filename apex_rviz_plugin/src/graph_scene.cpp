@@ -166,6 +166,10 @@ void GraphScene::showValue(const QString& node_name, const QString& port, const 
   if (NodeItem* item = node(node_name.toStdString())) item->showValue(port, text);
 }
 
+void GraphScene::showImage(const QString& node_name, const QString& port, const QImage& image) {
+  if (NodeItem* item = node(node_name.toStdString())) item->showImage(port, image);
+}
+
 void GraphScene::reroute() {
   for (auto* c : connections_) c->reroute();
 }

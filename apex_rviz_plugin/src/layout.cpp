@@ -71,4 +71,21 @@ Box freePlace(Box wanted, const std::vector<Box>& taken, double gap) {
   }
 }
 
+std::map<std::string, std::pair<double, double>> pushDown(const std::map<std::string, Box>& boxes, double gap) {
+  std::vector<std::pair<std::string, Box>> order(boxes.begin(), boxes.end());
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.second.y < b.second.y; });
+  std::vector<Box> done;
+  std::map<std::string, std::pair<double, double>> moved;
+  for (auto& [name, box] : order) {
+    for (bool hit = true; hit;) {
+      hit = false;
+      for (const Box& d : done)
+        if (box.overlaps(d)) box.y = d.y + d.height + gap, hit = true;
+    }
+    if (box.y != boxes.at(name).y) moved[name] = {box.x, box.y};
+    done.push_back(box);
+  }
+  return moved;
+}
+
 }  // namespace apex_rviz_plugin

@@ -13,7 +13,10 @@
 namespace apex_rviz_plugin {
 namespace {
 
-constexpr double kTitle = 38, kRow = 18, kPad = 6, kPlot = 56;
+constexpr double kTitle = 38, kRow = 18, kPad = 6, kPlot = 56, kThumb = 110, kSpark = 30;
+
+bool imageType(const std::string& t) { return t == "apex_nodes/Image"; }
+bool numberType(const std::string& t) { return t == "int" || t == "double" || t == "bool"; }
 
 bool sourceKind(const std::string& k) { return k == "output" || k == "trigger" || k == "param_out"; }
 bool eventKind(const std::string& k) { return k == "slot" || k == "trigger"; }
@@ -41,11 +44,14 @@ QColor groupColor(const std::string& group) {
 // ------------------------------------------------------------------ PortItem
 
 PortItem::PortItem(const apex::PortInfo& port, NodeItem* parent) : QGraphicsItem(parent), port_(port) {
-  setToolTip(QString::fromStdString(port.name + " (" + port.kind + (port.type.empty() ? "" : ", " + port.type) +
-                                    (port.optional ? ", optional" : "") + ")" +
-                                    (port.description.empty() ? "" : "\n" + port.description) +
-                                    (port.kind == "output" ? "\n(drag to an input to connect; double-click to inspect)" : "")));
+  setToolTip(parent->portTip(port));
   setAcceptedMouseButtons(Qt::LeftButton);
+  setAcceptHoverEvents(true);
+}
+
+void PortItem::hoverEnterEvent(QGraphicsSceneHoverEvent* e) {
+  if (mark_ == Mark::None) setToolTip(node()->portTip(port_));  // a drag's mark says why instead
+  QGraphicsItem::hoverEnterEvent(e);
 }
 
 NodeItem* PortItem::node() const { return static_cast<NodeItem*>(parentItem()); }
@@ -53,7 +59,7 @@ bool PortItem::isSource() const { return sourceKind(port_.kind); }
 
 void PortItem::setMark(Mark m, const QString& why) {
   mark_ = m;
-  setToolTip(why.isEmpty() ? QString::fromStdString(port_.name + " (" + port_.kind + ", " + port_.type + ")") : why);
+  setToolTip(why.isEmpty() ? node()->portTip(port_) : why);
   update();
 }
 
@@ -172,6 +178,9 @@ void NodeItem::build() {
     params_->setPos(kPad, height_);
     height_ += box->height() + kPad;
   }
+  preview_top_ = height_;
+  if (previews_)
+    for (const auto& name : previewPorts()) height_ += imageType(port(name, true)->port().type) ? kThumb + 4 : kSpark;
   if (isOptimizer()) height_ += kPlot;  // its progress
   height_ += 2 * kRow;  // timing and error lines
   setToolTip(QString::fromStdString(info_.error));
@@ -184,6 +193,7 @@ void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
                 .arg(rate_hz, 0, 'f', 1)
                 .arg(s.firings);
   firings_ = s.firings;
+  rate_hz_ = rate_hz;
   info_.state = s.state;
   info_.error = s.error;
   waiting_ = QString::fromStdString(s.waiting_for);
@@ -192,6 +202,44 @@ void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
 }
 
 bool NodeItem::isOptimizer() const { return info_.type == kOptimizerType; }
+
+std::vector<std::string> NodeItem::previewPorts() const {
+  std::vector<std::string> out;
+  for (const auto& p : info_.ports)
+    if (p.kind == "output" && (imageType(p.type) || numberType(p.type))) out.push_back(p.name);
+  return out;
+}
+
+void NodeItem::setPreviews(bool on) {
+  if (on == previews_) return;
+  previews_ = on;
+  if (!on) images_.clear(), series_.clear();
+  build();
+}
+
+void NodeItem::showImage(const QString& port, const QImage& image) {
+  images_[port.toStdString()] = image;
+  QGraphicsObject::update();
+}
+
+QString NodeItem::portTip(const apex::PortInfo& p) const {
+  QString tip = QString::fromStdString(p.name + " (" + p.kind + (p.type.empty() ? "" : ", " + p.type) +
+                                       (p.optional ? ", optional" : "") + ")" +
+                                       (p.description.empty() ? "" : "\n" + p.description));
+  if (p.kind == "output") {
+    auto image = images_.find(p.name);
+    auto value = scalar_values_.find(QString::fromStdString(p.name));
+    if (image != images_.end() && !image->second.isNull())
+      tip += QString("\nlast: an image, preview %1×%2").arg(image->second.width()).arg(image->second.height());
+    else if (value != scalar_values_.end())
+      tip += "\nlast: " + value->second;
+    else
+      tip += "\nlast: not watched (turn on Previews, or double-click to inspect)";
+    tip += QString("\nnode: %1 Hz").arg(rate_hz_, 0, 'f', 1);
+    tip += "\n(drag to an input to connect; double-click to inspect)";
+  }
+  return tip;
+}
 
 void NodeItem::showValue(const QString& port, const QString& text) {
   if (isOptimizer() && (port == "best_fitness" || port == "evaluations")) {  // drawn as progress
@@ -205,6 +253,11 @@ void NodeItem::showValue(const QString& port, const QString& text) {
     return QGraphicsObject::update();
   }
   scalar_values_[port] = text;
+  if (previews_) {  // a sparkline's next point
+    auto& s = series_[port.toStdString()];
+    s.push_back(text == "true" ? 1.0 : text == "false" ? 0.0 : text.toDouble());
+    if (s.size() > 60) s.erase(s.begin());
+  }
   values_.clear();
   for (const auto& [p, v] : scalar_values_) values_ += (values_.isEmpty() ? "" : "  ") + p + " = " + v;
   QGraphicsObject::update();
@@ -248,6 +301,7 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
                                      "  · double-click to open";
   p->drawText(QRectF(kPad, 18, kWidth - 2 * kPad, 14), Qt::AlignLeft | Qt::AlignVCenter, QString::fromStdString(kind));
   const double bottom = height_ - 2 * kRow;
+  if (previews_) paintPreviews(p);
   if (isOptimizer()) paintProgress(p, QRectF(kPad, bottom - kPlot, kWidth - 2 * kPad, kPlot - 4));
   p->setPen(QColor(200, 200, 200));
   p->drawText(QRectF(kPad, bottom, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
@@ -286,6 +340,45 @@ void NodeItem::paintProgress(QPainter* p, const QRectF& area) const {
     curve << QPointF(plot.left() + plot.width() * i / n, plot.bottom() - 2 - (plot.height() - 4) * (fitness_[i] - *lo) / span);
   p->setPen(QPen(QColor(110, 200, 120), 1.5));
   p->drawPolyline(curve);
+}
+
+void NodeItem::paintPreviews(QPainter* p) const {
+  double y = preview_top_;
+  const double w = kWidth - 2 * kPad;
+  for (const auto& name : previewPorts()) {
+    const bool image = imageType(port(name, true)->port().type);
+    const QRectF area(kPad, y, w, image ? kThumb : kSpark - 4);
+    y += image ? kThumb + 4 : kSpark;
+    p->setPen(QColor(90, 90, 90));
+    p->setBrush(QColor(30, 32, 36));
+    p->drawRect(area);
+    p->setPen(QColor(170, 170, 170));
+    if (image) {
+      auto it = images_.find(name);
+      if (it == images_.end() || it->second.isNull()) {
+        p->drawText(area, Qt::AlignCenter, QString::fromStdString(name + ": waiting for a frame"));
+        continue;
+      }
+      const QSizeF size = QSizeF(it->second.size()).scaled(area.size(), Qt::KeepAspectRatio);
+      const QRectF at(area.center().x() - size.width() / 2, area.center().y() - size.height() / 2, size.width(), size.height());
+      p->drawImage(at, it->second);
+      continue;
+    }
+    auto it = series_.find(name);
+    const std::vector<double> none;
+    const std::vector<double>& v = it == series_.end() ? none : it->second;
+    p->drawText(area.adjusted(3, 0, -3, 0), Qt::AlignLeft | Qt::AlignTop,
+                QString::fromStdString(name) + (v.empty() ? ": waiting" : " = " + QString::number(v.back(), 'g', 5)));
+    if (v.size() < 2) continue;
+    const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+    const double span = *hi - *lo > 0 ? *hi - *lo : 1;
+    const QRectF plot = area.adjusted(2, 12, -2, -2);
+    QPolygonF line;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      line << QPointF(plot.left() + plot.width() * i / 59.0, plot.bottom() - plot.height() * (v[i] - *lo) / span);
+    p->setPen(QPen(QColor(100, 180, 240), 1.2));
+    p->drawPolyline(line);
+  }
 }
 
 QVariant NodeItem::itemChange(GraphicsItemChange change, const QVariant& value) {

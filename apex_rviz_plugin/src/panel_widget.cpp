@@ -3,6 +3,7 @@
 #include <QClipboard>
 #include <QDir>
 #include <QFileInfo>
+#include <QGraphicsView>
 #include <QSaveFile>
 #include <QGuiApplication>
 #include <QTimer>
@@ -20,10 +21,13 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
     emit statusShown();
   });
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
+  connect(&link_, &RuntimeLink::imageReceived, editor_->scene(), &GraphScene::showImage);
+  preview_timer_ = new QTimer(this);
+  connect(preview_timer_, &QTimer::timeout, this, &PanelWidget::updatePreviews);
   connect(&link_, &RuntimeLink::answerOverdue, this, [this](const QString& text) { editor_->showConnection(true, text); });
   connect(&link_, &RuntimeLink::connectionChanged, this, [this](bool up, const QString& text) {
     editor_->showConnection(up, text);
-    if (!up) model_.reset(), watched_.clear(), forgetHistory();  // a runtime that comes back starts anew
+    if (!up) model_.reset(), watched_.clear(), previewing_.clear(), forgetHistory();  // a runtime that comes back starts anew
     if (up) refreshTypes(), editor_->fitNextGraph(), untangle_ = true;
   });
   connectEditor();
@@ -36,6 +40,7 @@ void PanelWidget::setNamespace(const QString& ns) {
   model_.reset();
   watched_.clear();
   inspected_.clear();
+  previewing_.clear();  // the link dropped its subscriptions with the namespace
   forgetHistory();
   editor_->showGraph(model_);
   emit namespaceChanged(QString::fromStdString(link_.ns()));
@@ -138,6 +143,13 @@ void PanelWidget::connectEditor() {
   });
   connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
   connect(e, &GraphEditor::tidyRequested, this, &PanelWidget::tidy);
+  connect(e, &GraphEditor::previewsToggled, this, [this](bool on) {
+    previews_ = on;
+    if (on) preview_timer_->start(300);
+    else preview_timer_->stop();
+    updatePreviews();
+    if (on) place(pushDown(editor_->scene()->boxes()));  // the boxes grew: none lies on another
+  });
   connect(e, &GraphEditor::presetSaveRequested, this, &PanelWidget::savePreset);
   connect(e, &GraphEditor::presetRestoreRequested, this, [this](const QString& name) {
     const std::string text = readPreset(name);
@@ -287,6 +299,32 @@ std::string PanelWidget::readPreset(const QString& name) {
   return file.readAll().toStdString();
 }
 
+void PanelWidget::updatePreviews() {
+  QGraphicsView* view = editor_->view();
+  const QRectF seen = view->mapToScene(view->viewport()->rect()).boundingRect();
+  std::set<std::string> wanted;
+  for (const auto& [name, item] : editor_->scene()->nodes()) {
+    item->setPreviews(previews_);
+    if (!previews_ || !seen.intersects(item->sceneBoundingRect())) continue;  // out of view: not previewed
+    for (const auto& port : item->previewPorts()) wanted.insert(name + "/" + port);
+  }
+  for (auto it = previewing_.begin(); it != previewing_.end();) {  // no longer wanted: unsubscribed
+    if (wanted.count(*it)) { ++it; continue; }
+    const auto slash = it->rfind('/');
+    link_.unwatchPreview(it->substr(0, slash), it->substr(slash + 1));
+    it = previewing_.erase(it);
+  }
+  for (const auto& key : wanted) {
+    if (!previewing_.insert(key).second) continue;
+    const auto slash = key.rfind('/');
+    const std::string node = key.substr(0, slash), port = key.substr(slash + 1);
+    link_.inspect(node, port, [this, node, port, key](bool ok, const std::string&, const std::string& topic, const std::string& type) {
+      if (!ok || !previewing_.count(key) || !previews_) return previewing_.erase(key), void();
+      link_.watchPreview(node, port, topic, type);
+    }, true);
+  }
+}
+
 void PanelWidget::forgetHistory() {
   history_.clear();
   editor_->showHistory("", false, false);
@@ -294,6 +332,8 @@ void PanelWidget::forgetHistory() {
 
 void PanelWidget::afterLoad() {
   forgetHistory();  // the edits before were of another graph
+  for (const auto& key : previewing_) link_.unwatchPreview(key.substr(0, key.rfind('/')), key.substr(key.rfind('/') + 1));
+  previewing_.clear();  // a load ends the runtime's previews: asked for again by the next update
   watched_.clear();  // a load ends every inspection: the Optimizers' progress and the displays
   for (const auto& [node, port] : inspected_)  // displays showing a port go on if the new graph has it
     link_.inspect(node, port, [](bool, const std::string&, const std::string&, const std::string&) {});

@@ -6,6 +6,7 @@
 #include <apex/ListNodeTypes.h>
 #include <apex/LoadGraph.h>
 #include <apex/SaveGraph.h>
+#include <sensor_msgs/Image.h>
 #include <std_msgs/Bool.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/Int32.h>
@@ -120,7 +121,7 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
     return false;
   }
   if (spinner_) spinner_->stop();
-  graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear();
+  graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear(), preview_subs_.clear();
   ns_ = clean;
   if (!nh_) {
     nh_ = std::make_unique<ros::NodeHandle>();
@@ -234,9 +235,10 @@ void RuntimeLink::fireSlot(const std::string& node, const std::string& slot, Don
 }
 
 void RuntimeLink::inspect(const std::string& node, const std::string& port,
-                          std::function<void(bool, const std::string&, const std::string&, const std::string&)> done) {
+                          std::function<void(bool, const std::string&, const std::string&, const std::string&)> done,
+                          bool preview) {
   apex::Inspect::Request req;
-  req.node = node, req.port = port, req.enable = true;
+  req.node = node, req.port = port, req.enable = true, req.preview = preview;
   const std::string name = service("inspect");
   using Out = std::tuple<bool, std::string, std::string, std::string>;
   async<Out>(
@@ -252,9 +254,49 @@ void RuntimeLink::watchScalar(const std::string& node, const std::string& port, 
                               const std::string& type) {
   if (!nh_) return;
   const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
-  auto show = [this, n, p](const QString& text) {
+  scalar_subs_.push_back(subscribeScalar(topic, type, [this, n, p](const QString& text) {
     QMetaObject::invokeMethod(this, [this, n, p, text] { emit scalarReceived(n, p, text); }, Qt::QueuedConnection);
-  };
+  }));
+}
+
+namespace {
+/** An image message as a QImage of its own (deep copy); null for encodings not drawn here. */
+QImage toQImage(const sensor_msgs::Image& m) {
+  const auto* data = m.data.data();
+  const int w = static_cast<int>(m.width), h = static_cast<int>(m.height), step = static_cast<int>(m.step);
+  if (m.data.size() < static_cast<std::size_t>(step) * h) return {};
+  if (m.encoding == "bgr8") return QImage(data, w, h, step, QImage::Format_RGB888).rgbSwapped();
+  if (m.encoding == "rgb8") return QImage(data, w, h, step, QImage::Format_RGB888).copy();
+  if (m.encoding == "mono8" || m.encoding == "8UC1") return QImage(data, w, h, step, QImage::Format_Grayscale8).copy();
+  if (m.encoding == "bgra8") return QImage(data, w, h, step, QImage::Format_ARGB32).copy();
+  return {};
+}
+}  // namespace
+
+void RuntimeLink::watchPreview(const std::string& node, const std::string& port, const std::string& topic,
+                               const std::string& type) {
+  if (!nh_) return;
+  const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
+  ros::Subscriber sub;
+  if (type == "sensor_msgs/Image") {
+    sub = nh_->subscribe<sensor_msgs::Image>(topic, 1, [this, n, p](const sensor_msgs::Image::ConstPtr& m) {
+      QImage image = toQImage(*m);  // converted here, on the link's spinner, not on the GUI thread
+      QMetaObject::invokeMethod(this, [this, n, p, image] { emit imageReceived(n, p, image); }, Qt::QueuedConnection);
+    });
+  } else {
+    sub = subscribeScalar(topic, type, [this, n, p](const QString& text) {
+      QMetaObject::invokeMethod(this, [this, n, p, text] { emit scalarReceived(n, p, text); }, Qt::QueuedConnection);
+    });
+  }
+  preview_subs_[node + "/" + port] = sub;
+}
+
+void RuntimeLink::unwatchPreview(const std::string& node, const std::string& port) {
+  preview_subs_.erase(node + "/" + port);  // no subscriber left: the runtime publishes nothing
+}
+
+ros::Subscriber RuntimeLink::subscribeScalar(const std::string& topic, const std::string& type,
+                                             std::function<void(const QString&)> show) {
   ros::Subscriber sub;
   if (type == "std_msgs/Int32")
     sub = nh_->subscribe<std_msgs::Int32>(topic, 1, [show](const std_msgs::Int32::ConstPtr& m) { show(QString::number(m->data)); });
@@ -266,7 +308,7 @@ void RuntimeLink::watchScalar(const std::string& node, const std::string& port, 
     sub = nh_->subscribe<std_msgs::String>(topic, 1, [show](const std_msgs::String::ConstPtr& m) {
       show(QString::fromStdString(m->data).left(200));
     });
-  scalar_subs_.push_back(sub);
+  return sub;
 }
 
 bool RuntimeLink::receiving(const std::string& topic) const {

@@ -71,4 +71,13 @@ TEST(Layout, AFreePlaceIsBelowWhatItWouldCoverOrInTheNextColumn) {
   EXPECT_EQ(free.y, 0);  // nothing there: where it was wanted
 }
 
+TEST(Layout, BoxesThatGrewPushThoseBelowDownAndKeepTheirColumn) {
+  std::map<std::string, Box> boxes = {{"a", {0, 0, 100, 300}},   // grew from 100 to 300
+                                      {"b", {0, 120, 100, 100}}, {"c", {0, 240, 100, 100}}, {"d", {300, 0, 100, 100}}};
+  const auto moved = pushDown(boxes, 20);
+  ASSERT_EQ(moved.size(), 2u);  // d, beside, stays
+  EXPECT_EQ(moved.at("b"), std::make_pair(0.0, 320.0));
+  EXPECT_EQ(moved.at("c"), std::make_pair(0.0, 440.0));
+}
+
 }  // namespace

@@ -551,6 +551,58 @@ TEST_F(PanelWidgetTest, APresetIsSavedComparedWithNowAndRestoredInOneUndoStep) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "preset_clock", "rate") == 40; }, kWaitMs));
 }
 
+/** The boxes shown that lie on each other, as text; "" if none. */
+std::string overlapping(const GraphScene& scene) {
+  const auto boxes = scene.boxes();
+  std::string out;
+  for (auto a = boxes.begin(); a != boxes.end(); ++a)
+    for (auto b = std::next(a); b != boxes.end(); ++b)
+      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + "; ";
+  return out;
+}
+
+TEST_F(PanelWidgetTest, PreviewsDrawThumbnailsAndSparklinesOfNodesInViewOnly) {
+  ASSERT_TRUE(addNode("apex_nodes/BagReader", "thumbs_bag",
+                      "{file: '" + g_bag + "', topics: [/camera/image_raw], rate: 10.0, loop: true, playing: true}"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("thumbs_bag") && panel.model().hasPosition("thumbs_bag"); }, kWaitMs));
+  NodeItem* bag = scene->node("thumbs_bag");
+  view->resetTransform();
+  view->centerOn(bag);
+  auto* previews = panel.editor()->findChild<QToolButton*>("previews");
+  ASSERT_TRUE(previews);
+  const double closed = bag->boundingRect().height();
+  QTest::mouseClick(previews, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !scene->node("thumbs_bag")->image("camera_image_raw").isNull(); }, kWaitMs))
+      << "no thumbnail; " << panel.editor()->message().toStdString();
+  bag = scene->node("thumbs_bag");
+  EXPECT_EQ(bag->image("camera_image_raw").width(), 160);  // as the runtime shrank it
+  EXPECT_GT(bag->boundingRect().height(), closed);  // the box grew for it, and pushed those below down
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && overlapping(*scene).empty(); }, kWaitMs))
+      << overlapping(*scene);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("thumbs_bag")->samples("stamp") >= 2; }, kWaitMs))
+      << "no sparkline of the stamp";
+  const apex::PortInfo* image_port = nullptr;
+  for (const auto& p : bag->info().ports) if (p.name == "camera_image_raw") image_port = &p;
+  ASSERT_TRUE(image_port);
+  const QString tip = bag->portTip(*image_port);  // what hovering the port shows
+  EXPECT_TRUE(tip.contains("apex_nodes/Image") && tip.contains("last: an image, preview 160×") && tip.contains(" Hz"))
+      << tip.toStdString();
+  view->centerOn(bag);
+  QApplication::processEvents();
+  panel.grab().save(QString::fromStdString(g_shot).replace(".png", "_previews.png"));
+
+  // out of view: no longer previewed (unsubscribed, so the runtime sends nothing)
+  EXPECT_TRUE(panel.link().watchingPreview("thumbs_bag", "camera_image_raw"));
+  view->centerOn(QPointF(1e6, 1e6));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.link().watchingPreview("thumbs_bag", "camera_image_raw"); }, kWaitMs));
+  view->centerOn(scene->node("thumbs_bag"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().watchingPreview("thumbs_bag", "camera_image_raw"); }, kWaitMs));
+  QTest::mouseClick(previews, Qt::LeftButton);  // off
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.link().watchingPreview("thumbs_bag", "camera_image_raw"); }, kWaitMs));
+  EXPECT_FALSE(scene->node("thumbs_bag")->previews());
+}
+
 TEST_F(PanelWidgetTest, ABagThatIsGoneIsAnErrorOnTheNodeAndStaysOneWhenPlayed) {
   namespace fs = std::filesystem;
   const std::string gone = fs::path(g_bag).parent_path() / "panel_gone.bag";
@@ -571,16 +623,6 @@ TEST_F(PanelWidgetTest, ABagThatIsGoneIsAnErrorOnTheNodeAndStaysOneWhenPlayed) {
   QTest::qWait(300);  // a firing after play would have cleared it: give it the time to
   EXPECT_EQ(find(runtimeGraph(), "gone")->state, "error");
   EXPECT_EQ(scene->node("gone")->info().state, "error");
-}
-
-/** The boxes shown that lie on each other, as text; "" if none. */
-std::string overlapping(const GraphScene& scene) {
-  const auto boxes = scene.boxes();
-  std::string out;
-  for (auto a = boxes.begin(); a != boxes.end(); ++a)
-    for (auto b = std::next(a); b != boxes.end(); ++b)
-      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + "; ";
-  return out;
 }
 
 /** A graph of 200 nodes with no positions, as a script or an editor would write it: a clock

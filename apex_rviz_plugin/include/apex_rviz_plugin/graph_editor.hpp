@@ -97,6 +97,8 @@ class GraphEditor : public QWidget {
   void presetSaveRequested(const QString& name, const QStringList& nodes);
   void presetRestoreRequested(const QString& name);
   void presetCompareRequested(const QString& name);
+  /** Previews on the nodes (thumbnails of images, sparklines of numbers) on or off. */
+  void previewsToggled(bool on);
 
  private:
   QWidget* buildToolBar();

@@ -7,6 +7,7 @@
 #include <QGraphicsObject>
 #include <QGraphicsPathItem>
 #include <QGraphicsScene>
+#include <QImage>
 
 #include <apex/RuntimeStatus.h>
 
@@ -41,6 +42,7 @@ class PortItem : public QGraphicsItem {
  protected:
   void mousePressEvent(QGraphicsSceneMouseEvent* e) override;
   void mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) override;  ///< on an output: inspect it
+  void hoverEnterEvent(QGraphicsSceneHoverEvent* e) override;         ///< the tooltip, with what it carried last
 
  private:
   apex::PortInfo port_;
@@ -59,6 +61,18 @@ class NodeItem : public QGraphicsObject {
   void update(const apex::NodeInfo& node);
   void showStatus(const apex::NodeStatus& status, double rate_hz);
   void showValue(const QString& port, const QString& text);
+  /** @brief Draws previews of the outputs that carry images (thumbnails) or numbers
+   *  (sparklines) in the box, which grows for them. */
+  void setPreviews(bool on);
+  bool previews() const { return previews_; }
+  /** @brief The outputs a preview is drawn for. */
+  std::vector<std::string> previewPorts() const;
+  void showImage(const QString& port, const QImage& image);
+  /** @brief The last preview image of an output, and the last values of a numeric one. */
+  QImage image(const std::string& port) const { auto it = images_.find(port); return it == images_.end() ? QImage() : it->second; }
+  std::size_t samples(const std::string& port) const { auto it = series_.find(port); return it == series_.end() ? 0 : it->second.size(); }
+  /** @brief What a port is and what it carried last: its tooltip. */
+  QString portTip(const apex::PortInfo& port) const;
   PortItem* port(const std::string& name, bool source) const;
   const std::vector<PortItem*>& ports() const { return ports_; }
   ParamEditor* editor(const std::string& param) const;
@@ -95,6 +109,7 @@ class NodeItem : public QGraphicsObject {
   bool isOptimizer() const;
   /** An Optimizer's progress: evaluations of the budget, best fitness, and its curve. */
   void paintProgress(QPainter* p, const QRectF& area) const;
+  void paintPreviews(QPainter* p) const;
 
   apex::NodeInfo info_;
   std::vector<PortItem*> ports_;
@@ -107,6 +122,11 @@ class NodeItem : public QGraphicsObject {
   std::map<QString, QString> scalar_values_;
   std::vector<double> fitness_;  // Optimizer: best fitness per evaluation of the current run
   int evaluations_ = 0;
+  bool previews_ = false;
+  double preview_top_ = 0;                          // where the previews start in the box
+  std::map<std::string, QImage> images_;            // previews: the last thumbnail per output
+  std::map<std::string, std::vector<double>> series_;  // previews: the last values per output
+  double rate_hz_ = 0;
   double height_ = 60;
   bool dragged_ = false;
 };
@@ -132,7 +152,10 @@ class GraphScene : public QGraphicsScene {
   void show(const GraphModel& model);
   void showStatus(const apex::RuntimeStatus& status);
   void showValue(const QString& node, const QString& port, const QString& text);
+  void showImage(const QString& node, const QString& port, const QImage& image);
   NodeItem* node(const std::string& name) const;
+  /** @brief The nodes shown, by name. */
+  const std::map<std::string, NodeItem*>& nodes() const { return nodes_; }
   /** @brief The subgraph shown ("" the top level): its nodes and the connections between them. */
   const std::string& level() const { return level_; }
   /** @brief Shows another level (a subgraph's path, or "" for the top). */

@@ -27,4 +27,8 @@ std::map<std::string, std::pair<double, double>> layeredLayout(const std::map<st
  *  `taken`, kept `gap` apart. */
 Box freePlace(Box wanted, const std::vector<Box>& taken, double gap = 20);
 
+/** @brief Boxes that lie on others moved down, top to bottom, each just below what it lay on
+ *  (e.g. after boxes grew); x kept. The new corners of the boxes that moved. */
+std::map<std::string, std::pair<double, double>> pushDown(const std::map<std::string, Box>& boxes, double gap = 20);
+
 }  // namespace apex_rviz_plugin

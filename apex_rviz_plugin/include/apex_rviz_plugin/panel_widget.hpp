@@ -6,6 +6,7 @@
 
 #include <set>
 
+#include <QTimer>
 #include <QWidget>
 
 #include "apex_rviz_plugin/graph_editor.hpp"
@@ -46,6 +47,10 @@ class PanelWidget : public QWidget {
   /** Adds what a paste or duplicate made, and selects it once shown. */
   void pasted(const Pasted& p);
   void forgetHistory();
+  /** Previews: every node shown gets its preview area; the outputs of nodes in view are
+   *  previewed (inspect with preview, subscribed), those out of view are not (unsubscribed:
+   *  the runtime then publishes nothing for them). Runs on a timer while previews are on. */
+  void updatePreviews();
   /** Presets are files in $ROS_HOME/apex/presets, one per name: the editor's menu lists them. */
   void listPresets();
   void savePreset(const QString& name, const QStringList& nodes);
@@ -78,6 +83,9 @@ class PanelWidget : public QWidget {
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
   std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
   std::map<std::string, Box> placing_;  // where nodes were sent, until the graph shows them there
+  bool previews_ = false;
+  QTimer* preview_timer_ = nullptr;
+  std::set<std::string> previewing_;  // "node/port" whose preview is asked for or watched
   bool untangle_ = true;  // next graph shown: boxes on top of each other are laid out (a Load, a new level)
 };
 

@@ -4,6 +4,7 @@
 // callback; nothing here blocks the thread that created the link.
 #pragma once
 
+#include <QImage>
 #include <QObject>
 #include <QTimer>
 
@@ -18,6 +19,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -69,7 +71,15 @@ class RuntimeLink : public QObject {
   /** @brief Asks the runtime to publish a port; `done` gets the topic and its message type. */
   void inspect(const std::string& node, const std::string& port,
                std::function<void(bool, const std::string& message, const std::string& topic,
-                                  const std::string& type)> done);
+                                  const std::string& type)> done,
+               bool preview = false);
+  /** @brief Shows a port's previews (inspect with preview) as they come: images as
+   *  imageReceived, numbers as scalarReceived. Until unwatchPreview. */
+  void watchPreview(const std::string& node, const std::string& port, const std::string& topic, const std::string& type);
+  void unwatchPreview(const std::string& node, const std::string& port);
+  bool watchingPreview(const std::string& node, const std::string& port) const {
+    return preview_subs_.count(node + "/" + port) > 0;
+  }
   /** @brief Shows the values of a scalar inspection topic (std_msgs) as scalarReceived. */
   void watchScalar(const std::string& node, const std::string& port, const std::string& topic,
                    const std::string& type);
@@ -84,6 +94,7 @@ class RuntimeLink : public QObject {
   /** A call has waited more than a second for its answer (or the answer came): what to show. */
   void answerOverdue(const QString& text);
   void scalarReceived(const QString& node, const QString& port, const QString& text);
+  void imageReceived(const QString& node, const QString& port, const QImage& image);
 
  private:
   /** Runs `work` on the job thread and `then` with its result on the GUI thread. */
@@ -103,6 +114,9 @@ class RuntimeLink : public QObject {
   std::unique_ptr<ros::AsyncSpinner> spinner_;
   ros::Subscriber graph_sub_, status_sub_;
   std::vector<ros::Subscriber> scalar_subs_;
+  std::map<std::string, ros::Subscriber> preview_subs_;  // "node/port"
+  /** Subscribes to a scalar topic; `show` gets its value as text. */
+  ros::Subscriber subscribeScalar(const std::string& topic, const std::string& type, std::function<void(const QString&)> show);
   QTimer watchdog_;
   JobThread jobs_;  // last: destroyed first, before what its jobs use
 };
