@@ -11,6 +11,9 @@
 #include <QListWidget>
 #include <QMenu>
 #include <QMessageBox>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QScrollBar>
 #include <QShortcut>
 #include <QSplitter>
 #include <QToolButton>
@@ -31,7 +34,54 @@ QToolButton* button(const QString& name, const QString& text, const QString& tip
   return b;
 }
 
+/** The whole graph small in a corner of the view: the boxes as blocks, the part the view
+ *  shows framed; a click there centres the view on it. Draws rectangles, not the scene. */
+class Minimap : public QWidget {
+ public:
+  Minimap(GraphScene* scene, QGraphicsView* main) : QWidget(main), scene_(scene), main_(main) {
+    setObjectName("minimap");
+    setFixedSize(180, 120);
+    setToolTip("the whole graph: click to go there");
+    connect(scene, &QGraphicsScene::changed, this, QOverload<>::of(&QWidget::update));  // repaints coalesce
+  }
+
+ protected:
+  void paintEvent(QPaintEvent*) override {
+    QPainter p(this);
+    p.fillRect(rect(), QColor(20, 22, 26, 220));
+    p.setPen(QColor(110, 110, 110));
+    p.drawRect(rect().adjusted(0, 0, -1, -1));
+    const QRectF seen = main_->mapToScene(main_->viewport()->rect()).boundingRect();
+    QRectF all = seen;
+    const auto boxes = scene_->boxes();
+    for (const auto& [name, b] : boxes) all |= QRectF(b.x, b.y, b.width, b.height);
+    const double s = std::min((width() - 8) / all.width(), (height() - 8) / all.height());
+    map_ = QTransform().translate(-all.left(), -all.top()) * QTransform().scale(s, s) * QTransform().translate(4, 4);
+    p.setPen(Qt::NoPen);
+    p.setBrush(QColor(120, 140, 170));
+    for (const auto& [name, b] : boxes) p.drawRect(map_.mapRect(QRectF(b.x, b.y, b.width, b.height)));
+    p.setPen(QPen(QColor(255, 220, 80), 1));
+    p.setBrush(Qt::NoBrush);
+    p.drawRect(map_.mapRect(seen));
+  }
+  void mousePressEvent(QMouseEvent* e) override { main_->centerOn(map_.inverted().map(QPointF(e->pos()))); }
+
+ private:
+  GraphScene* scene_;
+  QGraphicsView* main_;
+  QTransform map_;  // scene -> minimap
+};
+
 }  // namespace
+
+void GraphEditor::placeMinimap() {
+  if (!minimap_) return;
+  const QRect port = view_->viewport()->geometry();
+  minimap_->move(port.right() - minimap_->width() - 8, port.bottom() - minimap_->height() - 8);
+  const QRectF seen = view_->mapToScene(view_->viewport()->rect()).boundingRect();
+  const bool all_seen = seen.contains(scene_->itemsBoundingRect());
+  minimap_->setVisible(!all_seen && port.width() > 500 && port.height() > 300);  // needed, and room for it
+}
 
 GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphScene(this)), view_(new QGraphicsView) {
   view_->setObjectName("view");
@@ -42,6 +92,10 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   view_->setTransformationAnchor(QGraphicsView::AnchorUnderMouse);
   view_->viewport()->installEventFilter(this);
   view_->installEventFilter(this);  // Delete and Ctrl+D on the selected nodes
+  minimap_ = new Minimap(scene_, view_);
+  for (QScrollBar* bar : {view_->horizontalScrollBar(), view_->verticalScrollBar()})  // scrolled or zoomed
+    connect(bar, &QScrollBar::valueChanged, this, [this] { placeMinimap(), minimap_->update(); });
+  connect(scene_, &QGraphicsScene::sceneRectChanged, this, &GraphEditor::placeMinimap);
   auto* split = new QSplitter;
   split->addWidget(buildPalette());
   split->addWidget(view_);
@@ -244,8 +298,10 @@ void GraphEditor::fitGraph() {
   const double s = std::clamp(std::min(port.width() / r.width(), port.height() / r.height()), 0.4, 1.0);
   view_->resetTransform();
   view_->scale(s, s);
+  scene_->setZoom(s);
   view_->ensureVisible(QRectF(r.topLeft(), QSizeF(1, 1)), 0, 0);  // a graph too big to fit: its start
   if (s * r.width() <= port.width() && s * r.height() <= port.height()) view_->centerOn(r.center());
+  placeMinimap();
 }
 
 bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
@@ -266,8 +322,11 @@ bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
     const double now = view_->transform().m11();
     const double f = std::clamp(std::pow(1.15, wheel->angleDelta().y() / 120.0), 0.1 / now, 3.0 / now);
     view_->scale(f, f);
+    scene_->setZoom(view_->transform().m11());
+    placeMinimap();
     return true;
   }
+  if (watched == view_ && event->type() == QEvent::Resize) placeMinimap();
   return QWidget::eventFilter(watched, event);
 }
 

@@ -35,11 +35,14 @@ void GraphPanel::load(const rviz::Config& config) {
   rviz::Panel::load(config);
   QString ns;
   widget_->setNamespace(config.mapGetString("Namespace", &ns) && !ns.isEmpty() ? ns : "/apex");
+  bool previews = false;
+  if (config.mapGetBool("Previews", &previews)) widget_->setPreviews(previews);
 }
 
 void GraphPanel::save(rviz::Config config) const {
   rviz::Panel::save(config);
   config.mapSetValue("Namespace", widget_->ns());
+  config.mapSetValue("Previews", widget_->previews());
 }
 
 void GraphPanel::addDisplay(const QString& rviz_class, const QString& name, const QString& topic) {

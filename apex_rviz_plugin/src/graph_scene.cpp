@@ -76,6 +76,7 @@ void GraphScene::show(const GraphModel& model) {
     } else {
       item->update(n);
     }
+    item->setDetail(zoom_ >= kDetailScale);
     const auto [x, y] = model.position(n.name);
     if (mouseGrabberItem() != item) item->setPos(x, y);
   }
@@ -164,6 +165,11 @@ void GraphScene::showStatus(const apex::RuntimeStatus& status) {
 
 void GraphScene::showValue(const QString& node_name, const QString& port, const QString& text) {
   if (NodeItem* item = node(node_name.toStdString())) item->showValue(port, text);
+}
+
+void GraphScene::setZoom(double scale) {
+  zoom_ = scale;
+  for (auto& [name, item] : nodes_) item->setDetail(scale >= kDetailScale);
 }
 
 void GraphScene::showImage(const QString& node_name, const QString& port, const QImage& image) {

@@ -2,6 +2,7 @@
 
 #include <QGraphicsProxyWidget>
 #include <QGraphicsSceneMouseEvent>
+#include <QFontMetricsF>
 #include <QPainter>
 #include <QVBoxLayout>
 #include <QWidget>
@@ -84,6 +85,7 @@ void PortItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   } else {
     p->drawEllipse(QPointF(0, 0), r, r);
   }
+  if (!node()->detailed()) return;  // zoomed out: the dot alone
   p->setPen(Qt::white);
   QFont f = p->font();
   f.setPointSizeF(8);
@@ -217,6 +219,14 @@ void NodeItem::setPreviews(bool on) {
   build();
 }
 
+void NodeItem::setDetail(bool full) {
+  if (full == detail_) return;
+  detail_ = full;
+  if (params_) params_->setVisible(full);
+  QGraphicsObject::update();
+  for (auto* p : ports_) p->update();
+}
+
 void NodeItem::showImage(const QString& port, const QImage& image) {
   images_[port.toStdString()] = image;
   QGraphicsObject::update();
@@ -291,6 +301,19 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   p->setFont(f);
   QString title = QString::fromStdString(info_.name.substr(info_.name.rfind('/') + 1));  // inside a subgraph: its own name
   if (!info_.enabled) title += "  (disabled)";
+  if (!detail_) {  // zoomed out: the name alone, as large as the box is wide
+    QFont big = f;
+    big.setPointSizeF(22);
+    const double wide = QFontMetricsF(big).horizontalAdvance(title);
+    if (wide > kWidth - 2 * kPad) big.setPointSizeF(std::max(9.0, 22 * (kWidth - 2 * kPad) / wide));
+    p->setFont(big);
+    p->drawText(QRectF(kPad, kTitle, kWidth - 2 * kPad, std::max(preview_top_ - kTitle, 40.0)), Qt::AlignCenter, title);
+    f.setBold(false);
+    f.setPointSizeF(7.5);
+    p->setFont(f);
+    if (previews_) paintPreviews(p);
+    return;
+  }
   p->drawText(QRectF(kPad, 2, kWidth - 2 * kPad, 18), Qt::AlignLeft | Qt::AlignVCenter, title);
   f.setBold(false);
   f.setPointSizeF(7.5);

@@ -7,6 +7,7 @@
 #include <QSaveFile>
 #include <QGuiApplication>
 #include <QTimer>
+#include <QToolButton>
 #include <QVBoxLayout>
 
 namespace apex_rviz_plugin {
@@ -297,6 +298,10 @@ std::string PanelWidget::readPreset(const QString& name) {
     return "";
   }
   return file.readAll().toStdString();
+}
+
+void PanelWidget::setPreviews(bool on) {
+  if (auto* b = editor_->findChild<QToolButton*>("previews")) b->setChecked(on);  // its toggle does the rest
 }
 
 void PanelWidget::updatePreviews() {

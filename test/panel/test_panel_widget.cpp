@@ -16,6 +16,7 @@
 #include <QGraphicsView>
 #include <QLineEdit>
 #include <QMouseEvent>
+#include <QWheelEvent>
 #include <QTest>
 #include <QToolButton>
 
@@ -656,6 +657,22 @@ TEST_F(PanelWidgetTest, LoadedGraphsAreLaidOutWithNoBoxOnAnotherAndTidyIsOneUndo
       << scene->boxes().size() << " boxes; " << overlapping(*scene) << panel.editor()->message().toStdString();
   EXPECT_LT(scene->node("clock")->x(), scene->node("r1")->x());  // sources left, sinks right
   EXPECT_LT(scene->node("r1")->x(), scene->node("r4")->x());
+
+  // zoomed out to see them all: names alone, large; the minimap takes the view elsewhere
+  panel.editor()->fitGraph();
+  EXPECT_FALSE(scene->node("r1")->detailed());
+  auto* minimap = panel.editor()->findChild<QWidget*>("minimap");
+  ASSERT_TRUE(minimap && minimap->isVisible());
+  const QPointF centre = view->mapToScene(view->viewport()->rect().center());
+  QTest::mouseClick(minimap, Qt::LeftButton, Qt::NoModifier, QPoint(minimap->width() - 6, minimap->height() - 6));
+  EXPECT_NE(view->mapToScene(view->viewport()->rect().center()), centre);
+  for (int i = 0; i < 8; ++i) {  // the plain wheel zooms in, around the cursor: detail comes back
+    const QPointF at = view->viewport()->rect().center();
+    QWheelEvent wheel(at, view->viewport()->mapToGlobal(at.toPoint()), QPoint(), QPoint(0, 120), Qt::NoButton, Qt::NoModifier,
+                      Qt::NoScrollPhase, false);
+    QApplication::sendEvent(view->viewport(), &wheel);
+  }
+  EXPECT_TRUE(scene->node("r1")->detailed());
 
   // Tidy after a node was dragged onto another: laid out again, one undo step
   scene->node("r5")->setPos(scene->node("r6")->pos());

@@ -116,12 +116,14 @@ class GraphEditor : public QWidget {
   void askPresetName(const QStringList& nodes);
   QPointF newNodePosition();
   void showLevel(const QString& path);
+  void placeMinimap();
   /** Shows the next node whose name or type contains the find field's text (in its subgraph),
    *  selected and centred; says which of how many. */
   void findNext();
 
   GraphScene* scene_;
   QGraphicsView* view_;
+  QWidget* minimap_ = nullptr;
   const GraphModel* model_ = nullptr;
   QLineEdit* namespace_;
   QLineEdit* search_;

@@ -71,6 +71,9 @@ class NodeItem : public QGraphicsObject {
   /** @brief The last preview image of an output, and the last values of a numeric one. */
   QImage image(const std::string& port) const { auto it = images_.find(port); return it == images_.end() ? QImage() : it->second; }
   std::size_t samples(const std::string& port) const { auto it = series_.find(port); return it == series_.end() ? 0 : it->second.size(); }
+  /** @brief Full detail (port labels, widgets, timing), or, zoomed out, the name large alone. */
+  void setDetail(bool full);
+  bool detailed() const { return detail_; }
   /** @brief What a port is and what it carried last: its tooltip. */
   QString portTip(const apex::PortInfo& port) const;
   PortItem* port(const std::string& name, bool source) const;
@@ -123,6 +126,7 @@ class NodeItem : public QGraphicsObject {
   std::vector<double> fitness_;  // Optimizer: best fitness per evaluation of the current run
   int evaluations_ = 0;
   bool previews_ = false;
+  bool detail_ = true;
   double preview_top_ = 0;                          // where the previews start in the box
   std::map<std::string, QImage> images_;            // previews: the last thumbnail per output
   std::map<std::string, std::vector<double>> series_;  // previews: the last values per output
@@ -154,6 +158,10 @@ class GraphScene : public QGraphicsScene {
   void showValue(const QString& node, const QString& port, const QString& text);
   void showImage(const QString& node, const QString& port, const QImage& image);
   NodeItem* node(const std::string& name) const;
+  /** @brief The view's scale: below kDetailScale nodes show their names large, without
+   *  port labels and widgets (as map viewers drop detail when zoomed out). */
+  void setZoom(double scale);
+  static constexpr double kDetailScale = 0.6;
   /** @brief The nodes shown, by name. */
   const std::map<std::string, NodeItem*>& nodes() const { return nodes_; }
   /** @brief The subgraph shown ("" the top level): its nodes and the connections between them. */
@@ -204,6 +212,7 @@ class GraphScene : public QGraphicsScene {
   const GraphModel* model_ = nullptr;
   std::string level_;
   std::map<std::string, NodeItem*> nodes_;
+  double zoom_ = 1;
   std::vector<ConnectionItem*> connections_;
   std::map<std::string, std::pair<std::uint64_t, double>> last_status_;  ///< firings at a stamp
   PortItem* drag_from_ = nullptr;

@@ -28,6 +28,9 @@ class PanelWidget : public QWidget {
   int nodeTypeCount() const { return type_count_; }
   /** @brief Edits sent whose answer has not come back yet. */
   int editsPending() const { return pending_; }
+  /** @brief Previews on the nodes on or off (the editor's Previews button). */
+  void setPreviews(bool on);
+  bool previews() const { return previews_; }
   /** @brief Where presets are saved, one YAML file per name: $ROS_HOME/apex/presets. */
   static QString presetFolder();
   QSize sizeHint() const override { return QSize(1000, 650); }  ///< room for a few nodes side by side
