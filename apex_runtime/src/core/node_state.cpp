@@ -38,7 +38,12 @@ NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint
   last_fired_.store(ticks());  // idle since added
 }
 
-NodeState::~NodeState() = default;
+NodeState::~NodeState() {
+  // The node first, while every member is alive: its destructor may stop a thread of its own
+  // that calls notifyNewData() until then (members go in reverse order: group_mutex, declared
+  // after `node`, would be gone; the test Races.RemovingADrivenNodeLeavesNothingQueued hung).
+  node.reset();
+}
 
 int NodeState::findInput(std::string_view n) const { return indexOf(manifest().inputs, n); }
 int NodeState::findOutput(std::string_view n) const { return indexOf(manifest().outputs, n); }
