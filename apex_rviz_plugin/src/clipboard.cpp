@@ -2,6 +2,7 @@
 // read by apex_core), so a copy pastes into another graph, another panel, or a file.
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cctype>
 #include <map>
 #include <set>
@@ -14,15 +15,6 @@ namespace apex_rviz_plugin {
 namespace {
 
 using namespace calls;
-
-std::pair<double, double> positionIn(const std::string& ui_text) {
-  try {
-    const YAML::Node u = YAML::Load(ui_text);
-    if (u.IsMap()) return {u["x"] ? u["x"].as<double>() : 0.0, u["y"] ? u["y"].as<double>() : 0.0};
-  } catch (const YAML::Exception&) {
-  }
-  return {0, 0};
-}
 
 /** The name without a trailing "_<number>": threshold_2 -> threshold. */
 std::string stem(const std::string& name) {
@@ -71,12 +63,18 @@ std::string GraphModel::copy(const std::vector<std::string>& names, std::string*
   return apex::formatGraphText(d);
 }
 
-Pasted GraphModel::paste(const std::string& text, const std::string& level, double dx, double dy) const {
+Pasted GraphModel::paste(const std::string& text, const std::string& level, double x, double y) const {
   auto parsed = apex::parseGraphText(text);
   if (!parsed) return {std::nullopt, {}, "the clipboard holds no APEX nodes: " + parsed.message()};
   const apex::GraphDescription& d = parsed.value();
   if (d.nodes.empty()) return {std::nullopt, {}, "the clipboard holds no APEX nodes"};
   Pasted out;
+  double left = 1e18, top = 1e18;  // the copies' top-left corner goes to (x, y)
+  for (const auto& n : d.nodes) {
+    const auto [nx, ny] = positionIn(n.ui);
+    left = std::min(left, nx), top = std::min(top, ny);
+  }
+  const double dx = x - left, dy = y - top;
   std::map<std::string, std::string> renamed;  // as copied -> as pasted (paths)
   auto free = [&](const std::string& name) {
     const std::string path = join(level, name);
@@ -117,7 +115,12 @@ Pasted GraphModel::paste(const std::string& text, const std::string& level, doub
 Pasted GraphModel::duplicate(const std::vector<std::string>& nodes, double dx, double dy) const {
   std::string left_out;
   const std::string text = copy(nodes, &left_out);
-  Pasted p = paste(text, nodes.empty() ? "" : parentOf(nodes.front()), dx, dy);
+  double left = 1e18, top = 1e18;
+  for (const auto& n : nodes) {
+    const auto [nx, ny] = position(n);
+    left = std::min(left, nx), top = std::min(top, ny);
+  }
+  Pasted p = paste(text, nodes.empty() ? "" : parentOf(nodes.front()), left + dx, top + dy);
   if (!left_out.empty()) p.error = left_out + " is an inline subgraph: save it to a file to copy it";
   if (p.edit) {
     p.edit->label = p.names.size() == 1 && nodes.size() == 1 ? "Duplicate " + nodes.front() + " as " + p.names.front()

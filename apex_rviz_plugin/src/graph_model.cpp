@@ -135,13 +135,17 @@ std::optional<apex::Connection> GraphModel::feeding(const std::string& node_name
 
 std::pair<double, double> GraphModel::position(const std::string& name) const {
   const apex::NodeInfo* n = node(name);
-  if (!n || n->ui.empty()) return {0, 0};
+  return n ? positionIn(n->ui) : std::pair<double, double>{0, 0};
+}
+
+std::pair<double, double> GraphModel::positionIn(const std::string& ui_text) {
+  if (ui_text.empty()) return {0, 0};
   try {
-    const YAML::Node u = YAML::Load(n->ui);
-    return {u["x"] ? u["x"].as<double>() : 0.0, u["y"] ? u["y"].as<double>() : 0.0};
+    const YAML::Node u = YAML::Load(ui_text);
+    if (u.IsMap()) return {u["x"] ? u["x"].as<double>() : 0.0, u["y"] ? u["y"].as<double>() : 0.0};
   } catch (const YAML::Exception&) {
-    return {0, 0};  // metadata another front end wrote differently
   }
+  return {0, 0};  // none, or metadata another front end wrote differently
 }
 
 Edit GraphModel::addNode(const std::string& type, const std::string& name, double x, double y) const {
@@ -318,8 +322,9 @@ std::optional<Edit> GraphModel::ungroup(const std::string& path) const {
   const apex::NodeInfo* n = node(path);
   if (!n || n->subgraph.empty()) return std::nullopt;
   const std::string parent = parentOf(path);
-  apex::Group::Request g;  // its nodes, as they will be named beside it
+  apex::Group::Request g;  // its nodes, as they will be named beside it; back as it was
   g.name = path.substr(parent.empty() ? 0 : parent.size() + 1);
+  g.restore = true;
   for (const auto& m : graph_.nodes)
     if (parentOf(m.name) == path) g.nodes.push_back(join(parent, m.name.substr(path.size() + 1)));
   apex::Ungroup::Request u;

@@ -91,6 +91,8 @@ class GraphModel {
   std::optional<apex::Connection> feeding(const std::string& node, const std::string& port) const;
   /** @brief The node's position from its UI metadata ({x: .., y: ..}); (0, 0) if none. */
   std::pair<double, double> position(const std::string& node) const;
+  /** @brief The position in UI metadata text ({x: .., y: ..}); (0, 0) if none. */
+  static std::pair<double, double> positionIn(const std::string& ui_text);
   /** @brief Whether the node's UI metadata holds a position (a graph written without a panel has none). */
   bool hasPosition(const std::string& node) const;
   /** @brief A name for a new node of a type not used in the graph: GaussianBlur -> gaussian_blur_1. */
@@ -125,9 +127,9 @@ class GraphModel {
    *  subgraph is left out (add_node makes subgraphs from files): `left_out` names it. */
   std::string copy(const std::vector<std::string>& nodes, std::string* left_out = nullptr) const;
   /** @brief Copied nodes (graph file text) added at `level` under names free there (their own if
-   *  it is), moved by (dx, dy), connected among themselves as they were; one edit, undone by
-   *  removing them. */
-  Pasted paste(const std::string& text, const std::string& level, double dx, double dy) const;
+   *  it is), placed as they were among themselves with their top-left corner at (x, y), connected
+   *  among themselves as they were; one edit, undone by removing them. */
+  Pasted paste(const std::string& text, const std::string& level, double x, double y) const;
   /** @brief The parameter values of `nodes` (every node if empty) as preset text (YAML). */
   std::string preset(const std::vector<std::string>& nodes) const;
   /** @brief The parameters whose values differ from the preset's; `error` if it is not one. */
@@ -135,7 +137,7 @@ class GraphModel {
   /** @brief The preset's values set where they differ, as one edit named after it; nothing if
    *  none differs or the text is not a preset (`error` says which). */
   std::optional<Edit> restore(const std::string& preset_text, const std::string& name, std::string* error = nullptr) const;
-  /** @brief A copy and a paste beside the originals, as one edit. */
+  /** @brief A copy and a paste moved by (dx, dy) from the originals, as one edit. */
   Pasted duplicate(const std::vector<std::string>& nodes, double dx, double dy) const;
   /** @brief Nodes beside each other into a new subgraph (named subgraph_1, _2, ... at their
    *  level), one edit: undone by ungrouping it. */
