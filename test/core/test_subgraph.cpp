@@ -314,6 +314,36 @@ TEST(Subgraph, RemovingASubgraphRemovesItsNodesAndConnections) {
   EXPECT_FALSE(g.nodeInterface("b")->findOutput("out"));
 }
 
+TEST(Subgraph, GroupingWithRestoreUndoesAnUngroupExactly) {
+  TempDir dir;
+  writeFile(dir.file("scale.yaml"), kScale);
+  Graph g(testRegistry());
+  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  ASSERT_TRUE(g.setEnabled("a", false));
+  ASSERT_TRUE(g.setUi("a", "{x: 40, y: 80}"));
+  const std::string before = formatGraphText(g.describe());  // a file reference, factor 5, disabled
+  ASSERT_TRUE(g.ungroup("a"));
+  auto enabled = [&](const std::string& name) {
+    for (const auto& st : g.nodeStats()) if (st.name == name) return st.enabled;
+    return false;
+  };
+  EXPECT_TRUE(enabled("first"));  // no longer inside a disabled subgraph
+  ASSERT_TRUE(g.group({"first", "second"}, "a", /*restore=*/true));
+  EXPECT_EQ(formatGraphText(g.describe()), before);  // its file, exported parameter, state and place
+  EXPECT_FALSE(enabled("a/first"));
+  EXPECT_EQ(run(g, "sink_b", 2), (std::vector<int>{6, 12}));
+  for (int got : object<Collector>(g, "sink_a")->ints()) EXPECT_EQ(got, -999) << "the restored subgraph is disabled: Nothing";
+
+  // Without restore (a new grouping), or once the nodes differ: exports from the crossing links only
+  ASSERT_TRUE(g.ungroup("a"));
+  ASSERT_TRUE(g.group({"first", "second"}, "a"));
+  EXPECT_NE(formatGraphText(g.describe()), before);
+  EXPECT_FALSE(g.nodeInterface("a")->findParam("factor"));
+  ASSERT_TRUE(g.ungroup("a"));
+  ASSERT_TRUE(g.group({"first"}, "a", /*restore=*/true));
+  EXPECT_FALSE(g.nodeInterface("a")->findParam("factor"));
+}
+
 TEST(Subgraph, GroupAndUngroupWhileRunningKeepTheOutputsAndGiveTheFlatGraphBack) {
   Graph g(testRegistry());
   apex_test::add(g, "test/Feeder", "feeder");

@@ -203,6 +203,7 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
   order_ = std::move(staged.order_);
   dormant_ = std::move(staged.dormant_);
   subgraphs_ = std::move(staged.subgraphs_);
+  ungrouped_.clear();  // another graph: nothing of this one to bring back
   name_counters_ = std::move(staged.name_counters_);
   next_seq_ = staged.next_seq_;
   staged.nodes_.clear();

@@ -361,7 +361,15 @@ std::string unique(std::set<std::string>& taken, const std::string& node, const 
 }
 }  // namespace
 
-Status Graph::group(const std::vector<std::string>& members, const std::string& name) {
+std::shared_ptr<detail::Subgraph> Graph::takeUngrouped(const std::string& path, const std::vector<std::string>& members) {
+  auto it = ungrouped_.find(path);
+  if (it == ungrouped_.end()) return nullptr;
+  auto [sg, had] = std::move(it->second);
+  ungrouped_.erase(it);
+  return std::set<std::string>(members.begin(), members.end()) == had ? sg : nullptr;
+}
+
+Status Graph::group(const std::vector<std::string>& members, const std::string& name, bool restore) {
   auto lock = lockEdits();
   auto fail = [&](const std::string& why) { return Status::error("cannot group into '" + name + "': " + why); };
   if (members.empty()) return fail("no nodes given");
@@ -383,6 +391,7 @@ Status Graph::group(const std::vector<std::string>& members, const std::string& 
   auto rel = [&](const std::string& node, const std::string& port) {
     return node.substr(parent.empty() ? 0 : parent.size() + 1) + "/" + port;
   };
+  std::shared_ptr<Subgraph> before = restore ? takeUngrouped(path, members) : nullptr;
   // Each crossing connection through an export: one per outside sender (it may feed several
   // inner receivers), one per inner sender (it may feed several outside).
   auto sg = std::make_shared<Subgraph>();
@@ -440,6 +449,11 @@ Status Graph::group(const std::vector<std::string>& members, const std::string& 
   }
   subgraphs_[path] = sg;
   for (const auto& m : members) moveLocked(m, join(path, m.substr(parent.empty() ? 0 : parent.size() + 1)));
+  if (before && checkExports(*before)) {  // as it was; its exports cover what crosses, as they did
+    before->seq = sg->seq;
+    subgraphs_[path] = before;
+    if (!before->enabled) applyOuterEnabled(path);
+  }
   bump();
   return Status::ok();
 }
@@ -477,6 +491,9 @@ Status Graph::ungroup(const std::string& path) {
   }
   subgraphs_.erase(path);
   for (const auto& c : children) moveLocked(c, join(parent, c.substr(path.size() + 1)));
+  std::set<std::string> moved;
+  for (const auto& c : children) moved.insert(join(parent, c.substr(path.size() + 1)));
+  ungrouped_[path] = {sg, std::move(moved)};  // for an undo: group(restore) brings it back as it is
   if (!sg->enabled) applyOuterEnabled(parent);  // its nodes are no longer inside a disabled subgraph
   bump();
   return Status::ok();

@@ -71,8 +71,11 @@ class Graph {
   /** @brief Makes `nodes` (all beside each other: at the top, or in one subgraph) a new
    *  subgraph `name` in their place, as one live edit: nothing is rebuilt, no message is
    *  lost, and every connection crossing its boundary goes through an export named after
-   *  the inner port (one export per outside sender it receives from, one per inner sender). */
-  Status group(const std::vector<std::string>& nodes, const std::string& name);
+   *  the inner port (one export per outside sender it receives from, one per inner sender).
+   *  With `restore` (the undo of an ungroup): if these very nodes were last ungrouped from a
+   *  subgraph of that name, it comes back as it was — its exports (parameters included), file,
+   *  enabled state and position — where its exports still fit; else as without. */
+  Status group(const std::vector<std::string>& nodes, const std::string& name, bool restore = false);
   /** @brief The opposite: the subgraph's nodes move up beside where it was, its exports go,
    *  every connection stays. Refused if one of its nodes' names is taken there. */
   Status ungroup(const std::string& name);
@@ -179,6 +182,8 @@ class Graph {
   void moveLocked(const std::string& from, const std::string& to);
   void dropExportsOf(const std::string& node);
   void applyOuterEnabled(const std::string& path);
+  /** The subgraph `path` as ungrouped, if `members` are the nodes it had (taken out of the record). */
+  std::shared_ptr<detail::Subgraph> takeUngrouped(const std::string& path, const std::vector<std::string>& members);
   std::shared_ptr<const Manifest> facade(const detail::Subgraph& sg) const;
   GraphDescription describeLocked() const;
   /** The flat description (every node by its path) nested into subgraphs. */
@@ -219,6 +224,8 @@ class Graph {
   std::map<std::string, int> name_counters_;  // generated names: gaussian_blur_1, _2, ...
   std::map<std::string, std::shared_ptr<detail::ThreadGroup>> groups_;
   std::map<std::string, std::shared_ptr<detail::Subgraph>> subgraphs_;  // by path
+  /** Subgraphs ungrouped, by path, with their nodes' names after it: what group(restore) brings back. */
+  std::map<std::string, std::pair<std::shared_ptr<detail::Subgraph>, std::set<std::string>>> ungrouped_;
   std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
   bool running_ = false;
   bool ran_ = false;  // started at least once: messages may be in flight
