@@ -34,9 +34,11 @@
 #include "apex/core/graph_file.hpp"
 #include "apex/core/log.hpp"
 #include "convert.hpp"
+#include "diagnostics.hpp"
 #include "inspection.hpp"
 #include "param_mirror.hpp"
 #include "plugin_types.hpp"
+#include "reconfigure.hpp"
 
 namespace apex {
 namespace ros_host {
@@ -76,6 +78,8 @@ struct RuntimeHost::Impl {
   ros::Publisher graph_pub, status_pub;
   std::vector<ros::ServiceServer> services;
   ros::WallTimer change_timer, status_timer;
+  std::unique_ptr<Reconfigure> reconfigure;  // after the graph: gone before it
+  std::unique_ptr<Diagnostics> diagnostics;
   std::mutex publish_mutex;
   std::uint64_t published_revision = ~0ull;
 
@@ -94,6 +98,8 @@ struct RuntimeHost::Impl {
     const GraphState state = toGraphState(graph, revision);
     graph_pub.publish(state);
     mirror.update(graph, state);
+    if (reconfigure) reconfigure->update(state);
+    if (diagnostics) diagnostics->setGraph(state);
   }
 
   template <class Res>
@@ -174,9 +180,14 @@ struct RuntimeHost::Impl {
     return answered(res, graph.disconnect(req.from_node, req.from_port, req.to_node, req.to_port));
   }
 
+  /** One parameter from outside (a service, dynamic_reconfigure): its path confined, then set. */
+  Result<std::string> setFromOutside(const std::string& node, const std::string& param, const std::string& text) {
+    auto value = confinedValue(graph.nodeInterface(node), node, param, text);
+    return value ? graph.setParameter(node, param, value.value()) : Result<std::string>(value.status());
+  }
+
   bool setParameter(SetParameter::Request& req, SetParameter::Response& res) {
-    auto value = confinedValue(graph.nodeInterface(req.node), req.node, req.parameter, req.value);
-    auto applied = value ? graph.setParameter(req.node, req.parameter, value.value()) : Result<std::string>(value.status());
+    auto applied = setFromOutside(req.node, req.parameter, req.value);
     if (applied) {
       res.value = applied.value();
     } else if (auto old = graph.parameterValue(req.node, req.parameter)) {
@@ -196,7 +207,7 @@ struct RuntimeHost::Impl {
   }
   bool setUi(SetUi::Request& req, SetUi::Response& res) { return answered(res, graph.setUi(req.node, req.ui)); }
   bool group(Group::Request& req, Group::Response& res) {
-    auto st = graph.group(req.nodes, req.name);
+    auto st = graph.group(req.nodes, req.name, req.restore);
     if (st) inspection.clear();  // taps follow names: inspect again under the new ones
     return answered(res, st);
   }
@@ -337,8 +348,12 @@ struct RuntimeHost::Impl {
     } else if (req.command == "step") {  // one frame through the whole graph
       st = graph.stepFrame();
       if (!st) st = Status::error("step: " + st.message());
+    } else if (req.command == "clear") {  // New: every node goes, as a Load of an empty file
+      auto report = graph.load(GraphDescription());
+      st = report ? Status::ok() : report.status();
+      if (st) inspection.clear();
     } else {
-      st = Status::error("unknown command '" + req.command + "' (commands: pause, resume, step)");
+      st = Status::error("unknown command '" + req.command + "' (commands: pause, resume, step, clear)");
     }
     res.paused = graph.paused();
     return answered(res, st);
@@ -382,6 +397,17 @@ struct RuntimeHost::Impl {
     serve("save_graph", &Impl::saveGraph);
     serve("control", &Impl::control);
     serve("inspect", &Impl::inspect);
+    bool reconfigurable = true, diagnosed = true;
+    pnh.param("dynamic_reconfigure", reconfigurable, true);
+    pnh.param("diagnostics", diagnosed, true);
+    if (reconfigurable)
+      reconfigure = std::make_unique<Reconfigure>(pnh, graph, [this](const std::string& node, const std::string& param,
+                                                                     const std::string& text) {
+        auto applied = setFromOutside(node, param, text);
+        publishIfChanged();  // parameter_updates, ~graph
+        return applied;
+      });
+    if (diagnosed) diagnostics = std::make_unique<Diagnostics>(nh, pnh, graph);
     change_timer = pnh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) { publishIfChanged(); });
     status_timer = pnh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
       if (status_pub.getNumSubscribers() > 0) status_pub.publish(toStatus(graph));
@@ -466,6 +492,11 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
 }
 
 RuntimeHost::~RuntimeHost() {
+  {
+    std::lock_guard<std::mutex> lock(impl_->publish_mutex);  // they are used under it
+    impl_->diagnostics.reset();
+    impl_->reconfigure.reset();
+  }
   impl_->graph.stop();
   impl_->inspection.clear();
 }

@@ -91,4 +91,15 @@ class TopicCounter {
   ros::Subscriber sub_;  // last: its callback uses the members above
 };
 
+/** Waits until `done()` holds, checking every 10 ms, for at most `seconds` (wall time). */
+template <class F>
+bool waitUntil(F done, double seconds) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (!done()) {
+    if (ros::WallTime::now() > end) return false;
+    ros::WallDuration(0.01).sleep();
+  }
+  return true;
+}
+
 }  // namespace apex_test
