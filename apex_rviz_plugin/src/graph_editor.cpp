@@ -175,6 +175,12 @@ QWidget* GraphEditor::buildToolBar() {
     fillPresetMenu(*preset_menu);
   });
   presets->setMenu(preset_menu);
+  auto* fresh = button("new", "New", "remove every node: start from an empty graph (asks first; starts a fresh history)");
+  connect(fresh, &QToolButton::clicked, this, [this] {
+    const auto answer = QMessageBox::question(this, "New graph", "Remove every node of the running graph?\n"
+                                                                  "Save it first if you want to keep it.");
+    if (answer == QMessageBox::Yes) emit newRequested();
+  });
   auto* save = button("save", "Save...", "save the graph to a file (written by the runtime)");
   auto* load = button("load", "Load...", "load a graph file into the runtime (all or nothing)");
   connect(save, &QToolButton::clicked, this, [this] {
@@ -185,7 +191,7 @@ QWidget* GraphEditor::buildToolBar() {
     const QString path = QFileDialog::getOpenFileName(this, "Load graph", last_path_, "APEX graphs (*.yaml)");
     if (!path.isEmpty()) emit loadRequested(last_path_ = path);
   });
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, previews, presets, save, load}) row->addWidget(b);
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, previews, presets, fresh, save, load}) row->addWidget(b);
   return bar;
 }
 

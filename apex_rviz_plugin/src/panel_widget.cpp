@@ -59,7 +59,7 @@ void PanelWidget::connectEditor() {
     const std::string name = model_.freshName(str(type));
     std::vector<Box> taken;
     for (const auto& [n, box] : editor_->scene()->boxes()) taken.push_back(box);
-    const Box free = freePlace({at.x(), at.y(), NodeItem::kWidth, 120}, taken);  // not on top of another
+    const Box free = freePlace({at.x(), at.y(), NodeItem::kWidth, typeHeight(str(type))}, taken);  // on no other
     perform(model_.addNode(str(type), inside.empty() ? name : inside + "/" + name, free.x, free.y));
   });
   connect(e, &GraphEditor::removeRequested, this, [this, str](const QString& n) { perform(model_.removeNode(str(n))); });
@@ -86,7 +86,20 @@ void PanelWidget::connectEditor() {
   });
   connect(e, &GraphEditor::pasteRequested, this, [this](QPointF at) {
     const std::string text = QGuiApplication::clipboard()->text().toStdString();
-    pasted(model_.paste(text, editor_->scene()->level(), at.x(), at.y()));
+    const std::string& level = editor_->scene()->level();
+    Pasted p = model_.paste(text, level, at.x(), at.y());
+    if (!p.edit) return pasted(p);
+    Box group{at.x(), at.y(), 0, 0};  // where the copies go, as boxes of a usual size
+    for (const auto& call : p.edit->apply)
+      if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) {
+        const auto [x, y] = GraphModel::positionIn(ui->ui);
+        group.width = std::max(group.width, x + NodeItem::kWidth - at.x());
+        group.height = std::max(group.height, y + 150 - at.y());
+      }
+    std::vector<Box> taken;
+    for (const auto& [n, box] : editor_->scene()->boxes()) taken.push_back(box);
+    const Box free = freePlace(group, taken);  // not on top of what is there
+    pasted(free.x == at.x() && free.y == at.y() ? p : model_.paste(text, level, free.x, free.y));
   });
   connect(e, &GraphEditor::renameRequested, this, [this, str](const QString& n, const QString& to) {
     perform(model_.rename(str(n), str(to)));
@@ -130,6 +143,12 @@ void PanelWidget::connectEditor() {
       report(ok, m, "loaded " + path);
       if (ok) afterLoad();
       else untangle_ = false;
+    });
+  });
+  connect(e, &GraphEditor::newRequested, this, [this] {
+    link_.control("clear", [this](bool ok, const std::string& m) {
+      report(ok, m, "new graph");
+      if (ok) afterLoad();
     });
   });
   connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
@@ -182,9 +201,9 @@ void PanelWidget::connectEditor() {
 void PanelWidget::perform(const std::optional<Edit>& edit) {
   if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
   ++pending_;
-  link_.run(edit->apply, [this, edit = *edit](bool ok, const std::string& message) {
+  link_.run(edit->apply, [this, edit = *edit, epoch = history_epoch_](bool ok, const std::string& message) {
     --pending_;
-    if (ok) history_.done(edit);
+    if (ok && epoch == history_epoch_) history_.done(edit);  // not into a history started since: another graph
     editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
     report(ok, message, QString::fromStdString(edit.label));
     if (!ok) editor_->showGraph(model_);  // widgets back to the values the runtime holds
@@ -332,6 +351,7 @@ void PanelWidget::updatePreviews() {
 
 void PanelWidget::forgetHistory() {
   history_.clear();
+  ++history_epoch_;
   editor_->showHistory("", false, false);
 }
 
@@ -372,10 +392,27 @@ void PanelWidget::watchOptimizers() {
   }
 }
 
+double PanelWidget::typeHeight(const std::string& type) const {
+  const auto t = types_.find(type);
+  if (t == types_.end()) return 150;  // a usual box
+  apex::NodeInfo info;  // as a new node of the type is shown: its ports, its parameters at their defaults
+  info.type = type;
+  auto interactive = [&](const std::string& name) {
+    for (const auto& p : t->second.parameters) if (p.name == name) return bool(p.interactive);
+    return false;
+  };
+  for (const auto& p : t->second.ports)  // parameter ports only where the parameter is interactive by default
+    if ((p.kind != "param_in" && p.kind != "param_out") || interactive(p.name)) info.ports.push_back(p);
+  info.parameters = t->second.parameters;
+  return NodeItem(info).boundingRect().height();
+}
+
 void PanelWidget::refreshTypes() {
   link_.listTypes([this](bool ok, const std::string& message, const std::vector<apex::NodeTypeInfo>& types) {
     if (!ok) return report(false, message, "list node types");
     type_count_ = static_cast<int>(types.size());
+    types_.clear();
+    for (const auto& t : types) types_[t.id] = t;
     editor_->showTypes(types);
     if (!message.empty()) editor_->showMessage(QString::fromStdString("some node types are missing: " + message), true);
   });

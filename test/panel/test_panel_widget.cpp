@@ -109,6 +109,16 @@ bool connected(const apex::GraphState& g, const std::string& a, const std::strin
   return false;
 }
 
+/** The boxes shown that lie on each other, as text; "" if none. */
+std::string overlapping(const GraphScene& scene) {
+  const auto boxes = scene.boxes();
+  std::string out;
+  for (auto a = boxes.begin(); a != boxes.end(); ++a)
+    for (auto b = std::next(a); b != boxes.end(); ++b)
+      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + "; ";
+  return out;
+}
+
 /** A mouse event as the window system would deliver it to the view. */
 void mouse(QGraphicsView* view, QEvent::Type type, QPointF scene_pos, Qt::MouseButtons held) {
   const QPoint at = view->mapFromScene(scene_pos);
@@ -424,6 +434,10 @@ TEST_F(PanelWidgetTest, RenameCopyPasteAndDuplicateAndTheCopiesAreWhatIsSelected
       << panel.editor()->message().toStdString();
   EXPECT_TRUE(connected(runtimeGraph(), "ticker_1", "count", "sink_1", "in"));
   EXPECT_EQ(param(runtimeGraph(), "ticker_1", "rate"), "50.0");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.model().hasPosition("sink_1") && panel.editsPending() == 0; }, kWaitMs));
+  const std::string on = overlapping(*scene);  // pasted where nothing is
+  EXPECT_EQ(on.find("ticker_1"), std::string::npos) << on;
+  EXPECT_EQ(on.find("sink_1"), std::string::npos) << on;
   EXPECT_TRUE(scene->node("ticker_1")->isSelected() && scene->node("sink_1")->isSelected());
   EXPECT_FALSE(scene->node("ticker")->isSelected() || scene->node("sink")->isSelected());
 
@@ -552,16 +566,6 @@ TEST_F(PanelWidgetTest, APresetIsSavedComparedWithNowAndRestoredInOneUndoStep) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "preset_clock", "rate") == 40; }, kWaitMs));
 }
 
-/** The boxes shown that lie on each other, as text; "" if none. */
-std::string overlapping(const GraphScene& scene) {
-  const auto boxes = scene.boxes();
-  std::string out;
-  for (auto a = boxes.begin(); a != boxes.end(); ++a)
-    for (auto b = std::next(a); b != boxes.end(); ++b)
-      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + "; ";
-  return out;
-}
-
 TEST_F(PanelWidgetTest, PreviewsDrawThumbnailsAndSparklinesOfNodesInViewOnly) {
   ASSERT_TRUE(addNode("apex_nodes/BagReader", "thumbs_bag",
                       "{file: '" + g_bag + "', topics: [/camera/image_raw], rate: 10.0, loop: true, playing: true}"));
@@ -688,6 +692,24 @@ TEST_F(PanelWidgetTest, LoadedGraphsAreLaidOutWithNoBoxOnAnotherAndTidyIsOneUndo
   const std::string empty = std::filesystem::path(g_bag).parent_path() / "panel_empty.yaml";
   std::ofstream(empty) << "apex_graph: 2\nnodes: []\n";
   emit panel.editor()->loadRequested(QString::fromStdString(empty));  // the tests after start from nothing
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty(); }, kWaitMs));
+}
+
+TEST_F(PanelWidgetTest, NewEmptiesTheGraphAndStartsAFreshHistory) {
+  GraphScene* scene = panel.editor()->scene();
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  ASSERT_TRUE(panel.editor()->findChild<QToolButton*>("new"));
+  emit panel.editor()->newRequested();  // what the New button sends once the person said yes
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty() && runtimeGraph().nodes.empty(); }, kWaitMs));
+
+  addByKeyboard("Clock", "clock_1");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->isEnabled(); }, kWaitMs));
+
+  emit panel.editor()->newRequested();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty() && runtimeGraph().nodes.empty(); }, kWaitMs));
+  EXPECT_FALSE(undo->isEnabled()) << "the edits before New were of another graph: " << undo->toolTip().toStdString();
+
+  emit panel.editor()->newRequested();  // the tests after start from nothing
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty(); }, kWaitMs));
 }
 

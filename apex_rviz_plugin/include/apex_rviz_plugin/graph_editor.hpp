@@ -90,6 +90,8 @@ class GraphEditor : public QWidget {
   void redoRequested();
   void saveRequested(const QString& path);
   void loadRequested(const QString& path);
+  /** New: the person confirmed that every node goes. */
+  void newRequested();
   void typesRequested();
   /** Lay the nodes shown out in layers, left to right. */
   void tidyRequested();

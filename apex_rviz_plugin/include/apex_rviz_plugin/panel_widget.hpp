@@ -4,6 +4,7 @@
 // GraphPanel puts this in rviz; tests drive it directly.
 #pragma once
 
+#include <map>
 #include <set>
 
 #include <QTimer>
@@ -72,6 +73,8 @@ class PanelWidget : public QWidget {
   void onGraph(const apex::GraphState& graph);
   void onInspect(const QString& node, const QString& port);
   void refreshTypes();
+  /** The height of a new node of `type`'s box, measured on one made for it. */
+  double typeHeight(const std::string& type) const;
   /** Inspects each Optimizer's progress (evaluations, best fitness) once, for its box to draw. */
   void watchOptimizers();
   void report(bool ok, const std::string& message, const QString& what);
@@ -83,6 +86,8 @@ class PanelWidget : public QWidget {
   RuntimeLink link_;
   int type_count_ = 0;
   int pending_ = 0;
+  int history_epoch_ = 0;  // counts fresh histories: an edit answered after one began is not recorded
+  std::map<std::string, apex::NodeTypeInfo> types_;  // by id, as the runtime listed them
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
   std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
   std::map<std::string, Box> placing_;  // where nodes were sent, until the graph shows them there
