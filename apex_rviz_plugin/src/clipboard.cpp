@@ -31,7 +31,8 @@ std::string parametersOf(const apex::NodeDescription& n) {
 
 }  // namespace
 
-std::string GraphModel::copy(const std::vector<std::string>& names, std::string* left_out) const {
+std::string GraphModel::copy(const std::vector<std::string>& names, std::string* left_out,
+                             const std::map<std::string, std::pair<double, double>>& shown_at) const {
   apex::GraphDescription d;
   const std::string level = names.empty() ? "" : parentOf(names.front());
   auto rel = [&](const std::string& path) { return path.substr(level.empty() ? 0 : level.size() + 1); };
@@ -50,6 +51,7 @@ std::string GraphModel::copy(const std::vector<std::string>& names, std::string*
     nd.thread_group = n->thread_group.empty() ? "default" : n->thread_group;
     nd.enabled = n->enabled;
     nd.ui = n->ui;
+    if (auto at = shown_at.find(name); at != shown_at.end()) nd.ui = ui(at->second.first, at->second.second);
     for (const auto& p : n->parameters) {
       nd.parameters.emplace_back(p.name, p.value);
       if (p.interactive) nd.interactive.push_back(p.name);
@@ -112,12 +114,14 @@ Pasted GraphModel::paste(const std::string& text, const std::string& level, doub
   return out;
 }
 
-Pasted GraphModel::duplicate(const std::vector<std::string>& nodes, double dx, double dy) const {
+Pasted GraphModel::duplicate(const std::vector<std::string>& nodes, double dx, double dy,
+                             const std::map<std::string, std::pair<double, double>>& shown_at) const {
   std::string left_out;
-  const std::string text = copy(nodes, &left_out);
+  const std::string text = copy(nodes, &left_out, shown_at);
   double left = 1e18, top = 1e18;
   for (const auto& n : nodes) {
-    const auto [nx, ny] = position(n);
+    const auto shown = shown_at.find(n);
+    const auto [nx, ny] = shown != shown_at.end() ? shown->second : position(n);
     left = std::min(left, nx), top = std::min(top, ny);
   }
   Pasted p = paste(text, nodes.empty() ? "" : parentOf(nodes.front()), left + dx, top + dy);

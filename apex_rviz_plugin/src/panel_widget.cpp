@@ -57,10 +57,15 @@ void PanelWidget::connectEditor() {
   connect(e, &GraphEditor::addRequested, this, [this, str](const QString& type, QPointF at) {
     const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
     const std::string name = model_.freshName(str(type));
+    const std::string path = inside.empty() ? name : inside + "/" + name;
+    const auto shown = editor_->scene()->boxes();
     std::vector<Box> taken;
-    for (const auto& [n, box] : editor_->scene()->boxes()) taken.push_back(box);
+    for (const auto& [n, box] : shown) taken.push_back(box);
+    for (const auto& [n, box] : placing_)  // added a moment ago, not shown yet: their places are taken too
+      if (!shown.count(n)) taken.push_back(box);
     const Box free = freePlace({at.x(), at.y(), NodeItem::kWidth, typeHeight(str(type))}, taken);  // on no other
-    perform(model_.addNode(str(type), inside.empty() ? name : inside + "/" + name, free.x, free.y));
+    placing_[path] = free;
+    perform(model_.addNode(str(type), path, free.x, free.y));
   });
   connect(e, &GraphEditor::removeRequested, this, [this, str](const QString& n) { perform(model_.removeNode(str(n))); });
   connect(e, &GraphEditor::groupIntoSubgraphRequested, this, [this, str](const QStringList& nodes) {
@@ -74,13 +79,18 @@ void PanelWidget::connectEditor() {
     for (const auto& n : nodes) out.push_back(str(n));
     return out;
   };
-  connect(e, &GraphEditor::duplicateRequested, this, [this, names](const QStringList& nodes) {
-    if (!nodes.isEmpty()) pasted(model_.duplicate(names(nodes), 40, 40));
+  auto shown = [this] {  // where the boxes are, placed or not yet saved
+    std::map<std::string, std::pair<double, double>> at;
+    for (const auto& [name, box] : editor_->scene()->boxes()) at[name] = {box.x, box.y};
+    return at;
+  };
+  connect(e, &GraphEditor::duplicateRequested, this, [this, names, shown](const QStringList& nodes) {
+    if (!nodes.isEmpty()) pasted(model_.duplicate(names(nodes), 40, 40, shown()));
   });
-  connect(e, &GraphEditor::copyRequested, this, [this, names](const QStringList& nodes) {
+  connect(e, &GraphEditor::copyRequested, this, [this, names, shown](const QStringList& nodes) {
     if (nodes.isEmpty()) return;
     std::string left_out;
-    QGuiApplication::clipboard()->setText(QString::fromStdString(model_.copy(names(nodes), &left_out)));
+    QGuiApplication::clipboard()->setText(QString::fromStdString(model_.copy(names(nodes), &left_out, shown())));
     if (!left_out.empty()) return editor_->showMessage(QString::fromStdString(left_out + " is an inline subgraph: save it to a file to copy it"), true);
     editor_->showMessage(nodes.size() == 1 ? "copied " + nodes.front() : QString("copied %1 nodes").arg(nodes.size()), false);
   });
@@ -138,19 +148,18 @@ void PanelWidget::connectEditor() {
     link_.saveGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "saved " + path); });
   });
   connect(e, &GraphEditor::loadRequested, this, [this](const QString& path) {
-    untangle_ = true;  // for the loaded graph's first ~graph, which may come before the answer
-    link_.loadGraph(path.toStdString(), [this, path](bool ok, const std::string& m) {
-      report(ok, m, "loaded " + path);
-      if (ok) afterLoad();
-      else untangle_ = false;
+    const auto done = replacingGraph("loaded " + path);
+    const auto shown = model_.graph().revision;
+    link_.loadGraph(path.toStdString(), [this, done, shown](bool ok, const std::string& m) {
+      done(ok, m);
+      if (!ok) return;
+      // Positions written for other box sizes (by hand, another panel) are laid out again: now if
+      // the loaded graph's ~graph came before this answer, else when it comes (never on the old one).
+      untangle_ = true;
+      if (model_.graph().revision > shown) placeUnplaced();
     });
   });
-  connect(e, &GraphEditor::newRequested, this, [this] {
-    link_.control("clear", [this](bool ok, const std::string& m) {
-      report(ok, m, "new graph");
-      if (ok) afterLoad();
-    });
-  });
+  connect(e, &GraphEditor::newRequested, this, [this] { link_.control("clear", replacingGraph("new graph")); });
   connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
   connect(e, &GraphEditor::optimiseRequested, this, [this, str](const QString& n, const QString& p, const QString& opt) {
     const auto [x, y] = model_.position(str(n));
@@ -200,6 +209,7 @@ void PanelWidget::connectEditor() {
 
 void PanelWidget::perform(const std::optional<Edit>& edit) {
   if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
+  reservePlaces(edit->apply);
   ++pending_;
   link_.run(edit->apply, [this, edit = *edit, epoch = history_epoch_](bool ok, const std::string& message) {
     --pending_;
@@ -272,6 +282,32 @@ void PanelWidget::placeUnplaced() {
     p = {free.x, free.y};
   }
   place(at);
+}
+
+void PanelWidget::reservePlaces(const std::vector<Call>& calls) {
+  // A node an edit adds shows before its set_ui is applied: placeUnplaced must not place it again.
+  const auto shown = editor_->scene()->boxes();
+  for (const auto& call : calls)
+    if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) {
+      if (placing_.count(ui->node)) continue;  // placed with its type's size already (addRequested)
+      const auto [x, y] = GraphModel::positionIn(ui->ui);
+      const auto box = shown.find(ui->node);
+      placing_[ui->node] = Box{x, y, box == shown.end() ? NodeItem::kWidth : box->second.width,
+                               box == shown.end() ? 150 : box->second.height};
+    }
+}
+
+void PanelWidget::pushDownUnderGrown() {
+  const auto boxes = editor_->scene()->boxes();
+  bool grew_onto = false;  // a box that grew (its node's ports or parameters changed) and now lies on another
+  for (const auto& [name, box] : boxes) {
+    const auto before = heights_.find(name);
+    if (before == heights_.end() || box.height <= before->second + 0.5) continue;
+    for (const auto& [other, b] : boxes) grew_onto = grew_onto || (other != name && box.overlaps(b));
+  }
+  heights_.clear();
+  for (const auto& [name, box] : boxes) heights_[name] = box.height;
+  if (grew_onto) place(pushDown(boxes));
 }
 
 void PanelWidget::place(const std::map<std::string, std::pair<double, double>>& positions) {
@@ -355,8 +391,23 @@ void PanelWidget::forgetHistory() {
   editor_->showHistory("", false, false);
 }
 
+std::function<void(bool, const std::string&)> PanelWidget::replacingGraph(const QString& what) {
+  // A fresh history from the request on: the link runs calls in order, so an edit asked for
+  // after this one is an edit of the new graph, even if its answer comes first.
+  auto before = std::make_shared<EditHistory>(history_);
+  forgetHistory();
+  placing_.clear();  // of nodes of the graph before; a node added after this request keeps its place
+  return [this, what, before](bool ok, const std::string& message) {
+    report(ok, message, what);
+    if (ok) return afterLoad();
+    if (!history_.canUndo() && !history_.canRedo()) {  // refused, and nothing done since: the old history stands
+      history_ = *before;
+      editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
+    }
+  };
+}
+
 void PanelWidget::afterLoad() {
-  forgetHistory();  // the edits before were of another graph
   for (const auto& key : previewing_) link_.unwatchPreview(key.substr(0, key.rfind('/')), key.substr(key.rfind('/') + 1));
   previewing_.clear();  // a load ends the runtime's previews: asked for again by the next update
   watched_.clear();  // a load ends every inspection: the Optimizers' progress and the displays
@@ -377,6 +428,7 @@ void PanelWidget::onGraph(const apex::GraphState& graph) {
   }
   editor_->showGraph(model_);
   placeUnplaced();
+  pushDownUnderGrown();
   watchOptimizers();
   emit graphShown(graph.revision);
 }

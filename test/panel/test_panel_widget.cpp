@@ -110,12 +110,17 @@ bool connected(const apex::GraphState& g, const std::string& a, const std::strin
 }
 
 /** The boxes shown that lie on each other, as text; "" if none. */
+std::string boxText(const Box& b) {
+  return "(" + std::to_string(int(b.x)) + ", " + std::to_string(int(b.y)) + ", " + std::to_string(int(b.width)) + " x " +
+         std::to_string(int(b.height)) + ")";
+}
+
 std::string overlapping(const GraphScene& scene) {
   const auto boxes = scene.boxes();
   std::string out;
   for (auto a = boxes.begin(); a != boxes.end(); ++a)
     for (auto b = std::next(a); b != boxes.end(); ++b)
-      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + "; ";
+      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + " " + boxText(a->second) + " " + boxText(b->second) + "; ";
   return out;
 }
 
@@ -702,12 +707,24 @@ TEST_F(PanelWidgetTest, NewEmptiesTheGraphAndStartsAFreshHistory) {
   emit panel.editor()->newRequested();  // what the New button sends once the person said yes
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty() && runtimeGraph().nodes.empty(); }, kWaitMs));
 
-  addByKeyboard("Clock", "clock_1");
+  addByKeyboard("Clock", "clock_1");  // at once after New: an edit of the new graph, in its history
   ASSERT_TRUE(QTest::qWaitFor([&] { return undo->isEnabled(); }, kWaitMs));
+  addByKeyboard("Counter", "counter_1");  // at once after the clock: beside it, not on it
+  addByKeyboard("BagReader", "bag_reader_1");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && panel.model().hasPosition("bag_reader_1"); }, kWaitMs));
+  // the clock fires and shows its timing: a box that grows pushes none onto another
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("clock_1")->firings() > 0 && panel.editsPending() == 0; }, kWaitMs));
+  EXPECT_EQ(overlapping(*scene), "");
 
   emit panel.editor()->newRequested();
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty() && runtimeGraph().nodes.empty(); }, kWaitMs));
   EXPECT_FALSE(undo->isEnabled()) << "the edits before New were of another graph: " << undo->toolTip().toStdString();
+
+  addByKeyboard("Clock", "clock_1");  // a Load, too, starts a fresh history
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->isEnabled(); }, kWaitMs));
+  emit panel.editor()->loadRequested(QString::fromStdString(g_graphs + "/demo.yaml"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("camera_detector") && !scene->node("clock_1"); }, kWaitMs));
+  EXPECT_FALSE(undo->isEnabled()) << "the edits before Load were of another graph: " << undo->toolTip().toStdString();
 
   emit panel.editor()->newRequested();  // the tests after start from nothing
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty(); }, kWaitMs));

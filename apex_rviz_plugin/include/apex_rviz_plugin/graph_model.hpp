@@ -123,9 +123,11 @@ class GraphModel {
   std::optional<Edit> arrange(const std::map<std::string, std::pair<double, double>>& positions,
                               const std::string& label) const;
   /** @brief `nodes` (of one level) as graph file text, for the clipboard: types, parameters,
-   *  ports shown, enabled, groups, positions and the connections among them. An inline
+   *  ports shown, enabled, groups, positions (from `shown_at` where it has them: where the panel
+   *  shows the boxes) and the connections among them. An inline
    *  subgraph is left out (add_node makes subgraphs from files): `left_out` names it. */
-  std::string copy(const std::vector<std::string>& nodes, std::string* left_out = nullptr) const;
+  std::string copy(const std::vector<std::string>& nodes, std::string* left_out = nullptr,
+                   const std::map<std::string, std::pair<double, double>>& shown_at = {}) const;
   /** @brief Copied nodes (graph file text) added at `level` under names free there (their own if
    *  it is), placed as they were among themselves with their top-left corner at (x, y), connected
    *  among themselves as they were; one edit, undone by removing them. */
@@ -138,7 +140,8 @@ class GraphModel {
    *  none differs or the text is not a preset (`error` says which). */
   std::optional<Edit> restore(const std::string& preset_text, const std::string& name, std::string* error = nullptr) const;
   /** @brief A copy and a paste moved by (dx, dy) from the originals, as one edit. */
-  Pasted duplicate(const std::vector<std::string>& nodes, double dx, double dy) const;
+  Pasted duplicate(const std::vector<std::string>& nodes, double dx, double dy,
+                   const std::map<std::string, std::pair<double, double>>& shown_at = {}) const;
   /** @brief Nodes beside each other into a new subgraph (named subgraph_1, _2, ... at their
    *  level), one edit: undone by ungrouping it. */
   std::optional<Edit> group(const std::vector<std::string>& nodes) const;

@@ -4,6 +4,7 @@
 // GraphPanel puts this in rviz; tests drive it directly.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <set>
 
@@ -69,7 +70,14 @@ class PanelWidget : public QWidget {
   /** Sends positions for nodes (set_ui), outside the history. */
   void place(const std::map<std::string, std::pair<double, double>>& positions);
   /** A graph was loaded: a fresh history, the inspected ports inspected again. */
+  /** For a Load or New: starts a fresh history now; the answer's handler, which reports it and,
+   *  if refused, brings the old history back. */
+  std::function<void(bool, const std::string&)> replacingGraph(const QString& what);
   void afterLoad();
+  /** Boxes below a box that grew onto them move down (a box is sized to its content). */
+  void pushDownUnderGrown();
+  /** The places the set_ui calls among `calls` send nodes to, taken until the graph shows them there. */
+  void reservePlaces(const std::vector<Call>& calls);
   void onGraph(const apex::GraphState& graph);
   void onInspect(const QString& node, const QString& port);
   void refreshTypes();
@@ -90,6 +98,7 @@ class PanelWidget : public QWidget {
   std::map<std::string, apex::NodeTypeInfo> types_;  // by id, as the runtime listed them
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
   std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
+  std::map<std::string, double> heights_;  // of the boxes when the graph was shown last
   std::map<std::string, Box> placing_;  // where nodes were sent, until the graph shows them there
   bool previews_ = false;
   QTimer* preview_timer_ = nullptr;
