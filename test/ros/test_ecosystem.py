@@ -10,6 +10,7 @@ import unittest
 import rosgraph
 import rospy
 import rostest
+from waiting import wait_until
 from apex.srv import AddNode, GetGraph, RemoveNode, RenameNode, SetEnabled, SetParameter, Connect
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from dynamic_reconfigure.client import Client
@@ -17,15 +18,6 @@ from dynamic_reconfigure.encoding import encode_config
 from dynamic_reconfigure.srv import Reconfigure
 
 THRESHOLD = 'camera_detector/threshold'
-
-
-def wait_until(done, timeout=30.0):
-    end = time.time() + timeout
-    while not done():
-        if time.time() > end or rospy.is_shutdown():
-            return False
-        time.sleep(0.02)
-    return True
 
 
 def service(name, kind):
