@@ -27,6 +27,17 @@ std::unique_ptr<rosbag::Bag> openBag(const std::string& file) {
   return bag;
 }
 
+std::unique_ptr<rosbag::Bag> createBag(const std::string& file) {
+  std::lock_guard<std::mutex> lock(pluginLoaderMutex());
+  auto bag = std::make_unique<rosbag::Bag>();
+  try {
+    bag->open(file, rosbag::bagmode::Write);
+  } catch (const rosbag::BagException& e) {
+    throw std::invalid_argument("cannot write bag '" + file + "': " + e.what());
+  }
+  return bag;
+}
+
 void closeBag(std::unique_ptr<rosbag::Bag>& bag) {
   std::lock_guard<std::mutex> lock(pluginLoaderMutex());
   bag.reset();

@@ -18,6 +18,9 @@ namespace apex_nodes {
 /** @brief Opens a bag for reading under the plugin lock; refuses what is not a regular file
  *  (a FIFO or device would block). Throws std::invalid_argument naming the file. */
 std::unique_ptr<rosbag::Bag> openBag(const std::string& file);
+/** @brief Creates (or truncates) a bag for writing under the plugin lock. Throws
+ *  std::invalid_argument naming the file. */
+std::unique_ptr<rosbag::Bag> createBag(const std::string& file);
 /** @brief Closes a bag under the plugin lock (rosbag unloads its encryptor plugin). */
 void closeBag(std::unique_ptr<rosbag::Bag>& bag);
 

@@ -1,10 +1,6 @@
 // BagReader as a player: outputs per topic, one firing per frame, seek, restart,
 // a held frame sent again on a change downstream; on bags this test writes.
 #include <gmock/gmock.h>
-#include <rosbag/bag.h>
-#include <sensor_msgs/Image.h>
-#include <sensor_msgs/PointCloud2.h>
-#include <std_msgs/String.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,53 +9,13 @@
 
 #include "apex_nodes/types.hpp"
 #include "apex_test/node_harness.hpp"
+#include "apex_test/test_bags.hpp"
 
 using namespace apex_test;
 using testing::ElementsAre;
 using testing::HasSubstr;
 
 namespace {
-
-const ros::Time kBegin(1000, 0);
-ros::Time frameTime(int k) { return kBegin + ros::Duration(0.1 * k); }
-
-sensor_msgs::Image image(int k) {
-  sensor_msgs::Image m;
-  m.header.stamp = frameTime(k);
-  m.height = 2, m.width = 3, m.encoding = "mono8", m.step = 3;
-  m.data.assign(6, static_cast<std::uint8_t>(k % 256));
-  return m;
-}
-
-sensor_msgs::PointCloud2 cloud(int k) {
-  sensor_msgs::PointCloud2 m;
-  m.header.stamp = frameTime(k);
-  m.height = 1, m.width = 1, m.point_step = 12, m.row_step = 12, m.is_dense = true;
-  for (int i = 0; i < 3; ++i) {
-    sensor_msgs::PointField f;
-    f.name = std::string(1, "xyz"[i]), f.offset = 4 * i, f.datatype = sensor_msgs::PointField::FLOAT32, f.count = 1;
-    m.fields.push_back(f);
-  }
-  m.data.assign(12, 0);
-  return m;
-}
-
-/** A bag of `frames` frames: an image, then 5 ms later a cloud, every 100 ms; and a text topic. */
-std::string writeBag(int frames) {
-  const auto dir = std::filesystem::temp_directory_path() / ("apex_bag_reader_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  const std::string path = (dir / ("frames_" + std::to_string(frames) + ".bag")).string();
-  if (std::filesystem::exists(path)) return path;
-  rosbag::Bag bag(path, rosbag::bagmode::Write);
-  std_msgs::String note;
-  note.data = "not a frame";
-  for (int k = 0; k < frames; ++k) {
-    bag.write("/camera/image_raw", frameTime(k), image(k));
-    bag.write("/camera/points", frameTime(k) + ros::Duration(0.005), cloud(k));
-  }
-  bag.write("/notes", frameTime(0), note);
-  return path;
-}
 
 /** bag → image, cloud, frame and stamp collectors; `finished` → a counter's reset slot. */
 class Player {

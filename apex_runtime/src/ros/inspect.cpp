@@ -73,7 +73,7 @@ Inspector findInspector(const TypeInfo* type) {
                      s.data = "<" + m.typeName() + ">";
                      pub.publish(s);
                    },
-                   nullptr};
+                   nullptr, nullptr};
 }
 
 }  // namespace apex

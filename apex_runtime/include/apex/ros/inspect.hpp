@@ -1,6 +1,6 @@
-// How a port's messages are published for inspection (~inspect): a converter per
-// message type. Numbers and strings come built in; node libraries add theirs
-// (images, clouds) with one line:
+// How a port's messages become ROS messages: published for inspection (~inspect)
+// and recorded into bags (BagWriter); a converter per message type. Numbers and
+// strings come built in; node libraries add theirs (images, clouds) with one line:
 //   static const bool ok = apex::addInspector<cv::Mat, sensor_msgs::Image>(convert);
 #pragma once
 
@@ -8,10 +8,18 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "apex/core/message.hpp"
 
 namespace apex {
+
+/** @brief A message as ROS sends it, with what a bag needs to store it. */
+struct SerializedMessage {
+  std::string datatype, md5sum, definition;
+  std::vector<std::uint8_t> bytes;
+  ros::Time stamp;  ///< its header's stamp; zero when its type has no header
+};
 
 struct Inspector {
   std::string message_type;  ///< e.g. "std_msgs/Int32"
@@ -20,6 +28,8 @@ struct Inspector {
   /** For previews (the panel's thumbnails): a smaller message at most `max_width` wide, e.g.
    *  an image scaled down; none: previews are the messages themselves. */
   std::function<Message(const Message&, int max_width)> shrink;
+  /** For recording: the ROS message serialized; none for a type with no ROS message of its own. */
+  std::function<SerializedMessage(const Message&)> serialize;
 };
 
 /** @brief Registers the converter for messages of `type` (the last registration wins). */
@@ -45,7 +55,19 @@ bool addInspector(Convert convert) {
                              [convert](const ros::Publisher& pub, const Message& m) {
                                if (auto p = m.as<T>()) pub.publish(convert(*p));
                              },
-                             nullptr});
+                             nullptr,
+                             [convert](const Message& m) {
+                               namespace mt = ros::message_traits;
+                               SerializedMessage out{mt::datatype<RosMsg>(), mt::md5sum<RosMsg>(), mt::definition<RosMsg>(), {}, {}};
+                               auto p = m.as<T>();
+                               if (!p) return out;
+                               const RosMsg msg = convert(*p);
+                               out.bytes.resize(ros::serialization::serializationLength(msg));
+                               ros::serialization::OStream stream(out.bytes.data(), static_cast<std::uint32_t>(out.bytes.size()));
+                               ros::serialization::serialize(stream, msg);
+                               if (const ros::Time* stamp = mt::timeStamp(msg)) out.stamp = *stamp;
+                               return out;
+                             }});
 }
 
 }  // namespace apex

@@ -1,0 +1,159 @@
+// BagWriter: a bag recorder. One input per recorded topic, of any type that has a
+// ROS message (apex/ros/inspect.hpp: images, clouds, scans, transforms, numbers,
+// text...); each message is written with its own header stamp as its record time
+// (a message without one takes the firing's newest stamp, else the clock), so
+// BagReader plays back the frames that were recorded. As `rosbag record` does, the
+// file is written as <file>.active and renamed when it is closed (stop, the end of a
+// pass, a new file name, the node's removal): a crash never leaves a half-written
+// bag under the name. With split_size, files are <stem>_0.bag, <stem>_1.bag, ...
+#include <topic_tools/shape_shifter.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "apex/core/registry.hpp"
+#include "apex/ros/inspect.hpp"
+#include "bag_frames.hpp"
+
+namespace apex_nodes {
+namespace {
+
+/** One optional input of any type per topic, named as BagReader names its outputs. */
+apex::Status shapeInputs(const apex::ParamValues& p, apex::Manifest& m) {
+  std::vector<apex::PortSpec> inputs;
+  std::map<std::string, std::string> topic_of;  // input → its topic
+  for (const auto& topic : p.get<std::vector<std::string>>("topics")) {
+    if (topic.empty()) return apex::Status::error("an empty topic name");
+    const std::string port = portForTopic(topic);
+    if (auto [it, added] = topic_of.emplace(port, topic); !added)
+      return apex::Status::error("topics '" + it->second + "' and '" + topic + "' both make input '" + port + "'");
+    inputs.push_back({port, apex::typeOf<apex::Any>(), true, "recorded on " + topic});
+  }
+  m.inputs.insert(m.inputs.begin(), inputs.begin(), inputs.end());
+  return apex::Status::ok();
+}
+
+ros::Time clockNow() {
+  if (ros::Time::isValid()) return ros::Time::now();
+  const ros::WallTime w = ros::WallTime::now();
+  return ros::Time(w.sec, w.nsec);
+}
+
+}  // namespace
+
+class BagWriter : public apex::Node {
+ public:
+  static apex::Manifest manifest() {
+    return apex::Manifest("Records its inputs into a bag: one input per topic, each message at its own stamp")
+        .slot("start", &BagWriter::start, "start recording (a new file: an old one of that name is replaced)")
+        .slot("stop", &BagWriter::stop, "stop recording and close the file")
+        .param(apex::param::path("file", "/tmp/apex_record.bag", apex::PathMode::Write)
+                   .describe("the bag; written as <file>.active until it is closed"))
+        .param(apex::param::textList("topics", {"/camera/image_raw"})
+                   .describe("topics to record, one input each (/camera/image_raw: input camera_image_raw)")
+                   .shapesInterface())
+        .param(apex::param::range("split_size", 0.0, 1e6, 1.0, 0.0)
+                   .describe("MB: when a file grows past this, the next one starts; files are <stem>_0.bag, "
+                             "<stem>_1.bag, ...; 0: one file"))
+        .param(apex::param::boolean("recording", true).describe("the start and stop slots set it; off closes the file"))
+        .param(apex::param::boolean("stop_at_end", true)
+                   .describe("the end of a pass (e.g. a BagReader's last frame) stops recording, so the file is "
+                             "complete when the bag has played once"))
+        .shapedBy(shapeInputs);
+  }
+  ~BagWriter() override {
+    try {
+      close();
+    } catch (...) {  // nothing to report to from here; the .active file stays for rosbag reindex
+    }
+  }
+
+  void parameterChanged(const std::string& name) override {
+    if (name == "file" || name == "split_size" || (name == "recording" && !recording_.get())) close();
+    if (name == "recording" && recording_.get()) part_ = 0;
+  }
+  void endOfSequence() override {
+    if (stop_at_end_.get() && recording_.get()) stop();
+  }
+
+  void process() override {
+    if (!recording_.get()) return;
+    std::vector<std::pair<std::string, apex::SerializedMessage>> messages;  // (topic, message)
+    ros::Time newest;
+    for (const auto& topic : topics_.get()) {
+      const apex::Message& m = inputMessage(portForTopic(topic));
+      if (m.isNothing()) continue;
+      const apex::Inspector inspector = apex::findInspector(m.type());
+      if (!inspector.serialize)
+        throw std::invalid_argument("input '" + portForTopic(topic) + "' carries " + m.typeName() +
+                                    ", which has no ROS message to record");
+      messages.emplace_back(topic, inspector.serialize(m));
+      newest = std::max(newest, messages.back().second.stamp);
+    }
+    if (messages.empty()) return;
+    if (newest.isZero()) newest = clockNow();
+    if (!bag_) open();
+    for (const auto& [topic, m] : messages) write(topic, m, m.stamp.isZero() ? newest : m.stamp);
+    const double split = split_size_.get();
+    if (split > 0 && bag_->getSize() > split * 1e6) {
+      close();
+      ++part_;
+    }
+  }
+
+  void start() {
+    part_ = 0;
+    close();
+    if (!recording_.get()) updateParam("recording", true);
+  }
+  void stop() {
+    close();
+    if (recording_.get()) updateParam("recording", false);
+  }
+
+ private:
+  /** The file being written now: `file`, or with split_size its part's <stem>_<k>.bag. */
+  std::string target() const {
+    if (split_size_.get() <= 0) return file_.get();
+    const std::filesystem::path file(file_.get());
+    return (file.parent_path() / (file.stem().string() + "_" + std::to_string(part_) + ".bag")).string();
+  }
+  void open() {
+    path_ = target();
+    bag_ = createBag(path_ + ".active");
+  }
+  void close() {
+    if (!bag_) return;
+    closeBag(bag_);
+    std::error_code ec;
+    std::filesystem::rename(path_ + ".active", path_, ec);
+    if (ec) throw std::runtime_error("cannot rename '" + path_ + ".active' to '" + path_ + "': " + ec.message());
+  }
+  void write(const std::string& topic, const apex::SerializedMessage& m, const ros::Time& at) {
+    topic_tools::ShapeShifter message;
+    message.morph(m.md5sum, m.datatype, m.definition, "");
+    ros::serialization::IStream stream(const_cast<std::uint8_t*>(m.bytes.data()), static_cast<std::uint32_t>(m.bytes.size()));
+    message.read(stream);
+    try {
+      bag_->write(topic, std::max(at, ros::TIME_MIN), message);
+    } catch (const rosbag::BagException& e) {
+      throw std::runtime_error("cannot write to bag '" + path_ + ".active': " + e.what());
+    }
+  }
+
+  apex::Param<std::string> file_{this, "file"};
+  apex::Param<std::vector<std::string>> topics_{this, "topics"};
+  apex::Param<double> split_size_{this, "split_size"};
+  apex::Param<bool> recording_{this, "recording"};
+  apex::Param<bool> stop_at_end_{this, "stop_at_end"};
+
+  std::unique_ptr<rosbag::Bag> bag_;
+  std::string path_;  // the file bag_ becomes when closed
+  int part_ = 0;      // with split_size: the part being written
+};
+
+}  // namespace apex_nodes
+
+APEX_REGISTER_NODE(apex_nodes::BagWriter, "apex_nodes/BagWriter");
