@@ -5,6 +5,7 @@
 # path, adds the node through add_node and checks that it computes. Writes a JUnit result.
 #   example_package.sh RESULT_XML WORK_DIR   (with this package's devel space sourced)
 set -u
+source "$(dirname "$0")/junit.sh"
 export PATH=/usr/bin:/bin:$PATH   # catkin needs Debian's python3
 out=$1
 mkdir -p "$2" && work=$(cd "$2" && pwd)
@@ -52,13 +53,5 @@ if [ -z "$failure" ]; then
   kill -TERM "$core" 2>/dev/null; wait "$core" 2>/dev/null
 fi
 
-mkdir -p "$(dirname "$out")"
-{
-  echo '<?xml version="1.0" encoding="UTF-8"?>'
-  echo "<testsuite name=\"example_package\" tests=\"1\" failures=\"$([ -z "$failure" ] && echo 0 || echo 1)\">"
-  echo "  <testcase classname=\"NodeApi\" name=\"TheReadmesNodeTypeBuildsInItsOwnPackageAndRunsViaAddNode\">"
-  [ -z "$failure" ] || echo "    <failure message=\"$(sed 's/[<>&"]/_/g' <<<"$failure")\"/>"
-  echo '  </testcase>'
-  echo '</testsuite>'
-} >"$out"
+junit_result "$out" example_package NodeApi "TheReadmesNodeTypeBuildsInItsOwnPackageAndRunsViaAddNode" "$failure"
 [ -z "$failure" ] && echo "example package: built, loaded, ran" || { echo "example package: $failure"; exit 1; }

@@ -7,6 +7,7 @@
 # Writes a JUnit result.
 #   numbers_check.sh RESULT_XML WORK_DIR [TRAIN_FRAMES] [FRAMES]   (with this package's devel space sourced)
 set -u
+source "$(dirname "$0")/junit.sh"
 export PATH=/usr/bin:/bin:$PATH
 out=$1
 mkdir -p "$2" && work=$(cd "$2" && pwd)
@@ -43,14 +44,6 @@ if [ ${#failures[@]} -eq 0 ]; then
 fi
 
 failure="${failures[*]:-}"
-mkdir -p "$(dirname "$out")"
-{
-  echo '<?xml version="1.0" encoding="UTF-8"?>'
-  echo "<testsuite name=\"numbers\" tests=\"1\" failures=\"$([ -z "$failure" ] && echo 0 || echo 1)\">"
-  echo "  <testcase classname=\"NumberSigns\" name=\"ExportTrainAndClassifyAHeldOutBagAbove95PercentAndSurviveADamagedModel\">"
-  [ -z "$failure" ] || echo "    <failure message=\"$(sed 's/[<>&"]/_/g' <<<"$failure")\"/>"
-  echo '  </testcase>'
-  echo '</testsuite>'
-} >"$out"
+junit_result "$out" numbers NumberSigns "ExportTrainAndClassifyAHeldOutBagAbove95PercentAndSurviveADamagedModel" "$failure"
 grep -E '^(exported|detection|digits|numbers)' "$work/export.log" "$work/classify.log" 2>/dev/null
 [ -z "$failure" ] && echo "number signs: OK" || { echo "number signs: $failure"; exit 1; }

@@ -5,6 +5,7 @@
 # start must reach its first overlay frame and exit 0. Writes a JUnit result.
 #   startup_loop.sh RESULT_XML BAG [N]   (with the devel space sourced)
 set -u
+source "$(dirname "$0")/junit.sh"
 out=$1 bag=$2 rounds=${3:-50}
 port=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
@@ -36,13 +37,5 @@ done
 kill -TERM "$core" 2>/dev/null
 wait "$core" 2>/dev/null
 
-mkdir -p "$(dirname "$out")"
-{
-  echo '<?xml version="1.0" encoding="UTF-8"?>'
-  echo "<testsuite name=\"startup_loop\" tests=\"1\" failures=\"$([ -z "$failure" ] && echo 0 || echo 1)\">"
-  echo "  <testcase classname=\"Startup\" name=\"TheDemoGraphStarts${rounds}TimesWithoutACrash\">"
-  [ -z "$failure" ] || echo "    <failure message=\"${failure//\"/\'}\"/>"
-  echo '  </testcase>'
-  echo '</testsuite>'
-} >"$out"
+junit_result "$out" startup_loop Startup "TheDemoGraphStarts${rounds}TimesWithoutACrash" "$failure"
 [ -z "$failure" ] && echo "startup loop: $rounds starts, ok" || { echo "startup loop: $failure"; exit 1; }

@@ -5,6 +5,7 @@
 # the applied best values. Writes a JUnit result.
 #   tune_check.sh RESULT_XML WORK_DIR [FRAMES] [BUDGET]   (with this package's devel space sourced)
 set -u
+source "$(dirname "$0")/junit.sh"
 export PATH=/usr/bin:/bin:$PATH
 out=$1
 mkdir -p "$2" && work=$(cd "$2" && pwd)
@@ -27,14 +28,6 @@ if [ -z "$failure" ]; then
     fail "the tuned graph $work/tuned_paper_pipeline.yaml is missing or does not hold the applied best values"
 fi
 
-mkdir -p "$(dirname "$out")"
-{
-  echo '<?xml version="1.0" encoding="UTF-8"?>'
-  echo "<testsuite name=\"tune\" tests=\"1\" failures=\"$([ -z "$failure" ] && echo 0 || echo 1)\">"
-  echo "  <testcase classname=\"Tuning\" name=\"TheOptimizerTunesThePipelineOnHardDataAndTheHeldOutScoreImproves\">"
-  [ -z "$failure" ] || echo "    <failure message=\"$(sed 's/[<>&"]/_/g' <<<"$failure")\"/>"
-  echo '  </testcase>'
-  echo '</testsuite>'
-} >"$out"
+junit_result "$out" tune Tuning "TheOptimizerTunesThePipelineOnHardDataAndTheHeldOutScoreImproves" "$failure"
 grep -E '^(training|best|held-out|tune)' "$work/tune.log" 2>/dev/null
 [ -z "$failure" ] && echo "tuning: OK" || { echo "tuning: $failure"; exit 1; }
