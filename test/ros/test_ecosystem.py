@@ -13,6 +13,8 @@ import rostest
 from waiting import wait_until
 from apex.srv import AddNode, GetGraph, RemoveNode, RenameNode, SetEnabled, SetParameter, Connect
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
+from roscpp.srv import GetLoggers, SetLoggerLevel
+from rosgraph_msgs.msg import Log
 from dynamic_reconfigure.client import Client
 from dynamic_reconfigure.encoding import encode_config
 from dynamic_reconfigure.srv import Reconfigure
@@ -174,6 +176,40 @@ class Ecosystem(unittest.TestCase):
         self.assertTrue(ok, status)
         self.assertIn('cannot open bag', status.message)
         self.assertIn('ecosystem_gone.bag', status.message)
+
+    # ---------------------------------------------------------------- rosconsole, a logger per node
+
+    def test_a_nodes_logger_level_changes_that_node_alone(self):
+        lines = []  # (stamp, text) of what the runtime logs
+        sub = rospy.Subscriber('/rosout', Log, lambda m: lines.append((m.header.stamp, m.msg)), queue_size=1000)
+        for name, kind, params in (('log_clock', 'apex_nodes/Clock', '{rate: 50.0}'),
+                                   ('log_a', 'apex_nodes/Print', ''), ('log_b', 'apex_nodes/Print', '')):
+            res = service('add_node', AddNode)(type=kind, name=name, parameters=params)
+            self.assertTrue(res.success, res.message)
+        for printer in ('log_a', 'log_b'):
+            res = service('connect', Connect)(from_node='log_clock', from_port='count', to_node=printer, to_port='in')
+            self.assertTrue(res.success, res.message)
+
+        def logged(node, since):
+            return [t for stamp, t in list(lines) if t.startswith('[%s]' % node) and stamp > since]
+        start = rospy.Time.now()
+        self.assertTrue(wait_until(lambda: logged('log_a', start) and logged('log_b', start)), 'no lines from the printers')
+        loggers = rospy.ServiceProxy('/apex/get_loggers', GetLoggers)().loggers
+        self.assertIn('ros.apex.log_a', [lg.name for lg in loggers])
+
+        set_level = rospy.ServiceProxy('/apex/set_logger_level', SetLoggerLevel)
+        set_level(logger='ros.apex.log_a', level='warn')
+        quiet = rospy.Time.now() + rospy.Duration(0.3)  # what was on its way before
+        self.assertTrue(wait_until(lambda: len(logged('log_b', quiet)) >= 20), 'log_b stopped too')
+        self.assertEqual(logged('log_a', quiet), [], 'log_a still logs at info')
+
+        for i in range(40):  # levels changing while the node logs at 50 Hz: the runtime stays up
+            set_level(logger='ros.apex.log_a', level='debug' if i % 2 else 'info')
+        again = rospy.Time.now()
+        self.assertTrue(wait_until(lambda: logged('log_a', again)), 'log_a at info again logs nothing')
+        for name in ('log_a', 'log_b', 'log_clock'):
+            service('remove_node', RemoveNode)(name=name)
+        sub.unregister()
 
 
 if __name__ == '__main__':

@@ -37,6 +37,7 @@
 #include "diagnostics.hpp"
 #include "inspection.hpp"
 #include "param_mirror.hpp"
+#include "node_log.hpp"
 #include "plugin_types.hpp"
 #include "reconfigure.hpp"
 
@@ -44,19 +45,6 @@ namespace apex {
 namespace ros_host {
 
 namespace {
-
-void installRosconsoleSink() {
-  setLogSink([](LogLevel level, const std::string& node, const std::string& text) {
-    const std::string name = std::string(ROSCONSOLE_DEFAULT_NAME) + ".apex" + (node.empty() ? "" : "." + node);
-    const std::string line = node.empty() ? text : "[" + node + "] " + text;
-    switch (level) {
-      case LogLevel::Debug: ROS_DEBUG_STREAM_NAMED(name, line); break;
-      case LogLevel::Info: ROS_INFO_STREAM_NAMED(name, line); break;
-      case LogLevel::Warn: ROS_WARN_STREAM_NAMED(name, line); break;
-      case LogLevel::Error: ROS_ERROR_STREAM_NAMED(name, line); break;
-    }
-  });
-}
 
 template <class Res>
 bool answer(Res& res, const Status& st) {
@@ -483,6 +471,7 @@ struct RuntimeHost::Impl {
 
 RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Impl(nh, pnh)) {
   installRosconsoleSink();
+  for (auto& s : serveLoggerServices(impl_->pnh)) impl_->services.push_back(std::move(s));
   impl_->loadTypes();
   impl_->loadRoots();
   impl_->loadStartupGraph();  // trusted, like ~overrides: the operator's own launch file
