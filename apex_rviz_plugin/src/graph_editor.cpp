@@ -16,6 +16,7 @@
 #include <QScrollBar>
 #include <QShortcut>
 #include <QSplitter>
+#include <QToolBar>
 #include <QToolButton>
 #include <QVBoxLayout>
 #include <QWheelEvent>
@@ -128,18 +129,25 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
 }
 
 QWidget* GraphEditor::buildToolBar() {
+  // Two rows: the runtime and Find, then the buttons in a QToolBar, which puts what does not fit
+  // behind its » button, so the panel stays usable in a narrow dock.
   auto* bar = new QWidget;
-  auto* row = new QHBoxLayout(bar);
-  row->setContentsMargins(0, 0, 0, 0);
+  auto* rows = new QVBoxLayout(bar);
+  rows->setContentsMargins(0, 0, 0, 0);
+  rows->setSpacing(2);
+  auto* row = new QHBoxLayout;
+  rows->addLayout(row);
   row->addWidget(new QLabel("Runtime:"));
   namespace_ = new QLineEdit("/apex");
   namespace_->setObjectName("namespace");
   namespace_->setToolTip("the namespace of the runtime to edit, e.g. /apex");
   namespace_->setMaximumWidth(160);
+  namespace_->setMinimumWidth(60);
   connect(namespace_, &QLineEdit::editingFinished, this, [this] { emit namespaceChanged(namespace_->text()); });
   row->addWidget(namespace_);
   connection_ = new QLabel;
   connection_->setObjectName("connection");
+  connection_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);  // long news must not widen the panel
   row->addWidget(connection_, 1);
   pause_ = button("pause", "Pause", "pause or resume every thread group");
   pause_->setCheckable(true);
@@ -156,6 +164,7 @@ QWidget* GraphEditor::buildToolBar() {
   find_->setPlaceholderText("Find node (Ctrl+F)");
   find_->setToolTip("a node by name or type, also inside subgraphs; Enter shows the next");
   find_->setMaximumWidth(160);
+  find_->setMinimumWidth(60);
   connect(find_, &QLineEdit::returnPressed, this, &GraphEditor::findNext);
   connect(find_, &QLineEdit::textChanged, this, [this] { found_ = -1; });
   row->addWidget(find_);
@@ -191,7 +200,11 @@ QWidget* GraphEditor::buildToolBar() {
     const QString path = QFileDialog::getOpenFileName(this, "Load graph", last_path_, "APEX graphs (*.yaml)");
     if (!path.isEmpty()) emit loadRequested(last_path_ = path);
   });
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, previews, presets, fresh, save, load}) row->addWidget(b);
+  auto* buttons = new QToolBar;
+  buttons->setObjectName("buttons");
+  buttons->setToolButtonStyle(Qt::ToolButtonTextOnly);
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, previews, presets, fresh, save, load}) buttons->addWidget(b);
+  rows->addWidget(buttons);
   return bar;
 }
 
@@ -345,6 +358,7 @@ QString GraphEditor::message() const { return message_->text(); }
 
 void GraphEditor::showConnection(bool up, const QString& text) {
   connection_->setText(text);
+  connection_->setToolTip(text);
   connection_->setStyleSheet(up ? "color: #40a040;" : "color: #d08020;");
 }
 

@@ -18,6 +18,7 @@
 #include <QMouseEvent>
 #include <QWheelEvent>
 #include <QTest>
+#include <QToolBar>
 #include <QToolButton>
 
 #include <QInputDialog>
@@ -698,6 +699,15 @@ TEST_F(PanelWidgetTest, LoadedGraphsAreLaidOutWithNoBoxOnAnotherAndTidyIsOneUndo
   std::ofstream(empty) << "apex_graph: 2\nnodes: []\n";
   emit panel.editor()->loadRequested(QString::fromStdString(empty));  // the tests after start from nothing
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty(); }, kWaitMs));
+}
+
+TEST_F(PanelWidgetTest, FitsANarrowDock) {
+  // rviz's docks are narrow: the buttons that do not fit go behind the tool bar's » button
+  EXPECT_LE(panel.minimumSizeHint().width(), 480);
+  auto* buttons = panel.editor()->findChild<QToolBar*>("buttons");
+  ASSERT_TRUE(buttons);
+  for (const char* b : {"pause", "step", "undo", "redo", "fit", "tidy", "previews", "presets", "new", "save", "load"})
+    EXPECT_TRUE(buttons->findChild<QToolButton*>(b)) << b << " is not in the tool bar";
 }
 
 TEST_F(PanelWidgetTest, NewEmptiesTheGraphAndStartsAFreshHistory) {
