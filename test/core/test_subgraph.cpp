@@ -2,9 +2,11 @@
 // events it exports; inline or from a file; flattened, so they run like any node.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "apex/core/file_roots.hpp"
 #include "apex/core/graph.hpp"
 #include "apex/core/graph_file.hpp"
 #include "apex_test/graph_file_helpers.hpp"
@@ -175,6 +177,67 @@ TEST(Subgraph, TwoInstancesOfOneFileKeepTheirOwnParameters) {
   Graph again(testRegistry());
   ASSERT_TRUE(loadGraphFile(again, dir.file("saved.yaml")));
   EXPECT_EQ(formatGraphText(again.describe()), text);
+}
+
+TEST(Subgraph, ExportedSlotsAndTriggersCarryEventsAcrossTheBoundary) {
+  TempDir dir;
+  writeFile(dir.file("counted.yaml"),
+            "apex_graph: 2\n"
+            "exports:\n"
+            "  - {input: in, to: count/in}\n"
+            "  - {slot: reset, to: count/reset}\n"
+            "  - {trigger: every_two, from: count/every_n}\n"
+            "nodes:\n"
+            "  - {name: count, type: test/Counter, parameters: {every: 2}}\n");
+  Graph g(testRegistry());
+  auto loaded = loadText(g, dir, "main.yaml",
+                         "apex_graph: 2\n"
+                         "nodes:\n"
+                         "  - {name: feeder, type: test/Feeder}\n"
+                         "  - {name: part, subgraph: counted.yaml}\n"
+                         "  - {name: watch, type: test/Counter}\n"
+                         "connections:\n"
+                         "  - {from: feeder/out, to: part/in}\n"
+                         "  - {from: part/every_two, to: watch/reset}\n");
+  ASSERT_TRUE(loaded) << loaded.message();
+  g.start();
+  for (int i = 1; i <= 4; ++i) object<Feeder>(g, "feeder")->feed(i);
+  auto* inner = object<apex_test::Counter>(g, "part/count");
+  auto* watch = object<apex_test::Counter>(g, "watch");
+  ASSERT_TRUE(inner && watch);
+  // the inner trigger, exported, reaches a slot outside: every second input
+  ASSERT_TRUE(apex_test::waitUntil([&] { return watch->resets == 2; }));
+  // the exported slot reaches the inner node's slot
+  ASSERT_TRUE(g.fireSlot("part", "reset"));
+  ASSERT_TRUE(apex_test::waitUntil([&] { return inner->resets == 1; }));
+  EXPECT_EQ(inner->count, 0);
+  auto wrong = g.fireSlot("part", "restart");
+  EXPECT_FALSE(wrong);
+  EXPECT_TRUE(Contains(wrong.message(), {"restart"})) << wrong.message();
+  g.stop();
+}
+
+TEST(Subgraph, APackageReferenceIsOpenedThroughTheHostsRootsAndKeptAsWritten) {
+  TempDir dir;  // the package "demo" is this folder; its graphs/ holds the part
+  std::filesystem::create_directories(dir.file("graphs"));
+  writeFile(dir.file("graphs/scale.yaml"), kScale);
+  const std::string package = dir.path.string();
+  const FileRoots roots({package}, [&](const std::string& pkg) { return pkg == "demo" ? package : ""; });
+  GraphFileOptions options;  // as the ROS host opens subgraph files of graphs from its services
+  options.open = [&](const std::string& path) { return roots.resolve(path); };
+  writeFile(dir.file("main.yaml"), twoInstances("package://demo/graphs/scale.yaml"));
+  Graph g(testRegistry());
+  auto loaded = loadGraphFile(g, dir.file("main.yaml"), options);
+  ASSERT_TRUE(loaded) << loaded.message();
+  EXPECT_EQ(run(g, "sink_b", 2), (std::vector<int>{6, 12}));
+  EXPECT_TRUE(Contains(formatGraphText(g.describe()), {"subgraph: package://demo/graphs/scale.yaml"}));
+
+  writeFile(dir.file("other.yaml"), twoInstances("package://nowhere/graphs/scale.yaml"));
+  Graph none(testRegistry());
+  auto refused = loadGraphFile(none, dir.file("other.yaml"), options);
+  ASSERT_FALSE(refused);
+  EXPECT_TRUE(Contains(refused.message(), {"other.yaml", "unknown package 'nowhere'"})) << refused.message();
+  EXPECT_EQ(none.size(), 0u);
 }
 
 TEST(Subgraph, AnEditInsideAFileBackedSubgraphIsSavedInline) {
