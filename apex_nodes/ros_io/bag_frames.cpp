@@ -40,6 +40,14 @@ std::unique_ptr<rosbag::Bag> createBag(const std::string& file) {
 
 void closeBag(std::unique_ptr<rosbag::Bag>& bag) {
   std::lock_guard<std::mutex> lock(pluginLoaderMutex());
+  if (!bag) return;
+  try {
+    bag->close();  // here, not in the destructor: a failure to write the index (a full disk) throws
+  } catch (const std::exception& e) {
+    const std::string file = bag->getFileName();
+    (void)bag.release();  // its destructor would try again and throw where nothing can catch it
+    throw std::runtime_error("cannot close bag '" + file + "': " + e.what());
+  }
   bag.reset();
 }
 

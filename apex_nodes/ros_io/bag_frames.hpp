@@ -21,7 +21,9 @@ std::unique_ptr<rosbag::Bag> openBag(const std::string& file);
 /** @brief Creates (or truncates) a bag for writing under the plugin lock. Throws
  *  std::invalid_argument naming the file. */
 std::unique_ptr<rosbag::Bag> createBag(const std::string& file);
-/** @brief Closes a bag under the plugin lock (rosbag unloads its encryptor plugin). */
+/** @brief Closes a bag under the plugin lock (rosbag unloads its encryptor plugin). Throws
+ *  std::runtime_error naming the file if that fails (a bag being written could not get its
+ *  index): the bag is then abandoned, never closed twice. */
 void closeBag(std::unique_ptr<rosbag::Bag>& bag);
 
 /** @brief Topic → message type (e.g. "sensor_msgs/Image") of every topic in the bag. */

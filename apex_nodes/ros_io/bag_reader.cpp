@@ -127,7 +127,12 @@ class BagReader : public apex::Node {
         .shapedBy(shapeOutputs)
         .driven();
   }
-  ~BagReader() override { closeBag(bag_); }
+  ~BagReader() override {
+    try {
+      closeBag(bag_);
+    } catch (...) {  // read only: nothing was lost
+    }
+  }
   void setup() override { open(); }
   void parameterChanged(const std::string& name) override {
     if (name == "file" || name == "topics" || name == "image_topic" || name == "cloud_topic" || name == "sync_window") {

@@ -8,6 +8,9 @@
 // bag under the name. With split_size, files are <stem>_0.bag, <stem>_1.bag, ...
 #include <topic_tools/shape_shifter.h>
 
+#include <boost/make_shared.hpp>
+
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -55,8 +58,8 @@ class BagWriter : public apex::Node {
                    .describe("topics to record, one input each (/camera/image_raw: input camera_image_raw)")
                    .shapesInterface())
         .param(apex::param::range("split_size", 0.0, 1e6, 1.0, 0.0)
-                   .describe("MB: when a file grows past this, the next one starts; files are <stem>_0.bag, "
-                             "<stem>_1.bag, ...; 0: one file"))
+                   .describe("MB (of 1,048,576 bytes, as rosbag record): when a file grows past this, the next "
+                             "one starts; files are <stem>_0.bag, <stem>_1.bag, ...; 0: one file"))
         .param(apex::param::boolean("recording", true).describe("the start and stop slots set it; off closes the file"))
         .param(apex::param::boolean("stop_at_end", true)
                    .describe("the end of a pass (e.g. a BagReader's last frame) stops recording, so the file is "
@@ -72,7 +75,7 @@ class BagWriter : public apex::Node {
 
   void parameterChanged(const std::string& name) override {
     if (name == "file" || name == "split_size" || (name == "recording" && !recording_.get())) close();
-    if (name == "recording" && recording_.get()) part_ = 0;
+    if (name == "file" || (name == "recording" && recording_.get())) part_ = 0;
   }
   void endOfSequence() override {
     if (stop_at_end_.get() && recording_.get()) stop();
@@ -92,20 +95,24 @@ class BagWriter : public apex::Node {
       messages.emplace_back(topic, inspector.serialize(m));
       newest = std::max(newest, messages.back().second.stamp);
     }
+    // A held frame sent again (a paused player, after an edit downstream) is recorded once.
+    messages.erase(std::remove_if(messages.begin(), messages.end(),
+                                  [&](const auto& tm) { return !tm.second.stamp.isZero() && last_stamp_[tm.first] == tm.second.stamp; }),
+                   messages.end());
     if (messages.empty()) return;
     if (newest.isZero()) newest = clockNow();
     if (!bag_) open();
-    for (const auto& [topic, m] : messages) write(topic, m, m.stamp.isZero() ? newest : m.stamp);
-    const double split = split_size_.get();
-    if (split > 0 && bag_->getSize() > split * 1e6) {
-      close();
-      ++part_;
+    for (const auto& [topic, m] : messages) {
+      write(topic, m, m.stamp.isZero() ? newest : m.stamp);
+      last_stamp_[topic] = m.stamp;
     }
+    const double split = split_size_.get();
+    if (split > 0 && bag_->getSize() > split * 1048576.0) close();  // MB as rosbag record counts them
   }
 
   void start() {
-    part_ = 0;
     close();
+    part_ = 0;
     if (!recording_.get()) updateParam("recording", true);
   }
   void stop() {
@@ -122,10 +129,14 @@ class BagWriter : public apex::Node {
   }
   void open() {
     path_ = target();
+    part_open_ = split_size_.get() > 0;
     bag_ = createBag(path_ + ".active");
   }
+  /** Closes the file and gives it its name; a part moves on to the next part first, so that a
+   *  failure here never has the next frame write over this part. */
   void close() {
     if (!bag_) return;
+    if (part_open_) ++part_;
     closeBag(bag_);
     std::error_code ec;
     std::filesystem::rename(path_ + ".active", path_, ec);
@@ -136,8 +147,17 @@ class BagWriter : public apex::Node {
     message.morph(m.md5sum, m.datatype, m.definition, "");
     ros::serialization::IStream stream(const_cast<std::uint8_t*>(m.bytes.data()), static_cast<std::uint32_t>(m.bytes.size()));
     message.read(stream);
+    // One connection per topic and type: an input reconnected to another type mid-recording
+    // gets a connection of its own, not the first type's definition.
+    auto header = boost::make_shared<ros::M_string>();
+    (*header)["topic"] = topic;
+    (*header)["type"] = m.datatype;
+    (*header)["md5sum"] = m.md5sum;
+    (*header)["message_definition"] = m.definition;
+    (*header)["callerid"] = "/apex";
+    (*header)["latching"] = "0";
     try {
-      bag_->write(topic, std::max(at, ros::TIME_MIN), message);
+      bag_->write(topic, std::max(at, ros::TIME_MIN), message, header);
     } catch (const rosbag::BagException& e) {
       throw std::runtime_error("cannot write to bag '" + path_ + ".active': " + e.what());
     }
@@ -150,8 +170,10 @@ class BagWriter : public apex::Node {
   apex::Param<bool> stop_at_end_{this, "stop_at_end"};
 
   std::unique_ptr<rosbag::Bag> bag_;
-  std::string path_;  // the file bag_ becomes when closed
-  int part_ = 0;      // with split_size: the part being written
+  std::string path_;         // the file bag_ becomes when closed
+  bool part_open_ = false;   // bag_ is one of split_size's parts
+  int part_ = 0;             // with split_size: the part written next
+  std::map<std::string, ros::Time> last_stamp_;  // topic → the stamp recorded last
 };
 
 }  // namespace apex_nodes

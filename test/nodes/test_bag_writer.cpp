@@ -182,6 +182,37 @@ TEST(BagWriter, StopClosesTheFileAndStartRecordsANewOne) {
   EXPECT_EQ(readTopic<std_msgs::Int32>(out, "/value")[0].second->data, 5);
 }
 
+apex::Message stampedImage(int k) {
+  apex_nodes::Image i;
+  i.header.stamp = frameTime(k);
+  i.encoding = "mono8";
+  i.mat = cv::Mat(2, 3, CV_8UC1, cv::Scalar(k));
+  return Message::make<apex_nodes::Image>(i);
+}
+
+TEST(BagWriter, AFrameSentAgainIsRecordedOnceAndChangingTheSplitSizeLosesNothing) {
+  const std::string dir = fresh("held");
+  Graph g(pluginRegistry());
+  feedRecorder(g, "[/camera/image_raw]", dir + "/parts.bag", "camera_image_raw");
+  set(g, "rec", "split_size", "1");  // 1 MB: frame 0 stays in the open part
+  auto* feed = object<MessageFeeder>(g, "feed");
+  feed->feed(stampedImage(0));
+  feed->feed(stampedImage(0));  // a held frame, sent again
+  ASSERT_TRUE(g.waitIdle(kWait));
+  set(g, "rec", "split_size", "0.002");  // closes part 0 as it is; frame 1 goes to part 1
+  feed->feed(stampedImage(1));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  set(g, "rec", "recording", "false");
+  ASSERT_TRUE(waitUntil([&] { return fs::exists(dir + "/parts_1.bag") && !fs::exists(dir + "/parts_1.bag.active"); }));
+  const auto first = readTopic<sensor_msgs::Image>(dir + "/parts_0.bag", "/camera/image_raw");
+  const auto second = readTopic<sensor_msgs::Image>(dir + "/parts_1.bag", "/camera/image_raw");
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_EQ(first[0].first, frameTime(0));
+  ASSERT_EQ(second.size(), 1u);
+  EXPECT_EQ(second[0].first, frameTime(1));
+  EXPECT_EQ(errorOf(g, "rec"), "");
+}
+
 TEST(BagWriter, ATypeWithNoRosMessageIsAnErrorOnTheNodeAndNothingIsWritten) {
   const std::string out = fresh("no_ros_type") + "/regions.bag";
   Graph g(pluginRegistry());
