@@ -149,14 +149,13 @@ void PanelWidget::connectEditor() {
   });
   connect(e, &GraphEditor::loadRequested, this, [this](const QString& path) {
     const auto done = replacingGraph("loaded " + path);
-    const auto shown = model_.graph().revision;
-    link_.loadGraph(path.toStdString(), [this, done, shown](bool ok, const std::string& m) {
+    link_.loadGraph(path.toStdString(), [this, done](bool ok, const std::string& m, std::uint64_t revision) {
       done(ok, m);
       if (!ok) return;
-      // Positions written for other box sizes (by hand, another panel) are laid out again: now if
-      // the loaded graph's ~graph came before this answer, else when it comes (never on the old one).
-      untangle_ = true;
-      if (model_.graph().revision > shown) placeUnplaced();
+      // Positions written for other box sizes (by hand, another panel) are laid out again once the
+      // loaded graph is shown (its revision or a later one): now, or when its ~graph comes.
+      untangle_from_ = revision;
+      if (model_.graph().revision >= revision) untangleLoaded();
     });
   });
   connect(e, &GraphEditor::newRequested, this, [this] { link_.control("clear", replacingGraph("new graph")); });
@@ -213,6 +212,9 @@ void PanelWidget::perform(const std::optional<Edit>& edit) {
   ++pending_;
   link_.run(edit->apply, [this, edit = *edit, epoch = history_epoch_](bool ok, const std::string& message) {
     --pending_;
+    if (!ok)  // its places are free again
+      for (const auto& call : edit.apply)
+        if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) placing_.erase(ui->node);
     if (ok && epoch == history_epoch_) history_.done(edit);  // not into a history started since: another graph
     editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
     report(ok, message, QString::fromStdString(edit.label));
@@ -297,6 +299,24 @@ void PanelWidget::reservePlaces(const std::vector<Call>& calls) {
     }
 }
 
+void PanelWidget::untangleLoaded() {
+  untangle_from_ = 0;
+  untangle_ = true;
+  arrangeShown();
+}
+
+void PanelWidget::arrangeShown() {
+  const auto sent = placements_sent_;
+  placeUnplaced();
+  if (placements_sent_ == sent) pushDownUnderGrown();
+  else rememberHeights();  // boxes being placed: pushed down from where they go, next time
+}
+
+void PanelWidget::rememberHeights() {
+  heights_.clear();
+  for (const auto& [name, box] : editor_->scene()->boxes()) heights_[name] = box.height;
+}
+
 void PanelWidget::pushDownUnderGrown() {
   const auto boxes = editor_->scene()->boxes();
   bool grew_onto = false;  // a box that grew (its node's ports or parameters changed) and now lies on another
@@ -305,14 +325,14 @@ void PanelWidget::pushDownUnderGrown() {
     if (before == heights_.end() || box.height <= before->second + 0.5) continue;
     for (const auto& [other, b] : boxes) grew_onto = grew_onto || (other != name && box.overlaps(b));
   }
-  heights_.clear();
-  for (const auto& [name, box] : boxes) heights_[name] = box.height;
+  rememberHeights();
   if (grew_onto) place(pushDown(boxes));
 }
 
 void PanelWidget::place(const std::map<std::string, std::pair<double, double>>& positions) {
   auto edit = model_.arrange(positions, "");
   if (!edit) return;
+  ++placements_sent_;
   const auto boxes = editor_->scene()->boxes();
   for (const auto& [name, p] : positions) {
     auto b = boxes.find(name);
@@ -397,6 +417,8 @@ std::function<void(bool, const std::string&)> PanelWidget::replacingGraph(const 
   auto before = std::make_shared<EditHistory>(history_);
   forgetHistory();
   placing_.clear();  // of nodes of the graph before; a node added after this request keeps its place
+  heights_.clear();
+  untangle_from_ = 0;
   return [this, what, before](bool ok, const std::string& message) {
     report(ok, message, what);
     if (ok) return afterLoad();
@@ -427,8 +449,8 @@ void PanelWidget::onGraph(const apex::GraphState& graph) {
     model_.update(graph);
   }
   editor_->showGraph(model_);
-  placeUnplaced();
-  pushDownUnderGrown();
+  if (untangle_from_ && graph.revision >= untangle_from_) untangleLoaded();
+  else arrangeShown();
   watchOptimizers();
   emit graphShown(graph.revision);
 }

@@ -214,18 +214,20 @@ void RuntimeLink::saveGraph(const std::string& path, Done done) {
   callOne<apex::SaveGraph>("save_graph", req, std::move(done));
 }
 
-void RuntimeLink::loadGraph(const std::string& path, Done done) {
+void RuntimeLink::loadGraph(const std::string& path,
+                            std::function<void(bool, const std::string&, std::uint64_t revision)> done) {
   apex::LoadGraph::Request req;
   req.path = path;
   const std::string name = service("load_graph");
-  async<Result>(
+  using Out = std::tuple<bool, std::string, std::uint64_t>;
+  async<Out>(
       [name, req] {
         std::string m;
         auto [ok, res] = callService<apex::LoadGraph>(name, req, &m);
         for (const auto& w : res.warnings) m += (m.empty() ? "" : "; ") + w;
-        return Result{ok, m};
+        return Out{ok, m, res.revision};
       },
-      [done](const Result& r) { done(r.first, r.second); });
+      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
 }
 
 void RuntimeLink::fireSlot(const std::string& node, const std::string& slot, Done done) {

@@ -230,6 +230,7 @@ struct RuntimeHost::Impl {
     auto report = loadGraphFile(graph, path.value(), fileOptions(true));
     if (report) {
       res.warnings = report.value().warnings;
+      res.revision = graph.revision();
       inspection.clear();
       for (const auto& w : res.warnings) ROS_WARN_STREAM_NAMED("apex", w);
     }

@@ -76,6 +76,11 @@ class PanelWidget : public QWidget {
   void afterLoad();
   /** Boxes below a box that grew onto them move down (a box is sized to its content). */
   void pushDownUnderGrown();
+  void rememberHeights();
+  /** Lays a loaded graph out if its boxes lie on each other (placeUnplaced with untangle_). */
+  void untangleLoaded();
+  /** Places nodes shown without a position, else pushes boxes that grew apart. */
+  void arrangeShown();
   /** The places the set_ui calls among `calls` send nodes to, taken until the graph shows them there. */
   void reservePlaces(const std::vector<Call>& calls);
   void onGraph(const apex::GraphState& graph);
@@ -99,6 +104,8 @@ class PanelWidget : public QWidget {
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
   std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
   std::map<std::string, double> heights_;  // of the boxes when the graph was shown last
+  std::uint64_t untangle_from_ = 0;  // a loaded graph's revision: lay it out when it is shown
+  int placements_sent_ = 0;          // counts place() calls
   std::map<std::string, Box> placing_;  // where nodes were sent, until the graph shows them there
   bool previews_ = false;
   QTimer* preview_timer_ = nullptr;

@@ -66,7 +66,8 @@ class RuntimeLink : public QObject {
   void listTypes(std::function<void(bool, const std::string&, const std::vector<apex::NodeTypeInfo>&)> done);
   void control(const std::string& command, Done done);
   void saveGraph(const std::string& path, Done done);
-  void loadGraph(const std::string& path, Done done);
+  /** `done` also gets the loaded graph's revision: the ~graph with it or a later one shows that graph. */
+  void loadGraph(const std::string& path, std::function<void(bool, const std::string&, std::uint64_t revision)> done);
   void fireSlot(const std::string& node, const std::string& slot, Done done);
   /** @brief Asks the runtime to publish a port; `done` gets the topic and its message type. */
   void inspect(const std::string& node, const std::string& port,
