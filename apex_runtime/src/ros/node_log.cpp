@@ -33,10 +33,12 @@ ros::console::Level rosLevel(LogLevel level) {
  *  pointer to every location it initialised (to update them when a level is set), so these live
  *  as long as the process: one per logger and level, never removed. */
 bool enabled(const std::string& name, ros::console::Level level, void** logger) {
-  static std::mutex mutex;
-  static std::map<std::pair<std::string, ros::console::Level>, ros::console::LogLocation> locations;
-  std::lock_guard<std::mutex> lock(mutex);
-  auto [it, added] = locations.try_emplace({name, level}, ros::console::LogLocation{false, false, level, nullptr});
+  // Never destroyed, not even at exit: a thread that logs late, or rosconsole updating levels,
+  // must not meet freed locations.
+  static auto* mutex = new std::mutex;
+  static auto* locations = new std::map<std::pair<std::string, ros::console::Level>, ros::console::LogLocation>;
+  std::lock_guard<std::mutex> lock(*mutex);
+  auto [it, added] = locations->try_emplace({name, level}, ros::console::LogLocation{false, false, level, nullptr});
   ros::console::LogLocation& loc = it->second;
   if (!loc.initialized_) ros::console::initializeLogLocation(&loc, name, level);
   ros::console::checkLogLocationEnabled(&loc);
