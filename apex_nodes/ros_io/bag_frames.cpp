@@ -10,33 +10,33 @@
 
 namespace apex_nodes {
 
-std::unique_ptr<rosbag::Bag> openBag(const std::string& file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
-    throw std::invalid_argument("cannot open bag '" + file + "': " +
-                                (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
+namespace {
+
+/** A bag opened in `mode`; a failure is std::invalid_argument "cannot <verb> bag '<file>': why". */
+std::unique_ptr<rosbag::Bag> openIn(const std::string& file, rosbag::bagmode::BagMode mode, const char* verb) {
   // rosbag loads its encryptor plugins through pluginlib when a bag opens: under the node
   // library's plugin lock, or another thread group's image_transport set-up crashes the process.
   std::lock_guard<std::mutex> lock(pluginLoaderMutex());
   auto bag = std::make_unique<rosbag::Bag>();
   try {
-    bag->open(file, rosbag::bagmode::Read);
+    bag->open(file, mode);
   } catch (const rosbag::BagException& e) {
-    throw std::invalid_argument("cannot open bag '" + file + "': " + e.what());
+    throw std::invalid_argument(std::string("cannot ") + verb + " bag '" + file + "': " + e.what());
   }
   return bag;
 }
 
-std::unique_ptr<rosbag::Bag> createBag(const std::string& file) {
-  std::lock_guard<std::mutex> lock(pluginLoaderMutex());
-  auto bag = std::make_unique<rosbag::Bag>();
-  try {
-    bag->open(file, rosbag::bagmode::Write);
-  } catch (const rosbag::BagException& e) {
-    throw std::invalid_argument("cannot write bag '" + file + "': " + e.what());
-  }
-  return bag;
+}  // namespace
+
+std::unique_ptr<rosbag::Bag> openBag(const std::string& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw std::invalid_argument("cannot open bag '" + file + "': " +
+                                (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
+  return openIn(file, rosbag::bagmode::Read, "open");
 }
+
+std::unique_ptr<rosbag::Bag> createBag(const std::string& file) { return openIn(file, rosbag::bagmode::Write, "write"); }
 
 void closeBag(std::unique_ptr<rosbag::Bag>& bag) {
   std::lock_guard<std::mutex> lock(pluginLoaderMutex());

@@ -6,6 +6,7 @@ import statistics
 import threading
 import time
 import unittest
+import xmlrpc.client
 
 import rosbag
 import rosgraph
@@ -66,6 +67,13 @@ def subscribed(topic, node):
     return any(t == topic and node in nodes for t, nodes in subscribers)
 
 
+def connected(publisher, topic, subscriber):
+    """Whether `publisher` has a live connection sending `topic` to `subscriber` (its own bus info)."""
+    uri = rosgraph.Master('/test_split').lookupNode(publisher)
+    _, _, connections = xmlrpc.client.ServerProxy(uri).getBusInfo('/test_split')
+    return any(c[1] == subscriber and c[2] == 'o' and c[4] == topic and c[5] for c in connections)
+
+
 def describe(values):
     return 'median %.1f ms (range %.1f-%.1f, %d frames)' % (statistics.median(values), min(values), max(values), len(values))
 
@@ -81,14 +89,15 @@ class Split(unittest.TestCase):
         self.assertTrue(wait_until(lambda: subscribed('/front/sensors/image', '/back/apex') and
                                    subscribed('/front/sensors/points', '/back/apex'), 60),
                         'the second runtime never subscribed to the first one\'s topics')
-        time.sleep(1.0)  # the publishers hear of their new subscribers through their own connections
+        self.assertTrue(wait_until(lambda: connected('/front/apex', '/front/sensors/image', '/back/apex') and
+                                   connected('/front/apex', '/front/sensors/points', '/back/apex'), 60),
+                        'the first runtime never connected to the second')
 
         for outputs, runtime in ((single, '/single/apex'), (split, '/front/apex')):  # one after the other
             answer = service(runtime, 'set_parameter', SetParameter)(node='bag', parameter='playing', value='true')
             self.assertTrue(answer.success, answer.message)
             self.assertTrue(wait_until(lambda: outputs.count() >= frames, 120),
                             '%s: %d of %d frames' % (runtime, outputs.count(), frames))
-        time.sleep(0.5)  # nothing more comes
         self.assertEqual(len(split.overlays), frames)
         self.assertEqual(sorted(split.overlays), sorted(single.overlays))
         self.assertEqual(sorted(split.clouds), sorted(single.clouds))
