@@ -28,6 +28,7 @@ class SelfDriven : public Node {
         notifyNewData();
         for (volatile int i = 0, n = rng() % 2000; i < n; ++i) {
         }
+        std::this_thread::yield();  // a removed node's thread spins until the group destroys it: let that group run
       }
     });
   }
