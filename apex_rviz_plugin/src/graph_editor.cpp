@@ -289,7 +289,7 @@ void GraphEditor::addFromPalette() {
 QPointF GraphEditor::newNodePosition() {  // the middle of the view, a little further each time
   const QPointF c = view_->mapToScene(view_->viewport()->rect().center());
   const double step = 30.0 * (added_++ % 8);
-  return c + QPointF(step - NodeItem::kWidth / 2, step - 40);
+  return c + QPointF(step - NodeItem::kMinWidth / 2, step - 40);
 }
 
 void GraphEditor::showGraph(const GraphModel& model) {

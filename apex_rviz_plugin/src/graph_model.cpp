@@ -294,7 +294,8 @@ std::optional<Edit> GraphModel::move(const std::string& node_name, double x, dou
   return Edit{"Move " + node_name, {setUi(node_name, ui(x, y))}, {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
 }
 
-std::string GraphModel::freshName(const std::string& type) const {
+std::string GraphModel::freshName(const std::string& type, const std::string& parent,
+                                  const std::set<std::string>& reserved) const {
   std::string base;
   for (char c : type.substr(type.find('/') + 1)) {  // CamelCase -> snake_case
     if (std::isupper(static_cast<unsigned char>(c)) && !base.empty() && base.back() != '_') base += '_';
@@ -302,7 +303,8 @@ std::string GraphModel::freshName(const std::string& type) const {
   }
   for (int i = 1;; ++i) {
     std::string name = base + "_" + std::to_string(i);
-    if (!node(name)) return name;
+    const std::string path = join(parent, name);
+    if (!node(path) && !reserved.count(path)) return name;
   }
 }
 

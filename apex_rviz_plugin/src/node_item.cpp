@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 
 #include <QGraphicsProxyWidget>
 #include <QGraphicsSceneMouseEvent>
@@ -65,7 +66,7 @@ void PortItem::setMark(Mark m, const QString& why) {
 }
 
 QRectF PortItem::boundingRect() const {
-  const double w = NodeItem::kWidth / 2;
+  const double w = node()->width() / 2;
   return isSource() ? QRectF(-w, -kRow / 2, w + kRadius + 1, kRow) : QRectF(-kRadius - 1, -kRow / 2, w, kRow);
 }
 
@@ -92,8 +93,9 @@ void PortItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   f.setItalic(port_.optional);
   p->setFont(f);
   const QString label = QString::fromStdString(port_.name);
-  if (isSource()) p->drawText(QRectF(-NodeItem::kWidth / 2, -kRow / 2, NodeItem::kWidth / 2 - 10, kRow), Qt::AlignRight | Qt::AlignVCenter, label);
-  else p->drawText(QRectF(10, -kRow / 2, NodeItem::kWidth / 2 - 12, kRow), Qt::AlignLeft | Qt::AlignVCenter, label);
+  const double half = node()->width() / 2;
+  if (isSource()) p->drawText(QRectF(-half, -kRow / 2, half - 10, kRow), Qt::AlignRight | Qt::AlignVCenter, label);
+  else p->drawText(QRectF(10, -kRow / 2, half - 12, kRow), Qt::AlignLeft | Qt::AlignVCenter, label);
 }
 
 void PortItem::mousePressEvent(QGraphicsSceneMouseEvent* e) {
@@ -136,48 +138,25 @@ void NodeItem::build() {
   params_ = nullptr;
   editors_.clear();
   transport_ = nullptr;
+  QWidget* box = info_.parameters.empty() ? nullptr : buildParams();
+  const double wanted = std::max(textWidth(), box ? box->sizeHint().width() + 2 * kPad : 0.0);
+  width_ = std::clamp(std::ceil(wanted), kMinWidth, kMaxWidth);
   double left = kTitle + kRow / 2, right = left;
   for (const auto& p : info_.ports) {
     auto* item = new PortItem(p, this);
     const bool src = item->isSource();
-    item->setPos(src ? kWidth : 0, src ? right : left);
+    item->setPos(src ? width_ : 0, src ? right : left);
     (src ? right : left) += kRow;
     ports_.push_back(item);
   }
   height_ = std::max(left, right) - kRow / 2 + kPad;
-  if (!info_.parameters.empty()) {
-    auto* box = new QWidget;
-    box->setObjectName(QString::fromStdString("params_" + info_.name));
-    auto* column = new QVBoxLayout(box);
-    column->setContentsMargins(4, 2, 4, 2);
-    column->setSpacing(2);
-    const QString node = QString::fromStdString(info_.name);
-    if (TransportBar::isPlayer(info_)) {
-      transport_ = new TransportBar(info_);
-      column->addWidget(transport_);
-      connect(transport_, &TransportBar::parameterEdited, this,
-              [this, node](const QString& n, const QString& v) { emit parameterEdited(node, n, v); });
-      connect(transport_, &TransportBar::slotFired, this, [this, node](const QString& slot) { emit slotFired(node, slot); });
-    }
-    for (const auto& p : info_.parameters) {
-      auto* e = new ParamEditor(p);
-      editors_[p.name] = e;
-      column->addWidget(e);
-      connect(e, &ParamEditor::edited, this,
-              [this, node](const QString& n, const QString& v, bool dragging) { emit parameterEdited(node, n, v, dragging); });
-      connect(e, &ParamEditor::interactiveToggled, this,
-              [this, node](const QString& n, bool on) { emit interactiveToggled(node, n, on); });
-      connect(e, &ParamEditor::menuRequested, this,
-              [this, node](const QString& n, QPoint at) { emit paramMenuRequested(node, n, at); });
-    }
-    QFont small = box->font();  // as the node's own text: rviz's default font is larger
-    small.setPointSizeF(8);
-    box->setFont(small);
-    box->setFixedWidth(static_cast<int>(kWidth - 2 * kPad));
+  if (box) {
+    box->setFixedWidth(static_cast<int>(width_ - 2 * kPad));
     box->adjustSize();
     params_ = new QGraphicsProxyWidget(this);
     params_->setWidget(box);
     params_->setPos(kPad, height_);
+    params_->setVisible(detail_);  // rebuilt while zoomed out: hidden, as before
     height_ += box->height() + kPad;
   }
   preview_top_ = height_;
@@ -186,6 +165,66 @@ void NodeItem::build() {
   if (isOptimizer()) height_ += kPlot;  // its progress
   height_ += 2 * kRow;  // timing and error lines
   setToolTip(QString::fromStdString(info_.error));
+}
+
+QWidget* NodeItem::buildParams() {
+  auto* box = new QWidget;
+  box->setObjectName(QString::fromStdString("params_" + info_.name));
+  auto* column = new QVBoxLayout(box);
+  column->setContentsMargins(4, 2, 4, 2);
+  column->setSpacing(2);
+  const QString node = QString::fromStdString(info_.name);
+  if (TransportBar::isPlayer(info_)) {
+    transport_ = new TransportBar(info_);
+    column->addWidget(transport_);
+    connect(transport_, &TransportBar::parameterEdited, this,
+            [this, node](const QString& n, const QString& v) { emit parameterEdited(node, n, v); });
+    connect(transport_, &TransportBar::slotFired, this, [this, node](const QString& slot) { emit slotFired(node, slot); });
+  }
+  for (const auto& p : info_.parameters) {
+    auto* e = new ParamEditor(p);
+    editors_[p.name] = e;
+    column->addWidget(e);
+    connect(e, &ParamEditor::edited, this,
+            [this, node](const QString& n, const QString& v, bool dragging) { emit parameterEdited(node, n, v, dragging); });
+    connect(e, &ParamEditor::interactiveToggled, this,
+            [this, node](const QString& n, bool on) { emit interactiveToggled(node, n, on); });
+    connect(e, &ParamEditor::menuRequested, this,
+            [this, node](const QString& n, QPoint at) { emit paramMenuRequested(node, n, at); });
+  }
+  QFont small = box->font();  // as the node's own text: rviz's default font is larger
+  small.setPointSizeF(8);
+  box->setFont(small);
+  return box;
+}
+
+QString NodeItem::title() const {
+  QString t = QString::fromStdString(info_.name.substr(info_.name.rfind('/') + 1));  // inside a subgraph: its own name
+  return info_.enabled ? t : t + "  (disabled)";
+}
+
+QString NodeItem::kindLine() const {
+  if (!info_.subgraph.empty())  // a subgraph has no group of its own: its nodes do
+    return QString::fromStdString("subgraph  " + (info_.subgraph == "inline" ? std::string("(inline)") : info_.subgraph) +
+                                  "  · double-click to open");
+  return QString::fromStdString(info_.type + "  [" + (info_.thread_group.empty() ? "default" : info_.thread_group) + "]");
+}
+
+double NodeItem::textWidth() const {
+  QFont bold;
+  bold.setBold(true);
+  bold.setPointSizeF(9.5);
+  QFont small;
+  small.setPointSizeF(7.5);
+  QFont label;
+  label.setPointSizeF(8);
+  const QFontMetricsF b(bold), s(small), l(label);
+  double wide = std::max(b.horizontalAdvance(title() + "  (disabled)"), s.horizontalAdvance(kindLine()));
+  std::vector<double> in, out;  // label widths per row, each side
+  for (const auto& p : info_.ports) (sourceKind(p.kind) ? out : in).push_back(l.horizontalAdvance(QString::fromStdString(p.name)));
+  for (std::size_t row = 0; row < std::max(in.size(), out.size()); ++row)
+    wide = std::max(wide, (row < in.size() ? in[row] : 0) + (row < out.size() ? out[row] : 0) + 30);
+  return wide + 2 * kPad;
 }
 
 void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
@@ -283,62 +322,57 @@ ParamEditor* NodeItem::editor(const std::string& param) const {
   return it == editors_.end() ? nullptr : it->second;
 }
 
-QRectF NodeItem::boundingRect() const { return QRectF(-1, -1, kWidth + 2, height_ + 2); }
+QRectF NodeItem::boundingRect() const { return QRectF(-1, -1, width_ + 2, height_ + 2); }
 
 void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   p->setRenderHint(QPainter::Antialiasing);
   const bool error = info_.state == "error", off = !info_.enabled || info_.state == "placeholder";
   p->setPen(QPen(error ? QColor(230, 40, 40) : isSelected() ? QColor(255, 220, 80) : QColor(20, 20, 20), error ? 3 : 1.5));
   p->setBrush(off ? QColor(70, 70, 70) : QColor(45, 48, 55));
-  p->drawRoundedRect(QRectF(0, 0, kWidth, height_), 6, 6);
+  p->drawRoundedRect(QRectF(0, 0, width_, height_), 6, 6);
   p->setBrush(groupColor(info_.thread_group));
   p->setPen(Qt::NoPen);
-  p->drawRoundedRect(QRectF(1, 1, kWidth - 2, kTitle - 4), 5, 5);
+  p->drawRoundedRect(QRectF(1, 1, width_ - 2, kTitle - 4), 5, 5);
   p->setPen(Qt::white);
   QFont f = p->font();
   f.setBold(true);
   f.setPointSizeF(9.5);
   p->setFont(f);
-  QString title = QString::fromStdString(info_.name.substr(info_.name.rfind('/') + 1));  // inside a subgraph: its own name
-  if (!info_.enabled) title += "  (disabled)";
+  const QString title = this->title();
   if (!detail_) {  // zoomed out: the name alone, as large as the box is wide
     QFont big = f;
     big.setPointSizeF(22);
     const double wide = QFontMetricsF(big).horizontalAdvance(title);
-    if (wide > kWidth - 2 * kPad) big.setPointSizeF(std::max(9.0, 22 * (kWidth - 2 * kPad) / wide));
+    if (wide > width_ - 2 * kPad) big.setPointSizeF(std::max(9.0, 22 * (width_ - 2 * kPad) / wide));
     p->setFont(big);
-    p->drawText(QRectF(kPad, kTitle, kWidth - 2 * kPad, std::max(preview_top_ - kTitle, 40.0)), Qt::AlignCenter, title);
+    p->drawText(QRectF(kPad, kTitle, width_ - 2 * kPad, std::max(preview_top_ - kTitle, 40.0)), Qt::AlignCenter, title);
     f.setBold(false);
     f.setPointSizeF(7.5);
     p->setFont(f);
     if (previews_) paintPreviews(p);
     return;
   }
-  p->drawText(QRectF(kPad, 2, kWidth - 2 * kPad, 18), Qt::AlignLeft | Qt::AlignVCenter, title);
+  p->drawText(QRectF(kPad, 2, width_ - 2 * kPad, 18), Qt::AlignLeft | Qt::AlignVCenter, title);
   f.setBold(false);
   f.setPointSizeF(7.5);
   p->setFont(f);
-  const std::string kind = info_.subgraph.empty()  // a subgraph has no group of its own: its nodes do
-                               ? info_.type + "  [" + (info_.thread_group.empty() ? "default" : info_.thread_group) + "]"
-                               : "subgraph  " + (info_.subgraph == "inline" ? std::string("(inline)") : info_.subgraph) +
-                                     "  · double-click to open";
-  p->drawText(QRectF(kPad, 18, kWidth - 2 * kPad, 14), Qt::AlignLeft | Qt::AlignVCenter, QString::fromStdString(kind));
+  p->drawText(QRectF(kPad, 18, width_ - 2 * kPad, 14), Qt::AlignLeft | Qt::AlignVCenter, kindLine());
   const double bottom = height_ - 2 * kRow;
   if (previews_) paintPreviews(p);
-  if (isOptimizer()) paintProgress(p, QRectF(kPad, bottom - kPlot, kWidth - 2 * kPad, kPlot - 4));
+  if (isOptimizer()) paintProgress(p, QRectF(kPad, bottom - kPlot, width_ - 2 * kPad, kPlot - 4));
   p->setPen(QColor(200, 200, 200));
-  p->drawText(QRectF(kPad, bottom, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
+  p->drawText(QRectF(kPad, bottom, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
               values_.isEmpty() ? timing_ : values_);
   if (error) {
     p->setPen(QColor(255, 90, 90));
-    p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
-                p->fontMetrics().elidedText(QString::fromStdString(info_.error), Qt::ElideRight, static_cast<int>(kWidth - 2 * kPad)));
+    p->drawText(QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
+                p->fontMetrics().elidedText(QString::fromStdString(info_.error), Qt::ElideRight, static_cast<int>(width_ - 2 * kPad)));
   } else if (!waiting_.isEmpty()) {  // stalled: what it waits for, from the runtime
     p->setPen(QColor(255, 190, 60));
-    p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
-                p->fontMetrics().elidedText(waiting_, Qt::ElideRight, static_cast<int>(kWidth - 2 * kPad)));
+    p->drawText(QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
+                p->fontMetrics().elidedText(waiting_, Qt::ElideRight, static_cast<int>(width_ - 2 * kPad)));
   } else if (!values_.isEmpty()) {
-    p->drawText(QRectF(kPad, bottom + kRow, kWidth - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter, timing_);
+    p->drawText(QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter, timing_);
   }
 }
 
@@ -367,7 +401,7 @@ void NodeItem::paintProgress(QPainter* p, const QRectF& area) const {
 
 void NodeItem::paintPreviews(QPainter* p) const {
   double y = preview_top_;
-  const double w = kWidth - 2 * kPad;
+  const double w = width_ - 2 * kPad;
   for (const auto& name : previewPorts()) {
     const bool image = imageType(port(name, true)->port().type);
     const QRectF area(kPad, y, w, image ? kThumb : kSpark - 4);

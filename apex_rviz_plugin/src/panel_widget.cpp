@@ -56,14 +56,18 @@ void PanelWidget::connectEditor() {
   });
   connect(e, &GraphEditor::addRequested, this, [this, str](const QString& type, QPointF at) {
     const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
-    const std::string name = model_.freshName(str(type));
+    std::set<std::string> sent;  // added a moment ago, not shown yet: their names are taken too
+    for (const auto& [n, box] : placing_) sent.insert(n);
+    const std::string name = model_.freshName(str(type), inside, sent);
     const std::string path = inside.empty() ? name : inside + "/" + name;
     const auto shown = editor_->scene()->boxes();
     std::vector<Box> taken;
     for (const auto& [n, box] : shown) taken.push_back(box);
     for (const auto& [n, box] : placing_)  // added a moment ago, not shown yet: their places are taken too
       if (!shown.count(n)) taken.push_back(box);
-    const Box free = freePlace({at.x(), at.y(), NodeItem::kWidth, typeHeight(str(type))}, taken);  // on no other
+    Box wanted = typeBox(str(type));  // as a new node of the type is shown
+    wanted.x = at.x(), wanted.y = at.y();
+    const Box free = freePlace(wanted, taken);  // on no other
     placing_[path] = free;
     perform(model_.addNode(str(type), path, free.x, free.y));
   });
@@ -103,7 +107,7 @@ void PanelWidget::connectEditor() {
     for (const auto& call : p.edit->apply)
       if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) {
         const auto [x, y] = GraphModel::positionIn(ui->ui);
-        group.width = std::max(group.width, x + NodeItem::kWidth - at.x());
+        group.width = std::max(group.width, x + NodeItem::kMinWidth - at.x());
         group.height = std::max(group.height, y + 150 - at.y());
       }
     std::vector<Box> taken;
@@ -294,7 +298,7 @@ void PanelWidget::reservePlaces(const std::vector<Call>& calls) {
       if (placing_.count(ui->node)) continue;  // placed with its type's size already (addRequested)
       const auto [x, y] = GraphModel::positionIn(ui->ui);
       const auto box = shown.find(ui->node);
-      placing_[ui->node] = Box{x, y, box == shown.end() ? NodeItem::kWidth : box->second.width,
+      placing_[ui->node] = Box{x, y, box == shown.end() ? NodeItem::kMinWidth : box->second.width,
                                box == shown.end() ? 150 : box->second.height};
     }
 }
@@ -309,23 +313,23 @@ void PanelWidget::arrangeShown() {
   const auto sent = placements_sent_;
   placeUnplaced();
   if (placements_sent_ == sent) pushDownUnderGrown();
-  else rememberHeights();  // boxes being placed: pushed down from where they go, next time
+  else rememberSizes();  // boxes being placed: pushed down from where they go, next time
 }
 
-void PanelWidget::rememberHeights() {
-  heights_.clear();
-  for (const auto& [name, box] : editor_->scene()->boxes()) heights_[name] = box.height;
+void PanelWidget::rememberSizes() {
+  sizes_ = editor_->scene()->boxes();
 }
 
 void PanelWidget::pushDownUnderGrown() {
   const auto boxes = editor_->scene()->boxes();
-  bool grew_onto = false;  // a box that grew (its node's ports or parameters changed) and now lies on another
+  bool grew_onto = false;  // a box that grew (its node's name, ports or parameters changed) and now lies on another
   for (const auto& [name, box] : boxes) {
-    const auto before = heights_.find(name);
-    if (before == heights_.end() || box.height <= before->second + 0.5) continue;
+    const auto before = sizes_.find(name);
+    if (before == sizes_.end() || (box.height <= before->second.height + 0.5 && box.width <= before->second.width + 0.5))
+      continue;
     for (const auto& [other, b] : boxes) grew_onto = grew_onto || (other != name && box.overlaps(b));
   }
-  rememberHeights();
+  rememberSizes();
   if (grew_onto) place(pushDown(boxes));
 }
 
@@ -336,7 +340,7 @@ void PanelWidget::place(const std::map<std::string, std::pair<double, double>>& 
   const auto boxes = editor_->scene()->boxes();
   for (const auto& [name, p] : positions) {
     auto b = boxes.find(name);
-    placing_[name] = Box{p.first, p.second, b == boxes.end() ? NodeItem::kWidth : b->second.width,
+    placing_[name] = Box{p.first, p.second, b == boxes.end() ? NodeItem::kMinWidth : b->second.width,
                          b == boxes.end() ? 120 : b->second.height};
   }
   link_.run(std::move(edit->apply), [this](bool ok, const std::string& m) {
@@ -417,7 +421,7 @@ std::function<void(bool, const std::string&)> PanelWidget::replacingGraph(const 
   auto before = std::make_shared<EditHistory>(history_);
   forgetHistory();
   placing_.clear();  // of nodes of the graph before; a node added after this request keeps its place
-  heights_.clear();
+  sizes_.clear();
   untangle_from_ = 0;
   return [this, what, before](bool ok, const std::string& message) {
     report(ok, message, what);
@@ -466,9 +470,9 @@ void PanelWidget::watchOptimizers() {
   }
 }
 
-double PanelWidget::typeHeight(const std::string& type) const {
+Box PanelWidget::typeBox(const std::string& type) const {
   const auto t = types_.find(type);
-  if (t == types_.end()) return 150;  // a usual box
+  if (t == types_.end()) return Box{0, 0, NodeItem::kMinWidth, 150};  // a usual box
   apex::NodeInfo info;  // as a new node of the type is shown: its ports, its parameters at their defaults
   info.type = type;
   auto interactive = [&](const std::string& name) {
@@ -478,7 +482,8 @@ double PanelWidget::typeHeight(const std::string& type) const {
   for (const auto& p : t->second.ports)  // parameter ports only where the parameter is interactive by default
     if ((p.kind != "param_in" && p.kind != "param_out") || interactive(p.name)) info.ports.push_back(p);
   info.parameters = t->second.parameters;
-  return NodeItem(info).boundingRect().height();
+  const QRectF r = NodeItem(info).boundingRect();
+  return Box{0, 0, r.width(), r.height()};
 }
 
 void PanelWidget::refreshTypes() {

@@ -89,6 +89,18 @@ QString tip(const apex::ParamInfo& p) {
   return t + "\n(right-click: reset to default)";
 }
 
+/** A line edit that asks for the width of its text (a file path, a topic list), up to a
+ *  limit: the node's box is sized from its editors' size hints, so values are shown whole. */
+class FittingLineEdit : public QLineEdit {
+ public:
+  QSize sizeHint() const override {
+    QSize s = QLineEdit::sizeHint();
+    const int wide = fontMetrics().horizontalAdvance(text()) + 16;  // frame and margins
+    s.setWidth(std::clamp(wide, 60, 300));
+    return s;
+  }
+};
+
 }  // namespace
 
 ParamEditor::ParamEditor(const apex::ParamInfo& param, QWidget* parent) : QWidget(parent), param_(param) {
@@ -296,7 +308,7 @@ void ParamEditor::buildAngle() {
 }
 
 void ParamEditor::buildPath() {
-  auto* line = new QLineEdit;
+  auto* line = new FittingLineEdit;
   auto* browse = new QPushButton("...");
   browse->setFixedWidth(28);
   row_->addWidget(line), row_->addWidget(browse);
@@ -336,7 +348,7 @@ void ParamEditor::buildColor() {
 
 void ParamEditor::buildText() {  // strings as text; pairs and lists as their YAML
   const bool is_string = param_.kind == "string";
-  auto* line = new QLineEdit;
+  auto* line = new FittingLineEdit;
   row_->addWidget(line);
   connect(line, &QLineEdit::editingFinished, this, [this, line, is_string] {
     send(is_string ? quoted(line->text()) : line->text(), false);

@@ -122,6 +122,9 @@ TEST(GraphModel, FreshNamesFollowTheTypeAndAreUnused) {
   g.nodes[0].name = "clock_1";
   m.update(g);
   EXPECT_EQ(m.freshName("apex_nodes/Clock"), "clock_2");
+  EXPECT_EQ(m.freshName("apex_nodes/Clock", "", {"clock_2"}), "clock_3");  // sent a moment ago, not shown yet
+  EXPECT_EQ(m.freshName("apex_nodes/Clock", "sub"), "clock_1");             // inside a subgraph: its own names
+  EXPECT_EQ(m.freshName("apex_nodes/Clock", "sub", {"sub/clock_1"}), "clock_2");
 }
 
 TEST(GraphModel, DuplicateCopiesNodesWithTheirSettingsAndTheConnectionsAmongThem) {

@@ -710,6 +710,58 @@ TEST_F(PanelWidgetTest, FitsANarrowDock) {
     EXPECT_TRUE(buttons->findChild<QToolButton*>(b)) << b << " is not in the tool bar";
 }
 
+TEST_F(PanelWidgetTest, ABoxIsAsWideAsItsNameAndValuesNeed) {
+  // a long name and a file path: the box widens for them, the label and the path are shown whole
+  const std::string name = "bag_reader_with_a_name_longer_than_a_usual_box";
+  ASSERT_TRUE(addNode("apex_nodes/BagReader", name, "{file: '" + g_bag + "', topics: [/camera/image_raw, /camera/points]}"));
+  NodeItem* box = nullptr;
+  ASSERT_TRUE(QTest::qWaitFor([&] { return (box = panel.editor()->scene()->node(name)) && box->editor("file"); }, kWaitMs));
+  EXPECT_GT(box->width(), NodeItem::kMinWidth);
+  EXPECT_LE(box->width(), NodeItem::kMaxWidth);
+  QFont bold;
+  bold.setBold(true);
+  bold.setPointSizeF(9.5);
+  EXPECT_LE(QFontMetricsF(bold).horizontalAdvance(QString::fromStdString(name)), box->width()) << "the name is cut";
+  auto* path = box->editor("file")->findChild<QLineEdit*>();
+  ASSERT_TRUE(path);
+  ASSERT_EQ(path->text().toStdString(), g_bag);
+  EXPECT_GE(path->width(), path->fontMetrics().horizontalAdvance(path->text())) << "the path is cut: " << path->width();
+  for (const auto& p : box->info().parameters) {  // no parameter's name squeezed
+    auto* label = box->editor(p.name)->findChild<QLabel*>();
+    ASSERT_TRUE(label) << p.name;
+    EXPECT_GE(label->width(), label->fontMetrics().horizontalAdvance(label->text())) << p.name << " is cut";
+  }
+  EXPECT_EQ(overlapping(*panel.editor()->scene()), "");
+  // zoomed out, the box is its name alone: a rebuild then (previews on) does not bring its editors back
+  box->setDetail(false);
+  EXPECT_FALSE(box->editor("file")->isVisible());
+  box->setPreviews(true);
+  EXPECT_FALSE(box->editor("file")->isVisible());
+  box->setDetail(true);
+  EXPECT_TRUE(box->editor("file")->isVisible());
+  box->setPreviews(false);
+}
+
+TEST_F(PanelWidgetTest, TwoQuickAddsOfOneTypeGetTwoNames) {
+  // Enter twice in the palette before the runtime has shown the first node: two nodes, two names
+  auto adds = [&] {
+    int n = 0;
+    for (const auto& node : runtimeGraph().nodes) n += node.type == "apex_nodes/Add";
+    return n;
+  };
+  const int before = adds();
+  search->setFocus();
+  search->selectAll();
+  QTest::keyClicks(search, "apex_nodes/Add");
+  QTest::keyClick(search, Qt::Key_Return);
+  QTest::keyClick(search, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return adds() == before + 2; }, kWaitMs)) << panel.editor()->message().toStdString();
+  EXPECT_EQ(panel.editor()->message().toStdString().find("already"), std::string::npos) << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.model().graph().nodes.size() == runtimeGraph().nodes.size(); }, kWaitMs));
+  EXPECT_TRUE(QTest::qWaitFor([&] { return overlapping(*panel.editor()->scene()).empty(); }, kWaitMs))
+      << overlapping(*panel.editor()->scene());
+}
+
 TEST_F(PanelWidgetTest, NewEmptiesTheGraphAndStartsAFreshHistory) {
   GraphScene* scene = panel.editor()->scene();
   auto* undo = panel.editor()->findChild<QToolButton*>("undo");

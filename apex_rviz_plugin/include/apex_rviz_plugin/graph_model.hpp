@@ -19,6 +19,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -95,8 +96,11 @@ class GraphModel {
   static std::pair<double, double> positionIn(const std::string& ui_text);
   /** @brief Whether the node's UI metadata holds a position (a graph written without a panel has none). */
   bool hasPosition(const std::string& node) const;
-  /** @brief A name for a new node of a type not used in the graph: GaussianBlur -> gaussian_blur_1. */
-  std::string freshName(const std::string& type) const;
+  /** @brief A name for a new node of `type` inside `parent` ("" for the top level) that no node
+   *  there has, nor any path in `reserved` (names sent a moment ago, not shown yet):
+   *  GaussianBlur -> gaussian_blur_1. */
+  std::string freshName(const std::string& type, const std::string& parent = "",
+                        const std::set<std::string>& reserved = {}) const;
 
   // --- edits: each returns the calls to make; the model changes when ~graph says so ---
   Edit addNode(const std::string& type, const std::string& name, double x, double y) const;

@@ -53,10 +53,12 @@ class PortItem : public QGraphicsItem {
 class NodeItem : public QGraphicsObject {
   Q_OBJECT
  public:
-  static constexpr double kWidth = 230;
+  /** Boxes are as wide as their names, port labels and parameter values need, within these. */
+  static constexpr double kMinWidth = 230, kMaxWidth = 480;
 
   explicit NodeItem(const apex::NodeInfo& node);
   const apex::NodeInfo& info() const { return info_; }
+  double width() const { return width_; }
   /** @brief Shows a newer description; rebuilds the ports and widgets only if they changed. */
   void update(const apex::NodeInfo& node);
   void showStatus(const apex::NodeStatus& status, double rate_hz);
@@ -109,6 +111,13 @@ class NodeItem : public QGraphicsObject {
 
  private:
   void build();
+  /** The parameters' editors (and a player's transport bar) in one widget, not yet placed. */
+  QWidget* buildParams();
+  QString title() const;
+  /** The line under the title: the type and thread group, or what subgraph it is. */
+  QString kindLine() const;
+  /** The width the title, the type line and the port labels need (the editors add theirs). */
+  double textWidth() const;
   bool isOptimizer() const;
   /** An Optimizer's progress: evaluations of the budget, best fitness, and its curve. */
   void paintProgress(QPainter* p, const QRectF& area) const;
@@ -131,7 +140,7 @@ class NodeItem : public QGraphicsObject {
   std::map<std::string, QImage> images_;            // previews: the last thumbnail per output
   std::map<std::string, std::vector<double>> series_;  // previews: the last values per output
   double rate_hz_ = 0;
-  double height_ = 60;
+  double width_ = kMinWidth, height_ = 60;
   bool dragged_ = false;
 };
 

@@ -76,7 +76,7 @@ class PanelWidget : public QWidget {
   void afterLoad();
   /** Boxes below a box that grew onto them move down (a box is sized to its content). */
   void pushDownUnderGrown();
-  void rememberHeights();
+  void rememberSizes();
   /** Lays a loaded graph out if its boxes lie on each other (placeUnplaced with untangle_). */
   void untangleLoaded();
   /** Places nodes shown without a position, else pushes boxes that grew apart. */
@@ -86,8 +86,8 @@ class PanelWidget : public QWidget {
   void onGraph(const apex::GraphState& graph);
   void onInspect(const QString& node, const QString& port);
   void refreshTypes();
-  /** The height of a new node of `type`'s box, measured on one made for it. */
-  double typeHeight(const std::string& type) const;
+  /** The size of a new node of `type`'s box, measured on one made for it. */
+  Box typeBox(const std::string& type) const;
   /** Inspects each Optimizer's progress (evaluations, best fitness) once, for its box to draw. */
   void watchOptimizers();
   void report(bool ok, const std::string& message, const QString& what);
@@ -103,7 +103,7 @@ class PanelWidget : public QWidget {
   std::map<std::string, apex::NodeTypeInfo> types_;  // by id, as the runtime listed them
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
   std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
-  std::map<std::string, double> heights_;  // of the boxes when the graph was shown last
+  std::map<std::string, Box> sizes_;  // the boxes when the graph was shown last
   std::uint64_t untangle_from_ = 0;  // a loaded graph's revision: lay it out when it is shown
   int placements_sent_ = 0;          // counts place() calls
   std::map<std::string, Box> placing_;  // where nodes were sent, until the graph shows them there
