@@ -20,6 +20,9 @@ const bool kRegistered = [] {
     small.owner = nullptr;
     return small;
   });
+  apex::addDescribe<Image>([](const Image& i) {  // the size a preview no longer has
+    return std::to_string(i.mat.cols) + "×" + std::to_string(i.mat.rows) + (i.encoding.empty() ? "" : " " + i.encoding);
+  });
   apex::addInspector<Cloud, sensor_msgs::PointCloud2>([](const Cloud& c) { return *toRos(c); });
   apex::addInspector<sensor_msgs::LaserScan, sensor_msgs::LaserScan>([](const sensor_msgs::LaserScan& s) { return s; });
   return true;

@@ -176,6 +176,10 @@ void GraphScene::showImage(const QString& node_name, const QString& port, const 
   if (NodeItem* item = node(node_name.toStdString())) item->showImage(port, image);
 }
 
+void GraphScene::showAbout(const QString& node_name, const QString& port, const QString& text) {
+  if (NodeItem* item = node(node_name.toStdString())) item->showAbout(port, text);
+}
+
 void GraphScene::reroute() {
   for (auto* c : connections_) c->reroute();
 }

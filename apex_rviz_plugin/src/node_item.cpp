@@ -254,7 +254,7 @@ std::vector<std::string> NodeItem::previewPorts() const {
 void NodeItem::setPreviews(bool on) {
   if (on == previews_) return;
   previews_ = on;
-  if (!on) images_.clear(), series_.clear();
+  if (!on) images_.clear(), series_.clear(), abouts_.clear();
   build();
 }
 
@@ -278,8 +278,12 @@ QString NodeItem::portTip(const apex::PortInfo& p) const {
   if (p.kind == "output") {
     auto image = images_.find(p.name);
     auto value = scalar_values_.find(QString::fromStdString(p.name));
+    auto about = abouts_.find(p.name);
     if (image != images_.end() && !image->second.isNull())
-      tip += QString("\nlast: an image, preview %1×%2").arg(image->second.width()).arg(image->second.height());
+      tip += QString("\nlast: %1 image (preview %2×%3)")
+                 .arg(about == abouts_.end() ? QString("an") : about->second)
+                 .arg(image->second.width())
+                 .arg(image->second.height());
     else if (value != scalar_values_.end())
       tip += "\nlast: " + value->second;
     else

@@ -23,6 +23,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   });
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
   connect(&link_, &RuntimeLink::imageReceived, editor_->scene(), &GraphScene::showImage);
+  connect(&link_, &RuntimeLink::aboutReceived, editor_->scene(), &GraphScene::showAbout);
   preview_timer_ = new QTimer(this);
   connect(preview_timer_, &QTimer::timeout, this, &PanelWidget::updatePreviews);
   connect(&link_, &RuntimeLink::answerOverdue, this, [this](const QString& text) { editor_->showConnection(true, text); });

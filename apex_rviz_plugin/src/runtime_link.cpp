@@ -279,18 +279,22 @@ void RuntimeLink::watchPreview(const std::string& node, const std::string& port,
                                const std::string& type) {
   if (!nh_) return;
   const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
-  ros::Subscriber sub;
+  auto& subs = preview_subs_[node + "/" + port];
+  subs.clear();
   if (type == "sensor_msgs/Image") {
-    sub = nh_->subscribe<sensor_msgs::Image>(topic, 1, [this, n, p](const sensor_msgs::Image::ConstPtr& m) {
+    subs.push_back(nh_->subscribe<sensor_msgs::Image>(topic, 1, [this, n, p](const sensor_msgs::Image::ConstPtr& m) {
       QImage image = toQImage(*m);  // converted here, on the link's spinner, not on the GUI thread
       QMetaObject::invokeMethod(this, [this, n, p, image] { emit imageReceived(n, p, image); }, Qt::QueuedConnection);
-    });
+    }));
+    subs.push_back(nh_->subscribe<std_msgs::String>(topic + "/about", 1, [this, n, p](const std_msgs::String::ConstPtr& m) {
+      const QString text = QString::fromStdString(m->data);  // the thumbnail's real size
+      QMetaObject::invokeMethod(this, [this, n, p, text] { emit aboutReceived(n, p, text); }, Qt::QueuedConnection);
+    }));
   } else {
-    sub = subscribeScalar(topic, type, [this, n, p](const QString& text) {
+    subs.push_back(subscribeScalar(topic, type, [this, n, p](const QString& text) {
       QMetaObject::invokeMethod(this, [this, n, p, text] { emit scalarReceived(n, p, text); }, Qt::QueuedConnection);
-    });
+    }));
   }
-  preview_subs_[node + "/" + port] = sub;
 }
 
 void RuntimeLink::unwatchPreview(const std::string& node, const std::string& port) {

@@ -596,17 +596,22 @@ TEST_F(PanelWidgetTest, PreviewsDrawThumbnailsAndSparklinesOfNodesInViewOnly) {
   const apex::PortInfo* image_port = nullptr;
   for (const auto& p : bag->info().ports) if (p.name == "camera_image_raw") image_port = &p;
   ASSERT_TRUE(image_port);
-  const QString tip = bag->portTip(*image_port);  // what hovering the port shows
-  EXPECT_TRUE(tip.contains("apex_nodes/Image") && tip.contains("last: an image, preview 160×") && tip.contains(" Hz"))
-      << tip.toStdString();
+  // what hovering the port shows: its type, the last image's real size (the bag's 480×640), the rate
+  ASSERT_TRUE(QTest::qWaitFor([&] { return bag->portTip(*image_port).contains("last: 480×640 bgr8 image (preview 160×"); }, kWaitMs))
+      << bag->portTip(*image_port).toStdString();
+  const QString tip = bag->portTip(*image_port);
+  EXPECT_TRUE(tip.contains("apex_nodes/Image") && tip.contains(" Hz")) << tip.toStdString();
   view->centerOn(bag);
   QApplication::processEvents();
   panel.grab().save(QString::fromStdString(g_shot).replace(".png", "_previews.png"));
 
   // out of view: no longer previewed (unsubscribed, so the runtime sends nothing)
   EXPECT_TRUE(panel.link().watchingPreview("thumbs_bag", "camera_image_raw"));
-  view->centerOn(QPointF(1e6, 1e6));
+  const QRectF all = scene->itemsBoundingRect();
+  scene->setSceneRect(all.adjusted(-5000, -5000, 5000, 5000));  // room to scroll to where no box is
+  view->centerOn(all.bottomRight() + QPointF(3000, 3000));
   ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.link().watchingPreview("thumbs_bag", "camera_image_raw"); }, kWaitMs));
+  scene->setSceneRect(QRectF());  // as large as the boxes again
   view->centerOn(scene->node("thumbs_bag"));
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().watchingPreview("thumbs_bag", "camera_image_raw"); }, kWaitMs));
   QTest::mouseClick(previews, Qt::LeftButton);  // off

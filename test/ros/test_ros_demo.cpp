@@ -10,6 +10,7 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/Int32.h>
+#include <std_msgs/String.h>
 #include <std_srvs/SetBool.h>
 #include <yaml-cpp/yaml.h>
 
@@ -80,12 +81,18 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
     std::lock_guard<std::mutex> l(m);
     previews.emplace_back(ros::WallTime::now(), img);
   });
+  std::vector<std::string> abouts;  // what each preview was: the image's real size
+  auto about_sub = nh.subscribe<std_msgs::String>(preview_topic.topic + "/about", 100, [&](const std_msgs::String::ConstPtr& s) {
+    std::lock_guard<std::mutex> l(m);
+    abouts.push_back(s->data);
+  });
   auto count_sub = nh.subscribe<std_msgs::Int32>("/apex/inspect/blobs/count", 100, [&](const std_msgs::Int32::ConstPtr& c) {
     std::lock_guard<std::mutex> l(m);
     counts.push_back(c->data);
   });
   ros::Time deadline = ros::Time::now() + ros::Duration(30);
-  while ((sub.getNumPublishers() == 0 || count_sub.getNumPublishers() == 0 || preview_sub.getNumPublishers() == 0) &&
+  while ((sub.getNumPublishers() == 0 || count_sub.getNumPublishers() == 0 || preview_sub.getNumPublishers() == 0 ||
+          about_sub.getNumPublishers() == 0) &&
          ros::Time::now() < deadline)
     ros::WallDuration(0.01).sleep();  // until both connections stand: no frame may pass before
   if (g_source == "bag") {  // BagReader inside the graph: start it
@@ -135,6 +142,10 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
     EXPECT_EQ(img->width, 160u);  // 640 wide, scaled down, aspect kept
     EXPECT_EQ(img->height, 120u);
   }
+  ASSERT_GE(abouts.size(), 2u);
+  const auto& whole = *overlays.begin()->second;
+  for (const auto& a : abouts)
+    EXPECT_EQ(a, std::to_string(whole.width) + "×" + std::to_string(whole.height) + " " + whole.encoding);
 }
 
 }  // namespace

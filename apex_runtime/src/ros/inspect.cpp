@@ -50,12 +50,24 @@ bool registerInspector(const TypeInfo* type, Inspector inspector) {
   return true;
 }
 
-bool registerShrink(const TypeInfo* type, std::function<Message(const Message&, int)> shrink) {
+namespace {
+/** Sets one member of the inspector registered for `type`; false if none is. */
+template <class Member, class Value>
+bool amend(const TypeInfo* type, Member Inspector::*member, Value value) {
   std::lock_guard<std::mutex> lock(tableMutex());
   auto it = table().find(type);
   if (it == table().end()) return false;
-  it->second.shrink = std::move(shrink);
+  it->second.*member = std::move(value);
   return true;
+}
+}  // namespace
+
+bool registerShrink(const TypeInfo* type, std::function<Message(const Message&, int)> shrink) {
+  return amend(type, &Inspector::shrink, std::move(shrink));
+}
+
+bool registerDescribe(const TypeInfo* type, std::function<std::string(const Message&)> describe) {
+  return amend(type, &Inspector::describe, std::move(describe));
 }
 
 Inspector findInspector(const TypeInfo* type) {

@@ -2,12 +2,15 @@
 
 #include <chrono>
 
+#include <std_msgs/String.h>
+
 namespace apex {
 namespace ros_host {
 
 /** One inspected port, published whole on inspect/<node>/<port> and, for the panel's
- *  previews, at most kPreviewRate times a second and shrunk on preview/<node>/<port>. A port
- *  that carries any type advertises on its first message. */
+ *  previews, at most kPreviewRate times a second and shrunk on preview/<node>/<port>, with
+ *  what the message was (its inspector's describe, e.g. an image's real size) on
+ *  preview/<node>/<port>/about. A port that carries any type advertises on its first message. */
 struct Inspection::Tap {
   struct Topic {
     bool wanted = false;
@@ -18,12 +21,13 @@ struct Inspection::Tap {
   std::mutex mutex;
   Inspector inspector;
   bool typed = false;  // inspector known (from the port's type, or the first message)
-  Topic whole, preview;
+  Topic whole, preview, about;
   std::chrono::steady_clock::time_point next_preview{};
 
   void advertise() {  // under mutex, once the inspector is known
     for (Topic* t : {&whole, &preview})
       if (t->wanted && !t->pub) t->pub = inspector.advertise(nh, t->name);
+    if (preview.wanted && inspector.describe && !about.pub) about.pub = nh.advertise<std_msgs::String>(about.name, 1);
   }
 
   void onMessage(const Message& m) {  // on the node's thread group
@@ -37,6 +41,11 @@ struct Inspection::Tap {
     if (now < next_preview) return;  // throttled: the graph pays a clock read
     next_preview = now + std::chrono::milliseconds(1000 / kPreviewRate);
     inspector.publish(preview.pub, inspector.shrink ? inspector.shrink(m, kPreviewWidth) : m);
+    if (about.pub && about.pub.getNumSubscribers() > 0) {
+      std_msgs::String text;
+      text.data = inspector.describe(m);
+      about.pub.publish(text);
+    }
   }
 };
 
@@ -51,6 +60,7 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
       std::lock_guard<std::mutex> tap_lock(it->second->mutex);
       Tap::Topic& t = preview ? it->second->preview : it->second->whole;
       t.wanted = false, t.pub = ros::Publisher();
+      if (preview) it->second->about.pub = ros::Publisher();
       if (it->second->whole.wanted || it->second->preview.wanted) return std::make_pair(std::string(), std::string());
     }
     (void)graph.setTap(node, port, nullptr);
@@ -71,6 +81,7 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
     tap->nh = nh_;
     tap->whole.name = "inspect/" + key;
     tap->preview.name = "preview/" + key;
+    tap->about.name = "preview/" + key + "/about";
     if (port_type && port_type != typeOf<Any>()) tap->inspector = findInspector(port_type), tap->typed = true;
     auto st = graph.setTap(node, port, [tap](const Message& m) { tap->onMessage(m); });
     if (!st) return st;

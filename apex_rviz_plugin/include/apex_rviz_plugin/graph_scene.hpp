@@ -70,6 +70,8 @@ class NodeItem : public QGraphicsObject {
   /** @brief The outputs a preview is drawn for. */
   std::vector<std::string> previewPorts() const;
   void showImage(const QString& port, const QImage& image);
+  /** @brief What the output's last previewed message was (e.g. an image's real size). */
+  void showAbout(const QString& port, const QString& text) { abouts_[port.toStdString()] = text; }
   /** @brief The last preview image of an output, and the last values of a numeric one. */
   QImage image(const std::string& port) const { auto it = images_.find(port); return it == images_.end() ? QImage() : it->second; }
   std::size_t samples(const std::string& port) const { auto it = series_.find(port); return it == series_.end() ? 0 : it->second.size(); }
@@ -138,6 +140,7 @@ class NodeItem : public QGraphicsObject {
   bool detail_ = true;
   double preview_top_ = 0;                          // where the previews start in the box
   std::map<std::string, QImage> images_;            // previews: the last thumbnail per output
+  std::map<std::string, QString> abouts_;           // previews: what the last message was per output
   std::map<std::string, std::vector<double>> series_;  // previews: the last values per output
   double rate_hz_ = 0;
   double width_ = kMinWidth, height_ = 60;
@@ -166,6 +169,7 @@ class GraphScene : public QGraphicsScene {
   void showStatus(const apex::RuntimeStatus& status);
   void showValue(const QString& node, const QString& port, const QString& text);
   void showImage(const QString& node, const QString& port, const QImage& image);
+  void showAbout(const QString& node, const QString& port, const QString& text);
   NodeItem* node(const std::string& name) const;
   /** @brief The view's scale: below kDetailScale nodes show their names large, without
    *  port labels and widgets (as map viewers drop detail when zoomed out). */

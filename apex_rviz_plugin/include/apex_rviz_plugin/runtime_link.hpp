@@ -75,7 +75,8 @@ class RuntimeLink : public QObject {
                                   const std::string& type)> done,
                bool preview = false);
   /** @brief Shows a port's previews (inspect with preview) as they come: images as
-   *  imageReceived, numbers as scalarReceived. Until unwatchPreview. */
+   *  imageReceived (with what each was, e.g. its real size, as aboutReceived), numbers as
+   *  scalarReceived. Until unwatchPreview. */
   void watchPreview(const std::string& node, const std::string& port, const std::string& topic, const std::string& type);
   void unwatchPreview(const std::string& node, const std::string& port);
   bool watchingPreview(const std::string& node, const std::string& port) const {
@@ -96,6 +97,7 @@ class RuntimeLink : public QObject {
   void answerOverdue(const QString& text);
   void scalarReceived(const QString& node, const QString& port, const QString& text);
   void imageReceived(const QString& node, const QString& port, const QImage& image);
+  void aboutReceived(const QString& node, const QString& port, const QString& text);
 
  private:
   /** Runs `work` on the job thread and `then` with its result on the GUI thread. */
@@ -115,7 +117,7 @@ class RuntimeLink : public QObject {
   std::unique_ptr<ros::AsyncSpinner> spinner_;
   ros::Subscriber graph_sub_, status_sub_;
   std::vector<ros::Subscriber> scalar_subs_;
-  std::map<std::string, ros::Subscriber> preview_subs_;  // "node/port"
+  std::map<std::string, std::vector<ros::Subscriber>> preview_subs_;  // "node/port"
   /** Subscribes to a scalar topic; `show` gets its value as text. */
   ros::Subscriber subscribeScalar(const std::string& topic, const std::string& type, std::function<void(const QString&)> show);
   QTimer watchdog_;

@@ -30,6 +30,9 @@ struct Inspector {
   std::function<Message(const Message&, int max_width)> shrink;
   /** For recording: the ROS message serialized; none for a type with no ROS message of its own. */
   std::function<SerializedMessage(const Message&)> serialize;
+  /** What a message is, in a few words (e.g. "640×480 bgr8"): sent beside its previews, as the
+   *  preview itself may be shrunk; none: nothing is sent. */
+  std::function<std::string(const Message&)> describe;
 };
 
 /** @brief Registers the converter for messages of `type` (the last registration wins). */
@@ -42,6 +45,16 @@ bool addShrink(Shrink shrink) {
   return registerShrink(typeOf<T>(), [shrink](const Message& m, int max_width) {
     auto p = m.as<T>();
     return p ? Message::make<T>(shrink(*p, max_width)) : m;
+  });
+}
+/** @brief How a message of `type` is described beside its previews (see Inspector::describe); after its inspector. */
+bool registerDescribe(const TypeInfo* type, std::function<std::string(const Message&)> describe);
+
+template <class T, class Describe>
+bool addDescribe(Describe describe) {
+  return registerDescribe(typeOf<T>(), [describe](const Message& m) {
+    auto p = m.as<T>();
+    return p ? std::string(describe(*p)) : std::string();
   });
 }
 /** @brief The converter for `type`; a YAML-text std_msgs/String one if none is registered. */
@@ -67,7 +80,8 @@ bool addInspector(Convert convert) {
                                ros::serialization::serialize(stream, msg);
                                if (const ros::Time* stamp = mt::timeStamp(msg)) out.stamp = *stamp;
                                return out;
-                             }});
+                             },
+                             nullptr});
 }
 
 }  // namespace apex
