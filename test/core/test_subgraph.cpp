@@ -546,3 +546,25 @@ TEST(Subgraph, LiveEditsInsideARunningSubgraphNeverStallTheGraph) {
 }
 
 }  // namespace
+
+TEST(Subgraph, GroupingInsideUnderTheParentsOwnNameKeepsEveryNode) {
+  // s/s begins where s begins (at its first node): both used to take one place in the
+  // description, and the outer one with all its nodes was left out of ~get_graph and saves
+  Graph g(testRegistry());
+  apex_test::add(g, "test/Feeder", "feeder");
+  apex_test::add(g, "test/Gain", "first");
+  apex_test::add(g, "test/Collector", "sink");
+  ASSERT_TRUE(g.setParameter("first", "gain", "3"));
+  apex_test::link(g, "feeder", "out", "first", "in");
+  apex_test::link(g, "first", "out", "sink", "in");
+  ASSERT_TRUE(g.group({"first", "sink"}, "s"));
+  auto inner = g.group({"s/first"}, "s");  // s/s: the name is free one level down
+  ASSERT_TRUE(inner) << inner.message();
+  const std::string text = formatGraphText(g.describe());
+  EXPECT_TRUE(Contains(text, {"name: s", "name: first", "name: sink"})) << text;
+  Graph again(testRegistry());  // saved and loaded: the same graph, and it runs
+  auto loaded = again.load(parseGraphText(text).value());
+  ASSERT_TRUE(loaded) << loaded.message() << "\n" << text;
+  EXPECT_EQ(formatGraphText(again.describe()), text);
+  EXPECT_EQ(run(again, "s/sink", 2), (std::vector<int>{3, 6}));
+}

@@ -4,6 +4,7 @@
 // adopted by this one.
 #include <algorithm>
 #include <set>
+#include <tuple>
 
 #include "apex/core/graph.hpp"
 #include "edit_scope.hpp"
@@ -79,10 +80,11 @@ std::vector<ConnectionDescription> Graph::connections() const {
 GraphDescription Graph::describeLocked() const {
   GraphDescription flat;
   for (auto& [name, g] : groups_) if (name != "default") flat.thread_groups.push_back(name);
-  // insertion order, subgraphs among the nodes (a grouped one where its first node was)
-  std::map<std::pair<std::uint64_t, int>, NodeDescription> nodes;
+  // insertion order, subgraphs among the nodes (a grouped one where its first node was); a
+  // subgraph grouped inside another from its first node has the same place: outer first, by path
+  std::map<std::tuple<std::uint64_t, int, std::string>, NodeDescription> nodes;
   for (auto& [seq, n] : order_) {
-    auto& d = nodes[{seq, 1}] = describeNode(*n);
+    auto& d = nodes[{seq, 1, ""}] = describeNode(*n);
     if (n->type) d.error = n->error();
   }
   for (auto& [path, sg] : subgraphs_) {
@@ -106,7 +108,7 @@ GraphDescription Graph::describeLocked() const {
     inner->thread_groups = sg->thread_groups;
     inner->exports = sg->exports;
     d.subgraph = inner;
-    nodes[{sg->seq, 0}] = std::move(d);
+    nodes[{sg->seq, 0, path}] = std::move(d);
   }
   for (auto& [seq, d] : nodes) flat.nodes.push_back(std::move(d));
   for (auto& [seq, n] : order_) describeConnections(*n, flat.connections);
