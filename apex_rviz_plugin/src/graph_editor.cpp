@@ -1,5 +1,7 @@
 #include "apex_rviz_plugin/graph_editor.hpp"
 
+#include "apex_rviz_plugin/view_parts.hpp"
+
 #include <QCursor>
 #include <QFileDialog>
 #include <QGraphicsView>
@@ -35,53 +37,10 @@ QToolButton* button(const QString& name, const QString& text, const QString& tip
   return b;
 }
 
-/** The whole graph small in a corner of the view: the boxes as blocks, the part the view
- *  shows framed; a click there centres the view on it. Draws rectangles, not the scene. */
-class Minimap : public QWidget {
- public:
-  Minimap(GraphScene* scene, QGraphicsView* main) : QWidget(main), scene_(scene), main_(main) {
-    setObjectName("minimap");
-    setFixedSize(180, 120);
-    setToolTip("the whole graph: click to go there");
-    connect(scene, &QGraphicsScene::changed, this, QOverload<>::of(&QWidget::update));  // repaints coalesce
-  }
-
- protected:
-  void paintEvent(QPaintEvent*) override {
-    QPainter p(this);
-    p.fillRect(rect(), QColor(20, 22, 26, 220));
-    p.setPen(QColor(110, 110, 110));
-    p.drawRect(rect().adjusted(0, 0, -1, -1));
-    const QRectF seen = main_->mapToScene(main_->viewport()->rect()).boundingRect();
-    QRectF all = seen;
-    const auto boxes = scene_->boxes();
-    for (const auto& [name, b] : boxes) all |= QRectF(b.x, b.y, b.width, b.height);
-    const double s = std::min((width() - 8) / all.width(), (height() - 8) / all.height());
-    map_ = QTransform().translate(-all.left(), -all.top()) * QTransform().scale(s, s) * QTransform().translate(4, 4);
-    p.setPen(Qt::NoPen);
-    p.setBrush(QColor(120, 140, 170));
-    for (const auto& [name, b] : boxes) p.drawRect(map_.mapRect(QRectF(b.x, b.y, b.width, b.height)));
-    p.setPen(QPen(QColor(255, 220, 80), 1));
-    p.setBrush(Qt::NoBrush);
-    p.drawRect(map_.mapRect(seen));
-  }
-  void mousePressEvent(QMouseEvent* e) override { main_->centerOn(map_.inverted().map(QPointF(e->pos()))); }
-
- private:
-  GraphScene* scene_;
-  QGraphicsView* main_;
-  QTransform map_;  // scene -> minimap
-};
-
 }  // namespace
 
 void GraphEditor::placeMinimap() {
-  if (!minimap_) return;
-  const QRect port = view_->viewport()->geometry();
-  minimap_->move(port.right() - minimap_->width() - 8, port.bottom() - minimap_->height() - 8);
-  const QRectF seen = view_->mapToScene(view_->viewport()->rect()).boundingRect();
-  const bool all_seen = seen.contains(scene_->itemsBoundingRect());
-  minimap_->setVisible(!all_seen && port.width() > 500 && port.height() > 300);  // needed, and room for it
+  if (minimap_) minimap_->place();
 }
 
 GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphScene(this)), view_(new QGraphicsView) {
@@ -209,28 +168,12 @@ QWidget* GraphEditor::buildToolBar() {
 }
 
 QWidget* GraphEditor::buildLevelBar() {  // where the view is inside subgraphs; hidden at the top
-  auto* bar = new QWidget;
-  auto* row = new QHBoxLayout(bar);
-  row->setContentsMargins(0, 0, 0, 0);
-  up_ = button("up", "Up", "back to the graph around this subgraph");
-  connect(up_, &QToolButton::clicked, this, [this] {
-    const std::string& at = scene_->level();
-    const auto slash = at.rfind('/');
-    scene_->setLevel(slash == std::string::npos ? "" : at.substr(0, slash));
+  auto* bar = new LevelBar(scene_);
+  connect(scene_, &GraphScene::levelChanged, this, [this, bar](const QString& path) {
+    bar->showPath(path);
+    fitGraph();
   });
-  level_ = new QLabel;
-  level_->setObjectName("level");
-  row->addWidget(up_);
-  row->addWidget(level_, 1);
-  bar->setVisible(false);
-  connect(scene_, &GraphScene::levelChanged, this, &GraphEditor::showLevel);
   return bar;
-}
-
-void GraphEditor::showLevel(const QString& path) {
-  level_->parentWidget()->setVisible(!path.isEmpty());
-  level_->setText("graph / " + QString(path).replace("/", " / ") + "   (double-click a subgraph to open it)");
-  fitGraph();
 }
 
 QWidget* GraphEditor::buildPalette() {

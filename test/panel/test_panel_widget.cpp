@@ -297,21 +297,43 @@ TEST_F(PanelWidgetTest, GroupIntoASubgraphOpenItWithADoubleClickGoUpAndUndo) {
       << panel.editor()->message().toStdString();
   EXPECT_TRUE(find(runtimeGraph(), "subgraph_1/clock_3"));
 
-  // a double-click on it opens it: its nodes and the connection between them; Up goes back
+  // a double-click on it opens it: its nodes and the connection between them
   NodeItem* sub = scene->node("subgraph_1");
   sub->setZValue(10);
   mouse(view, QEvent::MouseButtonDblClick, sub->scenePos() + QPointF(60, 10), Qt::LeftButton);
   ASSERT_EQ(scene->level(), "subgraph_1");
   ASSERT_TRUE(scene->node("subgraph_1/clock_3") && scene->node("subgraph_1/print_1"));
   EXPECT_EQ(scene->connections().size(), 1u);
-  auto* level = panel.editor()->findChild<QLabel*>("level");
-  ASSERT_TRUE(level);
-  EXPECT_TRUE(level->isVisible());
-  EXPECT_TRUE(level->text().contains("subgraph_1")) << level->text().toStdString();
-  QTest::mouseClick(panel.editor()->findChild<QToolButton*>("up"), Qt::LeftButton);
+  // one level deeper: the clock grouped again, inside; the breadcrumb names every level
+  emit panel.editor()->groupIntoSubgraphRequested({"subgraph_1/clock_3"});
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("subgraph_1/subgraph_1") != nullptr; }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  NodeItem* inner = scene->node("subgraph_1/subgraph_1");
+  inner->setZValue(10);
+  mouse(view, QEvent::MouseButtonDblClick, inner->scenePos() + QPointF(60, 10), Qt::LeftButton);
+  ASSERT_EQ(scene->level(), "subgraph_1/subgraph_1");
+  EXPECT_TRUE(scene->node("subgraph_1/subgraph_1/clock_3"));
+  auto crumb = [&](const QString& path) { return panel.editor()->findChild<QToolButton*>("crumb:" + path); };
+  ASSERT_TRUE(crumb("") && crumb("subgraph_1") && crumb("subgraph_1/subgraph_1"));
+  EXPECT_TRUE(crumb("")->isVisible());
+  EXPECT_FALSE(crumb("subgraph_1/subgraph_1")->isEnabled());  // where the view is
+  QTest::mouseClick(crumb("subgraph_1"), Qt::LeftButton);  // the middle one: one level up
+  EXPECT_EQ(scene->level(), "subgraph_1");
+  EXPECT_FALSE(crumb("subgraph_1/subgraph_1"));
+  QTest::mouseClick(panel.editor()->findChild<QToolButton*>("up"), Qt::LeftButton);  // Up: the top
+  EXPECT_EQ(scene->level(), "");
+  EXPECT_FALSE(crumb("")->isVisible());  // the bar is hidden at the top
+  mouse(view, QEvent::MouseButtonDblClick, scene->node("subgraph_1")->scenePos() + QPointF(60, 10), Qt::LeftButton);
+  mouse(view, QEvent::MouseButtonDblClick, scene->node("subgraph_1/subgraph_1")->scenePos() + QPointF(60, 10), Qt::LeftButton);
+  ASSERT_EQ(scene->level(), "subgraph_1/subgraph_1");
+  QTest::mouseClick(crumb(""), Qt::LeftButton);  // "graph": straight to the top
   EXPECT_EQ(scene->level(), "");
   EXPECT_TRUE(scene->node("subgraph_1"));
 
+  // undo the inner group, then the outer one
+  QTest::mouseClick(panel.editor()->findChild<QToolButton*>("undo"), Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return find(runtimeGraph(), "subgraph_1/clock_3") != nullptr; }, kWaitMs))
+      << panel.editor()->message().toStdString();
   // one undo step: the nodes are back beside each other, still connected
   QTest::mouseClick(panel.editor()->findChild<QToolButton*>("undo"), Qt::LeftButton);
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("clock_3") && !scene->node("subgraph_1"); }, kWaitMs))

@@ -22,6 +22,8 @@ class QToolButton;
 
 namespace apex_rviz_plugin {
 
+class Minimap;
+
 class GraphEditor : public QWidget {
   Q_OBJECT
  public:
@@ -117,7 +119,6 @@ class GraphEditor : public QWidget {
   /** Asks a preset's name, then saves the parameters of `nodes` (all if empty) under it. */
   void askPresetName(const QStringList& nodes);
   QPointF newNodePosition();
-  void showLevel(const QString& path);
   void placeMinimap();
   /** Shows the next node whose name or type contains the find field's text (in its subgraph),
    *  selected and centred; says which of how many. */
@@ -125,7 +126,7 @@ class GraphEditor : public QWidget {
 
   GraphScene* scene_;
   QGraphicsView* view_;
-  QWidget* minimap_ = nullptr;
+  Minimap* minimap_ = nullptr;
   const GraphModel* model_ = nullptr;
   QLineEdit* namespace_;
   QLineEdit* search_;
@@ -134,8 +135,6 @@ class GraphEditor : public QWidget {
   QListWidget* palette_;
   QLabel* message_;
   QLabel* connection_;
-  QLabel* level_ = nullptr;      ///< where the view is: "graph / camera_detector"
-  QToolButton* up_ = nullptr;    ///< back to the enclosing level
   QToolButton *pause_, *undo_, *redo_;
   int added_ = 0;
   QStringList select_when_shown_;
