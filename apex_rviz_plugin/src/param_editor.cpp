@@ -43,6 +43,46 @@ T as(const YAML::Node& n, T fallback) {
 
 QString number(double v) { return QString::number(v, 'g', 10); }
 
+/** Whether two YAML texts say the same value: 'x' and x, 25 and 25.0, [a, b] and [ a,b ]. */
+bool same(const YAML::Node& a, const YAML::Node& b) {
+  if (a.Type() != b.Type()) return false;
+  if (a.IsScalar()) {
+    double x, y;
+    if (YAML::convert<double>::decode(a, x) && YAML::convert<double>::decode(b, y)) return x == y;
+    return a.Scalar() == b.Scalar();
+  }
+  if (a.IsSequence()) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!same(a[i], b[i])) return false;
+    return true;
+  }
+  if (a.IsMap()) {
+    if (a.size() != b.size()) return false;
+    for (const auto& kv : a)
+      if (!b[kv.first.Scalar()] || !same(kv.second, b[kv.first.Scalar()])) return false;
+    return true;
+  }
+  return true;  // both null
+}
+
+/** Whether the text was typed into since it was last sent or shown; forgets it (Qt emits
+ *  editingFinished on Return and again when the focus leaves). */
+bool typedInto(QLineEdit* line) {
+  const bool typed = line->isModified();
+  line->setModified(false);
+  return typed;
+}
+
+bool sameText(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  try {
+    return same(YAML::Load(a), YAML::Load(b));
+  } catch (const YAML::Exception&) {
+    return false;  // not YAML: only the very same text is the same
+  }
+}
+
 /** A YAML single-quoted string: reads back as exactly `s`. */
 QString quoted(const QString& s) { return "'" + QString(s).replace("'", "''") + "'"; }
 
@@ -96,7 +136,7 @@ class FittingLineEdit : public QLineEdit {
   QSize sizeHint() const override {
     QSize s = QLineEdit::sizeHint();
     const int wide = fontMetrics().horizontalAdvance(text()) + 16;  // frame and margins
-    s.setWidth(std::clamp(wide, 60, 300));
+    s.setWidth(std::clamp(wide, 60, 340));  // with its label and buttons, within the widest box
     return s;
   }
 };
@@ -154,7 +194,7 @@ void ParamEditor::send(const QString& yaml, bool dragging) {
   if (updating_) return;
   if (!dragging) {
     const bool ends_drag = drag_sent_ || throttle_.isActive();
-    if (yaml.toStdString() == param_.value && !ends_drag) return;  // unchanged: no edit
+    if (sameText(yaml.toStdString(), param_.value) && !ends_drag) return;  // unchanged (e.g. focus left): no edit
     throttle_.stop();
     pending_.clear();
     drag_sent_ = false;
@@ -312,7 +352,10 @@ void ParamEditor::buildPath() {
   auto* browse = new QPushButton("...");
   browse->setFixedWidth(28);
   row_->addWidget(line), row_->addWidget(browse);
-  connect(line, &QLineEdit::editingFinished, this, [this, line] { send(quoted(line->text()), false); });
+  connect(line, &QLineEdit::editingFinished, this, [this, line] {
+    if (!typedInto(line)) return;  // Return, then focus away: one edit
+    send(quoted(line->text()), false);
+  });
   connect(browse, &QPushButton::clicked, this, [this, line] {
     const QString mode = QString::fromStdString(param_.path_mode);
     const QString path = mode == "directory" ? QFileDialog::getExistingDirectory(this, "Directory", line->text())
@@ -351,6 +394,7 @@ void ParamEditor::buildText() {  // strings as text; pairs and lists as their YA
   auto* line = new FittingLineEdit;
   row_->addWidget(line);
   connect(line, &QLineEdit::editingFinished, this, [this, line, is_string] {
+    if (!typedInto(line)) return;  // Return, then focus away: one edit
     send(is_string ? quoted(line->text()) : line->text(), false);
   });
   show_ = [line, is_string](const std::string& v) {

@@ -737,6 +737,28 @@ TEST_F(PanelWidgetTest, FitsANarrowDock) {
     EXPECT_TRUE(buttons->findChild<QToolButton*>(b)) << b << " is not in the tool bar";
 }
 
+TEST_F(PanelWidgetTest, ATextEditIsOneUndoStepAndLeavingAFieldUntouchedIsNone) {
+  ASSERT_TRUE(addNode("apex_nodes/ImagePublisher", "text_pub", "{topic: apex_test/first}"));  // not an undo step
+  NodeItem* box = nullptr;
+  ASSERT_TRUE(QTest::qWaitFor([&] { return (box = panel.editor()->scene()->node("text_pub")) && box->editor("topic"); }, kWaitMs));
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  ASSERT_FALSE(undo->isEnabled()) << "the load before should have started a fresh history";
+  auto* line = box->editor("topic")->findChild<QLineEdit*>();
+  ASSERT_TRUE(line);
+  emit line->editingFinished();  // what Qt says when the focus leaves the field: nothing was typed
+  line->selectAll();
+  QTest::keyClicks(line, "apex_test/second");
+  QTest::keyClick(line, Qt::Key_Return);
+  emit line->editingFinished();  // and the focus leaves after Return
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "text_pub", "topic") == "apex_test/second" && panel.editsPending() == 0; }, kWaitMs))
+      << param(runtimeGraph(), "text_pub", "topic");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->isEnabled(); }, kWaitMs));
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "text_pub", "topic") == "apex_test/first" && panel.editsPending() == 0; }, kWaitMs));
+  EXPECT_FALSE(undo->isEnabled()) << "more than one undo step for one text edit: " << undo->toolTip().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return line->text() == "apex_test/first"; }, kWaitMs));
+}
+
 TEST_F(PanelWidgetTest, ABoxIsAsWideAsItsNameAndValuesNeed) {
   // a long name and a file path: the box widens for them, the label and the path are shown whole
   const std::string name = "bag_reader_with_a_name_longer_than_a_usual_box";
