@@ -438,6 +438,7 @@ void PanelWidget::afterLoad() {
   for (const auto& key : previewing_) link_.unwatchPreview(key.substr(0, key.rfind('/')), key.substr(key.rfind('/') + 1));
   previewing_.clear();  // a load ends the runtime's previews: asked for again by the next update
   watched_.clear();  // a load ends every inspection: the Optimizers' progress and the displays
+  watchOptimizers();  // the loaded graph may be shown already: no other ~graph may follow
   for (const auto& [node, port] : inspected_)  // displays showing a port go on if the new graph has it
     link_.inspect(node, port, [](bool, const std::string&, const std::string&, const std::string&) {});
 }

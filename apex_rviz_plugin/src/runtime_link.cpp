@@ -256,9 +256,9 @@ void RuntimeLink::watchScalar(const std::string& node, const std::string& port, 
                               const std::string& type) {
   if (!nh_) return;
   const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
-  scalar_subs_.push_back(subscribeScalar(topic, type, [this, n, p](const QString& text) {
+  scalar_subs_[node + "/" + port] = subscribeScalar(topic, type, [this, n, p](const QString& text) {
     QMetaObject::invokeMethod(this, [this, n, p, text] { emit scalarReceived(n, p, text); }, Qt::QueuedConnection);
-  }));
+  });
 }
 
 namespace {
@@ -318,7 +318,7 @@ ros::Subscriber RuntimeLink::subscribeScalar(const std::string& topic, const std
 }
 
 bool RuntimeLink::receiving(const std::string& topic) const {
-  for (const auto& s : scalar_subs_)
+  for (const auto& [port, s] : scalar_subs_)
     if (s.getTopic() == topic && s.getNumPublishers() > 0) return true;
   return false;
 }

@@ -780,7 +780,8 @@ TEST_F(PanelWidgetTest, ABoxIsAsWideAsItsNameAndValuesNeed) {
     ASSERT_TRUE(label) << p.name;
     EXPECT_GE(label->width(), label->fontMetrics().horizontalAdvance(label->text())) << p.name << " is cut";
   }
-  EXPECT_EQ(overlapping(*panel.editor()->scene()), "");
+  EXPECT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && overlapping(*panel.editor()->scene()).empty(); }, kWaitMs))
+      << overlapping(*panel.editor()->scene());  // placed beside the others, wide as it is
   // zoomed out, the box is its name alone: a rebuild then (previews on) does not bring its editors back
   box->setDetail(false);
   EXPECT_FALSE(box->editor("file")->isVisible());
@@ -902,6 +903,22 @@ TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestU
       << undo->toolTip().toStdString();
   QTest::mouseClick(undo, Qt::LeftButton);
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "scale", "factor") == 1.0; }, kWaitMs));
+
+  // Saved and loaded again: the box's progress is watched again, once (each value counted once)
+  const std::size_t watches = panel.link().scalarWatches();
+  const std::string file = std::filesystem::path(g_bag).parent_path() / "panel_optimise.yaml";
+  emit panel.editor()->saveRequested(QString::fromStdString(file));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return std::filesystem::exists(file) && panel.editsPending() == 0; }, kWaitMs));
+  emit panel.editor()->loadRequested(QString::fromStdString(file));
+  ASSERT_TRUE(QTest::qWaitFor([&] {  // the load answered, and the loaded graph shown
+    return panel.editor()->message().startsWith("loaded ") && panel.editor()->scene()->node("optimizer_1") != nullptr;
+  }, kWaitMs)) << panel.editor()->message().toStdString();
+  // an edit after the load: answered once the calls before it are (the link keeps their order)
+  emit panel.editor()->scene()->node("optimizer_1")->parameterEdited("optimizer_1", "budget", "7");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "optimizer_1", "budget") == "7" && panel.editsPending() == 0; }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().receiving("/apex/inspect/optimizer_1/evaluations"); }, kWaitMs));
+  EXPECT_EQ(panel.link().scalarWatches(), watches) << "the watches of the graph before are still there, or watched twice";
 }
 
 /** A runtime of its own, in another namespace, that a test can stop and start again. */

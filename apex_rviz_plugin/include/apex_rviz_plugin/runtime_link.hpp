@@ -82,11 +82,13 @@ class RuntimeLink : public QObject {
   bool watchingPreview(const std::string& node, const std::string& port) const {
     return preview_subs_.count(node + "/" + port) > 0;
   }
-  /** @brief Shows the values of a scalar inspection topic (std_msgs) as scalarReceived. */
+  /** @brief Shows the values of a scalar inspection topic (std_msgs) as scalarReceived; one
+   *  subscription per port (watched again, e.g. after a Load: the old one is replaced). */
   void watchScalar(const std::string& node, const std::string& port, const std::string& topic,
                    const std::string& type);
   /** @brief Whether a scalar watched on `topic` is connected to its publisher (messages come). */
   bool receiving(const std::string& topic) const;
+  std::size_t scalarWatches() const { return scalar_subs_.size(); }
 
  signals:
   void graphReceived(const apex::GraphState& graph);
@@ -116,7 +118,7 @@ class RuntimeLink : public QObject {
   std::unique_ptr<ros::NodeHandle> nh_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;
   ros::Subscriber graph_sub_, status_sub_;
-  std::vector<ros::Subscriber> scalar_subs_;
+  std::map<std::string, ros::Subscriber> scalar_subs_;  // "node/port"
   std::map<std::string, std::vector<ros::Subscriber>> preview_subs_;  // "node/port"
   /** Subscribes to a scalar topic; `show` gets its value as text. */
   ros::Subscriber subscribeScalar(const std::string& topic, const std::string& type, std::function<void(const QString&)> show);
