@@ -50,64 +50,30 @@ using Result = std::pair<bool, std::string>;
 
 }  // namespace
 
-// ------------------------------------------------------------------ JobThread
-
-JobThread::JobThread() : thread_([this] {
-    std::unique_lock<std::mutex> lock(mutex_);
-    for (;;) {
-      cv_.wait(lock, [this] { return stop_ || !jobs_.empty(); });
-      if (stop_) return;
-      auto job = std::move(jobs_.front());
-      jobs_.pop_front();
-      lock.unlock();
-      started_ns_ = std::chrono::steady_clock::now().time_since_epoch().count();
-      job();
-      started_ns_ = 0;
-      lock.lock();
-    }
-  }) {}
-
-JobThread::~JobThread() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  cv_.notify_all();
-  thread_.join();
-}
-
-double JobThread::busyFor() const {
-  const std::int64_t start = started_ns_;
-  if (start == 0) return 0;
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch() -
-                                       std::chrono::steady_clock::duration(start)).count();
-}
-
-void JobThread::post(std::function<void()> job) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    jobs_.push_back(std::move(job));
-  }
-  cv_.notify_all();
-}
-
 // ---------------------------------------------------------------- RuntimeLink
 
-RuntimeLink::RuntimeLink(QObject* parent) : QObject(parent) {
+RuntimeLink::RuntimeLink(QObject* parent)
+    : QObject(parent), owner_(std::make_shared<Owner>()), jobs_(std::make_unique<JobThread>()) {
+  owner_->link = this;
   connect(&watchdog_, &QTimer::timeout, this, &RuntimeLink::checkConnection);
   watchdog_.start(500);
 }
 
 RuntimeLink::~RuntimeLink() {
+  {
+    std::lock_guard<std::mutex> lock(owner_->mutex);
+    owner_->link = nullptr;  // a call answered from now on is dropped
+  }
   if (spinner_) spinner_->stop();
 }
 
 template <class T>
 void RuntimeLink::async(std::function<T()> work, std::function<void(const T&)> then) {
-  jobs_.post([this, work = std::move(work), then = std::move(then)] {
+  jobs_->post([owner = owner_, work = std::move(work), then = std::move(then)] {
     T result = work();
-    // queued to this object's thread; dropped by Qt if the link is gone by then
-    QMetaObject::invokeMethod(this, [then, result] { then(result); }, Qt::QueuedConnection);
+    std::lock_guard<std::mutex> lock(owner->mutex);  // the link is not destroyed meanwhile
+    if (owner->link)  // queued to its thread; dropped by Qt if it is gone by the time it would run
+      QMetaObject::invokeMethod(owner->link, [then, result] { then(result); }, Qt::QueuedConnection);
   });
 }
 
@@ -122,6 +88,11 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
   }
   if (spinner_) spinner_->stop();
   graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear(), preview_subs_.clear();
+  if (nh_) {  // calls to the runtime left go on on a thread of their own: one that hangs holds up no other
+    jobs_->retire();
+    retired_.push_back(std::move(jobs_));
+    jobs_ = std::make_unique<JobThread>();
+  }
   ns_ = clean;
   if (!nh_) {
     nh_ = std::make_unique<ros::NodeHandle>();
@@ -144,7 +115,7 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
 void RuntimeLink::checkConnection() {
   if (!nh_) return;
   const bool up = graph_sub_.getNumPublishers() > 0;
-  const double waiting = jobs_.busyFor();
+  const double waiting = jobs_->busyFor();
   const QString ns = QString::fromStdString(ns_);
   if (up && connected_ && (waiting > 1.0 || overdue_)) {  // slow: said, and the panel goes on
     overdue_ = waiting > 1.0;

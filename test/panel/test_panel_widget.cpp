@@ -42,6 +42,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <thread>
 #include <yaml-cpp/yaml.h>
 
@@ -1037,6 +1039,81 @@ TEST(PanelWidgetSlowRuntime, TheGuiThreadNeverWaitsAndSaysTheRuntimeIsSlow) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return !status->text().contains("no answer"); }, kWaitMs)) << status->text().toStdString();
   ticker.stop();
   EXPECT_LT(longest, 50) << "the GUI thread waited " << longest << " ms";
+}
+
+/** A runtime whose set_parameter never answers until released (a runtime that hangs). */
+class HungRuntime {
+ public:
+  HungRuntime() : nh_("/hung") {
+    nh_.setCallbackQueue(&queue_);
+    graph_ = nh_.advertise<apex::GraphState>("graph", 1, true);
+    apex::GraphState g;
+    g.revision = 1;
+    apex::NodeInfo n;
+    n.name = "n", n.type = "apex_nodes/Scale", n.enabled = true, n.state = "ok";
+    apex::ParamInfo p;
+    p.name = "factor", p.kind = "double range", p.type = "double", p.value = "1.0", p.default_value = "1.0";
+    p.min = 0, p.max = 10, p.step = 0.1;
+    n.parameters = {p};
+    g.nodes = {n};
+    graph_.publish(g);
+    types_ = nh_.advertiseService<apex::ListNodeTypes::Request, apex::ListNodeTypes::Response>(
+        "list_node_types", [](auto&, auto& res) { return res.success = true; });
+    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>("set_parameter", [this](auto&, auto& res) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      ++called_;
+      released_cv_.wait(lock, [this] { return released_; });
+      return res.success = true;
+    });
+    spinner_.start();
+  }
+  ~HungRuntime() { release(); }
+  void release() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    released_ = true;
+    released_cv_.notify_all();
+  }
+  int called() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return called_;
+  }
+
+ private:
+  ros::NodeHandle nh_;
+  ros::CallbackQueue queue_;
+  ros::AsyncSpinner spinner_{2, &queue_};
+  ros::Publisher graph_;
+  ros::ServiceServer types_, set_;
+  std::mutex mutex_;
+  std::condition_variable released_cv_;
+  bool released_ = false;
+  int called_ = 0;
+};
+
+TEST(PanelWidgetHungRuntime, AnotherRuntimeIsServedAndClosingThePanelDoesNotWait) {
+  HungRuntime hung;
+  auto panel = std::make_unique<PanelWidget>();
+  panel->show();
+  panel->setNamespace("/hung");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel->link().connected() && panel->editor()->scene()->node("n"); }, kWaitMs));
+  emit panel->editor()->scene()->node("n")->editor("factor")->edited("factor", "2");  // never answered
+  ASSERT_TRUE(QTest::qWaitFor([&] { return hung.called() == 1; }, kWaitMs));
+  // the user turns to another runtime: it is listed and shown, its calls do not wait behind the hung one
+  panel->setNamespace("/apex");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel->link().connected() && panel->nodeTypeCount() > 0; }, kWaitMs))
+      << "the calls to /apex wait behind the one to /hung";
+  auto* status = panel->editor()->findChild<QLabel*>("connection");
+  EXPECT_FALSE(status->text().contains("no answer")) << status->text().toStdString();
+  // rviz closes with a call still unanswered: the panel goes at once
+  panel->setNamespace("/hung");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel->link().connected() && panel->editor()->scene()->node("n"); }, kWaitMs));
+  emit panel->editor()->scene()->node("n")->editor("factor")->edited("factor", "3");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return hung.called() == 2; }, kWaitMs));
+  QElapsedTimer clock;
+  clock.start();
+  panel.reset();
+  EXPECT_LT(clock.elapsed(), 1000) << "closing the panel waited for the hung runtime";
+  hung.release();  // the calls end; their answers go nowhere
 }
 
 }  // namespace

@@ -27,26 +27,9 @@
 #include <vector>
 
 #include "apex_rviz_plugin/graph_model.hpp"
+#include "apex_rviz_plugin/job_thread.hpp"
 
 namespace apex_rviz_plugin {
-
-/** @brief Runs jobs in order on one thread of its own. */
-class JobThread {
- public:
-  JobThread();
-  ~JobThread();  ///< finishes the running job, drops the rest
-  void post(std::function<void()> job);
-  /** @brief Seconds the running job has taken so far; 0 when idle. */
-  double busyFor() const;
-
- private:
-  std::mutex mutex_;
-  std::condition_variable cv_;
-  std::deque<std::function<void()>> jobs_;
-  bool stop_ = false;
-  std::atomic<std::int64_t> started_ns_{0};  // steady clock, of the running job; 0 when idle
-  std::thread thread_;
-};
 
 class RuntimeLink : public QObject {
   Q_OBJECT
@@ -123,7 +106,14 @@ class RuntimeLink : public QObject {
   /** Subscribes to a scalar topic; `show` gets its value as text. */
   ros::Subscriber subscribeScalar(const std::string& topic, const std::string& type, std::function<void(const QString&)> show);
   QTimer watchdog_;
-  JobThread jobs_;  // last: destroyed first, before what its jobs use
+  /** What a finished job may reach: the link, until it is gone (a job may outlive it). */
+  struct Owner {
+    std::mutex mutex;
+    RuntimeLink* link;
+  };
+  std::shared_ptr<Owner> owner_;
+  std::vector<std::unique_ptr<JobThread>> retired_;  // of namespaces left: they finish what they were given
+  std::unique_ptr<JobThread> jobs_;  // last: destroyed first, before what its jobs use
 };
 
 }  // namespace apex_rviz_plugin
