@@ -43,19 +43,32 @@ void GraphEditor::placeMinimap() {
   if (minimap_) minimap_->place();
 }
 
+void GraphEditor::growCanvas() {
+  // Room around the boxes, a view wide each way: any box can be brought anywhere in the view, and
+  // a zoom keeps what is under the cursor (QGraphicsView centres a scene smaller than itself).
+  const double s = view_->transform().m11();
+  const QRect port = view_->viewport()->rect();
+  const QRectF seen = view_->mapToScene(port).boundingRect();
+  const QRectF wanted =
+      scene_->itemsBoundingRect().adjusted(-port.width() / s, -port.height() / s, port.width() / s, port.height() / s) | seen;
+  if (wanted == view_->sceneRect()) return;
+  view_->setSceneRect(wanted);
+  view_->centerOn(seen.center());  // the view stays where it was
+}
+
 GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphScene(this)), view_(new QGraphicsView) {
   view_->setObjectName("view");
   view_->setScene(scene_);
   view_->setRenderHint(QPainter::Antialiasing);
   view_->setDragMode(QGraphicsView::RubberBandDrag);
   view_->setMinimumSize(300, 200);
-  view_->setTransformationAnchor(QGraphicsView::AnchorUnderMouse);
+  view_->setTransformationAnchor(QGraphicsView::NoAnchor);  // the wheel keeps the point under it itself
   view_->viewport()->installEventFilter(this);
   view_->installEventFilter(this);  // Delete and Ctrl+D on the selected nodes
   minimap_ = new Minimap(scene_, view_);
   for (QScrollBar* bar : {view_->horizontalScrollBar(), view_->verticalScrollBar()})  // scrolled or zoomed
     connect(bar, &QScrollBar::valueChanged, this, [this] { placeMinimap(), minimap_->update(); });
-  connect(scene_, &QGraphicsScene::sceneRectChanged, this, &GraphEditor::placeMinimap);
+  connect(scene_, &QGraphicsScene::sceneRectChanged, this, [this] { growCanvas(), placeMinimap(); });
   auto* split = new QSplitter;
   split->addWidget(buildPalette());
   split->addWidget(view_);
@@ -261,6 +274,7 @@ void GraphEditor::fitGraph() {
   view_->resetTransform();
   view_->scale(s, s);
   scene_->setZoom(s);
+  growCanvas();
   view_->ensureVisible(QRectF(r.topLeft(), QSizeF(1, 1)), 0, 0);  // a graph too big to fit: its start
   if (s * r.width() <= port.width() && s * r.height() <= port.height()) view_->centerOn(r.center());
   placeMinimap();
@@ -283,12 +297,18 @@ bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
     auto* wheel = static_cast<QWheelEvent*>(event);
     const double now = view_->transform().m11();
     const double f = std::clamp(std::pow(1.15, wheel->angleDelta().y() / 120.0), 0.1 / now, 3.0 / now);
+    const QPoint at = wheel->position().toPoint();  // the event's own place, not the cursor's (none offscreen)
+    const QPointF under = view_->mapToScene(at);
     view_->scale(f, f);
+    growCanvas();
+    const QPointF off = view_->transform().map(under) - view_->transform().map(view_->mapToScene(at));  // pixels
+    for (auto [bar, by] : {std::pair{view_->horizontalScrollBar(), off.x()}, std::pair{view_->verticalScrollBar(), off.y()}})
+      bar->setValue(bar->value() + static_cast<int>(std::lround(by)));  // what was under the cursor stays there
     scene_->setZoom(view_->transform().m11());
     placeMinimap();
     return true;
   }
-  if (watched == view_ && event->type() == QEvent::Resize) placeMinimap();
+  if (watched == view_ && event->type() == QEvent::Resize) growCanvas(), placeMinimap();
   return QWidget::eventFilter(watched, event);
 }
 

@@ -83,9 +83,9 @@ bool fireSlot(const std::string& node, const std::string& slot) {
   return ros::service::call("/apex/fire_slot", srv) && srv.response.success;
 }
 
-apex::GraphState runtimeGraph() {
+apex::GraphState runtimeGraph(const std::string& ns = "/apex") {
   apex::GetGraph srv;
-  EXPECT_TRUE(ros::service::call("/apex/get_graph", srv)) << "get_graph did not answer";
+  EXPECT_TRUE(ros::service::call(ns + "/get_graph", srv)) << ns << "/get_graph did not answer";
   return srv.response.graph;
 }
 
@@ -594,6 +594,46 @@ TEST_F(PanelWidgetTest, APresetIsSavedComparedWithNowAndRestoredInOneUndoStep) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Restore preset slow_clock"); }, kWaitMs));
   QTest::mouseClick(undo, Qt::LeftButton);
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "preset_clock", "rate") == 40; }, kWaitMs));
+
+  // the whole graph: Presets → "Save all parameters as..."; two nodes changed, both restored in one step
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "preset_other", "{rate: 7.0}"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("preset_other") != nullptr; }, kWaitMs));
+  QMenu all;
+  panel.editor()->fillPresetMenu(all);
+  action(all, "Save all parameters as")->trigger();
+  ask = panel.editor()->findChild<QInputDialog*>("preset_dialog");
+  ASSERT_TRUE(ask);
+  ask->setTextValue("whole_graph");
+  ask->accept();
+  ASSERT_TRUE(setParameter("preset_clock", "rate", "30") && setParameter("preset_other", "rate", "31"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "preset_other", "rate") == 31; }, kWaitMs));
+  QMenu later;
+  panel.editor()->fillPresetMenu(later);
+  QAction* whole = action(later, "whole_graph");
+  ASSERT_TRUE(whole && whole->menu());
+  action(*whole->menu(), "Restore")->trigger();
+  ASSERT_TRUE(QTest::qWaitFor([&] {
+    return number(runtimeGraph(), "preset_clock", "rate") == 40 && number(runtimeGraph(), "preset_other", "rate") == 7;
+  }, kWaitMs)) << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Restore preset whole_graph"); }, kWaitMs));
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] {
+    return number(runtimeGraph(), "preset_clock", "rate") == 30 && number(runtimeGraph(), "preset_other", "rate") == 31;
+  }, kWaitMs));
+
+  // the node's menu: every parameter of one node back to its default, one step
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "preset_other", "rate") == 31; }, kWaitMs));
+  QMenu node_menu;
+  panel.editor()->fillNodeMenu(node_menu, "preset_other");
+  ASSERT_TRUE(action(node_menu, "Reset parameters to defaults"));
+  action(node_menu, "Reset parameters to defaults")->trigger();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "preset_other", "rate") == 10; }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  EXPECT_EQ(number(runtimeGraph(), "preset_clock", "rate"), 30);  // the other node keeps its own
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("preset_other") && panel.editsPending() == 0; }, kWaitMs))
+      << undo->toolTip().toStdString();
+  QTest::mouseClick(undo, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "preset_other", "rate") == 31; }, kWaitMs));
 }
 
 TEST_F(PanelWidgetTest, PreviewsDrawThumbnailsAndSparklinesOfNodesInViewOnly) {
@@ -631,11 +671,8 @@ TEST_F(PanelWidgetTest, PreviewsDrawThumbnailsAndSparklinesOfNodesInViewOnly) {
 
   // out of view: no longer previewed (unsubscribed, so the runtime sends nothing)
   EXPECT_TRUE(panel.link().watchingPreview("thumbs_bag", "camera_image_raw"));
-  const QRectF all = scene->itemsBoundingRect();
-  scene->setSceneRect(all.adjusted(-5000, -5000, 5000, 5000));  // room to scroll to where no box is
-  view->centerOn(all.bottomRight() + QPointF(3000, 3000));
+  view->centerOn(scene->itemsBoundingRect().bottomRight() + QPointF(3000, 3000));  // as far as the view goes: no box
   ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.link().watchingPreview("thumbs_bag", "camera_image_raw"); }, kWaitMs));
-  scene->setSceneRect(QRectF());  // as large as the boxes again
   view->centerOn(scene->node("thumbs_bag"));
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().watchingPreview("thumbs_bag", "camera_image_raw"); }, kWaitMs));
   QTest::mouseClick(previews, Qt::LeftButton);  // off
@@ -705,13 +742,20 @@ TEST_F(PanelWidgetTest, LoadedGraphsAreLaidOutWithNoBoxOnAnotherAndTidyIsOneUndo
   const QPointF centre = view->mapToScene(view->viewport()->rect().center());
   QTest::mouseClick(minimap, Qt::LeftButton, Qt::NoModifier, QPoint(minimap->width() - 6, minimap->height() - 6));
   EXPECT_NE(view->mapToScene(view->viewport()->rect().center()), centre);
+  view->resetTransform();  // zoomed out, the graph still larger than the view (the view can move)
+  view->scale(0.3, 0.3);
+  view->centerOn(scene->itemsBoundingRect().center());
+  const QPointF at = view->viewport()->rect().center() + QPoint(150, 80);  // off the view's centre
+  const QPointF under = view->mapToScene(at.toPoint());
   for (int i = 0; i < 8; ++i) {  // the plain wheel zooms in, around the cursor: detail comes back
-    const QPointF at = view->viewport()->rect().center();
     QWheelEvent wheel(at, view->viewport()->mapToGlobal(at.toPoint()), QPoint(), QPoint(0, 120), Qt::NoButton, Qt::NoModifier,
                       Qt::NoScrollPhase, false);
     QApplication::sendEvent(view->viewport(), &wheel);
   }
   EXPECT_TRUE(scene->node("r1")->detailed());
+  const QPointF still = view->mapFromScene(under);  // what was under the cursor is still there, to a few pixels
+  EXPECT_LT(QLineF(still, at).length(), 6.0) << "(" << at.x() << ", " << at.y() << ") moved to (" << still.x() << ", "
+                                              << still.y() << ")";
 
   // Tidy after a node was dragged onto another: laid out again, one undo step
   scene->node("r5")->setPos(scene->node("r6")->pos());
@@ -1039,6 +1083,44 @@ TEST(PanelWidgetSlowRuntime, TheGuiThreadNeverWaitsAndSaysTheRuntimeIsSlow) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return !status->text().contains("no answer"); }, kWaitMs)) << status->text().toStdString();
   ticker.stop();
   EXPECT_LT(longest, 50) << "the GUI thread waited " << longest << " ms";
+}
+
+TEST(PanelWidgetTwoRuntimes, CopyInOnePasteInAnotherAndEachStartsItsOwnHistory) {
+  PanelWidget panel;
+  panel.resize(1400, 900);
+  panel.show();
+  panel.setNamespace("/apex");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs));
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "xfer_src", "{rate: 21.0}") && addNode("apex_nodes/Counter", "xfer_sink", ""));
+  ASSERT_TRUE(link("xfer_src", "count", "xfer_sink", "in"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("xfer_src") && scene->node("xfer_sink"); }, kWaitMs));
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  emit scene->node("xfer_src")->editor("rate")->edited("rate", "22");  // an edit of /apex, in its history
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "xfer_src", "rate") == 22 && undo->isEnabled(); }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "xfer_src", "rate") == 22; }, kWaitMs));
+  scene->node("xfer_src")->setSelected(true);
+  scene->node("xfer_sink")->setSelected(true);
+  QGraphicsView* view = panel.editor()->view();
+  view->setFocus();
+  QTest::keyClick(view, Qt::Key_C, Qt::ControlModifier);
+
+  OwnRuntime other("apex_c");  // another runtime: a fresh history, and the copies go there
+  other.start();
+  panel.setNamespace("/apex_c");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs));
+  EXPECT_FALSE(undo->isEnabled()) << "the history of /apex goes on in /apex_c: " << undo->toolTip().toStdString();
+  view->setFocus();
+  QTest::keyClick(view, Qt::Key_V, Qt::ControlModifier);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return find(runtimeGraph("/apex_c"), "xfer_sink") != nullptr; }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  const apex::GraphState there = runtimeGraph("/apex_c");
+  EXPECT_TRUE(connected(there, "xfer_src", "count", "xfer_sink", "in"));
+  EXPECT_EQ(param(there, "xfer_src", "rate"), "22.0");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->isEnabled() && panel.editsPending() == 0; }, kWaitMs));
+  QTest::mouseClick(undo, Qt::LeftButton);  // the paste, undone in /apex_c alone
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !find(runtimeGraph("/apex_c"), "xfer_src"); }, kWaitMs));
+  EXPECT_TRUE(find(runtimeGraph(), "xfer_src") && find(runtimeGraph(), "xfer_sink"));
 }
 
 /** A runtime whose set_parameter never answers until released (a runtime that hangs). */
