@@ -61,7 +61,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   view_->setScene(scene_);
   view_->setRenderHint(QPainter::Antialiasing);
   view_->setDragMode(QGraphicsView::RubberBandDrag);
-  view_->setMinimumSize(300, 200);
+  view_->setMinimumSize(300, 180);  // with the tool bar, a ~300 px dock (rviz's default bottom one)
   view_->setTransformationAnchor(QGraphicsView::NoAnchor);  // the wheel keeps the point under it itself
   view_->viewport()->installEventFilter(this);
   view_->installEventFilter(this);  // Delete and Ctrl+D on the selected nodes

@@ -1,0 +1,189 @@
+// What the panel tests share: calls to the runtime as a script makes them, checks
+// of the boxes, simulated mouse input, and the fixture (a panel on /apex). The
+// tests run in one binary against one runtime, in the order of the files
+// (test_panel_widget, test_panel_tuning_and_layout, test_panel_runtimes).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <QApplication>
+#include <QElapsedTimer>
+#include <QTimer>
+#include <QLabel>
+#include <QDoubleSpinBox>
+#include <QGraphicsView>
+#include <QLineEdit>
+#include <QMouseEvent>
+#include <QWheelEvent>
+#include <QTest>
+#include <QToolBar>
+#include <QToolButton>
+
+#include <QInputDialog>
+#include <QMenu>
+#include <QMessageBox>
+#include <QFile>
+#include <QSlider>
+
+#include <filesystem>
+#include <fstream>
+
+#include <apex/AddNode.h>
+#include <apex/Connect.h>
+#include <apex/FireSlot.h>
+#include <apex/GetGraph.h>
+#include <apex/ListNodeTypes.h>
+#include <apex/Group.h>
+#include <apex/SetParameter.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+#include <yaml-cpp/yaml.h>
+
+#include "apex_rviz_plugin/panel_widget.hpp"
+#include "apex_rviz_plugin/param_editor.hpp"
+#include "apex_rviz_plugin/transport_bar.hpp"
+
+namespace panel_test {
+
+using namespace apex_rviz_plugin;
+
+inline std::string g_shot, g_bag, g_graphs;  // from the command line (main)
+
+/** Sets a parameter through the runtime's service, as a script would. */
+inline bool setParameter(const std::string& node, const std::string& param, const std::string& value) {
+  apex::SetParameter srv;
+  srv.request.node = node, srv.request.parameter = param, srv.request.value = value;
+  return ros::service::call("/apex/set_parameter", srv) && srv.response.success;
+}
+inline constexpr int kWaitMs = 20000;
+
+inline bool addNode(const std::string& type, const std::string& name, const std::string& params) {
+  apex::AddNode srv;
+  srv.request.type = type, srv.request.name = name, srv.request.parameters = params;
+  return ros::service::call("/apex/add_node", srv) && srv.response.success;
+}
+
+inline bool link(const std::string& a, const std::string& ap, const std::string& b, const std::string& bp) {
+  apex::Connect srv;
+  srv.request.from_node = a, srv.request.from_port = ap, srv.request.to_node = b, srv.request.to_port = bp;
+  return ros::service::call("/apex/connect", srv) && srv.response.success;
+}
+
+inline bool fireSlot(const std::string& node, const std::string& slot) {
+  apex::FireSlot srv;
+  srv.request.node = node, srv.request.slot = slot;
+  return ros::service::call("/apex/fire_slot", srv) && srv.response.success;
+}
+
+inline apex::GraphState runtimeGraph(const std::string& ns = "/apex") {
+  apex::GetGraph srv;
+  EXPECT_TRUE(ros::service::call(ns + "/get_graph", srv)) << ns << "/get_graph did not answer";
+  return srv.response.graph;
+}
+
+inline const apex::NodeInfo* find(const apex::GraphState& g, const std::string& name) {
+  for (const auto& n : g.nodes) if (n.name == name) return &n;
+  return nullptr;
+}
+
+inline std::string param(const apex::GraphState& g, const std::string& node, const std::string& name) {
+  if (const auto* n = find(g, node))
+    for (const auto& p : n->parameters) if (p.name == name) return p.value;
+  return "";
+}
+
+inline double number(const apex::GraphState& g, const std::string& node, const std::string& name) {
+  const std::string v = param(g, node, name);
+  return v.empty() ? -1 : std::stod(v);
+}
+
+inline bool connected(const apex::GraphState& g, const std::string& a, const std::string& ap, const std::string& b,
+               const std::string& bp) {
+  for (const auto& c : g.connections)
+    if (c.from_node == a && c.from_port == ap && c.to_node == b && c.to_port == bp) return true;
+  return false;
+}
+
+/** The boxes shown that lie on each other, as text; "" if none. */
+inline std::string boxText(const Box& b) {
+  return "(" + std::to_string(int(b.x)) + ", " + std::to_string(int(b.y)) + ", " + std::to_string(int(b.width)) + " x " +
+         std::to_string(int(b.height)) + ")";
+}
+
+inline std::string overlapping(const GraphScene& scene) {
+  const auto boxes = scene.boxes();
+  std::string out;
+  for (auto a = boxes.begin(); a != boxes.end(); ++a)
+    for (auto b = std::next(a); b != boxes.end(); ++b)
+      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + " " + boxText(a->second) + " " + boxText(b->second) + "; ";
+  return out;
+}
+
+/** A mouse event as the window system would deliver it to the view. */
+inline void mouse(QGraphicsView* view, QEvent::Type type, QPointF scene_pos, Qt::MouseButtons held) {
+  const QPoint at = view->mapFromScene(scene_pos);
+  QMouseEvent e(type, at, view->viewport()->mapToGlobal(at), type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton,
+                held, Qt::NoModifier);
+  QApplication::sendEvent(view->viewport(), &e);
+}
+
+/** Presses at `from`, moves in steps, releases at `to`: a drag. */
+inline void drag(QGraphicsView* view, QPointF from, QPointF to) {
+  mouse(view, QEvent::MouseButtonPress, from, Qt::LeftButton);
+  for (int i = 1; i <= 10; ++i) mouse(view, QEvent::MouseMove, from + (to - from) * (i / 10.0), Qt::LeftButton);
+  mouse(view, QEvent::MouseButtonRelease, to, Qt::NoButton);
+}
+
+class PanelWidgetTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    panel.resize(1400, 900);
+    panel.show();
+    panel.setNamespace("/apex");
+    ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.nodeTypeCount() > 0; }, kWaitMs))
+        << "the panel did not connect to /apex or list its node types";
+    view = panel.editor()->view();
+    search = panel.editor()->findChild<QLineEdit*>("search");
+    ASSERT_TRUE(search);
+  }
+
+  /** Types into the palette's search field and presses Enter: adds the first match. */
+  std::string addByKeyboard(const QString& type, const std::string& expected_name) {
+    search->setFocus();
+    search->selectAll();
+    QTest::keyClicks(search, type);
+    QTest::keyClick(search, Qt::Key_Return);
+    EXPECT_TRUE(QTest::qWaitFor([&] { return panel.editor()->scene()->node(expected_name) != nullptr; }, kWaitMs))
+        << expected_name << " not shown; message: " << panel.editor()->message().toStdString();
+    return expected_name;
+  }
+
+  QPointF portAt(const std::string& node, const std::string& port, bool source) {
+    NodeItem* n = panel.editor()->scene()->node(node);
+    PortItem* p = n ? n->port(port, source) : nullptr;
+    EXPECT_TRUE(p) << node << "/" << port;
+    return p ? p->scenePos() : QPointF();
+  }
+
+  PanelWidget panel;
+  QGraphicsView* view = nullptr;
+  QLineEdit* search = nullptr;
+};
+
+/** The action of a menu whose text starts with `text`, or nullptr. */
+inline QAction* action(const QMenu& menu, const QString& text) {
+  for (QAction* a : menu.actions()) if (a->text().startsWith(text)) return a;
+  return nullptr;
+}
+
+}  // namespace panel_test

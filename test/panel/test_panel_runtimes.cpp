@@ -1,0 +1,239 @@
+// Panel tests with runtimes of their own: one that goes away and comes back, a
+// slow one, a hung one, and two at once (copy in one, paste in the other).
+#include "panel_test_support.hpp"
+
+namespace panel_test {
+namespace {
+
+class OwnRuntime {
+ public:
+  explicit OwnRuntime(const char* name) : name_(name) {}
+  ~OwnRuntime() { stop(); }
+  void start() {
+    pid_ = fork();
+    if (pid_ == 0) {
+      const std::string arg = std::string("__name:=") + name_;
+      execlp("rosrun", "rosrun", "apex", "apex_runtime_node", arg.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+  }
+  void stop() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGINT);
+    waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+
+ private:
+  const char* name_;
+  pid_t pid_ = -1;
+};
+
+TEST(PanelWidgetReconnect, SaysWhenTheRuntimeIsGoneAndPicksItUpWhenItIsBack) {
+  PanelWidget panel;
+  panel.show();
+  auto* field = panel.editor()->findChild<QLineEdit*>("namespace");
+  auto* status = panel.editor()->findChild<QLabel*>("connection");
+  ASSERT_TRUE(field && status);
+  // a name that is not a ROS namespace is refused with the reason; the panel stays where it was
+  panel.setNamespace("/apex");
+  field->setFocus();
+  field->selectAll();
+  QTest::keyClicks(field, "not a namespace!");
+  QTest::keyClick(field, Qt::Key_Return);
+  EXPECT_EQ(panel.ns().toStdString(), "/apex");
+  EXPECT_TRUE(status->text().contains("not a valid namespace")) << status->text().toStdString();
+
+  OwnRuntime runtime("apex_b");
+  runtime.start();
+  panel.setNamespace("/apex_b");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs))
+      << status->text().toStdString();
+  runtime.stop();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.link().connected(); }, kWaitMs));
+  EXPECT_TRUE(status->text().contains("gone")) << status->text().toStdString();
+  EXPECT_FALSE(panel.model().hasGraph());
+  runtime.start();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs))
+      << status->text().toStdString();
+  EXPECT_GT(panel.nodeTypeCount(), 0);
+}
+
+/** A runtime that answers every edit after a second and a half: only ~graph, list_node_types
+ *  and set_parameter, served on a thread of its own. */
+class SlowRuntime {
+ public:
+  SlowRuntime() : nh_("/slow") {
+    nh_.setCallbackQueue(&queue_);
+    graph_ = nh_.advertise<apex::GraphState>("graph", 1, true);
+    apex::GraphState g;
+    g.revision = 1;
+    apex::NodeInfo n;
+    n.name = "n", n.type = "apex_nodes/Scale", n.enabled = true, n.state = "ok";
+    apex::ParamInfo p;
+    p.name = "factor", p.kind = "double range", p.type = "double", p.value = "1.0", p.default_value = "1.0";
+    p.min = 0, p.max = 10, p.step = 0.1;
+    n.parameters = {p};
+    g.nodes = {n};
+    graph_.publish(g);
+    types_ = nh_.advertiseService<apex::ListNodeTypes::Request, apex::ListNodeTypes::Response>(
+        "list_node_types", [](auto&, auto& res) { return res.success = true; });
+    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>("set_parameter", [this](auto&, auto& res) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+      ++calls;
+      res.success = true;
+      return true;
+    });
+    spinner_.start();
+  }
+  std::atomic<int> calls{0};
+
+ private:
+  ros::NodeHandle nh_;
+  ros::CallbackQueue queue_;
+  ros::AsyncSpinner spinner_{1, &queue_};
+  ros::Publisher graph_;
+  ros::ServiceServer types_, set_;
+};
+
+TEST(PanelWidgetSlowRuntime, TheGuiThreadNeverWaitsAndSaysTheRuntimeIsSlow) {
+  SlowRuntime slow;
+  PanelWidget panel;
+  panel.show();
+  panel.setNamespace("/slow");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.editor()->scene()->node("n"); }, kWaitMs));
+  // the GUI thread's event loop, ticking every 5 ms: the longest gap between ticks is how long it waited
+  QElapsedTimer clock;
+  clock.start();
+  qint64 last = 0, longest = 0;
+  QTimer ticker;
+  QObject::connect(&ticker, &QTimer::timeout, [&] {
+    longest = std::max(longest, clock.elapsed() - last);
+    last = clock.elapsed();
+  });
+  ticker.start(5);
+  ParamEditor* factor = panel.editor()->scene()->node("n")->editor("factor");
+  for (const char* v : {"2", "3", "4"}) emit factor->edited("factor", v);  // each answered 1.5 s later
+  auto* status = panel.editor()->findChild<QLabel*>("connection");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return status->text().contains("no answer for"); }, kWaitMs)) << status->text().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return slow.calls == 3 && panel.editsPending() == 0; }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !status->text().contains("no answer"); }, kWaitMs)) << status->text().toStdString();
+  ticker.stop();
+  EXPECT_LT(longest, 50) << "the GUI thread waited " << longest << " ms";
+}
+
+TEST(PanelWidgetTwoRuntimes, CopyInOnePasteInAnotherAndEachStartsItsOwnHistory) {
+  PanelWidget panel;
+  panel.resize(1400, 900);
+  panel.show();
+  panel.setNamespace("/apex");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs));
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "xfer_src", "{rate: 21.0}") && addNode("apex_nodes/Counter", "xfer_sink", ""));
+  ASSERT_TRUE(link("xfer_src", "count", "xfer_sink", "in"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("xfer_src") && scene->node("xfer_sink"); }, kWaitMs));
+  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
+  emit scene->node("xfer_src")->editor("rate")->edited("rate", "22");  // an edit of /apex, in its history
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "xfer_src", "rate") == 22 && undo->isEnabled(); }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "xfer_src", "rate") == 22; }, kWaitMs));
+  scene->node("xfer_src")->setSelected(true);
+  scene->node("xfer_sink")->setSelected(true);
+  QGraphicsView* view = panel.editor()->view();
+  view->setFocus();
+  QTest::keyClick(view, Qt::Key_C, Qt::ControlModifier);
+
+  OwnRuntime other("apex_c");  // another runtime: a fresh history, and the copies go there
+  other.start();
+  panel.setNamespace("/apex_c");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs));
+  EXPECT_FALSE(undo->isEnabled()) << "the history of /apex goes on in /apex_c: " << undo->toolTip().toStdString();
+  view->setFocus();
+  QTest::keyClick(view, Qt::Key_V, Qt::ControlModifier);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return find(runtimeGraph("/apex_c"), "xfer_sink") != nullptr; }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  const apex::GraphState there = runtimeGraph("/apex_c");
+  EXPECT_TRUE(connected(there, "xfer_src", "count", "xfer_sink", "in"));
+  EXPECT_EQ(param(there, "xfer_src", "rate"), "22.0");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->isEnabled() && panel.editsPending() == 0; }, kWaitMs));
+  QTest::mouseClick(undo, Qt::LeftButton);  // the paste, undone in /apex_c alone
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !find(runtimeGraph("/apex_c"), "xfer_src"); }, kWaitMs));
+  EXPECT_TRUE(find(runtimeGraph(), "xfer_src") && find(runtimeGraph(), "xfer_sink"));
+}
+
+/** A runtime whose set_parameter never answers until released (a runtime that hangs). */
+class HungRuntime {
+ public:
+  HungRuntime() : nh_("/hung") {
+    nh_.setCallbackQueue(&queue_);
+    graph_ = nh_.advertise<apex::GraphState>("graph", 1, true);
+    apex::GraphState g;
+    g.revision = 1;
+    apex::NodeInfo n;
+    n.name = "n", n.type = "apex_nodes/Scale", n.enabled = true, n.state = "ok";
+    apex::ParamInfo p;
+    p.name = "factor", p.kind = "double range", p.type = "double", p.value = "1.0", p.default_value = "1.0";
+    p.min = 0, p.max = 10, p.step = 0.1;
+    n.parameters = {p};
+    g.nodes = {n};
+    graph_.publish(g);
+    types_ = nh_.advertiseService<apex::ListNodeTypes::Request, apex::ListNodeTypes::Response>(
+        "list_node_types", [](auto&, auto& res) { return res.success = true; });
+    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>("set_parameter", [this](auto&, auto& res) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      ++called_;
+      released_cv_.wait(lock, [this] { return released_; });
+      return res.success = true;
+    });
+    spinner_.start();
+  }
+  ~HungRuntime() { release(); }
+  void release() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    released_ = true;
+    released_cv_.notify_all();
+  }
+  int called() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return called_;
+  }
+
+ private:
+  ros::NodeHandle nh_;
+  ros::CallbackQueue queue_;
+  ros::AsyncSpinner spinner_{2, &queue_};
+  ros::Publisher graph_;
+  ros::ServiceServer types_, set_;
+  std::mutex mutex_;
+  std::condition_variable released_cv_;
+  bool released_ = false;
+  int called_ = 0;
+};
+
+TEST(PanelWidgetHungRuntime, AnotherRuntimeIsServedAndClosingThePanelDoesNotWait) {
+  HungRuntime hung;
+  auto panel = std::make_unique<PanelWidget>();
+  panel->show();
+  panel->setNamespace("/hung");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel->link().connected() && panel->editor()->scene()->node("n"); }, kWaitMs));
+  emit panel->editor()->scene()->node("n")->editor("factor")->edited("factor", "2");  // never answered
+  ASSERT_TRUE(QTest::qWaitFor([&] { return hung.called() == 1; }, kWaitMs));
+  // the user turns to another runtime: it is listed and shown, its calls do not wait behind the hung one
+  panel->setNamespace("/apex");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel->link().connected() && panel->nodeTypeCount() > 0; }, kWaitMs))
+      << "the calls to /apex wait behind the one to /hung";
+  auto* status = panel->editor()->findChild<QLabel*>("connection");
+  EXPECT_FALSE(status->text().contains("no answer")) << status->text().toStdString();
+  // rviz closes with a call still unanswered: the panel goes at once
+  panel->setNamespace("/hung");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel->link().connected() && panel->editor()->scene()->node("n"); }, kWaitMs));
+  emit panel->editor()->scene()->node("n")->editor("factor")->edited("factor", "3");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return hung.called() == 2; }, kWaitMs));
+  QElapsedTimer clock;
+  clock.start();
+  panel.reset();
+  EXPECT_LT(clock.elapsed(), 1000) << "closing the panel waited for the hung runtime";
+  hung.release();  // the calls end; their answers go nowhere
+}
+
+}  // namespace
+}  // namespace panel_test
