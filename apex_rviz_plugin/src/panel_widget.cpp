@@ -242,115 +242,6 @@ void PanelWidget::replay(std::vector<Call> calls, const QString& what) {
   link_.run(std::move(calls), [this, what](bool ok, const std::string& m) { report(ok, m, what); });
 }
 
-void PanelWidget::tidy() {
-  const auto boxes = editor_->scene()->boxes();
-  if (boxes.empty()) return;
-  double left = 1e18, top = 1e18;
-  for (const auto& [name, b] : boxes) left = std::min(left, b.x), top = std::min(top, b.y);
-  auto at = layeredLayout(boxes, editor_->scene()->edges());
-  for (auto& [name, p] : at) p.first += left, p.second += top;
-  perform(model_.arrange(at, "Tidy"));
-}
-
-void PanelWidget::placeUnplaced() {
-  const auto boxes = editor_->scene()->boxes();
-  if (untangle_ && !boxes.empty()) {  // positions written for other box sizes (by hand, another panel)
-    untangle_ = false;
-    bool overlap = false;
-    for (auto a = boxes.begin(); a != boxes.end() && !overlap; ++a)
-      for (auto b = std::next(a); b != boxes.end() && !overlap; ++b) overlap = a->second.overlaps(b->second);
-    if (overlap) {
-      editor_->fitNextGraph();  // the view shows them where they go
-      return place(layeredLayout(boxes, editor_->scene()->edges()));
-    }
-  }
-  std::map<std::string, Box> unplaced;
-  std::vector<Box> placed;
-  for (const auto& [name, box] : boxes) {
-    auto sent = placing_.find(name);
-    if (model_.hasPosition(name)) {
-      if (sent != placing_.end()) placing_.erase(sent);
-      placed.push_back(box);
-    } else if (sent != placing_.end()) {
-      placed.push_back(sent->second);  // where it goes: taken for the next ones
-    } else {
-      unplaced[name] = box;
-    }
-  }
-  if (unplaced.empty()) return;
-  double right = 0, top = 0;  // beside what has a place
-  for (const Box& b : placed) right = std::max(right, b.x + b.width + 80);
-  for (const Box& b : placed) top = std::min(top, b.y);
-  auto at = layeredLayout(unplaced, editor_->scene()->edges());
-  for (auto& [name, p] : at) {
-    const Box& b = unplaced[name];
-    const Box free = freePlace({right + p.first, top + p.second, b.width, b.height}, placed);
-    placed.push_back(free);
-    p = {free.x, free.y};
-  }
-  place(at);
-}
-
-void PanelWidget::reservePlaces(const std::vector<Call>& calls) {
-  // A node an edit adds shows before its set_ui is applied: placeUnplaced must not place it again.
-  const auto shown = editor_->scene()->boxes();
-  for (const auto& call : calls)
-    if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) {
-      if (placing_.count(ui->node)) continue;  // placed with its type's size already (addRequested)
-      const auto [x, y] = GraphModel::positionIn(ui->ui);
-      const auto box = shown.find(ui->node);
-      placing_[ui->node] = Box{x, y, box == shown.end() ? NodeItem::kMinWidth : box->second.width,
-                               box == shown.end() ? 150 : box->second.height};
-    }
-}
-
-void PanelWidget::untangleLoaded() {
-  untangle_from_ = 0;
-  untangle_ = true;
-  arrangeShown();
-}
-
-void PanelWidget::arrangeShown() {
-  const auto sent = placements_sent_;
-  placeUnplaced();
-  if (placements_sent_ == sent) pushDownUnderGrown();
-  else rememberSizes();  // boxes being placed: pushed down from where they go, next time
-}
-
-void PanelWidget::rememberSizes() {
-  sizes_ = editor_->scene()->boxes();
-}
-
-void PanelWidget::pushDownUnderGrown() {
-  const auto boxes = editor_->scene()->boxes();
-  bool grew_onto = false;  // a box that grew (its node's name, ports or parameters changed) and now lies on another
-  for (const auto& [name, box] : boxes) {
-    const auto before = sizes_.find(name);
-    if (before == sizes_.end() || (box.height <= before->second.height + 0.5 && box.width <= before->second.width + 0.5))
-      continue;
-    for (const auto& [other, b] : boxes) grew_onto = grew_onto || (other != name && box.overlaps(b));
-  }
-  rememberSizes();
-  if (grew_onto) place(pushDown(boxes));
-}
-
-void PanelWidget::place(const std::map<std::string, std::pair<double, double>>& positions) {
-  auto edit = model_.arrange(positions, "");
-  if (!edit) return;
-  ++placements_sent_;
-  const auto boxes = editor_->scene()->boxes();
-  for (const auto& [name, p] : positions) {
-    auto b = boxes.find(name);
-    placing_[name] = Box{p.first, p.second, b == boxes.end() ? NodeItem::kMinWidth : b->second.width,
-                         b == boxes.end() ? 120 : b->second.height};
-  }
-  link_.run(std::move(edit->apply), [this](bool ok, const std::string& m) {
-    if (!ok) report(false, m, "placing nodes");
-  });
-}
-
-QString PanelWidget::presetFolder() { return GraphEditor::defaultGraphFolder() + "presets"; }
-
 void PanelWidget::listPresets() {
   QStringList names;
   for (const QFileInfo& f : QDir(presetFolder()).entryInfoList({"*.yaml"}, QDir::Files, QDir::Name)) names << f.completeBaseName();
@@ -470,22 +361,6 @@ void PanelWidget::watchOptimizers() {
         link_.watchScalar(name, port, topic, type);
       });
   }
-}
-
-Box PanelWidget::typeBox(const std::string& type) const {
-  const auto t = types_.find(type);
-  if (t == types_.end()) return Box{0, 0, NodeItem::kMinWidth, 150};  // a usual box
-  apex::NodeInfo info;  // as a new node of the type is shown: its ports, its parameters at their defaults
-  info.type = type;
-  auto interactive = [&](const std::string& name) {
-    for (const auto& p : t->second.parameters) if (p.name == name) return bool(p.interactive);
-    return false;
-  };
-  for (const auto& p : t->second.ports)  // parameter ports only where the parameter is interactive by default
-    if ((p.kind != "param_in" && p.kind != "param_out") || interactive(p.name)) info.ports.push_back(p);
-  info.parameters = t->second.parameters;
-  const QRectF r = NodeItem(info).boundingRect();
-  return Box{0, 0, r.width(), r.height()};
 }
 
 void PanelWidget::refreshTypes() {

@@ -1,0 +1,148 @@
+// GraphEditor's menus and dialogs: a node's, a port's, a parameter's, the
+// canvas's and the presets' menus; asking a name for a preset or a node.
+#include "apex_rviz_plugin/graph_editor.hpp"
+
+#include <QInputDialog>
+#include <QMenu>
+#include <QMessageBox>
+
+namespace apex_rviz_plugin {
+
+void GraphEditor::showNodeMenu(const QString& node, QPoint at) {
+  QMenu menu;
+  fillNodeMenu(menu, node);
+  if (!menu.isEmpty()) menu.exec(at);
+}
+
+void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
+  const NodeItem* item = scene_->node(node.toStdString());
+  if (!item || !model_) return;
+  const apex::NodeInfo& info = item->info();
+  QStringList selected = selectedNodes();  // the node and the others selected with it
+  if (!selected.contains(node)) selected = QStringList{node};
+  menu.addAction(info.enabled ? "Disable" : "Enable", this, [this, node, on = !info.enabled] { emit enabledRequested(node, on); });
+  menu.addAction("Rename...", this, [this, node] { askNewName(node); });
+  menu.addAction("Copy", this, [this, selected] { emit copyRequested(selected); });
+  menu.addAction("Save parameters as preset...", this, [this, selected] { askPresetName(selected); });
+  menu.addAction("Duplicate", this, [this, selected] { emit duplicateRequested(selected); });
+  menu.addAction("Remove", this, [this, node] { emit removeRequested(node); });
+  QAction* reset = menu.addAction("Reset parameters to defaults", this, [this, node] { emit resetRequested(node, QString()); });
+  reset->setEnabled(model_->resetToDefault(info.name).has_value());
+  menu.addAction(selected.size() > 1 ? QString("Group %1 nodes into a subgraph").arg(selected.size()) : "Group into a subgraph",
+                 this, [this, selected] { emit groupIntoSubgraphRequested(selected); });
+  if (!info.subgraph.empty()) {
+    menu.addAction("Open subgraph", this, [this, node] { scene_->setLevel(node.toStdString()); });
+    menu.addAction("Ungroup", this, [this, node] { emit ungroupRequested(node); });
+  }
+  QMenu* groups = menu.addMenu("Thread group");
+  for (const auto& g : model_->graph().thread_groups) {
+    QAction* a = groups->addAction(QString::fromStdString(g), this, [this, node, g] { emit groupRequested(node, QString::fromStdString(g)); });
+    a->setCheckable(true);
+    a->setChecked(g == info.thread_group);
+  }
+  groups->addAction("New group...", this, [this, node] {
+    const QString g = QInputDialog::getText(this, "Thread group", "Name of the new thread group:");
+    if (!g.isEmpty()) emit groupRequested(node, g);
+  });
+  if (info.type == kOptimizerType) {
+    menu.addSeparator();
+    menu.addAction("Start optimising", this, [this, node] { emit fireSlotRequested(node, "start"); });
+    menu.addAction("Stop", this, [this, node] { emit fireSlotRequested(node, "stop"); });
+    QAction* apply = menu.addAction("Apply best values", this, [this, node] { emit applyBestRequested(node); });
+    apply->setEnabled(model_->applyBest(info.name).has_value());
+    menu.addSeparator();
+  }
+  QMenu* slot_menu = menu.addMenu("Fire slot");
+  QMenu* inspect = menu.addMenu("Inspect");
+  for (const auto& p : info.ports) {
+    const QString port = QString::fromStdString(p.name);
+    if (p.kind == "slot") slot_menu->addAction(port, this, [this, node, port] { emit fireSlotRequested(node, port); });
+    if (p.kind == "output" || p.kind == "param_out")
+      inspect->addAction(port, this, [this, node, port] { emit inspectRequested(node, port); });
+  }
+}
+
+void GraphEditor::showPortMenu(const QString& node, const QString& port, QPoint at) {
+  const NodeItem* item = scene_->node(node.toStdString());
+  const PortItem* p = item ? item->port(port.toStdString(), true) : nullptr;
+  QMenu menu;
+  if (p) menu.addAction("Inspect " + port, this, [this, node, port] { emit inspectRequested(node, port); });
+  else if (item && item->port(port.toStdString(), false) && item->port(port.toStdString(), false)->port().kind == "slot")
+    menu.addAction("Fire " + port, this, [this, node, port] { emit fireSlotRequested(node, port); });
+  if (!menu.isEmpty()) menu.exec(at);
+}
+
+void GraphEditor::fillParamMenu(QMenu& menu, const QString& node, const QString& param) {
+  const apex::ParamInfo* p = model_ ? model_->parameter(node.toStdString(), param.toStdString()) : nullptr;
+  if (!p) return;
+  QAction* reset = menu.addAction("Reset to default (" + QString::fromStdString(p->default_value) + ")", this,
+                                  [this, node, param] { emit resetRequested(node, param); });
+  reset->setEnabled(p->value != p->default_value);
+  if (p->type != "int" && p->type != "double") return;  // a number can be tuned
+  QMenu* with = menu.addMenu("Optimise with");
+  with->setObjectName("optimise_with");
+  if (model_)
+    for (const auto& opt : model_->optimizers()) {
+      const QString o = QString::fromStdString(opt);
+      with->addAction(o, this, [this, node, param, o] { emit optimiseRequested(node, param, o); });
+    }
+  with->addAction("New Optimizer", this, [this, node, param] { emit optimiseRequested(node, param, QString()); });
+}
+
+void GraphEditor::showParamMenu(const QString& node, const QString& param, QPoint at) {
+  QMenu menu;
+  fillParamMenu(menu, node, param);
+  menu.exec(at);
+}
+
+void GraphEditor::showCanvasMenu(QPointF scene_pos, QPoint at) {
+  QMenu menu;
+  menu.addAction("Paste", this, [this, scene_pos] { emit pasteRequested(scene_pos); });
+  menu.exec(at);
+}
+
+void GraphEditor::fillPresetMenu(QMenu& menu) {
+  menu.addAction("Save all parameters as...", this, [this] { askPresetName({}); });
+  if (!presets_.isEmpty()) menu.addSeparator();
+  for (const QString& name : presets_) {
+    QMenu* one = menu.addMenu(name);
+    one->addAction("Restore", this, [this, name] { emit presetRestoreRequested(name); });
+    one->addAction("Compare with now", this, [this, name] { emit presetCompareRequested(name); });
+  }
+}
+
+void GraphEditor::askPresetName(const QStringList& nodes) {
+  auto* ask = new QInputDialog(this);
+  ask->setObjectName("preset_dialog");
+  ask->setAttribute(Qt::WA_DeleteOnClose);
+  ask->setWindowTitle("Save preset");
+  ask->setLabelText(nodes.isEmpty() ? "Name for the parameters of the whole graph:"
+                                    : QString("Name for the parameters of %1:").arg(nodes.join(", ")));
+  connect(ask, &QInputDialog::textValueSelected, this, [this, nodes](const QString& name) {
+    if (!name.trimmed().isEmpty()) emit presetSaveRequested(name.trimmed(), nodes);
+  });
+  ask->open();
+}
+
+void GraphEditor::showPresetDiff(const QString& name, const QString& text) {
+  auto* box = new QMessageBox(QMessageBox::Information, "Preset " + name, text, QMessageBox::Close, this);
+  box->setObjectName("preset_diff");
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->setModal(false);
+  box->show();
+}
+
+void GraphEditor::askNewName(const QString& node) {
+  auto* ask = new QInputDialog(this);
+  ask->setObjectName("rename_dialog");
+  ask->setAttribute(Qt::WA_DeleteOnClose);
+  ask->setWindowTitle("Rename " + node);
+  ask->setLabelText("New name (its connections are kept):");
+  ask->setTextValue(node.mid(node.lastIndexOf('/') + 1));
+  connect(ask, &QInputDialog::textValueSelected, this, [this, node](const QString& name) {
+    if (!name.isEmpty()) emit renameRequested(node, name);
+  });
+  ask->open();  // not modal to the event loop: rviz goes on drawing
+}
+
+}  // namespace apex_rviz_plugin
