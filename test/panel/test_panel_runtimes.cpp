@@ -59,11 +59,11 @@ TEST(PanelWidgetReconnect, SaysWhenTheRuntimeIsGoneAndPicksItUpWhenItIsBack) {
   EXPECT_GT(panel.nodeTypeCount(), 0);
 }
 
-/** A runtime that answers every edit after a second and a half: only ~graph, list_node_types
- *  and set_parameter, served on a thread of its own. */
-class SlowRuntime {
+/** A stand-in runtime in `ns`: ~graph with one Scale node 'n', list_node_types (no types),
+ *  and set_parameter, answered by `answer` on a thread of its own (2: the hung one leaves one). */
+class FakeRuntime {
  public:
-  SlowRuntime() : nh_("/slow") {
+  FakeRuntime(const std::string& ns, std::function<void()> answer) : nh_(ns) {
     nh_.setCallbackQueue(&queue_);
     graph_ = nh_.advertise<apex::GraphState>("graph", 1, true);
     apex::GraphState g;
@@ -78,22 +78,32 @@ class SlowRuntime {
     graph_.publish(g);
     types_ = nh_.advertiseService<apex::ListNodeTypes::Request, apex::ListNodeTypes::Response>(
         "list_node_types", [](auto&, auto& res) { return res.success = true; });
-    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>("set_parameter", [this](auto&, auto& res) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-      ++calls;
-      res.success = true;
-      return true;
-    });
+    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>(
+        "set_parameter", [answer](auto&, auto& res) {
+          answer();
+          return res.success = true;
+        });
     spinner_.start();
   }
-  std::atomic<int> calls{0};
 
  private:
   ros::NodeHandle nh_;
   ros::CallbackQueue queue_;
-  ros::AsyncSpinner spinner_{1, &queue_};
+  ros::AsyncSpinner spinner_{2, &queue_};
   ros::Publisher graph_;
   ros::ServiceServer types_, set_;
+};
+
+/** A runtime that answers every edit after a second and a half. */
+class SlowRuntime {
+ public:
+  std::atomic<int> calls{0};
+
+ private:
+  FakeRuntime fake_{"/slow", [this] {
+                      std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // stands for a slow runtime
+                      ++calls;
+                    }};
 };
 
 TEST(PanelWidgetSlowRuntime, TheGuiThreadNeverWaitsAndSaysTheRuntimeIsSlow) {
@@ -163,30 +173,7 @@ TEST(PanelWidgetTwoRuntimes, CopyInOnePasteInAnotherAndEachStartsItsOwnHistory) 
 /** A runtime whose set_parameter never answers until released (a runtime that hangs). */
 class HungRuntime {
  public:
-  HungRuntime() : nh_("/hung") {
-    nh_.setCallbackQueue(&queue_);
-    graph_ = nh_.advertise<apex::GraphState>("graph", 1, true);
-    apex::GraphState g;
-    g.revision = 1;
-    apex::NodeInfo n;
-    n.name = "n", n.type = "apex_nodes/Scale", n.enabled = true, n.state = "ok";
-    apex::ParamInfo p;
-    p.name = "factor", p.kind = "double range", p.type = "double", p.value = "1.0", p.default_value = "1.0";
-    p.min = 0, p.max = 10, p.step = 0.1;
-    n.parameters = {p};
-    g.nodes = {n};
-    graph_.publish(g);
-    types_ = nh_.advertiseService<apex::ListNodeTypes::Request, apex::ListNodeTypes::Response>(
-        "list_node_types", [](auto&, auto& res) { return res.success = true; });
-    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>("set_parameter", [this](auto&, auto& res) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      ++called_;
-      released_cv_.wait(lock, [this] { return released_; });
-      return res.success = true;
-    });
-    spinner_.start();
-  }
-  ~HungRuntime() { release(); }
+  ~HungRuntime() { release(); }  // before fake_ stops its threads
   void release() {
     std::lock_guard<std::mutex> lock(mutex_);
     released_ = true;
@@ -198,15 +185,15 @@ class HungRuntime {
   }
 
  private:
-  ros::NodeHandle nh_;
-  ros::CallbackQueue queue_;
-  ros::AsyncSpinner spinner_{2, &queue_};
-  ros::Publisher graph_;
-  ros::ServiceServer types_, set_;
   std::mutex mutex_;
   std::condition_variable released_cv_;
   bool released_ = false;
   int called_ = 0;
+  FakeRuntime fake_{"/hung", [this] {
+                      std::unique_lock<std::mutex> lock(mutex_);
+                      ++called_;
+                      released_cv_.wait(lock, [this] { return released_; });
+                    }};
 };
 
 TEST(PanelWidgetHungRuntime, AnotherRuntimeIsServedAndClosingThePanelDoesNotWait) {
