@@ -43,17 +43,16 @@ void GraphEditor::placeMinimap() {
   if (minimap_) minimap_->place();
 }
 
-void GraphEditor::growCanvas() {
-  // Room around the boxes, a view wide each way: any box can be brought anywhere in the view, and
-  // a zoom keeps what is under the cursor (QGraphicsView centres a scene smaller than itself).
+void GraphEditor::growCanvas(const QRectF& also) {
+  // Room around the boxes, a bit more than a view each way: any box can be brought anywhere in
+  // the view, and a zoom keeps what is under the cursor (QGraphicsView centres a scene smaller
+  // than itself). Never smaller than what is seen: the view does not move.
   const double s = view_->transform().m11();
   const QRect port = view_->viewport()->rect();
-  const QRectF seen = view_->mapToScene(port).boundingRect();
-  const QRectF wanted =
-      scene_->itemsBoundingRect().adjusted(-port.width() / s, -port.height() / s, port.width() / s, port.height() / s) | seen;
-  if (wanted == view_->sceneRect()) return;
-  view_->setSceneRect(wanted);
-  view_->centerOn(seen.center());  // the view stays where it was
+  const double w = 1.2 * port.width() / s, h = 1.2 * port.height() / s;
+  QRectF wanted = scene_->itemsBoundingRect().adjusted(-w, -h, w, h) | view_->mapToScene(port).boundingRect();
+  if (!also.isNull()) wanted |= also;
+  if (wanted != view_->sceneRect()) view_->setSceneRect(wanted);
 }
 
 GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphScene(this)), view_(new QGraphicsView) {
@@ -262,6 +261,7 @@ void GraphEditor::showGraph(const GraphModel& model) {
     fit_pending_ = false;
     fitGraph();
   }
+  growCanvas();  // boxes moved or loaded where the canvas did not reach
   pause_->setChecked(model.graph().paused);
   pause_->setText(model.graph().paused ? "Resume" : "Pause");
 }
@@ -300,7 +300,8 @@ bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
     const QPoint at = wheel->position().toPoint();  // the event's own place, not the cursor's (none offscreen)
     const QPointF under = view_->mapToScene(at);
     view_->scale(f, f);
-    growCanvas();
+    const double s = view_->transform().m11();  // where the view must go, on the canvas too
+    growCanvas(QRectF(under - QPointF(at) / s, QSizeF(view_->viewport()->size()) / s));
     const QPointF off = view_->transform().map(under) - view_->transform().map(view_->mapToScene(at));  // pixels
     for (auto [bar, by] : {std::pair{view_->horizontalScrollBar(), off.x()}, std::pair{view_->verticalScrollBar(), off.y()}})
       bar->setValue(bar->value() + static_cast<int>(std::lround(by)));  // what was under the cursor stays there
@@ -308,7 +309,7 @@ bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
     placeMinimap();
     return true;
   }
-  if (watched == view_ && event->type() == QEvent::Resize) growCanvas(), placeMinimap();
+  if (watched == view_->viewport() && event->type() == QEvent::Resize) growCanvas(), placeMinimap();  // its new size
   return QWidget::eventFilter(watched, event);
 }
 

@@ -57,6 +57,11 @@ void JobThread::retire() {
   state_->cv.notify_all();
 }
 
+bool JobThread::finished() const {
+  std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->retired && state_->jobs.empty() && state_->started_ns == 0;
+}
+
 double JobThread::busyFor() const {
   const std::int64_t start = state_->started_ns;
   if (start == 0) return 0;

@@ -125,6 +125,8 @@ void NodeItem::update(const apex::NodeInfo& node) {
   if (rebuild) return build();
   for (const auto& p : info_.parameters)
     if (auto* e = editor(p.name)) e->showApplied(p);
+  const bool typing = params_ && params_->widget()->focusWidget();  // not rebuilt under the keyboard
+  if (!typing && wantedWidth() != width_) return build();  // a longer path, group or type: wider
   if (transport_) transport_->show(info_);
   setToolTip(QString::fromStdString(info_.error));
   QGraphicsObject::update();
@@ -139,8 +141,7 @@ void NodeItem::build() {
   editors_.clear();
   transport_ = nullptr;
   QWidget* box = info_.parameters.empty() ? nullptr : buildParams();
-  const double wanted = std::max(textWidth(), box ? box->sizeHint().width() + 2 * kPad : 0.0);
-  width_ = std::clamp(std::ceil(wanted), kMinWidth, kMaxWidth);
+  width_ = wantedWidth(box);
   double left = kTitle + kRow / 2, right = left;
   for (const auto& p : info_.ports) {
     auto* item = new PortItem(p, this);
@@ -210,6 +211,12 @@ QString NodeItem::kindLine() const {
   return QString::fromStdString(info_.type + "  [" + (info_.thread_group.empty() ? "default" : info_.thread_group) + "]");
 }
 
+double NodeItem::wantedWidth(const QWidget* params) const {
+  if (!params && params_) params = params_->widget();
+  const double wanted = std::max(textWidth(), params ? params->sizeHint().width() + 2 * kPad : 0.0);
+  return std::clamp(std::ceil(wanted), kMinWidth, kMaxWidth);
+}
+
 double NodeItem::textWidth() const {
   QFont bold;
   bold.setBold(true);
@@ -219,7 +226,8 @@ double NodeItem::textWidth() const {
   QFont label;
   label.setPointSizeF(8);
   const QFontMetricsF b(bold), s(small), l(label);
-  double wide = std::max(b.horizontalAdvance(title() + "  (disabled)"), s.horizontalAdvance(kindLine()));
+  const QString name = QString::fromStdString(info_.name.substr(info_.name.rfind('/') + 1));
+  double wide = std::max(b.horizontalAdvance(name + "  (disabled)"), s.horizontalAdvance(kindLine()));  // either way
   std::vector<double> in, out;  // label widths per row, each side
   for (const auto& p : info_.ports) (sourceKind(p.kind) ? out : in).push_back(l.horizontalAdvance(QString::fromStdString(p.name)));
   for (std::size_t row = 0; row < std::max(in.size(), out.size()); ++row)

@@ -43,6 +43,8 @@ void PanelWidget::setNamespace(const QString& ns) {
   watched_.clear();
   inspected_.clear();
   previewing_.clear();  // the link dropped its subscriptions with the namespace
+  pending_ = 0;  // and drops the answers of the runtime left: nothing of it is waited for
+  placing_.clear(), sizes_.clear(), untangle_from_ = 0;
   forgetHistory();
   editor_->showGraph(model_);
   emit namespaceChanged(QString::fromStdString(link_.ns()));

@@ -43,12 +43,14 @@ T as(const YAML::Node& n, T fallback) {
 
 QString number(double v) { return QString::number(v, 'g', 10); }
 
-/** Whether two YAML texts say the same value: 'x' and x, 25 and 25.0, [a, b] and [ a,b ]. */
+/** Whether two YAML texts say the same value: 'x' and x, 25 and 25.0, [a, b] and [ a,b ]
+ *  (but not '1' and "1.0": strings). */
 bool same(const YAML::Node& a, const YAML::Node& b) {
   if (a.Type() != b.Type()) return false;
-  if (a.IsScalar()) {
+  if (a.IsScalar()) {  // numbers by value where both are plain; a quoted "1.0" is a string
     double x, y;
-    if (YAML::convert<double>::decode(a, x) && YAML::convert<double>::decode(b, y)) return x == y;
+    if (a.Tag() == "?" && b.Tag() == "?" && YAML::convert<double>::decode(a, x) && YAML::convert<double>::decode(b, y))
+      return x == y;
     return a.Scalar() == b.Scalar();
   }
   if (a.IsSequence()) {
@@ -133,6 +135,9 @@ QString tip(const apex::ParamInfo& p) {
  *  limit: the node's box is sized from its editors' size hints, so values are shown whole. */
 class FittingLineEdit : public QLineEdit {
  public:
+  FittingLineEdit() {
+    connect(this, &QLineEdit::textChanged, this, [this] { updateGeometry(); });  // a new text, a new hint
+  }
   QSize sizeHint() const override {
     QSize s = QLineEdit::sizeHint();
     const int wide = fontMetrics().horizontalAdvance(text()) + 16;  // frame and margins

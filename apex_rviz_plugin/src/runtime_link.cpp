@@ -14,6 +14,8 @@
 
 #include <QMetaObject>
 
+#include <algorithm>
+
 #include <ros/names.h>
 
 namespace apex_rviz_plugin {
@@ -69,11 +71,10 @@ RuntimeLink::~RuntimeLink() {
 
 template <class T>
 void RuntimeLink::async(std::function<T()> work, std::function<void(const T&)> then) {
-  jobs_->post([owner = owner_, work = std::move(work), then = std::move(then)] {
+  jobs_->post([owner = owner_, gen = generation_, work = std::move(work), then = std::move(then)] {
     T result = work();
     std::lock_guard<std::mutex> lock(owner->mutex);  // the link is not destroyed meanwhile
-    if (owner->link)  // queued to its thread; dropped by Qt if it is gone by the time it would run
-      QMetaObject::invokeMethod(owner->link, [then, result] { then(result); }, Qt::QueuedConnection);
+    if (owner->link) owner->link->deliver(gen, [then, result] { then(result); });
   });
 }
 
@@ -90,9 +91,12 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
   graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear(), preview_subs_.clear();
   if (nh_) {  // calls to the runtime left go on on a thread of their own: one that hangs holds up no other
     jobs_->retire();
+    retired_.erase(std::remove_if(retired_.begin(), retired_.end(), [](const auto& j) { return j->finished(); }),
+                   retired_.end());
     retired_.push_back(std::move(jobs_));
     jobs_ = std::make_unique<JobThread>();
   }
+  ++generation_;  // what the runtime left sends or answers from now on is dropped
   ns_ = clean;
   if (!nh_) {
     nh_ = std::make_unique<ros::NodeHandle>();
@@ -100,11 +104,12 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
     spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);
   }
   queue_.clear();
-  graph_sub_ = nh_->subscribe<apex::GraphState>(service("graph"), 1, [this](const apex::GraphState::ConstPtr& g) {
-    QMetaObject::invokeMethod(this, [this, g] { emit graphReceived(*g); }, Qt::QueuedConnection);
+  const std::uint64_t gen = generation_;
+  graph_sub_ = nh_->subscribe<apex::GraphState>(service("graph"), 1, [this, gen](const apex::GraphState::ConstPtr& g) {
+    deliver(gen, [this, g] { emit graphReceived(*g); });
   });
-  status_sub_ = nh_->subscribe<apex::RuntimeStatus>(service("status"), 1, [this](const apex::RuntimeStatus::ConstPtr& s) {
-    QMetaObject::invokeMethod(this, [this, s] { emit statusReceived(*s); }, Qt::QueuedConnection);
+  status_sub_ = nh_->subscribe<apex::RuntimeStatus>(service("status"), 1, [this, gen](const apex::RuntimeStatus::ConstPtr& s) {
+    deliver(gen, [this, s] { emit statusReceived(*s); });
   });
   spinner_->start();
   connected_ = false;
@@ -227,8 +232,8 @@ void RuntimeLink::watchScalar(const std::string& node, const std::string& port, 
                               const std::string& type) {
   if (!nh_) return;
   const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
-  scalar_subs_[node + "/" + port] = subscribeScalar(topic, type, [this, n, p](const QString& text) {
-    QMetaObject::invokeMethod(this, [this, n, p, text] { emit scalarReceived(n, p, text); }, Qt::QueuedConnection);
+  scalar_subs_[node + "/" + port] = subscribeScalar(topic, type, [this, n, p, gen = generation_](const QString& text) {
+    deliver(gen, [this, n, p, text] { emit scalarReceived(n, p, text); });
   });
 }
 
@@ -250,20 +255,21 @@ void RuntimeLink::watchPreview(const std::string& node, const std::string& port,
                                const std::string& type) {
   if (!nh_) return;
   const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
+  const std::uint64_t gen = generation_;
   auto& subs = preview_subs_[node + "/" + port];
   subs.clear();
   if (type == "sensor_msgs/Image") {
-    subs.push_back(nh_->subscribe<sensor_msgs::Image>(topic, 1, [this, n, p](const sensor_msgs::Image::ConstPtr& m) {
+    subs.push_back(nh_->subscribe<sensor_msgs::Image>(topic, 1, [this, n, p, gen](const sensor_msgs::Image::ConstPtr& m) {
       QImage image = toQImage(*m);  // converted here, on the link's spinner, not on the GUI thread
-      QMetaObject::invokeMethod(this, [this, n, p, image] { emit imageReceived(n, p, image); }, Qt::QueuedConnection);
+      deliver(gen, [this, n, p, image] { emit imageReceived(n, p, image); });
     }));
-    subs.push_back(nh_->subscribe<std_msgs::String>(topic + "/about", 1, [this, n, p](const std_msgs::String::ConstPtr& m) {
+    subs.push_back(nh_->subscribe<std_msgs::String>(topic + "/about", 1, [this, n, p, gen](const std_msgs::String::ConstPtr& m) {
       const QString text = QString::fromStdString(m->data);  // the thumbnail's real size
-      QMetaObject::invokeMethod(this, [this, n, p, text] { emit aboutReceived(n, p, text); }, Qt::QueuedConnection);
+      deliver(gen, [this, n, p, text] { emit aboutReceived(n, p, text); });
     }));
   } else {
-    subs.push_back(subscribeScalar(topic, type, [this, n, p](const QString& text) {
-      QMetaObject::invokeMethod(this, [this, n, p, text] { emit scalarReceived(n, p, text); }, Qt::QueuedConnection);
+    subs.push_back(subscribeScalar(topic, type, [this, n, p, gen](const QString& text) {
+      deliver(gen, [this, n, p, text] { emit scalarReceived(n, p, text); });
     }));
   }
 }

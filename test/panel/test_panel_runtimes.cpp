@@ -130,6 +130,16 @@ TEST(PanelWidgetSlowRuntime, TheGuiThreadNeverWaitsAndSaysTheRuntimeIsSlow) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return !status->text().contains("no answer"); }, kWaitMs)) << status->text().toStdString();
   ticker.stop();
   EXPECT_LT(longest, 50) << "the GUI thread waited " << longest << " ms";
+
+  // an edit on its way when the user turns to another runtime: its late answer is not the new one's
+  emit factor->edited("factor", "5");
+  panel.setNamespace("/apex");
+  EXPECT_EQ(panel.editsPending(), 0);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return slow.calls == 4 && !panel.link().callsLeftBehind(); }, kWaitMs));
+  QCoreApplication::processEvents();  // the old answer, if it were delivered, is in by now
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph() && panel.nodeTypeCount() > 0; }, kWaitMs));
+  EXPECT_EQ(panel.editsPending(), 0);
+  EXPECT_FALSE(panel.model().node("n")) << "a graph of /slow shown in /apex's panel";
 }
 
 TEST(PanelWidgetTwoRuntimes, CopyInOnePasteInAnotherAndEachStartsItsOwnHistory) {

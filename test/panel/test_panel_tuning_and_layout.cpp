@@ -264,7 +264,8 @@ TEST_F(PanelWidgetTest, ABoxIsAsWideAsItsNameAndValuesNeed) {
   auto* path = box->editor("file")->findChild<QLineEdit*>();
   ASSERT_TRUE(path);
   ASSERT_EQ(path->text().toStdString(), g_bag);
-  EXPECT_GE(path->width(), path->fontMetrics().horizontalAdvance(path->text())) << "the path is cut: " << path->width();
+  const int whole = path->fontMetrics().horizontalAdvance(path->text());  // up to the widest a field gets
+  EXPECT_GE(path->width(), std::min(whole, 300)) << "the path is cut: " << path->width() << " of " << whole;
   for (const auto& p : box->info().parameters) {  // no parameter's name squeezed
     auto* label = box->editor(p.name)->findChild<QLabel*>();
     ASSERT_TRUE(label) << p.name;

@@ -120,8 +120,8 @@ class GraphEditor : public QWidget {
   void askPresetName(const QStringList& nodes);
   QPointF newNodePosition();
   void placeMinimap();
-  /** The view's scene rectangle: the boxes with a view's size around them (and what is seen). */
-  void growCanvas();
+  /** The view's scene rectangle: the boxes with a view's size around them, what is seen, and `also`. */
+  void growCanvas(const QRectF& also = QRectF());
   /** Shows the next node whose name or type contains the find field's text (in its subgraph),
    *  selected and centred; says which of how many. */
   void findNext();

@@ -120,6 +120,8 @@ class NodeItem : public QGraphicsObject {
   QString kindLine() const;
   /** The width the title, the type line and the port labels need (the editors add theirs). */
   double textWidth() const;
+  /** The box's width for its text and `params` (its editors; those shown if null), within limits. */
+  double wantedWidth(const QWidget* params = nullptr) const;
   bool isOptimizer() const;
   /** An Optimizer's progress: evaluations of the budget, best fitness, and its curve. */
   void paintProgress(QPainter* p, const QRectF& area) const;

@@ -26,6 +26,8 @@ class JobThread {
   void post(std::function<void()> job);
   /** @brief Runs the jobs posted so far, then the thread ends (nothing more is taken). */
   void retire();
+  /** @brief Retired, and done with all it was given (its thread has ended or is ending). */
+  bool finished() const;
   /** @brief Seconds the running job has taken so far; 0 when idle. */
   double busyFor() const;
 

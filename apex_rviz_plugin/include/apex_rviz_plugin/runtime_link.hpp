@@ -5,6 +5,7 @@
 #pragma once
 
 #include <QImage>
+#include <QMetaObject>
 #include <QObject>
 #include <QTimer>
 
@@ -72,6 +73,11 @@ class RuntimeLink : public QObject {
   /** @brief Whether a scalar watched on `topic` is connected to its publisher (messages come). */
   bool receiving(const std::string& topic) const;
   std::size_t scalarWatches() const { return scalar_subs_.size(); }
+  /** @brief Whether calls to runtimes left behind are still running or waiting (their answers are dropped). */
+  bool callsLeftBehind() const {
+    for (const auto& j : retired_) if (!j->finished()) return true;
+    return false;
+  }
 
  signals:
   void graphReceived(const apex::GraphState& graph);
@@ -92,9 +98,16 @@ class RuntimeLink : public QObject {
   template <class Srv>
   void callOne(const std::string& name, const typename Srv::Request& req, Done done);
   void checkConnection();
+  /** Runs `fn` on the GUI thread, if the link still talks to the runtime it talked to at `gen`
+   *  (a late answer or message from a runtime left behind is dropped). Any thread. */
+  template <class F>
+  void deliver(std::uint64_t gen, F fn) {
+    QMetaObject::invokeMethod(this, [this, gen, fn = std::move(fn)] { if (gen == generation_) fn(); }, Qt::QueuedConnection);
+  }
   std::string service(const std::string& name) const { return ns_ + "/" + name; }
 
   std::string ns_;
+  std::uint64_t generation_ = 0;  // counts namespaces: GUI thread only
   bool connected_ = false;
   bool overdue_ = false;  // a call has waited for its answer more than a second
   ros::CallbackQueue queue_;
