@@ -157,7 +157,10 @@ TEST(BagWriter, StopClosesTheFileAndStartRecordsANewOne) {
   feedRecorder(g, "[/value]", out, "value");
   auto* feeder = object<MessageFeeder>(g, "feed");
   auto written = [&](std::size_t n) {  // the file holds n values once closed
-    return waitUntil([&] { return fs::exists(out) && readTopic<std_msgs::Int32>(out, "/value").size() == n; });
+    // read once it is closed (renamed): rosbag's encryptor plugin is loaded and unloaded by each
+    // open and close, and the recorder's close must not meet this test's open (pluginlib crashes)
+    return waitUntil([&] { return fs::exists(out) && !fs::exists(out + ".active"); }) &&
+           readTopic<std_msgs::Int32>(out, "/value").size() == n;
   };
   for (int v : {1, 2, 3}) feeder->feed(Message::make<int>(v));
   ASSERT_TRUE(g.waitIdle(kWait));

@@ -169,10 +169,10 @@ TEST(PanelWidgetTwoRuntimes, CopyInOnePasteInAnotherAndEachStartsItsOwnHistory) 
   EXPECT_FALSE(undo->isEnabled()) << "the history of /apex goes on in /apex_c: " << undo->toolTip().toStdString();
   view->setFocus();
   QTest::keyClick(view, Qt::Key_V, Qt::ControlModifier);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return find(runtimeGraph("/apex_c"), "xfer_sink") != nullptr; }, kWaitMs))
-      << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && find(runtimeGraph("/apex_c"), "xfer_sink") != nullptr; }, kWaitMs))
+      << panel.editor()->message().toStdString();  // the whole paste answered: nodes, then the connection
   const apex::GraphState there = runtimeGraph("/apex_c");
-  EXPECT_TRUE(connected(there, "xfer_src", "count", "xfer_sink", "in"));
+  EXPECT_TRUE(connected(there, "xfer_src", "count", "xfer_sink", "in")) << panel.editor()->message().toStdString();
   EXPECT_EQ(param(there, "xfer_src", "rate"), "22.0");
   ASSERT_TRUE(QTest::qWaitFor([&] { return undo->isEnabled() && panel.editsPending() == 0; }, kWaitMs));
   QTest::mouseClick(undo, Qt::LeftButton);  // the paste, undone in /apex_c alone
