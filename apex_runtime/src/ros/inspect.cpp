@@ -85,7 +85,7 @@ Inspector findInspector(const TypeInfo* type) {
                      s.data = "<" + m.typeName() + ">";
                      pub.publish(s);
                    },
-                   nullptr, nullptr};
+                   nullptr, nullptr, nullptr};
 }
 
 }  // namespace apex
