@@ -199,10 +199,11 @@ QWidget* NodeItem::buildParams() {
   return box;
 }
 
-QString NodeItem::title() const {
-  QString t = QString::fromStdString(info_.name.substr(info_.name.rfind('/') + 1));  // inside a subgraph: its own name
-  return info_.enabled ? t : t + "  (disabled)";
+QString NodeItem::shortName() const {  // inside a subgraph: its own name
+  return QString::fromStdString(info_.name.substr(info_.name.rfind('/') + 1));
 }
+
+QString NodeItem::title() const { return info_.enabled ? shortName() : shortName() + "  (disabled)"; }
 
 QString NodeItem::kindLine() const {
   if (!info_.subgraph.empty())  // a subgraph has no group of its own: its nodes do
@@ -226,8 +227,7 @@ double NodeItem::textWidth() const {
   QFont label;
   label.setPointSizeF(8);
   const QFontMetricsF b(bold), s(small), l(label);
-  const QString name = QString::fromStdString(info_.name.substr(info_.name.rfind('/') + 1));
-  double wide = std::max(b.horizontalAdvance(name + "  (disabled)"), s.horizontalAdvance(kindLine()));  // either way
+  double wide = std::max(b.horizontalAdvance(shortName() + "  (disabled)"), s.horizontalAdvance(kindLine()));  // either way
   std::vector<double> in, out;  // label widths per row, each side
   for (const auto& p : info_.ports) (sourceKind(p.kind) ? out : in).push_back(l.horizontalAdvance(QString::fromStdString(p.name)));
   for (std::size_t row = 0; row < std::max(in.size(), out.size()); ++row)

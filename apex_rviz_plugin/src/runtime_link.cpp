@@ -231,8 +231,13 @@ void RuntimeLink::inspect(const std::string& node, const std::string& port,
 void RuntimeLink::watchScalar(const std::string& node, const std::string& port, const std::string& topic,
                               const std::string& type) {
   if (!nh_) return;
+  scalar_subs_[node + "/" + port] = watchValues(node, port, topic, type);
+}
+
+ros::Subscriber RuntimeLink::watchValues(const std::string& node, const std::string& port, const std::string& topic,
+                                         const std::string& type) {
   const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
-  scalar_subs_[node + "/" + port] = subscribeScalar(topic, type, [this, n, p, gen = generation_](const QString& text) {
+  return subscribeScalar(topic, type, [this, n, p, gen = generation_](const QString& text) {
     deliver(gen, [this, n, p, text] { emit scalarReceived(n, p, text); });
   });
 }
@@ -268,9 +273,7 @@ void RuntimeLink::watchPreview(const std::string& node, const std::string& port,
       deliver(gen, [this, n, p, text] { emit aboutReceived(n, p, text); });
     }));
   } else {
-    subs.push_back(subscribeScalar(topic, type, [this, n, p, gen](const QString& text) {
-      deliver(gen, [this, n, p, text] { emit scalarReceived(n, p, text); });
-    }));
+    subs.push_back(watchValues(node, port, topic, type));
   }
 }
 

@@ -90,11 +90,11 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
     std::lock_guard<std::mutex> l(m);
     counts.push_back(c->data);
   });
-  ros::Time deadline = ros::Time::now() + ros::Duration(30);
-  while ((sub.getNumPublishers() == 0 || count_sub.getNumPublishers() == 0 || preview_sub.getNumPublishers() == 0 ||
-          about_sub.getNumPublishers() == 0) &&
-         ros::Time::now() < deadline)
-    ros::WallDuration(0.01).sleep();  // until both connections stand: no frame may pass before
+  ASSERT_TRUE(apex_test::waitUntil([&] {  // every connection stands: no frame may pass before
+    for (const ros::Subscriber* s : {&sub, &count_sub, &preview_sub, &about_sub})
+      if (s->getNumPublishers() == 0) return false;
+    return true;
+  }, 30)) << "not connected to every inspected topic";
   if (g_source == "bag") {  // BagReader inside the graph: start it
     apex::SetParameter::Request play;
     play.node = "bag", play.parameter = "playing", play.value = "true";

@@ -115,6 +115,7 @@ class NodeItem : public QGraphicsObject {
   void build();
   /** The parameters' editors (and a player's transport bar) in one widget, not yet placed. */
   QWidget* buildParams();
+  QString shortName() const;
   QString title() const;
   /** The line under the title: the type and thread group, or what subgraph it is. */
   QString kindLine() const;

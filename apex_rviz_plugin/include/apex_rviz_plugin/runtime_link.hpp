@@ -116,6 +116,9 @@ class RuntimeLink : public QObject {
   ros::Subscriber graph_sub_, status_sub_;
   std::map<std::string, ros::Subscriber> scalar_subs_;  // "node/port"
   std::map<std::string, std::vector<ros::Subscriber>> preview_subs_;  // "node/port"
+  /** A subscription to a port's numbers or strings, shown as scalarReceived. */
+  ros::Subscriber watchValues(const std::string& node, const std::string& port, const std::string& topic,
+                              const std::string& type);
   /** Subscribes to a scalar topic; `show` gets its value as text. */
   ros::Subscriber subscribeScalar(const std::string& topic, const std::string& type, std::function<void(const QString&)> show);
   QTimer watchdog_;
