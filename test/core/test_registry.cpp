@@ -92,12 +92,12 @@ TEST(Registry, RefusesABadIdOrClashingNames) {
   EXPECT_THAT(bad_default.message(), HasSubstr("not on the step"));
 }
 
-TEST(Registry, UnknownTypeNamesTheKnownOnes) {
+TEST(Registry, UnknownTypeSaysWhereTheKnownOnesAreListed) {
   Graph g(testRegistry());
   auto r = g.addNode("test/Nope");
   ASSERT_FALSE(r);
   EXPECT_THAT(r.message(), HasSubstr("unknown node type 'test/Nope'"));
-  EXPECT_THAT(r.message(), HasSubstr("test/Relay"));
+  EXPECT_THAT(r.message(), HasSubstr("(list_node_types lists all " + std::to_string(testRegistry().ids().size()) + ")"));
 }
 
 TEST(Registry, GeneratesNamesAndRefusesBadOnes) {
@@ -142,4 +142,31 @@ TEST(FunctionNode, DeducesPortsFromTheSignature) {
   ASSERT_TRUE(object<Collector>(g, "q")->waitFor(1));
   EXPECT_EQ(object<Collector>(g, "q")->ints(), std::vector<int>{4});    // (11 + 3) / 3
   EXPECT_EQ(object<Collector>(g, "rem")->ints(), std::vector<int>{2});  // (11 + 3) % 3
+}
+
+TEST(Registry, AUserNamesATypeWithoutItsPackageAndAMisspeltOneGetsTheClosest) {
+  NodeRegistry r = testRegistry();
+  ASSERT_TRUE(r.add<Doubler>("other/Relay"));  // two packages with a Relay
+  Graph g(r);
+  auto added = g.addNode("Gain", "");  // unique without its package: test/Gain
+  ASSERT_TRUE(added) << added.message();
+  EXPECT_EQ(added.value(), "gain_1");
+  EXPECT_EQ(findNode(g.describe(), "gain_1")->type, "test/Gain");  // saved under its whole id
+
+  NodeDescription d;  // a description (add_node's way) too, its parameters applied
+  d.name = "c", d.type = "Counter";
+  ASSERT_TRUE(g.addNode(d));
+  EXPECT_EQ(findNode(g.describe(), "c")->type, "test/Counter");
+
+  EXPECT_EQ(g.addNode("Relay", "r").message(),
+            "node type 'Relay' is ambiguous: other/Relay or test/Relay; give the whole id");
+  EXPECT_TRUE(g.addNode("test/Relay", "r"));
+  auto typo = g.addNode("Countr", "x");
+  ASSERT_FALSE(typo);
+  EXPECT_THAT(typo.message(), HasSubstr("unknown node type 'Countr': did you mean test/Counter?"));
+  EXPECT_THAT(typo.message(), HasSubstr("list_node_types lists all"));
+  EXPECT_THAT(g.addNode("test/collecter", "x").message(), HasSubstr("did you mean test/Collector?"));
+  EXPECT_THAT(r.closest("Tick"), ::testing::ElementsAre("test/Ticker"));  // part of a name
+  EXPECT_TRUE(r.closest("Zebra").empty());
+  EXPECT_THAT(g.addNode("Zebra", "x").message(), ::testing::Not(HasSubstr("did you mean")));
 }

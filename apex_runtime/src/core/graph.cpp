@@ -34,14 +34,6 @@ std::string baseName(const std::string& type) {
   return out;
 }
 
-std::string knownTypes(const NodeRegistry& registry) {
-  auto ids = registry.ids();
-  std::string s;
-  for (std::size_t i = 0; i < ids.size() && i < 30; ++i) s += (i ? ", " : "") + ids[i];
-  if (ids.size() > 30) s += ", ... (" + std::to_string(ids.size()) + " in all)";
-  return ids.empty() ? "none registered" : s;
-}
-
 }  // namespace
 
 Graph::Graph(NodeRegistry registry) : registry_(std::move(registry)) { group(kDefaultGroup); }
@@ -90,11 +82,12 @@ ThreadGroup* Graph::group(const std::string& name) {
 
 Result<std::string> Graph::addNode(const std::string& type_id, const std::string& wanted, const std::string& group_name) {
   auto lock = lockEdits();
-  auto type = registry_.find(type_id);
-  if (!type) return Status::error("unknown node type '" + type_id + "' (known types: " + knownTypes(registry_) + ")");
+  auto found = registry_.lookup(type_id);  // its id, or its name without the package prefix
+  if (!found) return found.status();
+  const std::shared_ptr<const NodeType> type = found.value();
   std::string name = wanted;
   if (name.empty()) {
-    const std::string base = baseName(type_id);
+    const std::string base = baseName(type->id);
     int& counter = name_counters_[base];
     do name = base + "_" + std::to_string(++counter);
     while (nodes_.count(name));
@@ -108,7 +101,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   try {
     object = type->create();
   } catch (const std::exception& ex) {
-    return Status::error("node type '" + type_id + "' failed to construct: " + ex.what());
+    return Status::error("node type '" + type->id + "' failed to construct: " + ex.what());
   }
   auto state = std::make_shared<NodeState>(name, type, next_seq_++, revision_);
   state->host = host_;
@@ -133,8 +126,9 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
 
 Result<std::string> Graph::addNode(const NodeDescription& d) {
   if (d.type == kSubgraphType) return addSubgraph(d);
-  if (!registry_.find(d.type)) return addNode(d.type, d.name, d.thread_group);  // the usual message
-  auto added = addNode(d.type, d.name, d.thread_group);
+  auto type = registry_.lookup(d.type);
+  if (!type) return type.status();
+  auto added = addNode(type.value()->id, d.name, d.thread_group);
   if (!added) return added;
   const std::string name = added.value();
   auto undo = [&](const std::string& why) {
@@ -147,7 +141,7 @@ Result<std::string> Graph::addNode(const NodeDescription& d) {
   // but switched off before saving stays off.
   for (const auto& param : d.interactive)
     if (auto st = setInteractive(name, param, true); !st) return undo(st.message());
-  for (const auto& spec : registry_.find(d.type)->manifest->params)
+  for (const auto& spec : type.value()->manifest->params)
     if (std::find(d.interactive.begin(), d.interactive.end(), spec.name) == d.interactive.end())
       (void)setInteractive(name, spec.name, false);
   if (auto st = setEnabled(name, d.enabled); !st) return undo(st.message());

@@ -143,8 +143,10 @@ Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
     auto lock = lockEdits();
     auto added = addPlaceholder(d);
     if (!added) return fail(added.message());
-    report.warnings.push_back(at(d.line) + "node '" + d.name + "' has the unknown type '" + d.type +
-                              "': kept as a placeholder with its settings, it does not run");
+    std::string near;
+    for (const auto& id : registry_.closest(d.type)) near += (near.empty() ? " (did you mean " : " or ") + id;
+    report.warnings.push_back(at(d.line) + "node '" + d.name + "' has the unknown type '" + d.type + "'" +
+                              (near.empty() ? "" : near + "?)") + ": kept as a placeholder with its settings, it does not run");
     return Status::ok();
   }
   if (d.name.empty()) return fail("a node needs a name");

@@ -1,5 +1,7 @@
 #include "apex/core/registry.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <iostream>
 
 #include "names.hpp"
@@ -71,6 +73,73 @@ std::shared_ptr<const NodeType> NodeRegistry::find(const std::string& id) const 
   std::lock_guard<std::mutex> lock(mutex_);
   auto it = types_.find(id);
   return it == types_.end() ? nullptr : it->second;
+}
+
+namespace {
+
+std::string shortName(const std::string& id) { return id.substr(id.rfind('/') + 1); }
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/** Edits (insert, delete, replace) from a to b. */
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+Result<std::shared_ptr<const NodeType>> NodeRegistry::lookup(const std::string& name) const {
+  if (auto exact = find(name)) return exact;
+  std::vector<std::shared_ptr<const NodeType>> same;
+  if (name.find('/') == std::string::npos)
+    for (const auto& type : types())
+      if (shortName(type->id) == name) same.push_back(type);
+  if (same.size() == 1) return same.front();
+  std::string message = "unknown node type '" + name + "'";
+  if (same.size() > 1) {
+    message = "node type '" + name + "' is ambiguous: ";
+    for (std::size_t i = 0; i < same.size(); ++i) message += (i ? " or " : "") + same[i]->id;
+    return Status::error(message + "; give the whole id");
+  }
+  const auto near = closest(name);
+  if (!near.empty()) {
+    message += ": did you mean ";
+    for (std::size_t i = 0; i < near.size(); ++i) message += (i ? (i + 1 == near.size() ? " or " : ", ") : "") + near[i];
+    message += "?";
+  }
+  const std::size_t known = ids().size();
+  return Status::error(message + " (" + (known ? "list_node_types lists all " + std::to_string(known) : "no type is registered") + ")");
+}
+
+std::vector<std::string> NodeRegistry::closest(const std::string& name, std::size_t count) const {
+  // A substring of a type's name ("Blur") ranks with one edit; beyond a third of the name's
+  // length in edits, a type is not close.
+  const std::string wanted = lower(shortName(name));
+  std::vector<std::pair<std::size_t, std::string>> scored;
+  for (const auto& id : ids()) {
+    const std::string candidate = lower(shortName(id));
+    std::size_t d = editDistance(wanted, candidate);
+    if (wanted.size() >= 3 && candidate.find(wanted) != std::string::npos) d = std::min<std::size_t>(d, 1);
+    if (d <= std::max<std::size_t>(1, std::max(wanted.size(), candidate.size()) / 3)) scored.emplace_back(d, id);
+  }
+  std::sort(scored.begin(), scored.end());
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < scored.size() && i < count; ++i) out.push_back(scored[i].second);
+  return out;
 }
 
 std::vector<std::string> NodeRegistry::ids() const {

@@ -63,6 +63,13 @@ class NodeRegistry {
 
   /** @brief The type, or nullptr. */
   std::shared_ptr<const NodeType> find(const std::string& id) const;
+  /** @brief The type a user means by `name`: its id, or a name without the package prefix that one
+   *  type alone has ("GaussianBlur" for apex_nodes/GaussianBlur). Otherwise an error naming the
+   *  closest ids ("did you mean ...?"), or the types that share the name. */
+  Result<std::shared_ptr<const NodeType>> lookup(const std::string& name) const;
+  /** @brief Up to `count` ids most like `name` (spelling, case, package prefix), closest first;
+   *  none if no id is close. */
+  std::vector<std::string> closest(const std::string& name, std::size_t count = 3) const;
   /** @brief Every type id, sorted. */
   std::vector<std::string> ids() const;
   /** @brief Every type, sorted by id. */
