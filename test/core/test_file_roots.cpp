@@ -73,4 +73,42 @@ TEST_F(Roots, EachModeChecksWhatItNeeds) {
   EXPECT_TRUE(Contains(roots.check(root + "/graphs/g.yaml", PathMode::Directory).message(), {"not a folder"}));
 }
 
+TEST_F(Roots, ARelativePathIsTakenInsideTheFirstWritableRoot) {
+  const std::string second = dir.file("second");
+  fs::create_directories(second);
+  FileRoots two({second, root});
+  EXPECT_EQ(two.resolve("tuned.yaml", FileRoots::Access::Write).value(), fs::weakly_canonical(second).string() + "/tuned.yaml");
+  EXPECT_EQ(two.resolve("../root/graphs/g.yaml").value(), roots.resolve(root + "/graphs/g.yaml").value());
+  EXPECT_FALSE(two.resolve("../elsewhere/x.yaml")) << "relative, and still confined";
+}
+
+TEST_F(Roots, AReadOnlyRootIsReadAndNeverWrittenEvenInsideAWritableOne) {
+  const std::string shipped = root + "/graphs";  // a package's shipped graphs, inside a writable root
+  roots.readOnly({shipped});
+  EXPECT_TRUE(roots.check(shipped + "/g.yaml", PathMode::Read));
+  auto save = roots.resolve(shipped + "/g.yaml", FileRoots::Access::Write);
+  ASSERT_FALSE(save);
+  const std::string canonical = fs::weakly_canonical(root).string();
+  EXPECT_TRUE(Contains(save.message(), {"path '" + shipped + "/g.yaml'", "lies in '" + canonical +
+                                "/graphs', whose files may be read, not written: write it in " + canonical +
+                                " (a path without a folder, such as 'g.yaml', goes to " + canonical + ")"}))
+      << save.message();
+  EXPECT_FALSE(roots.check(shipped + "/new", PathMode::Directory)) << "a node's export folder writes too";
+  EXPECT_TRUE(roots.check(root + "/new.yaml", PathMode::Write));
+  EXPECT_EQ(roots.list(), canonical + "; read only: " + canonical + "/graphs");
+
+  FileRoots only_read = FileRoots().readOnly({shipped});
+  EXPECT_TRUE(only_read.resolve(shipped + "/g.yaml"));
+  EXPECT_TRUE(Contains(only_read.resolve(dir.file("x.yaml")).message(), {"outside the folders files may be read from (read only: "}));
+  EXPECT_TRUE(Contains(only_read.resolve(dir.file("x.yaml"), FileRoots::Access::Write).message(),
+                       {"outside the folders files may be written in (none)"}));
+}
+
+TEST_F(Roots, ARefusalSaysHowToAllowTheFolder) {
+  roots.hint([](const std::string& folder) { return "; add '" + folder + "' to ~file_roots"; });
+  EXPECT_TRUE(Contains(roots.resolve("/etc/apex_probe.yaml", FileRoots::Access::Write).message(),
+                       {"written in (" + fs::weakly_canonical(root).string() + "); add '/etc' to ~file_roots"}));
+  EXPECT_TRUE(Contains(roots.check("/var/tmp", PathMode::Directory).message(), {"add '/var/tmp' to"})) << "a folder itself";
+}
+
 }  // namespace

@@ -20,6 +20,7 @@
 #include <apex/SetUi.h>
 #include <apex/Ungroup.h>
 #include <gmock/gmock.h>
+#include <ros/package.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/Int32.h>
 
@@ -98,11 +99,21 @@ TEST_F(Services, AddNodeAppliesParametersAndRefusesBadInput) {
   EXPECT_EQ(res.node.parameters.at(0).value, "25.0");
   const std::string before = graphText();
   refused(addNode("apex_nodes/Nope", "x"), before, "unknown node type 'apex_nodes/Nope'");
+  refused(addNode("Clok", "x"), before, "unknown node type 'Clok': did you mean apex_nodes/Clock?");
   refused(addNode("apex_nodes/Clock", "x", "{rate: 0}"), before, "parameter 'rate': 0 is out of range [0.01, 1000]");
   refused(addNode("apex_nodes/Clock", "x", "{speed: 1}"), before, "has no parameter 'speed'");
   refused(addNode("apex_nodes/Clock", "x", "rate: [1"), before, "not valid YAML");
   refused(addNode("apex_nodes/Clock", "clock_1"), before, "a node named 'clock_1' already exists");
   refused(addNode("apex_nodes/Clock", "bad name"), before, "node name 'bad name'");
+}
+
+TEST_F(Services, AddNodeTakesATypesNameWithoutItsPackage) {
+  auto res = addNode("Clock", "", "{rate: 5}");  // as a user types it: apex_nodes/Clock
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_EQ(res.name, "clock_1");
+  EXPECT_EQ(res.node.type, "apex_nodes/Clock");
+  EXPECT_EQ(res.node.parameters.at(0).value, "5.0");
+  EXPECT_THAT(graphText(), HasSubstr("type: apex_nodes/Clock"));  // saved under its whole id
 }
 
 TEST_F(Services, RemoveNode) {
@@ -265,7 +276,10 @@ TEST_F(Services, PathsFromServicesStayInTheRoots) {  // services.test: ~file_roo
     save.path = path;
     auto res = call<apex::SaveGraph>("save_graph", save);
     EXPECT_FALSE(res.success) << path;
-    EXPECT_THAT(res.message, HasSubstr("is outside the folders files may be read or written in (/tmp)")) << path;
+    EXPECT_THAT(res.message, HasSubstr("is outside the folders files may be written in (/tmp, ")) << path;
+    const std::string folder = path.find("/root") == 0 ? "/root" : "/etc";  // what the user is told to allow
+    EXPECT_THAT(res.message, HasSubstr("; to allow it, add its folder to the parameter /apex/file_roots "
+                                       "(roslaunch apex runtime.launch file_roots:=" + folder + ")")) << path;
   }
   const std::string link = tempPath("etc_link");
   ASSERT_EQ(::symlink("/etc", link.c_str()), 0);
@@ -300,6 +314,9 @@ TEST_F(Services, PathsFromServicesStayInTheRoots) {  // services.test: ~file_roo
   auto bag = addNode("apex_nodes/BagReader", "bag", "{file: /etc/shadow}");
   EXPECT_FALSE(bag.success);
   EXPECT_THAT(bag.message, HasSubstr("parameter 'file': path '/etc/shadow' is outside"));
+  bag = addNode("BagReader", "bag", "{file: /etc/shadow}");  // its name alone: the same type, the same rule
+  EXPECT_FALSE(bag.success);
+  EXPECT_THAT(bag.message, HasSubstr("parameter 'file': path '/etc/shadow' is outside"));
   ASSERT_TRUE(addNode("apex_nodes/BagReader", "bag", "").success);
   set.node = "bag", set.parameter = "file", set.value = tempPath("no_such.bag");
   EXPECT_THAT(call<apex::SetParameter>("set_parameter", set).message, HasSubstr("no such file"));
@@ -309,6 +326,40 @@ TEST_F(Services, PathsFromServicesStayInTheRoots) {  // services.test: ~file_roo
   EXPECT_FALSE(loaded.success);
   EXPECT_THAT(loaded.message, HasSubstr("line 3: node 'b': parameter 'file': path '/etc/shadow' is outside"));
   ::unlink(load.path.c_str());
+}
+
+TEST_F(Services, ARelativePathGoesToTheFirstRootAndShippedGraphsAreReadOnly) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
+  apex::SaveGraph::Request save;
+  save.path = "apex_services_relative_" + std::to_string(getpid()) + ".yaml";  // ~file_roots [/tmp]: in /tmp
+  auto saved = call<apex::SaveGraph>("save_graph", save);
+  ASSERT_TRUE(saved.success) << saved.message;
+  EXPECT_EQ(saved.path, "/tmp/" + save.path);
+  struct stat st {};
+  EXPECT_EQ(::stat(saved.path.c_str(), &st), 0);
+  apex::LoadGraph::Request load;
+  load.path = save.path;
+  auto loaded = call<apex::LoadGraph>("load_graph", load);
+  EXPECT_TRUE(loaded.success) << loaded.message;
+  EXPECT_EQ(loaded.path, saved.path);
+  ::unlink(saved.path.c_str());
+
+  // The package's own graphs are read, never written (a user's tuning must not replace demo.yaml)
+  const std::string shipped = ros::package::getPath("apex") + "/graphs/demo.yaml";
+  std::ifstream in(shipped);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(text.empty());
+  save.path = shipped;
+  saved = call<apex::SaveGraph>("save_graph", save);
+  EXPECT_FALSE(saved.success);
+  EXPECT_THAT(saved.message, HasSubstr("/graphs', whose files may be read, not written: write it in one of /tmp, "));
+  EXPECT_THAT(saved.message, HasSubstr("(a path without a folder, such as 'demo.yaml', goes to /tmp)"));
+  std::ifstream again(shipped);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()), text);
+  load.path = "package://apex/graphs/demo.yaml";
+  loaded = call<apex::LoadGraph>("load_graph", load);
+  EXPECT_TRUE(loaded.success) << loaded.message;
+  EXPECT_EQ(loaded.path, shipped);
 }
 
 TEST_F(Services, ControlPausesResumesSteps) {

@@ -23,17 +23,34 @@ bool inside(const fs::path& root, const fs::path& p) {
   return true;
 }
 
+std::string joined(const std::vector<std::string>& folders) {
+  std::string out;
+  for (const auto& f : folders) out += (out.empty() ? "" : ", ") + f;
+  return out;
+}
+
 }  // namespace
 
 FileRoots::FileRoots(const std::vector<std::string>& roots, PackageResolver packages) : packages_(std::move(packages)) {
-  for (const auto& r : roots) {
-    auto expanded = expand(r);
-    if (!expanded) continue;
-    std::error_code ec;
-    const fs::path canonical = fs::weakly_canonical(fs::absolute(expanded.value()), ec);
-    if (!ec && std::find(roots_.begin(), roots_.end(), canonical.string()) == roots_.end())
-      roots_.push_back(canonical.string());
-  }
+  for (const auto& r : roots) add(roots_, r);
+}
+
+FileRoots& FileRoots::readOnly(const std::vector<std::string>& folders) {
+  for (const auto& r : folders) add(read_only_, r);
+  return *this;
+}
+
+FileRoots& FileRoots::hint(Hint hint) {
+  hint_ = std::move(hint);
+  return *this;
+}
+
+void FileRoots::add(std::vector<std::string>& to, const std::string& folder) {
+  auto expanded = expand(folder);
+  if (!expanded || expanded.value().empty()) return;
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(fs::absolute(expanded.value()), ec);
+  if (!ec && std::find(to.begin(), to.end(), canonical.string()) == to.end()) to.push_back(canonical.string());
 }
 
 Result<std::string> FileRoots::expand(const std::string& path) const {
@@ -60,22 +77,34 @@ Result<std::string> FileRoots::expand(const std::string& path) const {
   return path;
 }
 
-Result<std::string> FileRoots::resolve(const std::string& path) const {
+Result<std::string> FileRoots::resolve(const std::string& path, Access access) const {
   if (path.empty()) return Status::error("an empty path names no file");
   auto expanded = expand(path);
   if (!expanded) return expanded.status();
+  fs::path absolute = expanded.value();
+  if (absolute.is_relative()) absolute = roots_.empty() ? fs::absolute(absolute) : fs::path(roots_.front()) / absolute;
   std::error_code ec;
-  const fs::path p = fs::weakly_canonical(fs::absolute(expanded.value()), ec);
+  const fs::path p = fs::weakly_canonical(absolute, ec);
   if (ec) return Status::error("path '" + path + "': " + ec.message());
+  const std::string named = "path '" + path + "'" + (p.string() == path ? "" : " ('" + p.string() + "')");
+  for (const auto& root : read_only_) {
+    if (!inside(root, p)) continue;
+    if (access == Access::Read) return p.string();
+    if (roots_.empty()) return Status::error(named + " lies in '" + root + "', whose files may be read, not written");
+    return Status::error(named + " lies in '" + root + "', whose files may be read, not written: write it in " +
+                         (roots_.size() > 1 ? "one of " : "") + joined(roots_) + " (a path without a folder, such as '" +
+                         p.filename().string() + "', goes to " + roots_.front() + ")");
+  }
   for (const auto& root : roots_)
     if (inside(root, p)) return p.string();
-  return Status::error("path '" + path + "'" + (p.string() == path ? "" : " ('" + p.string() + "')") +
-                       " is outside the folders files may be read or written in (" + list() +
-                       "); a launch file can widen them with ~file_roots");
+  const std::string folder = access == Access::Read || !fs::is_directory(p) ? p.parent_path().string() : p.string();
+  const std::string allowed = access == Access::Read ? "read from (" + list() : "written in (" + (roots_.empty() ? "none" : joined(roots_));
+  return Status::error(named + " is outside the folders files may be " + allowed + ")" +
+                       (hint_ ? hint_(folder) : "; a launch file can widen them with ~file_roots"));
 }
 
 Result<std::string> FileRoots::check(const std::string& path, PathMode mode) const {
-  auto resolved = resolve(path);
+  auto resolved = resolve(path, mode == PathMode::Read ? Access::Read : Access::Write);
   if (!resolved) return resolved;
   const std::string& p = resolved.value();
   struct stat st {};
@@ -101,10 +130,9 @@ Result<std::string> FileRoots::check(const std::string& path, PathMode mode) con
 }
 
 std::string FileRoots::list() const {
-  if (roots_.empty()) return "none";
-  std::string out;
-  for (const auto& r : roots_) out += (out.empty() ? "" : ", ") + r;
-  return out;
+  if (roots_.empty() && read_only_.empty()) return "none";
+  if (read_only_.empty()) return joined(roots_);
+  return (roots_.empty() ? "" : joined(roots_) + "; ") + "read only: " + joined(read_only_);
 }
 
 }  // namespace apex

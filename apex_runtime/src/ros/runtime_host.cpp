@@ -23,7 +23,6 @@
 #include <apex/SetUi.h>
 #include <apex/Ungroup.h>
 
-#include <ros/package.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -38,6 +37,7 @@
 #include "inspection.hpp"
 #include "param_mirror.hpp"
 #include "node_log.hpp"
+#include "paths.hpp"
 #include "plugin_types.hpp"
 #include "reconfigure.hpp"
 
@@ -139,9 +139,13 @@ struct RuntimeHost::Impl {
     auto params = parseParameterMap(req.parameters);
     if (!params) return answered(res, Status::error("parameters: " + params.message()));
     d.parameters = params.value();
+    if (d.type != kSubgraphType) {  // "GaussianBlur" is apex_nodes/GaussianBlur: its paths are confined as its
+      auto type = graph.registry().lookup(d.type);
+      if (!type) return answered(res, type.status());
+      d.type = type.value()->id;
+      for (const auto& p : type.value()->manifest->params) if (p.interactive) d.interactive.push_back(p.name);
+    }
     if (auto st = confine(d); !st) return answered(res, st);
-    if (auto type = graph.registry().find(req.type))
-      for (const auto& p : type->manifest->params) if (p.interactive) d.interactive.push_back(p.name);
     auto added = graph.addNode(d);
     if (added) {
       res.name = added.value();
@@ -170,7 +174,7 @@ struct RuntimeHost::Impl {
 
   /** One parameter from outside (a service, dynamic_reconfigure): its path confined, then set. */
   Result<std::string> setFromOutside(const std::string& node, const std::string& param, const std::string& text) {
-    auto value = confinedValue(graph.nodeInterface(node), node, param, text);
+    auto value = pathValue(graph.nodeInterface(node), node, param, text, roots, true);
     return value ? graph.setParameter(node, param, value.value()) : Result<std::string>(value.status());
   }
 
@@ -227,6 +231,7 @@ struct RuntimeHost::Impl {
   bool loadGraph(LoadGraph::Request& req, LoadGraph::Response& res) {
     auto path = roots.resolve(req.path);
     if (!path) return answered(res, path.status());
+    res.path = path.value();
     auto report = loadGraphFile(graph, path.value(), fileOptions(true));
     if (report) {
       res.warnings = report.value().warnings;
@@ -238,59 +243,15 @@ struct RuntimeHost::Impl {
   }
 
   bool saveGraph(SaveGraph::Request& req, SaveGraph::Response& res) {
-    auto path = roots.resolve(req.path);
+    auto path = roots.resolve(req.path, FileRoots::Access::Write);
+    if (path) res.path = path.value();  // a relative path: in the first writable root
     return answered(res, path ? saveGraphFile(graph, path.value()) : path.status());
   }
 
   // ------------------------------------------------------------ paths from outside
 
-  /** A parameter value from a service: a path parameter's value must lie in the roots and be
-   *  what its mode needs (a bag to read must exist); it is passed on resolved. */
-  Result<std::string> confinedValue(const std::shared_ptr<const Manifest>& iface, const std::string& node,
-                                    const std::string& param, const std::string& text) {
-    if (!iface) return text;  // the graph names the unknown node or type
-    for (const auto& spec : iface->params) {
-      if (spec.name != param || spec.kind != ParamKind::Path) continue;
-      auto value = spec.parse(text);
-      if (!value || std::get<std::string>(value.value()).empty()) return text;  // the graph says why / nothing to open
-      auto path = roots.check(std::get<std::string>(value.value()), spec.path_mode);
-      if (!path) return Status::error("node '" + node + "': parameter '" + param + "': " + path.message());
-      return quoteIfNeeded(path.value());
-    }
-    return text;
-  }
-
-  Status confine(NodeDescription& d) {
-    for (auto& [param, text] : d.parameters) {
-      auto value = confinedValue(specOf(d, param), d.name, param, text);
-      if (!value) return value.status();
-      text = value.value();
-    }
-    return Status::ok();
-  }
-
-  /** A parameter's declaration in a description: its type's, or for a subgraph the inner
-   *  parameter its export stands for. nullptr if unknown. */
-  std::shared_ptr<const Manifest> specOf(const NodeDescription& d, const std::string& param) const {
-    if (!d.subgraph) {
-      const auto type = graph.registry().find(d.type);
-      return type ? type->manifest : nullptr;
-    }
-    for (const auto& e : d.subgraph->exports) {
-      if (e.kind != ExportDescription::Kind::Parameter || e.name != param) continue;
-      const std::string& inner = e.inner.front();
-      const auto slash = inner.rfind('/');
-      if (const NodeDescription* n = findNode(*d.subgraph, inner.substr(0, slash))) {
-        auto m = specOf(*n, inner.substr(slash + 1));
-        if (!m || !m->findParam(inner.substr(slash + 1))) return nullptr;
-        auto renamed = std::make_shared<Manifest>();
-        renamed->params.push_back(*m->findParam(inner.substr(slash + 1)));
-        renamed->params.back().name = param;
-        return renamed;
-      }
-    }
-    return nullptr;
-  }
+  /** One node's parameters from a service: its paths confined to the roots. */
+  Status confine(NodeDescription& d) { return resolvePaths(graph.registry(), d, roots, true); }
 
   /** Graph files from services (`confined`) may name subgraph files in the roots only; the
    *  start-up graph, given by whoever launched us, anywhere. package:// is understood. */
@@ -299,33 +260,29 @@ struct RuntimeHost::Impl {
     if (confined) {
       o.check = [this](NodeDescription& d) { return confine(d); };
       o.open = [this](const std::string& path) { return roots.resolve(path); };
-    } else {
-      o.open = [](const std::string& path) {
-        return FileRoots({"/"}, [](const std::string& pkg) { return ros::package::getPath(pkg); }).resolve(path);
-      };
+    } else {  // ~ and package:// in its paths understood, as in the launch file that named it
+      o.check = [this](NodeDescription& d) { return resolvePaths(graph.registry(), d, roots, false); };
+      o.open = [](const std::string& path) { return FileRoots({"/"}, packagePath).resolve(path); };
     }
     return o;
   }
 
-  /** ~file_roots, or: the package's graphs/, $ROS_HOME/apex (made if missing) and the
-   *  folder of the graph loaded at start. */
+  /** After the start-up graph: ~file_roots, $ROS_HOME/apex and the folders of the files the
+   *  launch gave (paths.hpp). */
   void loadRoots() {
-    std::vector<std::string> list;
-    if (!pnh.getParam("file_roots", list)) {
-      const std::string package = ros::package::getPath("apex");
-      if (!package.empty()) list.push_back(package + "/graphs");
-      const char* ros_home = std::getenv("ROS_HOME");
-      const char* home = std::getenv("HOME");
-      const std::string own = ros_home && *ros_home ? std::string(ros_home) : std::string(home ? home : "") + "/.ros";
-      std::error_code ec;
-      std::filesystem::create_directories(own + "/apex", ec);
-      list.push_back(own + "/apex");
-      std::string startup;
-      if (pnh.getParam("graph", startup) && !startup.empty())
-        list.push_back(std::filesystem::absolute(startup).parent_path().string());
-    }
-    roots = FileRoots(list, [](const std::string& pkg) { return ros::package::getPath(pkg); });
+    roots = launchRoots(pnh, launchFolders());
     ROS_INFO_STREAM_NAMED("apex", "paths from services may name files in: " << roots.list());
+  }
+
+  /** The folder of ~graph and those of the paths the start-up graph's parameters hold, after
+   *  ~overrides (a bag given to runtime.launch): what the operator's launch file named. */
+  std::vector<std::string> launchFolders() const {
+    std::vector<std::string> folders;
+    std::string startup;
+    if (pnh.getParam("graph", startup) && !startup.empty())
+      folders.push_back(std::filesystem::absolute(startup).parent_path().string());
+    pathFolders(graph.registry(), graph.describe(), folders);
+    return folders;
   }
 
   bool control(Control::Request& req, Control::Response& res) {
@@ -441,7 +398,8 @@ struct RuntimeHost::Impl {
         continue;
       }
       for (auto& [param, value] : params) {
-        auto applied = graph.setParameter(node, param, yamlText(value));
+        auto text = pathValue(graph.nodeInterface(node), node, param, yamlText(value), roots, false);  // ~/bags/x.bag
+        auto applied = text ? graph.setParameter(node, param, text.value()) : Result<std::string>(text.status());
         if (applied) ROS_INFO_STREAM_NAMED("apex", "override " << node << "/" << param << " = " << applied.value());
         else ROS_ERROR_STREAM_NAMED("apex", "override " << node << "/" << param << ": " << applied.message());
       }
@@ -453,7 +411,7 @@ struct RuntimeHost::Impl {
       case XmlRpc::XmlRpcValue::TypeBoolean: return bool(v) ? "true" : "false";
       case XmlRpc::XmlRpcValue::TypeInt: return std::to_string(int(v));
       case XmlRpc::XmlRpcValue::TypeDouble: return toText(double(v));
-      case XmlRpc::XmlRpcValue::TypeString: return quoteIfNeeded(std::string(v));
+      case XmlRpc::XmlRpcValue::TypeString: return yamlQuoted(std::string(v));
       case XmlRpc::XmlRpcValue::TypeArray: {
         std::string out = "[";
         for (int i = 0; i < v.size(); ++i) out += (i ? ", " : "") + yamlText(v[i]);
@@ -462,20 +420,14 @@ struct RuntimeHost::Impl {
       default: return "~";
     }
   }
-  /** A string value as YAML text that reads back as that string. */
-  static std::string quoteIfNeeded(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("''") : std::string(1, c);
-    return q + "'";
-  }
 };
 
 RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Impl(nh, pnh)) {
   installRosconsoleSink();
   for (auto& s : serveLoggerServices(impl_->pnh)) impl_->services.push_back(std::move(s));
   impl_->loadTypes();
-  impl_->loadRoots();
   impl_->loadStartupGraph();  // trusted, like ~overrides: the operator's own launch file
+  impl_->loadRoots();         // its folders among them
   impl_->graph.start();
   impl_->advertise();
   impl_->publishIfChanged();

@@ -17,29 +17,43 @@ class FileRoots {
  public:
   /** Where a package lives ("" if unknown): the ROS host passes ros::package::getPath. */
   using PackageResolver = std::function<std::string(const std::string& package)>;
+  /** What a refusal adds to say how to allow a folder, e.g. "; add it to ~file_roots". */
+  using Hint = std::function<std::string(const std::string& folder)>;
+  enum class Access { Read, Write };
 
   /** @brief No roots: every path is refused. */
   FileRoots() = default;
-  /** @brief `roots` are resolved like paths (package://, $(find pkg), ~) and may not exist yet. */
+  /** @brief Folders files may be read and written in, the first taking relative paths. They are
+   *  resolved like paths (package://, $(find pkg), ~) and may not exist yet. */
   explicit FileRoots(const std::vector<std::string>& roots, PackageResolver packages = {});
+  /** @brief Adds folders whose files may be read, never written, even where they lie inside a
+   *  writable root (a package's shipped graphs). */
+  FileRoots& readOnly(const std::vector<std::string>& folders);
+  /** @brief Sets what a path outside the roots is told (default: "; a launch file can widen them
+   *  with ~file_roots"). */
+  FileRoots& hint(Hint hint);
 
   /** @brief The absolute path `path` names — `package://pkg/x`, `$(find pkg)/x` and `~/x`
-   *  understood, `..` and symlinks resolved — if it lies in one of the roots; otherwise an
-   *  error naming the path and the roots. Touches nothing on disk but reading links. */
-  Result<std::string> resolve(const std::string& path) const;
+   *  understood, a relative path taken inside the first writable root, `..` and symlinks
+   *  resolved — if `access` is allowed there; otherwise an error naming the path, the roots and
+   *  how to allow it. Touches nothing on disk but reading links. */
+  Result<std::string> resolve(const std::string& path, Access access = Access::Read) const;
 
   /** @brief resolve(), and what `mode` needs: Read an existing regular file, Write a regular
-   *  file or nothing in an existing folder, Directory a folder or nothing yet. */
+   *  file or nothing in an existing folder, Directory a folder or nothing yet (both writable). */
   Result<std::string> check(const std::string& path, PathMode mode) const;
 
-  /** @brief The roots as resolved, e.g. "/home/u/.ros/apex, /opt/apex/graphs". */
+  /** @brief The roots as resolved, e.g. "/home/u/.ros/apex, /data; read only: /opt/apex/graphs". */
   std::string list() const;
   const std::vector<std::string>& roots() const { return roots_; }
+  const std::vector<std::string>& readOnlyRoots() const { return read_only_; }
 
  private:
   Result<std::string> expand(const std::string& path) const;
-  std::vector<std::string> roots_;
+  void add(std::vector<std::string>& to, const std::string& folder);
+  std::vector<std::string> roots_, read_only_;
   PackageResolver packages_;
+  Hint hint_;
 };
 
 }  // namespace apex
