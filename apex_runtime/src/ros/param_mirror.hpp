@@ -18,6 +18,8 @@ class ParamMirror {
   explicit ParamMirror(ros::NodeHandle private_nh) : nh_(private_nh) {}
   /** @brief Sets what changed since the last call and deletes what is gone. */
   void update(const Graph& graph, const GraphState& state);
+  /** @brief The parameter server lost what was set (a new master): the next update sets all. */
+  void forget() { last_.clear(); }
 
  private:
   ros::NodeHandle nh_;

@@ -37,6 +37,7 @@
 #include "inspection.hpp"
 #include "param_mirror.hpp"
 #include "node_log.hpp"
+#include "master_watch.hpp"
 #include "paths.hpp"
 #include "plugin_types.hpp"
 #include "reconfigure.hpp"
@@ -68,6 +69,7 @@ struct RuntimeHost::Impl {
   ros::WallTimer change_timer, status_timer;
   std::unique_ptr<Reconfigure> reconfigure;  // after the graph: gone before it
   std::unique_ptr<Diagnostics> diagnostics;
+  std::unique_ptr<MasterWatch> master_watch;  // last made, first gone
   std::mutex publish_mutex;
   std::uint64_t published_revision = ~0ull;
 
@@ -88,6 +90,17 @@ struct RuntimeHost::Impl {
     mirror.update(graph, state);
     if (reconfigure) reconfigure->update(state);
     if (diagnostics) diagnostics->setGraph(state);
+  }
+
+  /** A new master has our topics and services again (MasterWatch); its parameter server has
+   *  none of our values: set them all, and ~graph anew. */
+  void afterNewMaster() {
+    {
+      std::lock_guard<std::mutex> lock(publish_mutex);
+      mirror.forget();
+      published_revision = ~0ull;
+    }
+    publishIfChanged();
   }
 
   template <class Res>
@@ -431,9 +444,11 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
   impl_->graph.start();
   impl_->advertise();
   impl_->publishIfChanged();
+  impl_->master_watch = std::make_unique<MasterWatch>([impl = impl_.get()] { impl->afterNewMaster(); });
 }
 
 RuntimeHost::~RuntimeHost() {
+  impl_->master_watch.reset();
   {
     std::lock_guard<std::mutex> lock(impl_->publish_mutex);  // they are used under it
     impl_->diagnostics.reset();

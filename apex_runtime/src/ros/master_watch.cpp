@@ -1,0 +1,159 @@
+#include "master_watch.hpp"
+
+#include <ros/connection_manager.h>
+#include <ros/master.h>
+#include <ros/network.h>
+#include <ros/ros.h>
+#include <ros/service_manager.h>
+#include <ros/xmlrpc_manager.h>
+#include <xmlrpcpp/XmlRpcClient.h>
+
+#include <map>
+#include <set>
+#include <vector>
+
+namespace apex {
+namespace ros_host {
+namespace {
+
+using XmlRpc::XmlRpcValue;
+
+/** A master API call; its answer's value, or nothing when the master is gone or says no. */
+bool callMaster(const std::string& method, const std::vector<std::string>& args, XmlRpcValue& payload) {
+  XmlRpcValue request, response;
+  request[0] = ros::this_node::getName();
+  for (std::size_t i = 0; i < args.size(); ++i) request[static_cast<int>(i + 1)] = args[i];
+  return ros::master::execute(method, request, response, payload, false);
+}
+
+/** A call to this process's own XML-RPC server: the node API the master and other nodes call. */
+bool callSelf(const char* method, XmlRpcValue& request, XmlRpcValue& response) {
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(ros::XMLRPCManager::instance()->getServerURI(), host, port)) return false;
+  XmlRpc::XmlRpcClient self(host.c_str(), static_cast<int>(port), "/");
+  return self.execute(method, request, response) && response.getType() == XmlRpcValue::TypeArray &&
+         response.size() >= 3 && static_cast<int>(response[0]) == 1;
+}
+
+/** [topic, type] pairs this process publishes or subscribes (roscpp keeps its lists private;
+ *  its node API tells them). */
+std::vector<std::pair<std::string, std::string>> ownTopics(const char* method) {
+  std::vector<std::pair<std::string, std::string>> out;
+  XmlRpcValue request, response;
+  request[0] = ros::this_node::getName();
+  if (!callSelf(method, request, response)) return out;
+  XmlRpcValue& list = response[2];
+  for (int i = 0; list.getType() == XmlRpcValue::TypeArray && i < list.size(); ++i)
+    out.emplace_back(static_cast<std::string>(list[i][0]), static_cast<std::string>(list[i][1]));
+  return out;
+}
+
+/** topic → the publishers (their XML-RPC URIs) this process receives from now (getBusInfo). */
+std::map<std::string, std::set<std::string>> connectedPublishers() {
+  std::map<std::string, std::set<std::string>> out;
+  XmlRpcValue request, response;
+  request[0] = ros::this_node::getName();
+  if (!callSelf("getBusInfo", request, response)) return out;
+  XmlRpcValue& links = response[2];
+  for (int i = 0; links.getType() == XmlRpcValue::TypeArray && i < links.size(); ++i)
+    if (links[i].size() >= 5 && static_cast<std::string>(links[i][2]) == "i")
+      out[static_cast<std::string>(links[i][4])].insert(static_cast<std::string>(links[i][1]));
+  return out;
+}
+
+}  // namespace
+
+MasterWatch::MasterWatch(std::function<void()> registered_again, double period)
+    : registered_again_(std::move(registered_again)), period_(period) {
+  ros::param::get("/run_id", run_id_);
+  rememberServices();
+  thread_ = std::thread([this] { run(); });
+}
+
+MasterWatch::~MasterWatch() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void MasterWatch::run() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!wake_.wait_for(lock, std::chrono::duration<double>(period_), [this] { return stop_; })) {
+    lock.unlock();
+    if (masterIsNew()) {
+      const std::string what = registerAgain();
+      if (registered_again_) registered_again_();
+      ROS_WARN_STREAM_NAMED("apex", "a new ROS master (run id '" << run_id_ << "'): registered " << what << " again");
+    }
+    rememberServices();
+    lock.lock();
+  }
+}
+
+bool MasterWatch::masterIsNew() {
+  std::string run_id;
+  const bool has_run_id = ros::param::get("/run_id", run_id);  // roscore sets it soon after it starts
+  XmlRpcValue uri;
+  if (callMaster("lookupNode", {ros::this_node::getName()}, uri)) {  // it knows this node
+    if (!has_run_id || run_id == run_id_) return false;
+    const bool first_sight = run_id_.empty();  // a master whose run id was not set yet when seen
+    run_id_ = run_id;
+    return !first_sight;  // else a roscore started again, and something of ours registered meanwhile
+  }
+  XmlRpcValue pid;
+  if (!callMaster("getPid", {}, pid)) return false;  // no master: wait for the next one
+  run_id_ = has_run_id ? run_id : "";
+  return true;
+}
+
+std::string MasterWatch::registerAgain() {
+  const std::string api = ros::XMLRPCManager::instance()->getServerURI();
+  int publications = 0, subscriptions = 0, services = 0;
+  XmlRpcValue payload;
+  for (const auto& [topic, type] : ownTopics("getPublications"))
+    publications += callMaster("registerPublisher", {topic, type, api}, payload);
+  auto connected = connectedPublishers();
+  for (const auto& [topic, type] : ownTopics("getSubscriptions")) {
+    if (!callMaster("registerSubscriber", {topic, type, api}, payload)) continue;
+    ++subscriptions;
+    // Connect to the publishers the new master knows, as it tells a node (publisherUpdate), and
+    // keep those we receive from: a list without them would drop their connections, and a
+    // publisher in a process that does not register again (a driver) would be lost for good.
+    std::set<std::string> publishers = connected[topic];
+    for (int i = 0; payload.getType() == XmlRpcValue::TypeArray && i < payload.size(); ++i)
+      publishers.insert(static_cast<std::string>(payload[i]));
+    XmlRpcValue update, list, response;
+    list.setSize(0);
+    for (const auto& uri : publishers) list[list.size()] = uri;
+    update[0] = "/master", update[1] = topic, update[2] = list;
+    (void)callSelf("publisherUpdate", update, response);
+  }
+  const std::string service_api =
+      "rosrpc://" + ros::network::getHost() + ":" + std::to_string(ros::ConnectionManager::instance()->getTCPPort());
+  for (const auto& service : services_)
+    if (ros::ServiceManager::instance()->lookupServicePublication(service))  // still offered
+      services += callMaster("registerService", {service, service_api, api}, payload);
+  return std::to_string(publications) + " publications, " + std::to_string(subscriptions) + " subscriptions and " +
+         std::to_string(services) + " services";
+}
+
+void MasterWatch::rememberServices() {
+  XmlRpcValue state;
+  if (!callMaster("getSystemState", {}, state) || state.getType() != XmlRpcValue::TypeArray || state.size() < 3) return;
+  std::set<std::string> ours;
+  XmlRpcValue& services = state[2];
+  for (int i = 0; i < services.size(); ++i) {
+    XmlRpcValue& providers = services[i][1];
+    for (int j = 0; j < providers.size(); ++j)
+      if (static_cast<std::string>(providers[j]) == ros::this_node::getName())
+        ours.insert(static_cast<std::string>(services[i][0]));
+  }
+  services_ = std::move(ours);
+}
+
+}  // namespace ros_host
+}  // namespace apex
