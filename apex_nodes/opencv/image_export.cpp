@@ -16,7 +16,8 @@ class ImageExport : public apex::Node {
         .optionalInput<Regions>("regions", "if connected: one file per region crop")
         .output<std::string>("path", "the last file written")
         .param(apex::param::path("directory", "/tmp/apex_export", apex::PathMode::Directory))
-        .param(apex::param::text("prefix", "frame").fileName().describe("the start of each file's name"));
+        .param(apex::param::text("prefix", "frame").fileName().describe("the start of each file's name"))
+        .param(apex::param::boolean("overwrite", false).describe("replace files already there (another run's)"));
   }
   void process() override {
     const Image& in = *image_.get();
@@ -42,8 +43,15 @@ class ImageExport : public apex::Node {
   apex::Output<std::string> path_{this, "path"};
   apex::Param<std::string> directory_{this, "directory"};
   apex::Param<std::string> prefix_{this, "prefix"};
+  apex::Param<bool> overwrite_{this, "overwrite"};
 
-  static void write(const std::string& path, const cv::Mat& mat) {
+  /** Numbers only grow, so a file already at `path` is never one of this node's: another run's,
+   *  or the user's, replaced only with `overwrite`. */
+  void write(const std::string& path, const cv::Mat& mat) {
+    struct stat st {};
+    if (!overwrite_.get() && ::lstat(path.c_str(), &st) == 0)
+      throw std::runtime_error("'" + path + "' exists (not written by this node): left as it is; set 'overwrite' to " +
+                               "replace such files, or choose another prefix or directory");
     if (!cv::imwrite(path, mat)) throw std::runtime_error("cannot write '" + path + "'");
   }
   int count_ = 0;

@@ -29,7 +29,9 @@ class SampleExport : public apex::Node {
         .param(apex::param::path("directory", "", apex::PathMode::Directory)
                    .describe("where the samples go (made if missing): DIGIT/STAMP_REGION.png and index.csv"))
         .param(apex::param::path("truth", "", apex::PathMode::Read).describe("the ground truth with each sign's digit"))
-        .param(apex::param::range("iou", 0.05, 1.0, 0.05, 0.5).describe("overlap a region needs to match a sign"));
+        .param(apex::param::range("iou", 0.05, 1.0, 0.05, 0.5).describe("overlap a region needs to match a sign"))
+        .param(apex::param::boolean("overwrite", false)
+                   .describe("replace files at a sample's name that index.csv does not list (not samples)"));
   }
   void parameterChanged(const std::string& name) override {
     if (name == "truth") truth_file_.reset();
@@ -66,6 +68,10 @@ class SampleExport : public apex::Node {
     fs::create_directories(fs::path(dir) / folder, ec);
     if (ec) throw std::runtime_error("cannot make the folder '" + dir + "/" + folder + "': " + ec.message());
     const std::string file = folder + "/" + std::to_string(stamp) + "_" + std::to_string(region) + ".png";
+    // A sample of an earlier export (in the index) is written anew; any other file is the user's
+    if (!index_.count(file) && !overwrite_.get() && fs::exists(fs::symlink_status(fs::path(dir) / file)))
+      throw std::runtime_error("'" + dir + "/" + file + "' exists and is not a sample of index.csv: left as it is; " +
+                               "set 'overwrite' to replace it, or choose another directory");
     if (!cv::imwrite(dir + "/" + file, crop)) throw std::runtime_error("cannot write '" + dir + "/" + file + "'");
     index_[file] = file + "," + folder + "," + std::to_string(stamp) + "," + std::to_string(box.x) + "," +
                    std::to_string(box.y) + "," + std::to_string(box.width) + "," + std::to_string(box.height);
@@ -99,6 +105,7 @@ class SampleExport : public apex::Node {
   apex::Param<std::string> directory_{this, "directory"};
   apex::Param<std::string> truth_{this, "truth"};
   apex::Param<double> iou_{this, "iou"};
+  apex::Param<bool> overwrite_{this, "overwrite"};
   TruthFile truth_file_;
   std::map<std::string, std::string> index_;  // file → its line
   std::string index_dir_;                      // the folder index_ belongs to

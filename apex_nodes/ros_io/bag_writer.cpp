@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <memory>
 
 #include "apex/core/registry.hpp"
@@ -61,6 +62,7 @@ class BagWriter : public apex::Node {
                    .describe("MB (of 1,048,576 bytes, as rosbag record): when a file grows past this, the next "
                              "one starts; files are <stem>_0.bag, <stem>_1.bag, ...; 0: one file"))
         .param(apex::param::boolean("recording", true).describe("the start and stop slots set it; off closes the file"))
+        .param(apex::param::boolean("overwrite", false).describe("replace a bag this node did not record"))
         .param(apex::param::boolean("stop_at_end", true)
                    .describe("the end of a pass (e.g. a BagReader's last frame) stops recording, so the file is "
                              "complete when the bag has played once"))
@@ -128,9 +130,19 @@ class BagWriter : public apex::Node {
     return (file.parent_path() / (file.stem().string() + "_" + std::to_string(part_) + ".bag")).string();
   }
   void open() {
-    path_ = target();
+    const std::string path = target();
+    if (!created_.count(path) && !overwrite_.get()) {  // another recording's, or the user's
+      if (std::filesystem::exists(std::filesystem::symlink_status(path)))
+        throw std::runtime_error("'" + path + "' exists (not recorded by this node): left as it is; set 'overwrite' " +
+                                 "to replace it, or choose another file");
+      if (std::filesystem::exists(std::filesystem::symlink_status(path + ".active")))
+        throw std::runtime_error("'" + path + ".active' exists: a recording that did not finish (rosbag reindex " +
+                                 "recovers it); left as it is: move it away, or set 'overwrite'");
+    }
+    path_ = path;
     part_open_ = split_size_.get() > 0;
     bag_ = createBag(path_ + ".active");
+    created_.insert(path_);
   }
   /** Closes the file and gives it its name; a part moves on to the next part first, so that a
    *  failure here never has the next frame write over this part. */
@@ -168,12 +180,14 @@ class BagWriter : public apex::Node {
   apex::Param<double> split_size_{this, "split_size"};
   apex::Param<bool> recording_{this, "recording"};
   apex::Param<bool> stop_at_end_{this, "stop_at_end"};
+  apex::Param<bool> overwrite_{this, "overwrite"};
 
   std::unique_ptr<rosbag::Bag> bag_;
   std::string path_;         // the file bag_ becomes when closed
   bool part_open_ = false;   // bag_ is one of split_size's parts
   int part_ = 0;             // with split_size: the part written next
   std::map<std::string, ros::Time> last_stamp_;  // topic → the stamp recorded last
+  std::set<std::string> created_;                // files this node recorded: `start` records them anew
 };
 
 }  // namespace apex_nodes

@@ -216,7 +216,7 @@ TEST(GraphFileSave, MissingOrUnwritableDirectoryNamesThePath) {
 TEST(GraphFileSave, OverwritingReplacesTheWholeFile) {
   TempDir dir;
   const std::string path = dir.file("graph.yaml");
-  writeFile(path, std::string(20000, 'x') + "\n");  // longer than the new content
+  writeFile(path, "apex_graph: 2\n# " + std::string(20000, 'x') + "\n");  // a graph file, longer than the new one
   Graph g(testRegistry());
   add(g, "test/Gain", "amp");
   ASSERT_TRUE(saveGraphFile(g, path));

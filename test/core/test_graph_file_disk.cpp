@@ -10,6 +10,7 @@
 
 #include "apex/core/graph_file.hpp"
 #include "apex_test/graph_file_helpers.hpp"
+#include "apex_test/test_nodes.hpp"
 
 using namespace apex_test;
 
@@ -26,6 +27,32 @@ TEST(GraphFileDisk, ARegularFileIsReplacedWholeAndKeepsItsMode) {
   ASSERT_EQ(::stat(path.c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 07777, 0640u);
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"g.yaml"});
+}
+
+TEST(GraphFileDisk, ASaveReplacesAGraphOrAnEmptyFileAndNothingElse) {
+  TempDir dir;
+  Graph g(testRegistry());
+  ASSERT_TRUE(g.addNode("test/Relay", "r"));
+  const std::string bag = dir.file("run3.bag"), notes = dir.file("notes.yaml"), empty = dir.file("empty.yaml");
+  const std::string bag_bytes = std::string("#ROSBAG V2.0\n") + std::string(4096, '\0') + "\x01\x02 data";
+  writeFile(bag, bag_bytes);
+  writeFile(notes, "todo: [tune c, record a bag]\n");  // YAML, but not a graph
+  writeFile(empty, "");
+  for (const auto& path : {bag, notes}) {
+    auto st = saveGraphFile(g, path);
+    ASSERT_FALSE(st) << path;
+    EXPECT_TRUE(Contains(st.message(), {"cannot save over '" + path + "': it is not a graph file",
+                                        "it is left as it is: save under another name"}));
+  }
+  EXPECT_EQ(readFile(bag), bag_bytes);
+  EXPECT_EQ(readFile(notes), "todo: [tune c, record a bag]\n");
+  EXPECT_TRUE(saveGraphFile(g, empty));
+  EXPECT_TRUE(saveGraphFile(g, empty)) << "a graph file is replaced";
+  EXPECT_TRUE(Contains(readFile(empty), {"apex_graph:", "name: r"}));
+  const std::string big = dir.file("big.bag");  // past what a graph file may be: not read, refused
+  writeFile(big, "x");
+  ASSERT_EQ(::truncate(big.c_str(), kMaxGraphFileBytes + 1), 0);
+  EXPECT_TRUE(Contains(saveGraphFile(g, big).message(), {"it is not a graph file", "over the limit"}));
 }
 
 TEST(GraphFileDisk, AReadOnlyFileIsNotReplacedEvenByRoot) {

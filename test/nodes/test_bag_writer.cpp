@@ -6,6 +6,7 @@
 #include <std_msgs/Int32.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "apex_nodes/types.hpp"
 #include "apex_test/node_harness.hpp"
@@ -183,6 +184,48 @@ TEST(BagWriter, StopClosesTheFileAndStartRecordsANewOne) {
   set(g, "rec", "recording", "false");  // as the stop slot does
   ASSERT_TRUE(written(1));
   EXPECT_EQ(readTopic<std_msgs::Int32>(out, "/value")[0].second->data, 5);
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+TEST(BagWriter, ABagItDidNotRecordIsLeftAsItIsUnlessOverwriteSaysSo) {
+  const std::string dir = fresh("not_ours");
+  const std::string out = dir + "/run3.bag", unfinished = dir + "/crashed.bag";
+  std::ofstream(out) << "the user's own bag";
+  std::ofstream(unfinished + ".active") << "what a crashed recording left";
+  Graph g(pluginRegistry());
+  feedRecorder(g, "[/value]", out, "value");
+  auto* feeder = object<MessageFeeder>(g, "feed");
+  feeder->feed(Message::make<int>(1));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(errorOf(g, "rec"), HasSubstr("'" + out + "' exists (not recorded by this node): left as it is; set "
+                                           "'overwrite' to replace it, or choose another file"));
+  set(g, "rec", "file", unfinished);
+  feeder->feed(Message::make<int>(2));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(errorOf(g, "rec"), HasSubstr("a recording that did not finish (rosbag reindex recovers it)"));
+  EXPECT_EQ(readFile(out), "the user's own bag");
+  EXPECT_EQ(readFile(unfinished + ".active"), "what a crashed recording left");
+
+  set(g, "rec", "file", out);
+  set(g, "rec", "overwrite", "true");  // the user says so
+  feeder->feed(Message::make<int>(3));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  ASSERT_TRUE(g.fireSlot("rec", "stop"));
+  ASSERT_TRUE(waitUntil([&] { return !fs::exists(out + ".active"); }));
+  EXPECT_EQ(errorOf(g, "rec"), "");
+  EXPECT_EQ(readTopic<std_msgs::Int32>(out, "/value").at(0).second->data, 3);
+  set(g, "rec", "overwrite", "false");  // its own recording: start records it anew all the same
+  ASSERT_TRUE(g.fireSlot("rec", "start"));
+  feeder->feed(Message::make<int>(4));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  ASSERT_TRUE(g.fireSlot("rec", "stop"));
+  ASSERT_TRUE(waitUntil([&] { return !fs::exists(out + ".active"); }));
+  EXPECT_EQ(errorOf(g, "rec"), "");
+  EXPECT_EQ(readTopic<std_msgs::Int32>(out, "/value").at(0).second->data, 4);
 }
 
 apex::Message stampedImage(int k) {

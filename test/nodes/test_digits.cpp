@@ -161,6 +161,26 @@ TEST(SampleExport, WritesTheCropOfEachMatchedRegionUnderItsDigitWithAnIndex) {
   EXPECT_EQ(*m.as<int>(), 2);  // the index it found in the folder, and this frame's (the same) samples
 }
 
+TEST(SampleExport, AFileAtASamplesNameThatTheIndexDoesNotListIsLeftAsItIsUnlessOverwrite) {
+  Frame f;
+  const std::string dir = tempPath("not_samples");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/3");
+  std::ofstream(dir + "/3/1000000000_0.png") << "the user's file";  // no index.csv: not a sample
+  NodeHarness h("apex_nodes/SampleExport", {"image", "regions"}, "written");
+  h.set("truth", f.truth);
+  h.set("directory", dir);
+  EXPECT_TRUE(h.run(feed(h, image(f.mat), regions(f.mat.size(), f.boxes))).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("'" + dir + "/3/1000000000_0.png' exists and is not a sample of index.csv: left as "
+                                   "it is; set 'overwrite' to replace it, or choose another directory"));
+  EXPECT_EQ(read(dir + "/3/1000000000_0.png"), "the user's file");
+  h.set("overwrite", "true");
+  Message m = h.run(feed(h, image(f.mat), regions(f.mat.size(), f.boxes)));
+  ASSERT_FALSE(m.isNothing()) << h.error();
+  EXPECT_EQ(*m.as<int>(), 2);
+  EXPECT_FALSE(cv::imread(dir + "/3/1000000000_0.png").empty());
+}
+
 TEST(SampleExport, ATruthWithoutDigitsOrNoDirectoryIsAnErrorNamingIt) {
   Frame f;
   NodeHarness h("apex_nodes/SampleExport", {"image", "regions"}, "written");

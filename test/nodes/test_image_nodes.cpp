@@ -276,7 +276,23 @@ TEST(ImageNodes, ImageExportWritesFramesOrCrops) {
   h.set("directory", "/nonexistent/dir");
   EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("directory '/nonexistent/dir' does not exist"));
-  std::remove(path.c_str());
+
+  // Another run (a new node, numbering from 0) finds frame_0.png there: left as it is
+  NodeHarness again("apex_nodes/ImageExport", {"image"}, "path");
+  again.set("directory", std::string("'") + dir + "'");
+  const cv::Mat other(4, 4, CV_8UC3, cv::Scalar(1, 2, 3));
+  EXPECT_TRUE(again.run(image(other, "bgr8")).isNothing());
+  EXPECT_THAT(again.error(), HasSubstr("'" + path + "' exists (not written by this node): left as it is; set "
+                                       "'overwrite' to replace such files, or choose another prefix or directory"));
+  expectSame(cv::imread(path), scene());
+  again.set("overwrite", "true");
+  EXPECT_EQ(*again.run(image(other, "bgr8")).as<std::string>(), std::string(dir) + "/frame_1.png");
+  NodeHarness replacing("apex_nodes/ImageExport", {"image"}, "path");
+  replacing.set("directory", std::string("'") + dir + "'");
+  replacing.set("overwrite", "true");
+  EXPECT_EQ(*replacing.run(image(other, "bgr8")).as<std::string>(), path);
+  expectSame(cv::imread(path), other);
+  for (const char* f : {"frame_0.png", "frame_1.png"}) std::remove((std::string(dir) + "/" + f).c_str());
   rmdir(dir);
 }
 

@@ -41,11 +41,13 @@ std::string tempPath(const std::string& name) { return "/tmp/apex_test_services_
 
 void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
-apex::AddNode::Response addNode(const std::string& type, const std::string& name, const std::string& params = "") {
+apex::AddNode::Response addNode(const std::string& type, const std::string& name, const std::string& params = "",
+                               const std::string& group = "") {
   apex::AddNode::Request req;
   req.type = type;
   req.name = name;
   req.parameters = params;
+  req.thread_group = group;
   return call<apex::AddNode>("add_node", req);
 }
 
@@ -191,6 +193,10 @@ TEST_F(Services, NodeSettingsServices) {
   EXPECT_TRUE(call<apex::SetUi>("set_ui", ui).success);
   ui.ui = "{x: 1";
   refused(call<apex::SetUi>("set_ui", ui), graphText(), "not valid YAML");
+  ui.ui = "{x: .nan, y: 1}";  // what a file could not hold back
+  refused(call<apex::SetUi>("set_ui", ui), graphText(), "node 'scale': UI metadata holds '.nan', a number that is not finite");
+  ui.ui = "{x: 1e309}";
+  refused(call<apex::SetUi>("set_ui", ui), graphText(), "holds '1e309', a number that is not finite");
   apex::FireSlot::Request slot;
   slot.node = "count", slot.slot = "reset";
   EXPECT_TRUE(call<apex::FireSlot>("fire_slot", slot).success);
@@ -259,7 +265,7 @@ TEST_F(Services, SaveAndLoadTouchOnlyRegularFiles) {
   EXPECT_FALSE(res.success);
   EXPECT_THAT(res.message, HasSubstr("not a regular file"));
   save.path = tempPath("locked.yaml");
-  writeFile(save.path, "kept");
+  writeFile(save.path, "apex_graph: 2\n# kept\n");  // a graph: only its mode stops the save
   ASSERT_EQ(::chmod(save.path.c_str(), 0444), 0);
   res = call<apex::SaveGraph>("save_graph", save);
   EXPECT_FALSE(res.success);
@@ -362,6 +368,33 @@ TEST_F(Services, ARelativePathGoesToTheFirstRootAndShippedGraphsAreReadOnly) {
   EXPECT_EQ(loaded.path, shipped);
 }
 
+TEST_F(Services, NoFileIsDestroyedAndALimitIsRefusedByTheServiceAsByAFile) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
+  apex::SaveGraph::Request save;
+  save.path = tempPath("run3.bag");
+  const std::string bag = "#ROSBAG V2.0\nE\x01\x02 recorded data";
+  writeFile(save.path, bag);
+  auto saved = call<apex::SaveGraph>("save_graph", save);
+  EXPECT_FALSE(saved.success);
+  EXPECT_THAT(saved.message, HasSubstr("cannot save over '" + save.path + "': it is not a graph file"));
+  std::ifstream in(save.path);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), bag);
+  ::unlink(save.path.c_str());
+
+  // thread groups are threads: 256 at most, through add_node as through a file
+  for (int i = 1; i < 256; ++i) ASSERT_TRUE(addNode("apex_nodes/Relay", "", "", "group_" + std::to_string(i)).success) << i;
+  auto over = addNode("apex_nodes/Relay", "one_more", "", "group_256");
+  EXPECT_FALSE(over.success);
+  EXPECT_THAT(over.message, HasSubstr("the graph has 256 thread groups, the limit"));
+  save.path = tempPath("at_the_limit.yaml");
+  ASSERT_TRUE(call<apex::SaveGraph>("save_graph", save).success);
+  apex::LoadGraph::Request load;
+  load.path = save.path;
+  auto loaded = call<apex::LoadGraph>("load_graph", load);
+  EXPECT_TRUE(loaded.success) << loaded.message;  // what it saved, it loads
+  ::unlink(save.path.c_str());
+}
+
 TEST_F(Services, ControlPausesResumesSteps) {
   apex::Control::Request req;
   req.command = "pause";
@@ -389,6 +422,14 @@ TEST_F(Services, InspectPublishesAPortAndGraphIsLatched) {
   EXPECT_TRUE(receive(nh, res.topic, value));
   req.port = "nope";
   EXPECT_THAT(call<apex::Inspect>("inspect", req).message, HasSubstr("no output or interactive parameter 'nope'"));
+  req.enable = false;  // stopping what was never started: fine, but not for a node or port that is not there
+  EXPECT_TRUE(call<apex::Inspect>("inspect", req).message.find("'nope'") != std::string::npos);
+  req.node = "ghost", req.port = "count";
+  auto ghost = call<apex::Inspect>("inspect", req);
+  EXPECT_FALSE(ghost.success);
+  EXPECT_EQ(ghost.message, "no node named 'ghost'");
+  req.node = "clock";
+  EXPECT_TRUE(call<apex::Inspect>("inspect", req).success);
 
   apex::GraphState state;
   ASSERT_TRUE(receive(nh, "/apex/graph", state));  // latched: arrives without a change

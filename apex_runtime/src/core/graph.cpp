@@ -1,6 +1,7 @@
 // Graph lifecycle, node edits and reading. Connections: graph_connect.cpp;
 // describing and loading: graph_load.cpp; running and stepping: graph_run.cpp.
 #include "apex/core/graph.hpp"
+#include "apex/core/limits.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -78,6 +79,18 @@ ThreadGroup* Graph::group(const std::string& name) {
   return g.get();
 }
 
+Status Graph::roomFor(const std::string& group_name, std::size_t extra_nodes) const {
+  if (!groups_.count(group_name) && groups_.size() >= kMaxGraphGroups)
+    return Status::error("thread group '" + group_name + "': the graph has " + std::to_string(groups_.size()) +
+                         " thread groups, the limit (each is a thread of the process)");
+  if (nodes_.size() + extra_nodes > kMaxGraphNodes)
+    return Status::error("the graph has " + std::to_string(nodes_.size()) + " nodes; " +
+                         std::to_string(extra_nodes) + " more would pass the limit of " + std::to_string(kMaxGraphNodes));
+  return Status::ok();
+}
+
+std::size_t Graph::connectionCount() const { return links_ + dormant_.size(); }
+
 // ------------------------------------------------------------------ nodes
 
 Result<std::string> Graph::addNode(const std::string& type_id, const std::string& wanted, const std::string& group_name) {
@@ -96,6 +109,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   }
   const std::string gname = group_name.empty() ? kDefaultGroup : group_name;
   if (!validName(gname)) return Status::error("thread group name '" + gname + "' " + kNameRule);
+  if (auto room = roomFor(gname, 1); !room) return Status::error("cannot add node '" + name + "': " + room.message());
 
   std::unique_ptr<Node> object;
   try {
@@ -206,6 +220,7 @@ void Graph::clearLocked() {
   nodes_.clear();
   order_.clear();
   dormant_.clear();
+  links_ = 0;
   subgraphs_.clear();
 }
 
@@ -223,6 +238,9 @@ Result<std::string> Graph::setParameter(const std::string& outer, const std::str
   const int i = s.findParam(param);
   if (i < 0) return Status::error("node '" + node + "' (" + s.typeId() + ") has no parameter '" + param + "' (parameters: " + s.manifest().listParams() + ")");
   const ParamSpec& spec = s.manifest().params[i];
+  if (text.size() > kMaxYamlString)  // a graph file could not hold it
+    return Status::error("node '" + node + "': parameter '" + param + "': a value of " + std::to_string(text.size()) +
+                         " characters, over the limit of " + std::to_string(kMaxYamlString));
   auto value = spec.parse(text);
   if (!value) return Status::error("node '" + node + "': " + value.message());
   if (spec.shapes_interface) {
@@ -306,6 +324,7 @@ Status Graph::setThreadGroup(const std::string& node, const std::string& group_n
   if (subgraph(node)) names = nodesUnder(node);  // all of its nodes
   else if (auto n = require(node); !n) return n.status();
   if (!validName(group_name)) return Status::error("thread group name '" + group_name + "' " + kNameRule);
+  if (auto room = roomFor(group_name); !room) return room;
   ThreadGroup* target = group(group_name);
   for (const auto& name : names) {
     NodeState* s = find(name).get();

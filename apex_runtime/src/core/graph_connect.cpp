@@ -4,6 +4,7 @@
 
 #include "apex/core/connection_rules.hpp"
 #include "apex/core/graph.hpp"
+#include "apex/core/limits.hpp"
 #include "edit_scope.hpp"
 #include "live.hpp"
 #include "node_state.hpp"
@@ -154,6 +155,9 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
 Status Graph::connectDirect(const ConnectionDescription& c) {
   auto checked = checkConnection(LiveView(nodes_), c);
   if (!checked) return checked.status();
+  if (const std::size_t n = connectionCount(); n >= kMaxGraphConnections)
+    return Status::error("cannot connect " + connectionLabel(c) + ": the graph has " + std::to_string(n) +
+                         " connections, the limit");
   if (!checked.value().from) {  // a placeholder: keep the connection as written
     if (std::find(dormant_.begin(), dormant_.end(), c) != dormant_.end())
       return Status::error("cannot connect " + connectionLabel(c) + ": they are already connected");
@@ -170,6 +174,7 @@ Status Graph::connectDirect(const ConnectionDescription& c) {
     auto e = std::make_shared<EventEdge>(EventEdge{from.get(), s.index, to.get(), d.index});
     from->trigger_edges[s.index].push_back(e);
     to->slot_edges[d.index].push_back(e);
+    ++links_;
     return Status::ok();
   }
   Restructure change = restructure(from.get(), to.get(), d.kind == PortKind::Input);
@@ -192,6 +197,7 @@ Status Graph::connectDirect(const ConnectionDescription& c) {
     to->inputs[d.index]->edge = e;
     ++to->connected_inputs;
   }
+  ++links_;
   return Status::ok();
 }
 
@@ -262,7 +268,9 @@ Restructure Graph::restructure(NodeState* from, NodeState* to, bool into_data_in
 }
 
 void Graph::removeEdge(std::shared_ptr<Edge> e) {
+  if (e->dead) return;  // removed already
   e->dead = true;
+  --links_;
   NodeState* from = e->from;
   NodeState* to = e->to;
   auto erase = [&](std::vector<std::shared_ptr<Edge>>& v) { v.erase(std::remove(v.begin(), v.end(), e), v.end()); };
@@ -286,9 +294,13 @@ void Graph::removeEdge(std::shared_ptr<Edge> e) {
 }
 
 void Graph::removeEvent(std::shared_ptr<EventEdge> e) {
-  auto erase = [&](std::vector<std::shared_ptr<EventEdge>>& v) { v.erase(std::remove(v.begin(), v.end(), e), v.end()); };
+  auto erase = [&](std::vector<std::shared_ptr<EventEdge>>& v) {
+    const auto size = v.size();
+    v.erase(std::remove(v.begin(), v.end(), e), v.end());
+    return size != v.size();
+  };
   erase(e->from->trigger_edges[e->trigger]);
-  erase(e->to->slot_edges[e->slot]);
+  if (erase(e->to->slot_edges[e->slot])) --links_;  // removed once
 }
 
 }  // namespace apex

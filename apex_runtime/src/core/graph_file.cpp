@@ -11,6 +11,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -278,13 +280,38 @@ std::string fileError(const std::string& verb, const std::string& path) {
 
 }  // namespace
 
+namespace {
+/** False for .nan, .inf, -.Inf (YAML's) and a number past a double's range (1e309). */
+bool finiteIfNumber(const std::string& text) {
+  double v = 0;
+  if (YAML::convert<double>::decode(YAML::Node(text), v)) return std::isfinite(v);
+  if (text.find_first_of("0123456789") == std::string::npos) return true;
+  char* end = nullptr;
+  v = std::strtod(text.c_str(), &end);
+  return end != text.c_str() + text.size() || std::isfinite(v);
+}
+}  // namespace
+
 namespace detail {
 Status checkYamlText(const std::string& text) {
+  if (text.size() > kMaxYamlString)
+    return Status::error("has " + std::to_string(text.size()) + " characters, over the limit of " + std::to_string(kMaxYamlString));
   try {
-    YAML::Load(text);
+    const YAML::Node root = YAML::Load(text);
+    checkTree(root);  // what a graph file may hold, so that the graph saved with it loads
+    std::vector<YAML::Node> stack{root};
+    while (!stack.empty()) {
+      const YAML::Node n = stack.back();
+      stack.pop_back();
+      if (n.IsScalar() && !finiteIfNumber(n.Scalar()))  // quoted too: a file writes it back plain
+        return Status::error("holds '" + n.Scalar() + "', a number that is not finite");
+      for (const auto& item : n) stack.push_back(n.IsMap() ? item.second : item);
+    }
     return Status::ok();
   } catch (const YAML::Exception& e) {
     return Status::error("is not valid YAML: " + e.msg);
+  } catch (const ParseError& e) {
+    return Status::error("is refused: " + e.message);
   }
 }
 }  // namespace detail
@@ -515,7 +542,28 @@ Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path, const Gr
   return named;
 }
 
+namespace {
+
+/** A file a graph may replace: none yet, an empty one, or a graph file (a YAML mapping with
+ *  `apex_graph`). Anything else — a bag, an image, notes — is the user's and stays. */
+Status replaceableByGraph(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) return Status::ok();  // else refused later
+  const std::string refused = "cannot save over '" + path + "': it is not a graph file";
+  auto text = readGraphFile(path);
+  if (!text) return Status::error(refused + " (" + text.message() + "); it is left as it is: save under another name");
+  try {
+    const YAML::Node root = YAML::Load(text.value());
+    if (root.IsMap() && root["apex_graph"]) return Status::ok();
+  } catch (const YAML::Exception&) {
+  }
+  return Status::error(refused + " (no 'apex_graph:' in it); it is left as it is: save under another name");
+}
+
+}  // namespace
+
 Status saveGraphFile(const Graph& graph, const std::string& path) {
+  if (auto st = replaceableByGraph(path); !st) return st;
   return writeFileAtomically(path, formatGraphText(graph.describe()));
 }
 

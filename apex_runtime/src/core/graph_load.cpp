@@ -162,6 +162,7 @@ Result<LoadReport> Graph::load(const GraphDescription& description) {
   LoadReport report;
   for (const auto& g : description.thread_groups) {
     if (!validName(g)) return Status::error("thread group name '" + g + "' " + kNameRule);
+    if (auto room = staged.roomFor(g); !room) return room;
     staged.group(g);
   }
   for (const auto& node : description.nodes)
@@ -206,6 +207,7 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
   nodes_ = std::move(staged.nodes_);
   order_ = std::move(staged.order_);
   dormant_ = std::move(staged.dormant_);
+  links_ = staged.links_;
   subgraphs_ = std::move(staged.subgraphs_);
   ungrouped_.clear();  // another graph: nothing of this one to bring back
   name_counters_ = std::move(staged.name_counters_);

@@ -2,10 +2,12 @@
 // stand for, its façade interface, and nesting the flat graph back into
 // subgraphs to describe or save it. See subgraph.hpp for the model.
 #include <algorithm>
+#include <array>
 #include <map>
 #include <set>
 
 #include "apex/core/graph.hpp"
+#include "apex/core/limits.hpp"
 #include "apex/core/graph_file.hpp"
 #include "edit_scope.hpp"
 #include "names.hpp"
@@ -244,8 +246,15 @@ Result<std::string> Graph::addSubgraph(const NodeDescription& d) {
   {
     auto lock = lockEdits();
     if (auto why = checkNewPath(d.name); !why.empty()) return Status::error(why);
-    for (const auto& g : d.subgraph->thread_groups)
+    std::set<std::string> more;  // the limit counts the groups it would add, together
+    for (const auto& g : d.subgraph->thread_groups) {
       if (!validName(g)) return Status::error("subgraph '" + d.name + "': thread group name '" + g + "' " + kNameRule);
+      if (!groups_.count(g)) more.insert(g);
+    }
+    if (groups_.size() + more.size() > kMaxGraphGroups)
+      return Status::error("subgraph '" + d.name + "': its " + std::to_string(more.size()) + " new thread groups would " +
+                           "pass the limit of " + std::to_string(kMaxGraphGroups) + " (the graph has " +
+                           std::to_string(groups_.size()) + ")");
     sg->path = d.name;
     sg->source = d.source;
     sg->seq = next_seq_++;
@@ -644,6 +653,9 @@ GraphDescription Graph::nest(const GraphDescription& flat) const {
       port = hit->name;
     }
   };
+  // Several inner links may stand for one outer link (an exported input feeding two inner ones):
+  // kept once. A set per level: a linear search per link made describe() quadratic (10 s at 100,000).
+  std::map<std::string, std::set<std::array<std::string, 4>>> seen;
   for (auto c : flat.connections) {
     std::string at;
     const auto a = ancestors(c.from_node), b = ancestors(c.to_node);
@@ -659,8 +671,7 @@ GraphDescription Graph::nest(const GraphDescription& flat) const {
       c.from_node = c.from_node.substr(at.size() + 1);
       c.to_node = c.to_node.substr(at.size() + 1);
     }
-    auto& list = level(at)->connections;
-    if (std::find(list.begin(), list.end(), c) == list.end()) list.push_back(c);
+    if (seen[at].insert({c.from_node, c.from_port, c.to_node, c.to_port}).second) level(at)->connections.push_back(c);
   }
   markEdited(root, subgraphs_, "");
   return root;

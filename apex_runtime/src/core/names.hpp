@@ -6,13 +6,17 @@
 #include <string_view>
 #include <vector>
 
+#include "apex/core/limits.hpp"
+
 namespace apex {
 
-inline constexpr const char* kNameRule = "must start with a letter or '_' and hold only letters, digits and '_'";
+inline constexpr const char* kNameRule =
+    "must start with a letter or '_' and hold only letters, digits and '_', at most 200 of them";
+static_assert(kMaxNameLength == 200, "kNameRule says 200");
 inline constexpr const char* kTypeIdRule = "must look like 'package/Name' (letters, digits, '_')";
 
 inline bool validName(const std::string& s) {
-  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  if (s.empty() || s.size() > kMaxNameLength || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
   for (char c : s) if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
   return true;
 }

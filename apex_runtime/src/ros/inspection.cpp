@@ -55,7 +55,13 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
   std::lock_guard<std::mutex> lock(mutex_);
   auto it = taps_.find(key);
   if (!enable) {
-    if (it == taps_.end()) return std::make_pair(std::string(), std::string());
+    if (it == taps_.end()) {  // nothing to stop: still, a node or port that is not there is named
+      auto iface = graph.nodeInterface(node);
+      if (!iface && !findNode(graph.describe(), node)) return Status::error("no node named '" + node + "'");
+      if (iface && !iface->findOutput(port) && !iface->findParam(port))
+        return Status::error("node '" + node + "' has no output or parameter '" + port + "'");
+      return std::make_pair(std::string(), std::string());
+    }
     {
       std::lock_guard<std::mutex> tap_lock(it->second->mutex);
       Tap::Topic& t = preview ? it->second->preview : it->second->whole;

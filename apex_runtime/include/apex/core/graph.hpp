@@ -163,6 +163,11 @@ class Graph {
   NodePtr find(const std::string& name) const;
   Result<NodePtr> require(const std::string& name) const;
   detail::ThreadGroup* group(const std::string& name);  // creates
+  /** OK if `group_name` exists or one more group stays within kMaxGraphGroups; `extra_nodes`
+   *  more nodes within kMaxGraphNodes (limits.hpp: what a file may hold). */
+  Status roomFor(const std::string& group_name, std::size_t extra_nodes = 0) const;
+  /** Connections in the whole graph: data, parameter and event links, and placeholders'. */
+  std::size_t connectionCount() const;
   Result<std::string> addPlaceholder(const NodeDescription& d);
   // --- subgraphs (graph_subgraph.cpp) ---
   std::shared_ptr<detail::Subgraph> subgraph(const std::string& path) const;
@@ -227,6 +232,7 @@ class Graph {
   /** Subgraphs ungrouped, by path, with their nodes' names after it: what group(restore) brings back. */
   std::map<std::string, std::pair<std::shared_ptr<detail::Subgraph>, std::set<std::string>>> ungrouped_;
   std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
+  std::size_t links_ = 0;  // data, parameter and event links: made in connectDirect, gone in removeEdge/removeEvent
   bool running_ = false;
   bool ran_ = false;  // started at least once: messages may be in flight
   bool paused_ = false;

@@ -7,23 +7,13 @@
 
 #include "apex/core/description.hpp"
 #include "apex/core/graph.hpp"
+#include "apex/core/limits.hpp"
 #include "apex/core/result.hpp"
 
 namespace apex {
 
 /** 2: subgraphs and exports (docs/graph_format.md); files of format 1 load unchanged. */
 inline constexpr int kGraphFormatVersion = 2;
-inline constexpr int kMaxSubgraphDepth = 16;  ///< subgraphs within subgraphs, inline or from files
-/** Limits of a graph file, far above real graphs (the demo has 12 nodes); beyond them a file
- *  is refused with a message naming the limit, before it is built. */
-inline constexpr long kMaxGraphFileBytes = 16L << 20;       ///< checked before reading
-inline constexpr std::size_t kMaxGraphNodes = 20000;
-inline constexpr std::size_t kMaxGraphConnections = 100000;
-inline constexpr std::size_t kMaxGraphGroups = 256;
-inline constexpr int kMaxYamlDepth = 32;                     ///< nesting, e.g. inside a node's `ui`
-inline constexpr std::size_t kMaxYamlNodes = 2000000;        ///< values, counted through aliases
-inline constexpr std::size_t kMaxYamlString = 1 << 16;       ///< characters in one value
-
 /** @brief Parses graph YAML; errors name the line and what is wrong. */
 Result<GraphDescription> parseGraphText(const std::string& yaml_text);
 /** @brief The canonical text of a graph: loading it and formatting again gives the same text. */
@@ -56,7 +46,9 @@ std::string joinReference(const std::string& ref, const std::string& from);
 Result<GraphDescription> readGraphDescription(const std::string& path, const GraphFileOptions& options = {});
 /** @brief readGraphDescription(), then Graph::load: all or nothing. */
 Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path, const GraphFileOptions& options = {});
-/** @brief Saves the graph atomically: the file is either the old one or the whole new one. */
+/** @brief Saves the graph atomically: the file is either the old one or the whole new one. Replaces
+ *  only a graph file (a YAML mapping with `apex_graph`) or an empty file; anything else (a bag, an
+ *  image, notes) is refused, naming the file, and left as it is. */
 Status saveGraphFile(const Graph& graph, const std::string& path);
 /** @brief Writes a temporary file beside `path`, flushes it to disk, renames it over `path`.
  *  Refuses to replace what is not a regular file or has no write bit in its mode; removes
