@@ -395,6 +395,50 @@ TEST_F(Services, NoFileIsDestroyedAndALimitIsRefusedByTheServiceAsByAFile) {
   ::unlink(save.path.c_str());
 }
 
+TEST_F(Services, EveryServiceNamesANodeThatIsNotThere) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
+  const std::string before = graphText();
+  const std::string ghost = "no node named 'ghost'";
+  refused(call<apex::RemoveNode>("remove_node", [] { apex::RemoveNode::Request r; r.name = "ghost"; return r; }()), before, ghost);
+  for (const char* service : {"connect", "disconnect"}) {
+    apex::Connect::Request r;
+    r.from_node = "ghost", r.from_port = "out", r.to_node = "clock", r.to_port = "rate";
+    refused(call<apex::Connect>(service, r), before, "'ghost'");
+  }
+  apex::SetParameter::Request p;
+  p.node = "ghost", p.parameter = "rate", p.value = "1";
+  refused(call<apex::SetParameter>("set_parameter", p), before, ghost);
+  apex::SetInteractive::Request i;
+  i.node = "ghost", i.parameter = "rate", i.interactive = true;
+  refused(call<apex::SetInteractive>("set_interactive", i), before, ghost);
+  apex::SetEnabled::Request e;
+  e.node = "ghost";
+  refused(call<apex::SetEnabled>("set_enabled", e), before, ghost);
+  apex::SetThreadGroup::Request t;
+  t.node = "ghost", t.group = "vision";
+  refused(call<apex::SetThreadGroup>("set_thread_group", t), before, ghost);
+  apex::SetUi::Request u;
+  u.node = "ghost", u.ui = "{x: 1}";
+  refused(call<apex::SetUi>("set_ui", u), before, ghost);
+  apex::FireSlot::Request f;
+  f.node = "ghost", f.slot = "enable";
+  refused(call<apex::FireSlot>("fire_slot", f), before, ghost);
+  for (bool enable : {true, false}) {
+    apex::Inspect::Request in;
+    in.node = "ghost", in.port = "count", in.enable = enable;
+    refused(call<apex::Inspect>("inspect", in), before, ghost);
+  }
+  apex::Group::Request g;
+  g.nodes = {"clock", "ghost"}, g.name = "sub";
+  refused(call<apex::Group>("group", g), before, "'ghost'");
+  apex::Ungroup::Request ug;
+  ug.name = "ghost";
+  refused(call<apex::Ungroup>("ungroup", ug), before, "'ghost'");
+  apex::RenameNode::Request rn;
+  rn.name = "ghost", rn.new_name = "spirit";
+  refused(call<apex::RenameNode>("rename_node", rn), before, ghost);
+}
+
 TEST_F(Services, ControlPausesResumesSteps) {
   apex::Control::Request req;
   req.command = "pause";
