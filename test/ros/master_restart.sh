@@ -42,7 +42,7 @@ check() {
   cases+=("$name")
   start_master
   if [ -n "$manager" ]; then
-    rosrun nodelet nodelet manager __name:="$manager" >"$work/$name.manager.log" 2>&1 &
+    rosrun apex apex_nodelet_manager __name:="$manager" >"$work/$name.manager.log" 2>&1 &
     pids+=($!)
   fi
   roslaunch apex runtime.launch graph:="$(rospack find apex)/graphs/demo.yaml" bag:="$bag" loop:=true \

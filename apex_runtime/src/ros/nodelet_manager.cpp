@@ -1,0 +1,60 @@
+// apex_nodelet_manager: a nodelet manager, as `rosrun nodelet nodelet manager`, that stops cleanly.
+//
+// Debian 12's nodelet (1.10) destroys a manager's nodelets before the bonds of the `nodelet load`
+// processes attached to them; a bond broken in its destructor then unloads a nodelet that is gone.
+// A manager stopped while a loader is attached crashes (SIGSEGV, or SIGABRT with boost::lock_error),
+// whatever the nodelet (test/ros/nodelet_interrupts.sh shows it with a trivial one); the loader
+// then waits for its bond to time out. This manager, on SIGINT, SIGTERM or `rosnode kill`, first
+// unloads every nodelet through its own unload_nodelet service, as a loader would: each bond is
+// broken on purpose, so each loader exits at once; and it never destroys the Loader.
+#include <ros/ros.h>
+// (ros.h first: nodelet's headers need it)
+#include <nodelet/NodeletUnload.h>
+#include <nodelet/loader.h>
+#include <ros/xmlrpc_manager.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <thread>
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void onSignal(int) { g_stop = true; }
+
+/** `rosnode kill` asks for a shutdown through the node's XML-RPC API: the same as a signal. */
+void onShutdownCall(XmlRpc::XmlRpcValue& /*params*/, XmlRpc::XmlRpcValue& result) {
+  g_stop = true;
+  result = ros::xmlrpc::responseInt(1, "", 0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "manager", ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  ros::NodeHandle private_nh("~");
+  ros::XMLRPCManager::instance()->unbind("shutdown");
+  ros::XMLRPCManager::instance()->bind("shutdown", onShutdownCall);
+  // Never destroyed: a load that arrives while this manager stops would leave a bond for the
+  // destructor. The process ends with it.
+  auto* loader = new nodelet::Loader(private_nh);  // load_nodelet, unload_nodelet, list; num_worker_threads
+  ros::AsyncSpinner spinner(2);                    // the services, while this thread waits and then unloads
+  spinner.start();
+  while (!g_stop && ros::ok()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ros::ServiceClient unload = private_nh.serviceClient<nodelet::NodeletUnload>("unload_nodelet");
+  for (const auto& name : loader->listLoadedNodelets()) {  // waits for a load under way
+    nodelet::NodeletUnload call;
+    call.request.name = name;
+    if (!unload.call(call) || !call.response.success) ROS_WARN_STREAM("could not unload " << name << " before stopping");
+  }
+  ros::shutdown();  // no more calls, callbacks or messages
+  spinner.stop();
+  std::fflush(nullptr);
+  std::_Exit(0);  // not through the static destructors: roscpp's would meet the bond threads still there
+}

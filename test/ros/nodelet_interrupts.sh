@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# The runtime as a nodelet, interrupted at random moments: N rounds of a manager, a `nodelet load`
+# of apex/Runtime with the demo graph, and SIGINT (what roslaunch sends) to the loader or to the
+# manager after 0 to 2 s (while the runtime loads, runs, or unloads). Counts what a robot's
+# operator would see: an abort (SIGABRT or SIGSEGV, a core), a process alive 2 s after its SIGINT
+# (or after its manager went), a manager that no longer answers after a loader was stopped.
+# TOOLS: `apex` (the default: apex_nodelet_manager and apex_nodelet_load, as runtime.launch and the
+# README use them) or `nodelet` (Debian's `nodelet manager` and `nodelet load`: the manager crashes
+# when stopped with a loader attached, whatever the nodelet, and a loader outlives its manager).
+#   nodelet_interrupts.sh RESULT_XML BAG [ROUNDS] [TOOLS]   (with the devel space sourced)
+set -u
+export PATH=/usr/bin:/bin:$PATH
+out=$1 bag=$2 rounds=${3:-100} tools=${4:-apex}
+if [ "$tools" = apex ]; then
+  manager_command=(apex apex_nodelet_manager) load_command=(apex apex_nodelet_load)
+else
+  manager_command=(nodelet nodelet manager) load_command=(nodelet nodelet load)
+fi
+port=$((20000 + RANDOM % 20000))
+export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)} ROSCONSOLE_STDOUT_LINE_BUFFERED=1
+work=$(mktemp -d)
+roscore -p "$port" >"$work/roscore.log" 2>&1 &
+core=$!
+trap 'kill -INT $core; wait $core 2>/dev/null' EXIT
+timeout 30 bash -c 'until rosparam list >/dev/null 2>&1; do sleep 0.1; done'
+rosparam set /apex/graph "$(rospack find apex)/graphs/demo.yaml"
+rosparam set /apex/overrides "{bag: {file: '$bag', loop: true}}"
+
+aborts=0 lingering=0 deaf=0 rounds_done=0
+notes=()
+# Starts a process that takes SIGINT as from a terminal or roslaunch (job control on: a background
+# job of a script would ignore it); its pid in $started.
+set -m
+start() { local log=$1; shift; "$@" >"$log" 2>&1 & started=$!; }
+# Whether process $1 is gone within $2 seconds; its exit status in $status.
+gone_within() {
+  local pid=$1 limit=$2
+  timeout "$limit" tail --pid="$pid" -f /dev/null 2>/dev/null
+  if kill -0 "$pid" 2>/dev/null; then return 1; fi
+  wait "$pid" 2>/dev/null; status=$?
+  return 0
+}
+crashed() { [ "$1" -eq 134 ] || [ "$1" -eq 139 ] || [ "$1" -eq 136 ]; }  # SIGABRT, SIGSEGV, SIGFPE
+
+for ((r = 0; r < rounds; r++)); do
+  start /dev/null rosrun "${manager_command[@]}" __name:=mgr
+  manager=$started
+
+  timeout 20 bash -c 'until rosservice list 2>/dev/null | grep -q /mgr/load_nodelet; do sleep 0.05; done'
+  loader_log="$work/loader_$r.log"
+  start "$loader_log" rosrun "${load_command[@]}" apex/Runtime mgr __name:=apex
+  loader=$started
+  delay=$(awk -v s="$RANDOM" 'BEGIN { srand(s); printf "%.2f", rand() * 2 }')
+  sleep "$delay"
+  if ((r % 2 == 0)); then  # the loader stopped: the runtime unloads, the manager stays
+    kill -INT "$loader"
+    if ! gone_within "$loader" 2; then
+      lingering=$((lingering + 1)); notes+=("round $r: the loader lived on 2 s after SIGINT at $delay s")
+      kill -9 "$loader"; wait "$loader" 2>/dev/null
+    elif crashed "$status"; then
+      aborts=$((aborts + 1)); notes+=("round $r: the loader died with $status after SIGINT at $delay s")
+    fi
+    if ! timeout 5 rosnode ping -c 1 /mgr >/dev/null 2>&1; then  # (its XML-RPC answers)
+      deaf=$((deaf + 1)); notes+=("round $r: the manager did not answer after the loader went (SIGINT at $delay s)")
+    fi
+    kill -INT "$manager"
+  else  # the manager stopped while the runtime loads or runs: both go
+    kill -INT "$manager"
+  fi
+  if ! gone_within "$manager" 2; then
+    lingering=$((lingering + 1)); notes+=("round $r: the manager lived on 2 s after SIGINT")
+    kill -9 "$manager"; wait "$manager" 2>/dev/null
+  elif crashed "$status"; then
+    aborts=$((aborts + 1)); notes+=("round $r: the manager died with $status (SIGINT to the $([ $((r % 2)) -eq 0 ] && echo loader || echo manager) at $delay s)")
+  fi
+  if kill -0 "$loader" 2>/dev/null; then
+    # A loader stopped before it reached the manager waits for one, as ROS's loaders do (launch
+    # order is free): a SIGINT then ends it, at once.
+    if [ "$tools" = apex ] && ! grep -q "loading nodelet" "$loader_log"; then
+      sleep 0.5
+      kill -INT "$loader"
+    fi
+    if ! gone_within "$loader" 2; then
+      lingering=$((lingering + 1)); notes+=("round $r: the loader lived on 2 s after its manager went (SIGINT to the $([ $((r % 2)) -eq 0 ] && echo loader || echo manager) at $delay s)")
+      kill -9 "$loader"; wait "$loader" 2>/dev/null
+    elif crashed "$status"; then
+      aborts=$((aborts + 1)); notes+=("round $r: the loader died with $status after its manager")
+    fi
+  fi
+  rounds_done=$((rounds_done + 1))
+done
+
+summary="$rounds_done rounds with ${tools}'s manager and loader: $aborts aborts, $lingering processes alive 2 s after they should have gone, $deaf managers deaf"
+echo "$summary"
+for n in "${notes[@]+"${notes[@]}"}"; do echo "  $n"; done
+failure=""
+[ $((aborts + lingering + deaf)) -eq 0 ] || failure="$summary; ${notes[*]:0:5}"
+source "$(dirname "$0")/junit.sh"
+junit_result "$out" nodelet_interrupts NodeletInterrupts "LoaderAndManagerInterruptedAtRandomMomentsExitCleanly" "$failure"
+[ -z "$failure" ]
