@@ -7,10 +7,12 @@
 # TOOLS: `apex` (the default: apex_nodelet_manager and apex_nodelet_load, as runtime.launch and the
 # README use them) or `nodelet` (Debian's `nodelet manager` and `nodelet load`: the manager crashes
 # when stopped with a loader attached, whatever the nodelet, and a loader outlives its manager).
-#   nodelet_interrupts.sh RESULT_XML BAG [ROUNDS] [TOOLS]   (with the devel space sourced)
+# Then CYCLES loads and unloads of the runtime with the demo graph in one manager: each load
+# answers get_graph, each unload ends its loader, and the manager answers at the end.
+#   nodelet_interrupts.sh RESULT_XML BAG [ROUNDS] [TOOLS] [CYCLES]   (with the devel space sourced)
 set -u
 export PATH=/usr/bin:/bin:$PATH
-out=$1 bag=$2 rounds=${3:-100} tools=${4:-apex}
+out=$1 bag=$2 rounds=${3:-100} tools=${4:-apex} cycles=${5:-50}
 if [ "$tools" = apex ]; then
   manager_command=(apex apex_nodelet_manager) load_command=(apex apex_nodelet_load)
 else
@@ -90,11 +92,42 @@ for ((r = 0; r < rounds; r++)); do
   rounds_done=$((rounds_done + 1))
 done
 
+# One manager, the runtime loaded and unloaded again and again
+start /dev/null rosrun "${manager_command[@]}" __name:=mgr
+manager=$started
+timeout 20 bash -c 'until rosservice list 2>/dev/null | grep -q /mgr/load_nodelet; do sleep 0.05; done'
+cycles_done=0 cycle_failure=""
+for ((c = 0; c < cycles; c++)); do
+  [ -z "$cycle_failure" ] || break
+  start "$work/cycle.log" rosrun "${load_command[@]}" apex/Runtime mgr __name:=apex
+  loader=$started
+  timeout 30 bash -c 'until rosservice call /apex/get_graph >/dev/null 2>&1; do sleep 0.1; done' ||
+    cycle_failure="cycle $c: the runtime never answered get_graph"
+  kill -INT "$loader"
+  gone_within "$loader" 5 || { cycle_failure="${cycle_failure:-cycle $c: the loader lived on 5 s after SIGINT}"; kill -9 "$loader"; }
+  timeout 10 bash -c 'while rosservice list 2>/dev/null | grep -q /apex/get_graph; do sleep 0.1; done' ||
+    cycle_failure="${cycle_failure:-cycle $c: the runtime was not unloaded}"
+  cycles_done=$((cycles_done + 1))
+done
+timeout 5 rosnode ping -c 1 /mgr >/dev/null 2>&1 || cycle_failure="${cycle_failure:-the manager did not answer after $cycles_done cycles}"
+kill -INT "$manager"
+if ! gone_within "$manager" 5; then
+  cycle_failure="${cycle_failure:-the manager lived on 5 s after SIGINT}"; kill -9 "$manager"
+elif crashed "$status"; then
+  cycle_failure="${cycle_failure:-the manager died with $status after $cycles_done cycles}"
+fi
+echo "$cycles_done loads and unloads in one manager: ${cycle_failure:-OK}"
+
 summary="$rounds_done rounds with ${tools}'s manager and loader: $aborts aborts, $lingering processes alive 2 s after they should have gone, $deaf managers deaf"
 echo "$summary"
 for n in "${notes[@]+"${notes[@]}"}"; do echo "  $n"; done
 failure=""
 [ $((aborts + lingering + deaf)) -eq 0 ] || failure="$summary; ${notes[*]:0:5}"
-source "$(dirname "$0")/junit.sh"
-junit_result "$out" nodelet_interrupts NodeletInterrupts "LoaderAndManagerInterruptedAtRandomMomentsExitCleanly" "$failure"
-[ -z "$failure" ]
+cases="  <testcase classname=\"NodeletInterrupts\" name=\"LoaderAndManagerInterruptedAtRandomMomentsExitCleanly\">"
+cases+=$([ -z "$failure" ] || echo "<failure message=\"$(sed 's/[<>&"]/_/g' <<<"$failure")\"/>")"</testcase>"
+cases+=$'\n'"  <testcase classname=\"NodeletInterrupts\" name=\"TheRuntimeLoadedAndUnloadedManyTimesInOneManager\">"
+cases+=$([ -z "$cycle_failure" ] || echo "<failure message=\"$(sed 's/[<>&"]/_/g' <<<"$cycle_failure")\"/>")"</testcase>"
+fails=$(( $([ -z "$failure" ] && echo 0 || echo 1) + $([ -z "$cycle_failure" ] && echo 0 || echo 1) ))
+printf '<?xml version="1.0" encoding="UTF-8"?>\n<testsuite name="nodelet_interrupts" tests="2" failures="%d">\n%s\n</testsuite>\n' \
+  "$fails" "$cases" >"$out"
+[ -z "$failure" ] && [ -z "$cycle_failure" ]
