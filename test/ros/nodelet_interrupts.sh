@@ -43,6 +43,15 @@ gone_within() {
   return 0
 }
 crashed() { [ "$1" -eq 134 ] || [ "$1" -eq 139 ] || [ "$1" -eq 136 ]; }  # SIGABRT, SIGSEGV, SIGFPE
+# expect_gone PID WHO WHEN: PID ends within 2 s (else counted, and killed), and not by a crash.
+expect_gone() {
+  if ! gone_within "$1" 2; then
+    lingering=$((lingering + 1)); notes+=("round $r: $2 lived on 2 s ($3)")
+    kill -9 "$1"; wait "$1" 2>/dev/null
+  elif crashed "$status"; then
+    aborts=$((aborts + 1)); notes+=("round $r: $2 died with $status ($3)")
+  fi
+}
 
 for ((r = 0; r < rounds; r++)); do
   start /dev/null rosrun "${manager_command[@]}" __name:=mgr
@@ -54,27 +63,16 @@ for ((r = 0; r < rounds; r++)); do
   loader=$started
   delay=$(awk -v s="$RANDOM" 'BEGIN { srand(s); printf "%.2f", rand() * 2 }')
   sleep "$delay"
-  if ((r % 2 == 0)); then  # the loader stopped: the runtime unloads, the manager stays
+  stopped=$([ $((r % 2)) -eq 0 ] && echo loader || echo manager)
+  if [ "$stopped" = loader ]; then  # the loader stopped: the runtime unloads, the manager stays
     kill -INT "$loader"
-    if ! gone_within "$loader" 2; then
-      lingering=$((lingering + 1)); notes+=("round $r: the loader lived on 2 s after SIGINT at $delay s")
-      kill -9 "$loader"; wait "$loader" 2>/dev/null
-    elif crashed "$status"; then
-      aborts=$((aborts + 1)); notes+=("round $r: the loader died with $status after SIGINT at $delay s")
-    fi
+    expect_gone "$loader" "the loader" "SIGINT to it at $delay s"
     if ! timeout 5 rosnode ping -c 1 /mgr >/dev/null 2>&1; then  # (its XML-RPC answers)
       deaf=$((deaf + 1)); notes+=("round $r: the manager did not answer after the loader went (SIGINT at $delay s)")
     fi
-    kill -INT "$manager"
-  else  # the manager stopped while the runtime loads or runs: both go
-    kill -INT "$manager"
   fi
-  if ! gone_within "$manager" 2; then
-    lingering=$((lingering + 1)); notes+=("round $r: the manager lived on 2 s after SIGINT")
-    kill -9 "$manager"; wait "$manager" 2>/dev/null
-  elif crashed "$status"; then
-    aborts=$((aborts + 1)); notes+=("round $r: the manager died with $status (SIGINT to the $([ $((r % 2)) -eq 0 ] && echo loader || echo manager) at $delay s)")
-  fi
+  kill -INT "$manager"  # the manager stopped: after its loader, or while the runtime loads or runs
+  expect_gone "$manager" "the manager" "SIGINT to the $stopped at $delay s"
   if kill -0 "$loader" 2>/dev/null; then
     # A loader stopped before it reached the manager waits for one, as ROS's loaders do (launch
     # order is free): a SIGINT then ends it, at once.
@@ -82,12 +80,7 @@ for ((r = 0; r < rounds; r++)); do
       sleep 0.5
       kill -INT "$loader"
     fi
-    if ! gone_within "$loader" 2; then
-      lingering=$((lingering + 1)); notes+=("round $r: the loader lived on 2 s after its manager went (SIGINT to the $([ $((r % 2)) -eq 0 ] && echo loader || echo manager) at $delay s)")
-      kill -9 "$loader"; wait "$loader" 2>/dev/null
-    elif crashed "$status"; then
-      aborts=$((aborts + 1)); notes+=("round $r: the loader died with $status after its manager")
-    fi
+    expect_gone "$loader" "the loader" "after its manager; SIGINT to the $stopped at $delay s"
   fi
   rounds_done=$((rounds_done + 1))
 done

@@ -13,26 +13,14 @@
 #include <nodelet/NodeletList.h>
 #include <nodelet/NodeletLoad.h>
 #include <nodelet/NodeletUnload.h>
-#include <ros/xmlrpc_manager.h>
 
-#include <atomic>
-#include <chrono>
-#include <csignal>
 #include <random>
-#include <thread>
+
+#include "stop_request.hpp"
 
 namespace {
 
-std::atomic<bool> g_stop{false};
-
-void onSignal(int) { g_stop = true; }
-
-void onShutdownCall(XmlRpc::XmlRpcValue& /*params*/, XmlRpc::XmlRpcValue& result) {
-  g_stop = true;
-  result = ros::xmlrpc::responseInt(1, "", 0);
-}
-
-void nap() { std::this_thread::sleep_for(std::chrono::milliseconds(50)); }
+using namespace apex::ros_host;
 
 /** The load request: this node's name and remappings become the nodelet's. */
 nodelet::NodeletLoad::Request loadRequest(const std::string& type, const std::string& bond_id, int argc, char** argv) {
@@ -51,22 +39,20 @@ nodelet::NodeletLoad::Request loadRequest(const std::string& type, const std::st
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::signal(SIGINT, onSignal);  // first: a signal during the load is kept, and acted on after it
-  std::signal(SIGTERM, onSignal);
+  noteStopSignals();  // first: a signal during the load is kept, and acted on after it
   ros::init(argc, argv, "nodelet_load", ros::init_options::NoSigintHandler);  // (removes the ROS arguments)
   if (argc < 3) {
     ROS_ERROR("usage: apex_nodelet_load TYPE MANAGER [ARGS...]  (e.g. apex/Runtime camera_manager)");
     return 2;
   }
-  ros::XMLRPCManager::instance()->unbind("shutdown");
-  ros::XMLRPCManager::instance()->bind("shutdown", onShutdownCall);
+  noteStopCalls();
   ros::NodeHandle nh;
   const std::string type = argv[1], manager = argv[2], name = ros::this_node::getName();
   ros::AsyncSpinner spinner(1);
   spinner.start();
 
-  while (!g_stop && !ros::service::exists(manager + "/load_nodelet", false)) nap();  // its manager may come later
-  if (g_stop) return 0;
+  while (!g_stop_requested && !ros::service::exists(manager + "/load_nodelet", false)) nap();  // its manager may come later
+  if (g_stop_requested) return 0;
   const std::string bond_id = name + "_" + std::to_string(std::random_device()());
   bond::Bond bond(manager + "/bond", bond_id);
   nodelet::NodeletLoad load;
@@ -82,8 +68,8 @@ int main(int argc, char** argv) {
   ros::ServiceClient manager_link = nh.serviceClient<nodelet::NodeletList>(manager + "/list", true);
   nodelet::NodeletList list;
   const bool linked = manager_link.call(list);  // refused only by a manager that is going
-  while (!g_stop && !bond.isBroken() && linked && manager_link.isValid()) nap();
-  if (g_stop) {  // stopped: unload, then break the bond (which the manager expects broken)
+  while (!g_stop_requested && !bond.isBroken() && linked && manager_link.isValid()) nap();
+  if (g_stop_requested) {  // stopped: unload, then break the bond (which the manager expects broken)
     nodelet::NodeletUnload unload;
     unload.request.name = name;
     if (!ros::service::call(manager + "/unload_nodelet", unload))

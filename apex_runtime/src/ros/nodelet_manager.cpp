@@ -11,42 +11,25 @@
 // (ros.h first: nodelet's headers need it)
 #include <nodelet/NodeletUnload.h>
 #include <nodelet/loader.h>
-#include <ros/xmlrpc_manager.h>
 
-#include <atomic>
-#include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <thread>
 
-namespace {
+#include "stop_request.hpp"
 
-std::atomic<bool> g_stop{false};
-
-void onSignal(int) { g_stop = true; }
-
-/** `rosnode kill` asks for a shutdown through the node's XML-RPC API: the same as a signal. */
-void onShutdownCall(XmlRpc::XmlRpcValue& /*params*/, XmlRpc::XmlRpcValue& result) {
-  g_stop = true;
-  result = ros::xmlrpc::responseInt(1, "", 0);
-}
-
-}  // namespace
+using namespace apex::ros_host;
 
 int main(int argc, char** argv) {
+  noteStopSignals();
   ros::init(argc, argv, "manager", ros::init_options::NoSigintHandler);
-  std::signal(SIGINT, onSignal);
-  std::signal(SIGTERM, onSignal);
   ros::NodeHandle private_nh("~");
-  ros::XMLRPCManager::instance()->unbind("shutdown");
-  ros::XMLRPCManager::instance()->bind("shutdown", onShutdownCall);
+  noteStopCalls();
   // Never destroyed: a load that arrives while this manager stops would leave a bond for the
   // destructor. The process ends with it.
   auto* loader = new nodelet::Loader(private_nh);  // load_nodelet, unload_nodelet, list; num_worker_threads
   ros::AsyncSpinner spinner(2);                    // the services, while this thread waits and then unloads
   spinner.start();
-  while (!g_stop && ros::ok()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  while (!g_stop_requested && ros::ok()) nap();
   ros::ServiceClient unload = private_nh.serviceClient<nodelet::NodeletUnload>("unload_nodelet");
   for (const auto& name : loader->listLoadedNodelets()) {  // waits for a load under way
     nodelet::NodeletUnload call;
