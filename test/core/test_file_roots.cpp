@@ -104,6 +104,32 @@ TEST_F(Roots, AReadOnlyRootIsReadAndNeverWrittenEvenInsideAWritableOne) {
                        {"outside the folders files may be written in (none)"}));
 }
 
+TEST_F(Roots, DotsAfterAFolderThatDoesNotExistCannotHideALinkOutOfTheRoot) {
+  ASSERT_EQ(::symlink("/etc", (root + "/etc_link").c_str()), 0);
+  // on paper missing/.. cancels out and etc_link/passwd is inside; the system follows the link
+  auto r = roots.resolve(root + "/missing/../etc_link/passwd");
+  ASSERT_FALSE(r);
+  EXPECT_TRUE(Contains(r.message(), {"'..' after a folder that does not exist"}));
+  EXPECT_TRUE(roots.resolve(root + "/graphs/../graphs/g.yaml")) << "'..' after a folder that is there: fine";
+}
+
+TEST_F(Roots, AWritableRootInsideAReadOnlyOneIsReadOnly) {
+  FileRoots nested({root + "/graphs", dir.file("other")});  // the first would take relative paths
+  nested.readOnly({root});
+  EXPECT_EQ(nested.roots(), std::vector<std::string>{fs::weakly_canonical(dir.file("other")).string()});
+  EXPECT_TRUE(nested.resolve(root + "/graphs/g.yaml"));
+  EXPECT_FALSE(nested.resolve(root + "/graphs/g.yaml", FileRoots::Access::Write));
+  EXPECT_EQ(nested.resolve("new.yaml", FileRoots::Access::Write).value(),
+            fs::weakly_canonical(dir.file("other")).string() + "/new.yaml");
+}
+
+TEST_F(Roots, TrustedPathsAreTakenFromTheCurrentFolder) {
+  // what the operator's launch names (the start-up graph, ~overrides): a relative path is the
+  // process's, as the shell that gave it meant; only service paths go to the first root
+  EXPECT_EQ(FileRoots::anywhere({}).resolve("graphs/demo.yaml").value(), fs::weakly_canonical(fs::absolute("graphs/demo.yaml")).string());
+  EXPECT_EQ(roots.resolve("g.yaml").value(), fs::weakly_canonical(root).string() + "/g.yaml");
+}
+
 TEST_F(Roots, ARefusalSaysHowToAllowTheFolder) {
   roots.hint([](const std::string& folder) { return "; add '" + folder + "' to ~file_roots"; });
   EXPECT_TRUE(Contains(roots.resolve("/etc/apex_probe.yaml", FileRoots::Access::Write).message(),

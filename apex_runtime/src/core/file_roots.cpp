@@ -23,6 +23,21 @@ bool inside(const fs::path& root, const fs::path& p) {
   return true;
 }
 
+/** weakly_canonical follows links as far as the folders exist and takes the rest as written, so
+ *  in `root/missing/../link/x` the `..` would cancel `missing` on paper, and `link`, a link out of
+ *  the root, would not be followed: such a path is refused (the system could not open it anyway). */
+std::string dotsAfterAMissingFolder(const fs::path& absolute) {
+  fs::path prefix;
+  bool missing = false;
+  for (const auto& part : absolute) {
+    if (part == ".." && missing) return "'..' after a folder that does not exist";
+    prefix /= part;
+    std::error_code ec;
+    if (!missing && !fs::exists(fs::symlink_status(prefix, ec))) missing = true;
+  }
+  return "";
+}
+
 std::string joined(const std::vector<std::string>& folders) {
   std::string out;
   for (const auto& f : folders) out += (out.empty() ? "" : ", ") + f;
@@ -37,7 +52,21 @@ FileRoots::FileRoots(const std::vector<std::string>& roots, PackageResolver pack
 
 FileRoots& FileRoots::readOnly(const std::vector<std::string>& folders) {
   for (const auto& r : folders) add(read_only_, r);
+  // A writable root inside a read-only one is read only: never offered for writing, nor for
+  // relative paths
+  roots_.erase(std::remove_if(roots_.begin(), roots_.end(),
+                              [&](const std::string& root) {
+                                return std::any_of(read_only_.begin(), read_only_.end(),
+                                                   [&](const std::string& ro) { return inside(ro, root); });
+                              }),
+               roots_.end());
   return *this;
+}
+
+FileRoots FileRoots::anywhere(PackageResolver packages) {
+  FileRoots all({"/"}, std::move(packages));
+  all.relative_in_root_ = false;
+  return all;
 }
 
 FileRoots& FileRoots::hint(Hint hint) {
@@ -82,7 +111,9 @@ Result<std::string> FileRoots::resolve(const std::string& path, Access access) c
   auto expanded = expand(path);
   if (!expanded) return expanded.status();
   fs::path absolute = expanded.value();
-  if (absolute.is_relative()) absolute = roots_.empty() ? fs::absolute(absolute) : fs::path(roots_.front()) / absolute;
+  if (absolute.is_relative())
+    absolute = roots_.empty() || !relative_in_root_ ? fs::absolute(absolute) : fs::path(roots_.front()) / absolute;
+  if (auto why = dotsAfterAMissingFolder(absolute); !why.empty()) return Status::error("path '" + path + "': " + why);
   std::error_code ec;
   const fs::path p = fs::weakly_canonical(absolute, ec);
   if (ec) return Status::error("path '" + path + "': " + ec.message());

@@ -50,11 +50,11 @@ std::string yamlQuoted(const std::string& s) {
   return q + "'";
 }
 
-FileRoots launchRoots(const ros::NodeHandle& pnh, const std::vector<std::string>& launch_folders) {
+FileRoots launchRoots(const ros::NodeHandle& pnh, const LaunchFolders& launch) {
   std::vector<std::string> writable = configuredRoots(pnh);
   writable.push_back(ownFolder());
-  writable.insert(writable.end(), launch_folders.begin(), launch_folders.end());
-  std::vector<std::string> read_only;
+  writable.insert(writable.end(), launch.writable.begin(), launch.writable.end());
+  std::vector<std::string> read_only = launch.read_only;
   if (const std::string package = packagePath("apex"); !package.empty()) read_only.push_back(package + "/graphs");
   const std::string param = pnh.resolveName("file_roots");
   return FileRoots(writable, packagePath).readOnly(read_only).hint([param](const std::string& folder) {
@@ -91,7 +91,7 @@ Result<std::string> pathValue(const std::shared_ptr<const Manifest>& iface, cons
   auto value = spec->parse(text);
   if (!value || std::get<std::string>(value.value()).empty()) return text;  // the graph says why / nothing to open
   const std::string& path = std::get<std::string>(value.value());
-  auto resolved = confined ? roots.check(path, spec->path_mode) : FileRoots({"/"}, packagePath).resolve(path);
+  auto resolved = confined ? roots.check(path, spec->path_mode) : FileRoots::anywhere(packagePath).resolve(path);
   if (!resolved) return Status::error("node '" + node + "': parameter '" + param + "': " + resolved.message());
   return yamlQuoted(resolved.value());
 }
@@ -105,7 +105,7 @@ Status resolvePaths(const NodeRegistry& types, NodeDescription& d, const FileRoo
   return Status::ok();
 }
 
-void pathFolders(const NodeRegistry& types, const GraphDescription& g, std::vector<std::string>& folders) {
+void pathFolders(const NodeRegistry& types, const GraphDescription& g, LaunchFolders& folders) {
   for (const auto& d : g.nodes) {
     if (d.subgraph) pathFolders(types, *d.subgraph, folders);
     for (const auto& [param, text] : d.parameters) {
@@ -115,7 +115,8 @@ void pathFolders(const NodeRegistry& types, const GraphDescription& g, std::vect
       auto value = spec->parse(text);
       const std::string path = value ? std::get<std::string>(value.value()) : "";
       if (path.empty()) continue;
-      folders.push_back(spec->path_mode == PathMode::Directory ? path : std::filesystem::path(path).parent_path().string());
+      const std::string folder = spec->path_mode == PathMode::Directory ? path : std::filesystem::path(path).parent_path().string();
+      (spec->path_mode == PathMode::Read ? folders.read_only : folders.writable).push_back(folder);
     }
   }
 }

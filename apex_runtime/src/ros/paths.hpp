@@ -18,12 +18,18 @@ namespace ros_host {
 /** @brief package:// and $(find pkg) through rospack, as everywhere in ROS. */
 std::string packagePath(const std::string& package);
 
+/** @brief The folders of what a runtime's launch named: the graph's and those of files to write
+ *  (writable), those of files only read, such as a bag (read only: a bag in ~ must not make all of
+ *  ~ writable). */
+struct LaunchFolders {
+  std::vector<std::string> writable, read_only;
+};
+
 /** @brief The roots of a runtime: the folders in ~file_roots first (a list, or one string of
  *  folders separated by ':'; the first takes relative paths), then $ROS_HOME/apex (made if
- *  missing), then `launch_folders` (those of the files its launch gave it: the graph, a bag); the
- *  apex package's graphs/ may be read, never written. A refusal names ~file_roots by its full name
- *  and the runtime.launch argument that adds the folder. */
-FileRoots launchRoots(const ros::NodeHandle& pnh, const std::vector<std::string>& launch_folders);
+ *  missing), then the launch's folders; the apex package's graphs/ may be read, never written. A
+ *  refusal names ~file_roots by its full name and the runtime.launch argument that adds the folder. */
+FileRoots launchRoots(const ros::NodeHandle& pnh, const LaunchFolders& launch);
 
 /** @brief What a node's parameter is declared as: its type's, or for a subgraph the inner
  *  parameter its export stands for. nullptr if unknown. */
@@ -40,8 +46,9 @@ Result<std::string> pathValue(const std::shared_ptr<const Manifest>& iface, cons
 Status resolvePaths(const NodeRegistry& types, NodeDescription& d, const FileRoots& roots, bool confined);
 
 /** @brief The folders the path parameters of a graph name (a folder parameter's own value), also
- *  inside subgraphs: the start-up graph's, after ~overrides, are the launch's roots. */
-void pathFolders(const NodeRegistry& types, const GraphDescription& g, std::vector<std::string>& folders);
+ *  inside subgraphs, by what the parameter does: the start-up graph's, after ~overrides, are the
+ *  launch's roots. */
+void pathFolders(const NodeRegistry& types, const GraphDescription& g, LaunchFolders& folders);
 
 /** @brief A string as YAML text that reads back as that string. */
 std::string yamlQuoted(const std::string& s);

@@ -275,7 +275,7 @@ struct RuntimeHost::Impl {
       o.open = [this](const std::string& path) { return roots.resolve(path); };
     } else {  // ~ and package:// in its paths understood, as in the launch file that named it
       o.check = [this](NodeDescription& d) { return resolvePaths(graph.registry(), d, roots, false); };
-      o.open = [](const std::string& path) { return FileRoots({"/"}, packagePath).resolve(path); };
+      o.open = [](const std::string& path) { return FileRoots::anywhere(packagePath).resolve(path); };
     }
     return o;
   }
@@ -289,11 +289,11 @@ struct RuntimeHost::Impl {
 
   /** The folder of ~graph and those of the paths the start-up graph's parameters hold, after
    *  ~overrides (a bag given to runtime.launch): what the operator's launch file named. */
-  std::vector<std::string> launchFolders() const {
-    std::vector<std::string> folders;
+  LaunchFolders launchFolders() const {
+    LaunchFolders folders;
     std::string startup;
-    if (pnh.getParam("graph", startup) && !startup.empty())
-      folders.push_back(std::filesystem::absolute(startup).parent_path().string());
+    if (pnh.getParam("graph", startup) && !startup.empty())  // saved back beside itself
+      folders.writable.push_back(std::filesystem::absolute(startup).parent_path().string());
     pathFolders(graph.registry(), graph.describe(), folders);
     return folders;
   }

@@ -27,15 +27,18 @@ class FileRoots {
    *  resolved like paths (package://, $(find pkg), ~) and may not exist yet. */
   explicit FileRoots(const std::vector<std::string>& roots, PackageResolver packages = {});
   /** @brief Adds folders whose files may be read, never written, even where they lie inside a
-   *  writable root (a package's shipped graphs). */
+   *  writable root (a package's shipped graphs); a writable root inside one becomes read only. */
   FileRoots& readOnly(const std::vector<std::string>& folders);
+  /** @brief Every path, expanded and resolved; a relative one from the current folder (what the
+   *  operator's launch names: trusted). */
+  static FileRoots anywhere(PackageResolver packages);
   /** @brief Sets what a path outside the roots is told (default: "; a launch file can widen them
    *  with ~file_roots"). */
   FileRoots& hint(Hint hint);
 
   /** @brief The absolute path `path` names — `package://pkg/x`, `$(find pkg)/x` and `~/x`
    *  understood, a relative path taken inside the first writable root, `..` and symlinks
-   *  resolved — if `access` is allowed there; otherwise an error naming the path, the roots and
+   *  resolved (a `..` after a folder that does not exist is refused) — if `access` is allowed there; otherwise an error naming the path, the roots and
    *  how to allow it. Touches nothing on disk but reading links. */
   Result<std::string> resolve(const std::string& path, Access access = Access::Read) const;
 
@@ -52,6 +55,7 @@ class FileRoots {
   Result<std::string> expand(const std::string& path) const;
   void add(std::vector<std::string>& to, const std::string& folder);
   std::vector<std::string> roots_, read_only_;
+  bool relative_in_root_ = true;  // a relative path: inside the first root, or (anywhere) the current folder
   PackageResolver packages_;
   Hint hint_;
 };
