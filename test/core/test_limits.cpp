@@ -48,6 +48,15 @@ TEST(Limits, ThreadGroupsStopAtTheLimitAndSuchAGraphLoadsBack) {
   auto back = roundTrip(g, dir);
   ASSERT_TRUE(back) << back.message();
   EXPECT_EQ(back.value().thread_groups.size() + 1, kMaxGraphGroups);  // and "default", which a file never lists
+
+  GraphDescription unknown;  // nodes of a type not installed here keep their group, and count too
+  for (std::size_t i = 0; i < kMaxGraphGroups; ++i) {
+    NodeDescription n;
+    n.name = "old" + std::to_string(i), n.type = "retired/Thing", n.thread_group = "t" + std::to_string(i);
+    unknown.nodes.push_back(n);
+  }
+  Graph other(registry());
+  EXPECT_THAT(other.load(unknown).message(), HasSubstr("node 'old255': thread group 't255': the graph has 256 thread groups"));
 }
 
 TEST(Limits, NodesStopAtTheLimitAndSuchAGraphLoadsBack) {

@@ -118,11 +118,13 @@ GraphDescription Graph::describeLocked() const {
 
 Result<std::string> Graph::addPlaceholder(const NodeDescription& d) {
   if (auto why = checkNewPath(d.name); !why.empty()) return Status::error(why);
+  const std::string group_name = d.thread_group.empty() ? "default" : d.thread_group;
+  if (auto room = roomFor(group_name, 1); !room) return Status::error("node '" + d.name + "': " + room.message());
   auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revision_);
   state->placeholder = d;
   state->ui = d.ui;
   state->enabled = d.enabled;
-  state->group = group(d.thread_group.empty() ? "default" : d.thread_group);
+  state->group = group(group_name);
   detail::EditScope scope;
   scope.added(state.get());
   order_[state->seq] = state.get();

@@ -129,6 +129,7 @@ std::vector<std::string> NodeRegistry::closest(const std::string& name, std::siz
   // A substring of a type's name ("Blur") ranks with one edit; beyond a third of the name's
   // length in edits, a type is not close.
   const std::string wanted = lower(shortName(name));
+  if (wanted.size() > kMaxNameLength) return {};  // no type's name is that long: nothing is close
   std::vector<std::pair<std::size_t, std::string>> scored;
   for (const auto& id : ids()) {
     const std::string candidate = lower(shortName(id));
