@@ -65,9 +65,13 @@ std::map<std::string, std::set<std::string>> connectedPublishers() {
 }  // namespace
 
 MasterWatch::MasterWatch(std::function<void()> registered_again, double period)
-    : registered_again_(std::move(registered_again)), period_(period) {
+    : registered_again_(std::move(registered_again)),
+      period_(period),
+      // (read now: once roscpp shuts down, its TCP server is gone and asking for its port aborts)
+      service_api_("rosrpc://" + ros::network::getHost() + ":" +
+                   std::to_string(ros::ConnectionManager::instance()->getTCPPort())) {
   ros::param::get("/run_id", run_id_);
-  rememberServices();
+  (void)check();  // what the master lists of this node now
   thread_ = std::thread([this] { run(); });
 }
 
@@ -84,30 +88,47 @@ void MasterWatch::run() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!wake_.wait_for(lock, std::chrono::duration<double>(period_), [this] { return stop_; })) {
     lock.unlock();
-    if (masterIsNew()) {
-      const std::string what = registerAgain();
-      if (registered_again_) registered_again_();
-      ROS_WARN_STREAM_NAMED("apex", "a new ROS master (run id '" << run_id_ << "'): registered " << what << " again");
+    try {
+      // (shutting down, roscpp unregisters everything itself: nothing is lost then)
+      if (!ros::isShuttingDown() && check() && !ros::isShuttingDown()) {
+        const std::string what = registerAgain();
+        (void)check();  // the new master's lists
+        if (registered_again_) registered_again_();
+        ROS_WARN_STREAM_NAMED("apex", "a new ROS master (run id '" << run_id_ << "'): registered " << what << " again");
+      }
+    } catch (const XmlRpc::XmlRpcException& e) {  // an answer of an unexpected shape: next time
+      ROS_WARN_STREAM_NAMED("apex", "checking the ROS master: " << e.getMessage());
     }
-    rememberServices();
     lock.lock();
   }
 }
 
-bool MasterWatch::masterIsNew() {
-  std::string run_id;
-  const bool has_run_id = ros::param::get("/run_id", run_id);  // roscore sets it soon after it starts
-  XmlRpcValue uri;
-  if (callMaster("lookupNode", {ros::this_node::getName()}, uri)) {  // it knows this node
-    if (!has_run_id || run_id == run_id_) return false;
-    const bool first_sight = run_id_.empty();  // a master whose run id was not set yet when seen
-    run_id_ = run_id;
-    return !first_sight;  // else a roscore started again, and something of ours registered meanwhile
+bool MasterWatch::check() {
+  XmlRpcValue state;
+  if (!callMaster("getSystemState", {}, state) || state.getType() != XmlRpcValue::TypeArray || state.size() < 3)
+    return false;  // no master: wait for the next one
+  std::set<std::string> listed;  // this node's services, as the master has them
+  XmlRpcValue& services = state[2];
+  for (int i = 0; services.getType() == XmlRpcValue::TypeArray && i < services.size(); ++i) {
+    XmlRpcValue& providers = services[i][1];
+    for (int j = 0; providers.getType() == XmlRpcValue::TypeArray && j < providers.size(); ++j)
+      if (static_cast<std::string>(providers[j]) == ros::this_node::getName())
+        listed.insert(static_cast<std::string>(services[i][0]));
   }
-  XmlRpcValue pid;
-  if (!callMaster("getPid", {}, pid)) return false;  // no master: wait for the next one
-  run_id_ = has_run_id ? run_id : "";
-  return true;
+  // Lost: a service the last master listed, still offered, that this one does not list; or a
+  // roscore started again (its run id, set soon after it starts). Whatever of ours registered
+  // with the new master meanwhile cannot hide the rest.
+  auto offered = [](const std::string& name) { return bool(ros::ServiceManager::instance()->lookupServicePublication(name)); };
+  bool lost = false;
+  for (const auto& name : services_) lost = lost || (offered(name) && !listed.count(name));
+  std::string run_id;
+  if (ros::param::get("/run_id", run_id) && run_id != run_id_) {
+    lost = lost || !run_id_.empty();
+    run_id_ = run_id;
+  }
+  for (const auto& name : listed) services_.insert(name);  // kept: the next master must get them
+  for (auto it = services_.begin(); it != services_.end();) it = offered(*it) ? std::next(it) : services_.erase(it);
+  return lost;
 }
 
 std::string MasterWatch::registerAgain() {
@@ -116,14 +137,13 @@ std::string MasterWatch::registerAgain() {
   XmlRpcValue payload;
   for (const auto& [topic, type] : ownTopics("getPublications"))
     publications += callMaster("registerPublisher", {topic, type, api}, payload);
-  auto connected = connectedPublishers();
   for (const auto& [topic, type] : ownTopics("getSubscriptions")) {
     if (!callMaster("registerSubscriber", {topic, type, api}, payload)) continue;
     ++subscriptions;
     // Connect to the publishers the new master knows, as it tells a node (publisherUpdate), and
-    // keep those we receive from: a list without them would drop their connections, and a
+    // keep those we receive from now: a list without them would drop their connections, and a
     // publisher in a process that does not register again (a driver) would be lost for good.
-    std::set<std::string> publishers = connected[topic];
+    std::set<std::string> publishers = connectedPublishers()[topic];
     for (int i = 0; payload.getType() == XmlRpcValue::TypeArray && i < payload.size(); ++i)
       publishers.insert(static_cast<std::string>(payload[i]));
     XmlRpcValue update, list, response;
@@ -132,27 +152,9 @@ std::string MasterWatch::registerAgain() {
     update[0] = "/master", update[1] = topic, update[2] = list;
     (void)callSelf("publisherUpdate", update, response);
   }
-  const std::string service_api =
-      "rosrpc://" + ros::network::getHost() + ":" + std::to_string(ros::ConnectionManager::instance()->getTCPPort());
-  for (const auto& service : services_)
-    if (ros::ServiceManager::instance()->lookupServicePublication(service))  // still offered
-      services += callMaster("registerService", {service, service_api, api}, payload);
+  for (const auto& service : services_) services += callMaster("registerService", {service, service_api_, api}, payload);
   return std::to_string(publications) + " publications, " + std::to_string(subscriptions) + " subscriptions and " +
          std::to_string(services) + " services";
-}
-
-void MasterWatch::rememberServices() {
-  XmlRpcValue state;
-  if (!callMaster("getSystemState", {}, state) || state.getType() != XmlRpcValue::TypeArray || state.size() < 3) return;
-  std::set<std::string> ours;
-  XmlRpcValue& services = state[2];
-  for (int i = 0; i < services.size(); ++i) {
-    XmlRpcValue& providers = services[i][1];
-    for (int j = 0; j < providers.size(); ++j)
-      if (static_cast<std::string>(providers[j]) == ros::this_node::getName())
-        ours.insert(static_cast<std::string>(services[i][0]));
-  }
-  services_ = std::move(ours);
 }
 
 }  // namespace ros_host

@@ -1,7 +1,7 @@
 // Survives a restart of the ROS master. roscpp registers publishers, subscribers and services
 // with the master once, when they are made; a new master knows none of them, so tools started
 // afterwards (rosservice, rviz, rostopic) would never find the runtime. MasterWatch notices a new
-// master and registers again everything this process offers and wants.
+// master, or lost registration, and registers again everything this process offers and wants.
 #pragma once
 
 #include <condition_variable>
@@ -28,17 +28,18 @@ class MasterWatch {
 
  private:
   void run();
-  /** A new master: its run id differs from the last one seen, or it does not know this node. */
-  bool masterIsNew();
+  /** Asks the master what it lists of this node (one getSystemState) and remembers its services;
+   *  true if registration was lost: a service the last master listed, still offered, is not
+   *  listed now, or the master's run id changed. False while no master answers. */
+  bool check();
   /** Registers every publication, subscription and service of the process again; the count. */
   std::string registerAgain();
-  /** The services the master lists for this process, remembered for the next master. */
-  void rememberServices();
 
   std::function<void()> registered_again_;
   double period_;
+  std::string service_api_;         // where this process's services answer (rosrpc://host:port)
   std::string run_id_;              // of the master last seen; "" if it had none yet
-  std::set<std::string> services_;  // this process's, as the master last listed them
+  std::set<std::string> services_;  // this node's, as masters listed them, while still offered
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stop_ = false;
