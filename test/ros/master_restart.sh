@@ -3,12 +3,14 @@
 # on a robot): within 10 s of the new master the runtime answers get_graph, ~graph is latched
 # again, a new subscriber gets the overlay, dynparam reads a node's parameters and rosparam its
 # values; and a subscriber from before the restart kept getting overlays while no master ran.
-# Once with the runtime as a node, once as a nodelet in a manager. Writes a JUnit result.
+# Once with the runtime as a node and roscore restarted; once as a nodelet in a manager and a bare
+# rosmaster in its place (no run id: the runtime sees its registration lost). Writes a JUnit result.
 #   master_restart.sh RESULT_XML BAG   (with the devel space sourced)
 set -u
+source "$(dirname "$0")/junit.sh"  # xml_text
 export PATH=/usr/bin:/bin:$PATH  # dynparam needs Debian's python3
 out=$1 bag=$2
-port=$((20000 + RANDOM % 20000))
+port=$((20000 + RANDOM % 10000))  # (below the ephemeral ports, 32768 up: the restart binds it again)
 export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
 work=$(mktemp -d)
 cases=() failures=()
@@ -21,11 +23,15 @@ stop_all() {
 }
 trap stop_all EXIT
 
-start_master() {
-  roscore -p "$port" >>"$work/roscore.log" 2>&1 &
+start_master() {  # [bare]: roscore, or a bare rosmaster (no /run_id, no rosout); fails if not up within 30 s
+  if [ "${1:-}" = bare ]; then
+    rosmaster --core -p "$port" >>"$work/roscore.log" 2>&1 &
+  else
+    roscore -p "$port" >>"$work/roscore.log" 2>&1 &
+  fi
   core=$!
   pids+=("$core")
-  timeout 30 bash -c 'until rosparam get /run_id >/dev/null 2>&1; do sleep 0.1; done'
+  timeout 30 bash -c 'until rosparam list >/dev/null 2>&1; do sleep 0.1; done'
 }
 
 # Milliseconds until a command succeeds (tried every 0.1 s), at most $1 seconds; fails if it never did.
@@ -36,11 +42,12 @@ ms_until() {
   echo $(( ($(date +%s%N) - start) / 1000000 ))
 }
 
-# check NAME [MANAGER]: the demo in a runtime (in MANAGER's nodelet manager if given), the master restarted.
+# check NAME MASTER [MANAGER]: the demo in a runtime (in MANAGER's nodelet manager if given), the
+# master restarted as MASTER (roscore, or bare: a rosmaster without the run id roscore sets).
 check() {
-  local name=$1 manager=${2:-} failure="" log="$work/$1.log"
+  local name=$1 restart=$2 manager=${3:-} failure="" log="$work/$1.log"
   cases+=("$name")
-  start_master
+  start_master || failure="the first master did not come up"
   if [ -n "$manager" ]; then
     rosrun apex apex_nodelet_manager __name:="$manager" >"$work/$name.manager.log" 2>&1 &
     pids+=($!)
@@ -55,12 +62,12 @@ check() {
   ms_until 30 "[ \$(wc -l <'$before') -gt 2 ]" >/dev/null || failure="${failure:-no overlay before the restart}"
 
   kill -INT "$core"  # the master goes, and with it every registration
-  timeout 15 tail --pid="$core" -f /dev/null
+  timeout 15 tail --pid="$core" -f /dev/null || kill -9 "$core"
   local gone=$(wc -l <"$before")
-  sleep 2
-  [ "$(wc -l <"$before")" -gt "$gone" ] || failure="${failure:-no overlay reached the subscriber while no master ran}"
+  ms_until 10 "[ \$(wc -l <'$before') -gt $((gone + 5)) ]" >/dev/null ||
+    failure="${failure:-no overlay reached the subscriber while no master ran}"
 
-  start_master
+  start_master "$restart" || failure="${failure:-the new master did not come up}"
   local took
   took=$(ms_until 10 rosservice call /apex/get_graph) || failure="${failure:-get_graph unanswered 10 s after the new master}"
   timeout 10 rostopic echo -n 1 /apex/graph/revision >/dev/null 2>&1 || failure="${failure:-~graph is not latched again}"
@@ -75,8 +82,8 @@ check() {
   stop_all
 }
 
-check node
-check nodelet apex_manager
+check node roscore
+check nodelet bare apex_manager
 
 {
   echo '<?xml version="1.0" encoding="UTF-8"?>'
@@ -84,7 +91,7 @@ check nodelet apex_manager
   echo "<testsuite name=\"master_restart\" tests=\"${#cases[@]}\" failures=\"$n\">"
   for i in "${!cases[@]}"; do
     echo "  <testcase classname=\"MasterRestart\" name=\"${cases[i]}\">"
-    [ -z "${failures[i]}" ] || echo "    <failure message=\"$(sed 's/[<>&"]/_/g' <<<"${failures[i]}")\"/>"
+    [ -z "${failures[i]}" ] || echo "    <failure message=\"$(xml_text "${failures[i]}")\"/>"
     echo "  </testcase>"
   done
   echo '</testsuite>'

@@ -11,6 +11,7 @@
 # answers get_graph, each unload ends its loader, and the manager answers at the end.
 #   nodelet_interrupts.sh RESULT_XML BAG [ROUNDS] [TOOLS] [CYCLES]   (with the devel space sourced)
 set -u
+source "$(dirname "$0")/junit.sh"  # xml_text
 export PATH=/usr/bin:/bin:$PATH
 out=$1 bag=$2 rounds=${3:-100} tools=${4:-apex} cycles=${5:-50}
 if [ "$tools" = apex ]; then
@@ -18,12 +19,13 @@ if [ "$tools" = apex ]; then
 else
   manager_command=(nodelet nodelet manager) load_command=(nodelet nodelet load)
 fi
-port=$((20000 + RANDOM % 20000))
+port=$((20000 + RANDOM % 10000))  # (below the ephemeral ports, 32768 up)
 export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)} ROSCONSOLE_STDOUT_LINE_BUFFERED=1
 work=$(mktemp -d)
 roscore -p "$port" >"$work/roscore.log" 2>&1 &
 core=$!
-trap 'kill -INT $core; wait $core 2>/dev/null' EXIT
+all=()  # every process started: a timeout from outside must leave none behind (job control gives each its own group)
+trap 'for p in "${all[@]}"; do kill -9 "$p" 2>/dev/null; done; kill -INT $core; wait $core 2>/dev/null' EXIT
 timeout 30 bash -c 'until rosparam list >/dev/null 2>&1; do sleep 0.1; done'
 rosparam set /apex/graph "$(rospack find apex)/graphs/demo.yaml"
 rosparam set /apex/overrides "{bag: {file: '$bag', loop: true}}"
@@ -33,7 +35,7 @@ notes=()
 # Starts a process that takes SIGINT as from a terminal or roslaunch (job control on: a background
 # job of a script would ignore it); its pid in $started.
 set -m
-start() { local log=$1; shift; "$@" >"$log" 2>&1 & started=$!; }
+start() { local log=$1; shift; "$@" >"$log" 2>&1 & started=$!; all+=("$started"); }
 # Whether process $1 is gone within $2 seconds; its exit status in $status.
 gone_within() {
   local pid=$1 limit=$2
@@ -117,9 +119,9 @@ for n in "${notes[@]+"${notes[@]}"}"; do echo "  $n"; done
 failure=""
 [ $((aborts + lingering + deaf)) -eq 0 ] || failure="$summary; ${notes[*]:0:5}"
 cases="  <testcase classname=\"NodeletInterrupts\" name=\"LoaderAndManagerInterruptedAtRandomMomentsExitCleanly\">"
-cases+=$([ -z "$failure" ] || echo "<failure message=\"$(sed 's/[<>&"]/_/g' <<<"$failure")\"/>")"</testcase>"
+cases+=$([ -z "$failure" ] || echo "<failure message=\"$(xml_text "$failure")\"/>")"</testcase>"
 cases+=$'\n'"  <testcase classname=\"NodeletInterrupts\" name=\"TheRuntimeLoadedAndUnloadedManyTimesInOneManager\">"
-cases+=$([ -z "$cycle_failure" ] || echo "<failure message=\"$(sed 's/[<>&"]/_/g' <<<"$cycle_failure")\"/>")"</testcase>"
+cases+=$([ -z "$cycle_failure" ] || echo "<failure message=\"$(xml_text "$cycle_failure")\"/>")"</testcase>"
 fails=$(( $([ -z "$failure" ] && echo 0 || echo 1) + $([ -z "$cycle_failure" ] && echo 0 || echo 1) ))
 printf '<?xml version="1.0" encoding="UTF-8"?>\n<testsuite name="nodelet_interrupts" tests="2" failures="%d">\n%s\n</testsuite>\n' \
   "$fails" "$cases" >"$out"

@@ -2,8 +2,9 @@
 // TYPE MANAGER`, and unloads it when stopped; runtime.launch loads apex/Runtime with it.
 //
 // Where Debian 12's `nodelet load` (1.10) lingers, this one does not: a SIGINT, a SIGTERM or
-// `rosnode kill` is taken at any moment (`nodelet load` takes none during its load call, so a
-// script's background job, which starts with SIGINT ignored, lives on); and when the manager goes
+// `rosnode kill` is noted at any moment, one during the load call acted on when it returns
+// (`nodelet load` takes none during it, so a script's background job, which starts with SIGINT
+// ignored, lives on; a second signal ends this one at once); and when the manager goes
 // (stopped, or crashed) it exits within a tenth of a second, told by the connection of a persistent
 // service client to the manager rather than by a bond that waits 10 s to connect when the manager
 // went while it loaded. The bond is kept: a manager that sees this process go unloads the nodelet.
@@ -67,8 +68,17 @@ int main(int argc, char** argv) {
   // A persistent connection to the manager: closed the moment the manager's process goes
   ros::ServiceClient manager_link = nh.serviceClient<nodelet::NodeletList>(manager + "/list", true);
   nodelet::NodeletList list;
-  const bool linked = manager_link.call(list);  // refused only by a manager that is going
-  while (!g_stop_requested && !bond.isBroken() && linked && manager_link.isValid()) nap();
+  bool linked = manager_link.call(list);
+  while (!g_stop_requested && !bond.isBroken()) {
+    if (linked && !manager_link.isValid()) break;  // the manager's process went
+    if (!linked) {
+      if (ros::master::check()) {  // a master that answers, and no manager's service to link to: gone
+        linked = manager_link.call(list);
+        if (!linked) break;
+      }  // no master (restarting): the manager may well be there; try again
+    }
+    nap();
+  }
   if (g_stop_requested) {  // stopped: unload, then break the bond (which the manager expects broken)
     nodelet::NodeletUnload unload;
     unload.request.name = name;
@@ -76,7 +86,7 @@ int main(int argc, char** argv) {
       ROS_WARN_STREAM("could not unload nodelet " << name << ": the manager " << manager << " is gone?");
     bond.breakBond();
   } else {
-    ROS_INFO_STREAM("the manager " << manager << " is gone: nodelet " << name << " with it");
+    ROS_INFO_STREAM("nodelet " << name << " was unloaded, or its manager " << manager << " is gone: done");
   }
   ros::shutdown();
   return 0;

@@ -27,14 +27,20 @@ int main(int argc, char** argv) {
   // Never destroyed: a load that arrives while this manager stops would leave a bond for the
   // destructor. The process ends with it.
   auto* loader = new nodelet::Loader(private_nh);  // load_nodelet, unload_nodelet, list; num_worker_threads
-  ros::AsyncSpinner spinner(2);                    // the services, while this thread waits and then unloads
+  ros::AsyncSpinner spinner(1);  // as `nodelet manager` spins: nodelets on the global queue see one thread
   spinner.start();
   while (!g_stop_requested && ros::ok()) nap();
+  // Through the service, which breaks each bond; without a master to find it, directly (the bond
+  // stays, and the Loader with it). Again until none is left: a load may have been under way.
   ros::ServiceClient unload = private_nh.serviceClient<nodelet::NodeletUnload>("unload_nodelet");
-  for (const auto& name : loader->listLoadedNodelets()) {  // waits for a load under way
-    nodelet::NodeletUnload call;
-    call.request.name = name;
-    if (!unload.call(call) || !call.response.success) ROS_WARN_STREAM("could not unload " << name << " before stopping");
+  for (int pass = 0; pass < 5; ++pass) {
+    const auto names = loader->listLoadedNodelets();  // waits for a load under way
+    if (names.empty()) break;
+    for (const auto& name : names) {
+      nodelet::NodeletUnload call;
+      call.request.name = name;
+      if (!unload.call(call) || !call.response.success) loader->unload(name);
+    }
   }
   ros::shutdown();  // no more calls, callbacks or messages
   spinner.stop();

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <thread>
 
 namespace apex {
@@ -14,10 +15,15 @@ namespace ros_host {
 
 inline std::atomic<bool> g_stop_requested{false};
 
-/** @brief Notes SIGINT and SIGTERM from now on; call before ros::init with NoSigintHandler. */
+/** @brief Notes SIGINT and SIGTERM from now on; a second one ends the process at once (an unload
+ *  that hangs, in a node stuck in its work, cannot keep it: roslaunch sends SIGTERM after
+ *  SIGINT). Call before ros::init with NoSigintHandler. */
 inline void noteStopSignals() {
-  std::signal(SIGINT, [](int) { g_stop_requested = true; });
-  std::signal(SIGTERM, [](int) { g_stop_requested = true; });
+  auto note = [](int) {
+    if (g_stop_requested.exchange(true)) std::_Exit(130);
+  };
+  std::signal(SIGINT, note);
+  std::signal(SIGTERM, note);
 }
 
 /** @brief Notes `rosnode kill` too (roscpp's own handler would shut ROS down at once); after ros::init. */
