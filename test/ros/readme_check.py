@@ -60,9 +60,11 @@ def blocks(readme):
         while j < len(lines) and not lines[j].strip():
             j += 1
         body = []
+        if j == len(lines):
+            raise SystemExit("README line %d: a check marker with no block after it" % (i + 1))
         if lines[j].strip().startswith("```"):
             j += 1
-            while not lines[j].strip().startswith("```"):
+            while j < len(lines) and not lines[j].strip().startswith("```"):
                 body.append(lines[j])
                 j += 1
         else:
@@ -122,7 +124,10 @@ def matches(expected, output):
     m = re.match(r"([a-z_]+): (.*)", expected)
     fields = answer(output) if m else None
     if m and fields is not None:
-        key, value = m.group(1), yaml.safe_load(m.group(2))
+        key = m.group(1)
+        value = m.group(2) if "..." in m.group(2) else yaml.safe_load(m.group(2))  # (YAML reads ... as its end)
+        if isinstance(value, str) and len(value) > 1 and value[0] == value[-1] and value[0] in "'\"":
+            value = value[1:-1]
         if key not in fields:
             return "no %r" % key
         if key in EXACT_KEYS and not like(value, fields[key]):
@@ -141,7 +146,10 @@ class Session:
         self.env, self.cwd, self.started = env, cwd, []
 
     def services(self):
-        r = subprocess.run(["rosservice", "list"], env=self.env, capture_output=True, text=True, timeout=30)
+        try:
+            r = subprocess.run(["rosservice", "list"], env=self.env, capture_output=True, text=True, timeout=30)
+        except subprocess.TimeoutExpired:
+            return set()
         return set(l for l in r.stdout.split() if l.endswith("apex/get_graph"))
 
     def start(self, command, log):
@@ -162,7 +170,10 @@ class Session:
         return "exited with %s" % p.returncode if p.poll() is not None else "no runtime answered in %.0f s" % limit
 
     def answers(self, service):
-        r = subprocess.run(["rosservice", "call", service], env=self.env, capture_output=True, text=True, timeout=30)
+        try:
+            r = subprocess.run(["rosservice", "call", service], env=self.env, capture_output=True, text=True, timeout=30)
+        except subprocess.TimeoutExpired:
+            return False
         return r.returncode == 0 and "success: True" in r.stdout
 
     def stop(self):
@@ -193,7 +204,10 @@ def run_session(body, env, cwd, log):
                     if why:
                         return "%s: %s" % (command, why)
                 continue
-            r = subprocess.run(["bash", "-c", command], cwd=cwd, env=env, capture_output=True, text=True, timeout=300)
+            try:
+                r = subprocess.run(["bash", "-c", command], cwd=cwd, env=env, capture_output=True, text=True, timeout=300)
+            except subprocess.TimeoutExpired:
+                return "%s: no answer in 300 s" % command
             log.write(r.stdout + r.stderr)
             log.flush()
             shows_error = any("error" in e.lower() for e in expected)

@@ -5,6 +5,7 @@
 # Writes a JUnit result with one case per graph and signal.
 #   sigint_check.sh RESULT_XML BAG   (with the devel space sourced)
 set -u
+source "$(dirname "$0")/junit.sh"  # xml_text
 out=$1 bag=$2
 port=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
@@ -43,7 +44,7 @@ check() {
     else
       wait "$node"; rc=$?
       if [ "$rc" -ne 0 ]; then
-        failure[$case]="exited with $rc after SIG$sig"
+        failure[$case]="exited with $rc after SIG$sig: $(grep -m1 -E 'terminate|Segmentation|Assertion|free\(\)' "$log" || tail -n 1 "$log")"
       elif [ "$took_ms" -gt 2000 ]; then
         failure[$case]="took $took_ms ms to exit after SIG$sig (limit 2 s)"
       elif rosnode list 2>/dev/null | grep -qx /apex; then
@@ -76,7 +77,7 @@ mkdir -p "$(dirname "$out")"
   echo "<testsuite name=\"shutdown\" tests=\"${#cases[@]}\" failures=\"$failed\">"
   for c in "${cases[@]}"; do
     echo "  <testcase classname=\"Shutdown\" name=\"${c}_StopsAndExitsZeroWithin2s\">"
-    [ -z "${failure[$c]}" ] || echo "    <failure message=\"${failure[$c]}\"/>"
+    [ -z "${failure[$c]}" ] || echo "    <failure message=\"$(xml_text "${failure[$c]}")\"/>"
     echo '  </testcase>'
   done
   echo '</testsuite>'

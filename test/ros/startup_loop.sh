@@ -11,6 +11,8 @@ port=$((20000 + RANDOM % 20000))
 export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
 graph=$(rospack find apex)/graphs/paper_pipeline.yaml
 failure=""
+# why LOG: the line of a log that tells why the runtime stopped (a crash's own line), else its last
+why() { grep -m1 -E 'terminate|Segmentation|Assertion|Aborted|free\(\)|unload|No plugins' "$1" || tail -n 1 "$1"; }
 
 roscore -p "$port" >/dev/null 2>&1 &
 core=$!
@@ -23,7 +25,7 @@ for ((i = 1; i <= rounds && ${#failure} == 0; i++)); do
   rosrun apex apex_runtime_node >"$log" 2>&1 &
   node=$!
   if ! timeout 30 rostopic echo -n 1 --noarr /apex_demo/overlay >/dev/null 2>&1; then
-    failure="start $i: no overlay frame within 30 s ($(grep -m1 -E 'terminate|Segmentation|unload|No plugins' "$log"))"
+    failure="start $i: no overlay frame within 30 s ($(why "$log"))"
   fi
   kill -INT "$node" 2>/dev/null
   timeout 10 tail --pid="$node" -s 0.02 -f /dev/null
@@ -32,7 +34,7 @@ for ((i = 1; i <= rounds && ${#failure} == 0; i++)); do
     kill -9 "$node"
   fi
   wait "$node"; rc=$?
-  [ -n "$failure" ] || [ "$rc" -eq 0 ] || failure="start $i: exited with $rc ($(grep -m1 -E 'terminate|Segmentation|unload|No plugins' "$log"))"
+  [ -n "$failure" ] || [ "$rc" -eq 0 ] || failure="start $i: exited with $rc ($(why "$log"))"
 done
 kill -TERM "$core" 2>/dev/null
 wait "$core" 2>/dev/null
