@@ -5,13 +5,20 @@ namespace demo {
 // Multiplies an int by a tunable gain.
 class Gain : public apex::Node {
  public:
+  // Each port and parameter declared once, as a typed constant: the manifest lists it and a
+  // handle reads it, so their names and types cannot disagree.
+  static inline const apex::InputPort<int> kIn{"in", "the value"};
+  static inline const apex::OutputPort<int> kOut{"out", "in times gain"};
+  static inline const apex::ParamDecl<int> kGain = apex::param::integer("gain").range(-100, 100).init(2).describe("the factor");
+  static inline const apex::TriggerPort kOverflow{"overflow", "fires when the result passes 1000"};
+
   static apex::Manifest manifest() {
     return apex::Manifest("Multiplies its input by a gain")
-        .input<int>("in")
-        .output<int>("out")
-        .param(apex::param::range("gain", -100, 100, 1, 2).describe("the factor"))
-        .slot("reset", &Gain::reset, "forgets what it learned")
-        .trigger("overflow", "fires when the result passes 1000");
+        .input(kIn)
+        .output(kOut)
+        .param(kGain)
+        .trigger(kOverflow)
+        .slot("reset", &Gain::reset, "forgets what it learned");
   }
   void process() override {
     const int out = *in_.get() * gain_.get();
@@ -21,12 +28,12 @@ class Gain : public apex::Node {
   void reset() { /* runs on the node's thread group, never during process() */ }
 
  private:
-  // Typed handles, resolved once: a name that manifest() lacks, or a wrong type, is refused
-  // when the type is registered, saying what to write.
-  apex::Input<int> in_{this, "in"};
-  apex::Output<int> out_{this, "out"};
-  apex::Param<int> gain_{this, "gain"};
-  apex::Trigger overflow_{this, "overflow"};
+  // Typed handles, found by index at every use: `apex::Input<double> in_{this, kIn}` does not
+  // compile (kIn carries int).
+  apex::Input<int> in_{this, kIn};
+  apex::Output<int> out_{this, kOut};
+  apex::Param<int> gain_{this, kGain};
+  apex::Trigger overflow_{this, kOverflow};
 };
 
 }  // namespace demo

@@ -92,6 +92,11 @@ TEST_F(Services, ListNodeTypesDescribesEveryTypeAndNamesLoadErrors) {
   EXPECT_THAT(errors, HasSubstr("node library 'apex_test/NoLibrary'"));
   EXPECT_THAT(errors, HasSubstr("libapex_not_built"));
   EXPECT_THAT(errors, HasSubstr("node library 'apex_test/NotExported'"));
+  // A type that fails to register refuses its whole library, saying why
+  EXPECT_THAT(errors, HasSubstr("node library 'apex_test/BadRegistration'"));
+  EXPECT_THAT(errors, HasSubstr("1 of its node types failed to register, so none is loaded: node type "
+                                "'apex_test/Misnamed': Output<int> 'value': manifest() declares no output 'value'"));
+  for (const auto& t : res.types) EXPECT_NE(t.id, "apex_test/FineButRefused") << "a refused library's type was loaded";
 }
 
 TEST_F(Services, AddNodeAppliesParametersAndRefusesBadInput) {
@@ -311,6 +316,10 @@ TEST_F(Services, PathsFromServicesStayInTheRoots) {  // services.test: ~file_roo
   EXPECT_FALSE(res.success);
   EXPECT_THAT(res.message, HasSubstr("node 'export': parameter 'directory': path '/etc' is outside"));
   EXPECT_EQ(res.value, "/tmp/apex_export");
+  set.value = "/tmp/apex_no_such_folder/../apex_other";  // the system could not open it either
+  EXPECT_THAT(call<apex::SetParameter>("set_parameter", set).message,
+              HasSubstr("path '/tmp/apex_no_such_folder/../apex_other': '..' after a folder that does not exist"));
+  ::mkdir("/tmp/apex_export", 0755);
   set.value = "/tmp/apex_export/../apex_other";
   res = call<apex::SetParameter>("set_parameter", set);
   EXPECT_TRUE(res.success) << res.message;

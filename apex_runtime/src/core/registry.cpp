@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <iostream>
+#include <stdexcept>
 
 #include "names.hpp"
 
@@ -170,6 +171,14 @@ NodeRegistry& NodeRegistry::global() {
 NodeRegistry NodeRegistry::fromGlobal() { return NodeRegistry(global()); }
 
 namespace detail {
+std::vector<std::shared_ptr<const NodeType>> moduleTypesOrThrow(const NodeRegistry& types,
+                                                                const std::vector<std::string>& errors) {
+  if (errors.empty()) return types.types();
+  std::string text = std::to_string(errors.size()) + " of its node types failed to register, so none is loaded: ";
+  for (std::size_t i = 0; i < errors.size(); ++i) text += (i ? "; " : "") + errors[i];
+  throw std::runtime_error(text);
+}
+
 bool registerOrReport(const Status& status, const std::string& id) {
   if (!status) std::cerr << "apex: cannot register node type '" << id << "': " << status.message() << std::endl;
   return status.isOk();

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "apex/core/declare.hpp"
 #include "apex/core/message.hpp"
 #include "apex/core/param.hpp"
 #include "apex/core/result.hpp"
@@ -90,6 +91,19 @@ struct Manifest {
     outputs.push_back({std::move(name), typeOf<T>(), false, std::move(desc)});
     return *this;
   }
+  /** @brief A port declared once (declare.hpp): `.input(kImage)`. */
+  template <class T>
+  Manifest& input(const InputPort<T>& port) {
+    inputs.push_back({port.name, typeOf<T>(), port.optional, port.description});
+    return *this;
+  }
+  template <class T>
+  Manifest& output(const OutputPort<T>& port) {
+    outputs.push_back({port.name, typeOf<T>(), false, port.description});
+    return *this;
+  }
+  Manifest& trigger(const TriggerPort& port) { return trigger(port.name, port.description); }
+  /** @brief A parameter: a ParamDecl (declare.hpp) or a ParamSpec. */
   Manifest& param(ParamSpec spec) {
     params.push_back(std::move(spec));
     return *this;

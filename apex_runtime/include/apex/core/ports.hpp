@@ -19,6 +19,7 @@
 #include <string>
 #include <variant>
 
+#include "apex/core/declare.hpp"
 #include "apex/core/message.hpp"
 #include "apex/core/node.hpp"
 #include "apex/core/param.hpp"
@@ -71,6 +72,8 @@ class Input : public Handle {
  public:
   Input(Node* node, std::string name)
       : Handle(node, Of::Input, std::move(name), typeOf<T>(), nullptr, "Input<" + typeOf<T>()->name + ">") {}
+  /** @brief The input a port constant declares: only an InputPort<T> fits (declare.hpp). */
+  Input(Node* node, const InputPort<T>& port) : Input(node, std::string(port.name)) {}
   /** @brief This firing's payload; nullptr when the input holds Nothing. */
   std::shared_ptr<const T> get() const {
     const Message& m = message();
@@ -90,6 +93,7 @@ class Output : public Handle {
  public:
   Output(Node* node, std::string name)
       : Handle(node, Of::Output, std::move(name), typeOf<T>(), nullptr, "Output<" + typeOf<T>()->name + ">") {}
+  Output(Node* node, const OutputPort<T>& port) : Output(node, std::string(port.name)) {}
   void publish(T value) const { publishAt(index(), Message::make<T>(std::move(value))); }
   void publish(std::shared_ptr<const T> payload) const { publishAt(index(), Message::share<T>(std::move(payload))); }
   /** @brief Sends a message as it is, e.g. one taken from an input (no copy). */
@@ -103,6 +107,7 @@ class Param : public Handle {
   Param(Node* node, std::string name)
       : Handle(node, Of::Param, std::move(name), nullptr, [](const ParamValue& v) { return std::holds_alternative<T>(v); },
                "Param<" + typeOf<T>()->name + ">") {}
+  Param(Node* node, const ParamDecl<T>& decl) : Param(node, decl.name()) {}
   const T& get() const { return std::get<T>(paramAt(index())); }
 };
 
@@ -110,6 +115,7 @@ class Param : public Handle {
 class Trigger : public Handle {
  public:
   Trigger(Node* node, std::string name) : Handle(node, Of::Trigger, std::move(name), nullptr, nullptr, "Trigger") {}
+  Trigger(Node* node, const TriggerPort& port) : Trigger(node, std::string(port.name)) {}
   void fire() const { triggerAt(index()); }
 };
 

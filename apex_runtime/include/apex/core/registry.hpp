@@ -116,11 +116,24 @@ __attribute__((visibility("hidden"))) inline NodeRegistry& moduleTypes() {
   return module.types;
 }
 
+/** Why this module's types could not all be registered: a plugin library with any such error
+ *  is refused as a whole when the host loads it (APEX_NODE_LIBRARY), naming them. */
+__attribute__((visibility("hidden"))) inline std::vector<std::string>& moduleErrors() {
+  static std::vector<std::string> errors;
+  return errors;
+}
+
+/** The types of this module, or (a registration failed) an exception naming every failure. */
+std::vector<std::shared_ptr<const NodeType>> moduleTypesOrThrow(const NodeRegistry& types,
+                                                                const std::vector<std::string>& errors);
+
 /** APEX_REGISTER_NODE: into the module's list and the process-wide registry. */
 template <class T>
 bool registerNode(const std::string& id) {
   static_assert(NodeTypeChecks<T>::value, "see the messages above");
-  const bool ok = registerOrReport(moduleTypes().add<T>(id), id);
+  const Status status = moduleTypes().add<T>(id);
+  if (!status) moduleErrors().push_back(status.message());
+  const bool ok = registerOrReport(status, id);
   if (ok) registerOrReport(NodeRegistry::global().add(moduleTypes().find(id)), id);
   return ok;
 }

@@ -17,7 +17,9 @@
 
 namespace apex {
 
-/** @brief What pluginlib creates, once per library: the node types it registered. */
+/** @brief What pluginlib creates, once per library: the node types it registered. A library one
+ *  of whose types failed to register throws from types(), naming each failure: the host loads
+ *  none of its types and says why. */
 class NodeLibrary {
  public:
   virtual ~NodeLibrary() = default;
@@ -35,7 +37,8 @@ class NodeLibrary {
   class Name : public ::apex::NodeLibrary {                                        \
    public:                                                                         \
     std::vector<std::shared_ptr<const ::apex::NodeType>> types() const override { \
-      return ::apex::detail::moduleTypes().types();                                \
+      return ::apex::detail::moduleTypesOrThrow(::apex::detail::moduleTypes(),     \
+                                                ::apex::detail::moduleErrors());   \
     }                                                                              \
   };                                                                               \
   }                                                                                \
