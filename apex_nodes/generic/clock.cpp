@@ -7,11 +7,15 @@ namespace apex_nodes {
 
 class Clock : public apex::Node {
  public:
+  static inline const apex::OutputPort<int> kCount{"count", "0, 1, 2, ..."};
+  static inline const apex::OutputPort<double> kTime{"time", "seconds since the first tick"};
+  static inline const apex::ParamDecl<double> kRate =
+      apex::param::number("rate").range(0.01, 1000.0).step(0.01).init(10.0).describe("ticks per second");
   static apex::Manifest manifest() {
     return apex::Manifest("Ticks at a rate: a counter and the time since it started")
-        .output<int>("count", "0, 1, 2, ...")
-        .output<double>("time", "seconds since the first tick")
-        .param(apex::param::range("rate", 0.01, 1000.0, 0.01, 10.0).describe("ticks per second"))
+        .output(kCount)
+        .output(kTime)
+        .param(kRate)
         .driven();
   }
   void setup() override {
@@ -25,9 +29,9 @@ class Clock : public apex::Node {
   }
 
  private:
-  apex::Output<int> count_{this, "count"};
-  apex::Output<double> time_{this, "time"};
-  apex::Param<double> rate_{this, "rate"};
+  apex::Output<int> count_{this, kCount};
+  apex::Output<double> time_{this, kTime};
+  apex::Param<double> rate_{this, kRate};
   int ticks_ = 0;
   std::chrono::steady_clock::time_point start_;
 };

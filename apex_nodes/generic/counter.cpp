@@ -5,17 +5,19 @@ namespace apex_nodes {
 
 class Counter : public apex::Node {
  public:
+  static inline const apex::InputPort<apex::Any> kIn{"in", "any message"};
+  static inline const apex::OutputPort<int> kCount{"count", "messages received since the last reset"};
   static apex::Manifest manifest() {
     return apex::Manifest("Counts the messages it receives")
-        .input<apex::Any>("in", "any message")
-        .output<int>("count", "messages received since the last reset")
+        .input(kIn)
+        .output(kCount)
         .slot("reset", &Counter::reset, "sets the count to zero");
   }
   void process() override { count_.publish(++received_); }
   void reset() { received_ = 0; }
 
  private:
-  apex::Output<int> count_{this, "count"};
+  apex::Output<int> count_{this, kCount};
   int received_ = 0;
 };
 

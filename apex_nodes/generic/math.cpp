@@ -8,27 +8,33 @@
 #include "apex_nodes/stamp.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class Add : public apex::Node {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Adds two numbers").input<double>("a").input<double>("b").output<double>("sum");
-  }
+  static inline const apex::InputPort<double> kA{"a"};
+  static inline const apex::InputPort<double> kB{"b"};
+  static inline const apex::OutputPort<double> kSum{"sum"};
+  static apex::Manifest manifest() { return apex::Manifest("Adds two numbers").input(kA).input(kB).output(kSum); }
   void process() override { sum_.publish(*a_.get() + *b_.get()); }
 
  private:
-  apex::Input<double> a_{this, "a"};
-  apex::Input<double> b_{this, "b"};
-  apex::Output<double> sum_{this, "sum"};
+  apex::Input<double> a_{this, kA};
+  apex::Input<double> b_{this, kB};
+  apex::Output<double> sum_{this, kSum};
 };
 
 class Throttle : public apex::Node {
  public:
+  static inline const apex::InputPort<apex::Any> kIn{"in"};
+  static inline const apex::OutputPort<apex::Any> kOut{"out"};
+  static inline const apex::ParamDecl<double> kRate =
+      param::number("rate").range(0.01, 1000.0).step(0.01).init(5.0).describe("messages per second");
   static apex::Manifest manifest() {
     return apex::Manifest("Passes at most `rate` messages per second; sends Nothing for the others")
-        .input<apex::Any>("in")
-        .output<apex::Any>("out")
-        .param(apex::param::range("rate", 0.01, 1000.0, 0.01, 5.0).describe("messages per second"));
+        .input(kIn)
+        .output(kOut)
+        .param(kRate);
   }
   void process() override {
     const auto now = std::chrono::steady_clock::now();
@@ -39,9 +45,9 @@ class Throttle : public apex::Node {
   }
 
  private:
-  apex::Input<apex::Any> in_{this, "in"};
-  apex::Output<apex::Any> out_{this, "out"};
-  apex::Param<double> rate_{this, "rate"};
+  apex::Input<apex::Any> in_{this, kIn};
+  apex::Output<apex::Any> out_{this, kOut};
+  apex::Param<double> rate_{this, kRate};
   bool passed_once_ = false;
   std::chrono::steady_clock::time_point last_;
 };
@@ -51,19 +57,27 @@ std::string letter(int i) { return std::string(1, static_cast<char>('a' + i)); }
 
 class TimeSync : public apex::Node {
  public:
+  static inline const apex::InputPort<apex::Any> kInA{"a", "an image, cloud, regions, clusters or scan"};
+  static inline const apex::InputPort<apex::Any> kInB{"b"};
+  static inline const apex::OutputPort<apex::Any> kOutA{"a"};
+  static inline const apex::OutputPort<apex::Any> kOutB{"b"};
+  static inline const apex::ParamDecl<int> kInputs = param::integer("inputs").range(2, 8).step(1).init(2).describe(
+      "how many messages to synchronise: a, b, c, ...").shapesInterface();
+  static inline const apex::ParamDecl<double> kTolerance =
+      param::number("tolerance").range(0.0, 10.0).step(0.001).init(0.05).describe("seconds");
   static apex::Manifest manifest() {
     return apex::Manifest("Passes its messages on only if their stamps lie within a tolerance; else Nothing on all")
-        .input<apex::Any>("a", "an image, cloud, regions, clusters or scan")
-        .input<apex::Any>("b")
-        .output<apex::Any>("a")
-        .output<apex::Any>("b")
-        .param(apex::param::range("inputs", 2, 8, 1, 2).describe("how many messages to synchronise: a, b, c, ...").shapesInterface())
-        .param(apex::param::range("tolerance", 0.0, 10.0, 0.001, 0.05).describe("seconds"))
+        .input(kInA)
+        .input(kInB)
+        .output(kOutA)
+        .output(kOutB)
+        .param(kInputs)
+        .param(kTolerance)
         .shapedBy([](const apex::ParamValues& p, apex::Manifest& m) {
           m.inputs.clear();
           m.outputs.clear();
-          for (int i = 0; i < p.get<int>("inputs"); ++i) {
-            m.input<apex::Any>(letter(i), i == 0 ? "an image, cloud, regions, clusters or scan" : "");
+          for (int i = 0; i < p.get<int>(kInputs.name()); ++i) {
+            m.input<apex::Any>(letter(i), i == 0 ? kInA.description : "");
             m.output<apex::Any>(letter(i));
           }
           return apex::Status::ok();
@@ -84,22 +98,29 @@ class TimeSync : public apex::Node {
   }
 
  private:
-  apex::Param<double> tolerance_{this, "tolerance"};
+  apex::Param<double> tolerance_{this, kTolerance};
 };
 
 /** Passes on one of its inputs: switch between variants of a pipeline while it runs. */
 class Select : public apex::Node {
  public:
+  static inline const apex::InputPort<apex::Any> kIn0{"in_0", "", true};
+  static inline const apex::InputPort<apex::Any> kIn1{"in_1", "", true};
+  static inline const apex::OutputPort<apex::Any> kOut{"out"};
+  static inline const apex::ParamDecl<int> kInputs =
+      param::integer("inputs").range(2, 16).step(1).init(2).describe("how many inputs: in_0, in_1, ...").shapesInterface();
+  static inline const apex::ParamDecl<int> kChoice =
+      param::integer("choice").range(0, 15).step(1).describe("the input passed on").interactive();
   static apex::Manifest manifest() {
     return apex::Manifest("Passes on the input chosen by `choice`; the others are read and dropped")
-        .optionalInput<apex::Any>("in_0")
-        .optionalInput<apex::Any>("in_1")
-        .output<apex::Any>("out")
-        .param(apex::param::range("inputs", 2, 16, 1, 2).describe("how many inputs: in_0, in_1, ...").shapesInterface())
-        .param(apex::param::range("choice", 0, 15, 1, 0).describe("the input passed on").makeInteractive())
+        .input(kIn0)
+        .input(kIn1)
+        .output(kOut)
+        .param(kInputs)
+        .param(kChoice)
         .shapedBy([](const apex::ParamValues& p, apex::Manifest& m) {
           m.inputs.clear();
-          for (int i = 0; i < p.get<int>("inputs"); ++i) m.optionalInput<apex::Any>("in_" + std::to_string(i));
+          for (int i = 0; i < p.get<int>(kInputs.name()); ++i) m.optionalInput<apex::Any>("in_" + std::to_string(i));
           return apex::Status::ok();
         });
   }
@@ -112,8 +133,8 @@ class Select : public apex::Node {
   }
 
  private:
-  apex::Output<apex::Any> out_{this, "out"};
-  apex::Param<int> choice_{this, "choice"};
+  apex::Output<apex::Any> out_{this, kOut};
+  apex::Param<int> choice_{this, kChoice};
 };
 
 }  // namespace apex_nodes

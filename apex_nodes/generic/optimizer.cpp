@@ -11,6 +11,8 @@
 #include "apex_nodes/search.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
+
 namespace {
 
 /** One entry of `dimensions`: "name [min max] [int]". */
@@ -66,43 +68,71 @@ std::string number(double v) {
 
 class Optimizer : public apex::Node {
  public:
+  static inline const apex::InputPort<double> kFitness{
+      "fitness", "the candidate's score, e.g. SequenceMean's mean; larger is better unless minimize"};
+  static inline const apex::OutputPort<double> kBestFitness{"best_fitness", "after each evaluation: the best fitness so far"};
+  static inline const apex::OutputPort<int> kEvaluations{"evaluations", "after each evaluation: how many are done"};
+  static inline const apex::OutputPort<std::string> kBest{
+      "best", "after each evaluation: the best values so far, as YAML ({c: 12.5, block_size: 31})"};
+  static inline const apex::TriggerPort kEvaluate{
+      "evaluate", "a candidate's values are in effect: replay the data (a player's restart) and start the "
+                  "score (SequenceMean's reset)"};
+  static inline const apex::TriggerPort kFinished{"finished",
+                                                  "the run ended (its budget is spent, or stop): the best values are known"};
+  static inline const apex::ParamDecl<std::vector<std::string>> kDimensions =
+      param::textList("dimensions")
+          .describe("one output each: 'name [min max] [int]', e.g. 'c 0 60' or 'block_size int'; without "
+                    "min and max, the range of the parameter its output is connected to")
+          .shapesInterface();
+  static inline const apex::ParamDecl<std::string> kAlgorithm =
+      param::choice("algorithm", {"differential_evolution", "random", "grid"});
+  static inline const apex::ParamDecl<int> kBudget =
+      param::integer("budget").range(1, 1000000).step(1).init(60).describe("evaluations in a run");
+  static inline const apex::ParamDecl<int> kSeed =
+      param::integer("seed").range(0, 1000000000).step(1).init(1).describe("the same seed gives the same candidates");
+  static inline const apex::ParamDecl<int> kPopulation =
+      param::integer("population").range(0, 10000).step(1).describe(
+          "differential evolution: candidates per generation; 0: 15 per dimension, at least 5");
+  static inline const apex::ParamDecl<double> kF =
+      param::number("F").range(0.0, 2.0).step(0.05).init(0.8).describe("differential evolution: differential weight");
+  static inline const apex::ParamDecl<double> kCR =
+      param::number("CR").range(0.0, 1.0).step(0.05).init(0.9).describe("differential evolution: crossover probability");
+  static inline const apex::ParamDecl<bool> kMinimize = param::flag("minimize").describe("smaller fitness is better");
+  static inline const apex::ParamDecl<std::string> kState =
+      param::text("state").init("idle").describe("what the optimiser is doing (it sets this; saved with the graph)");
+  static inline const apex::ParamDecl<std::string> kBestValues =
+      param::text("best_values")
+          .describe("the best values so far as YAML, {dimension: value} (it sets this; the panel's "
+                    "'Apply best values' sets them on the tuned parameters as one undoable edit)");
   static apex::Manifest manifest() {
-    using namespace apex::param;
     return apex::Manifest("Tunes other nodes' parameters: one output per dimension, connected to the parameter it tunes; "
                           "each candidate is evaluated by the graph (evaluate: replay and score; the score comes back at fitness)")
-        .input<double>("fitness", "the candidate's score, e.g. SequenceMean's mean; larger is better unless minimize")
-        .output<double>("best_fitness", "after each evaluation: the best fitness so far")
-        .output<int>("evaluations", "after each evaluation: how many are done")
-        .output<std::string>("best", "after each evaluation: the best values so far, as YAML ({c: 12.5, block_size: 31})")
+        .input(kFitness)
+        .output(kBestFitness)
+        .output(kEvaluations)
+        .output(kBest)
         .slot("start", &Optimizer::start, "starts a run with the settings as they are now")
         .slot("stop", &Optimizer::stop, "ends the run; the tuned parameters get their values from before it back")
         .slot("apply_best", &Optimizer::applyBest, "sets the tuned parameters to the best values found")
-        .trigger("evaluate", "a candidate's values are in effect: replay the data (a player's restart) and start the "
-                             "score (SequenceMean's reset)")
-        .trigger("finished", "the run ended (its budget is spent, or stop): the best values are known")
-        .param(textList("dimensions", {})
-                   .describe("one output each: 'name [min max] [int]', e.g. 'c 0 60' or 'block_size int'; without "
-                             "min and max, the range of the parameter its output is connected to")
-                   .shapesInterface())
-        .param(options("algorithm", {"differential_evolution", "random", "grid"}, "differential_evolution"))
-        .param(range("budget", 1, 1000000, 1, 60).describe("evaluations in a run"))
-        .param(range("seed", 0, 1000000000, 1, 1).describe("the same seed gives the same candidates"))
-        .param(range("population", 0, 10000, 1, 0)
-                   .describe("differential evolution: candidates per generation; 0: 15 per dimension, at least 5"))
-        .param(range("F", 0.0, 2.0, 0.05, 0.8).describe("differential evolution: differential weight"))
-        .param(range("CR", 0.0, 1.0, 0.05, 0.9).describe("differential evolution: crossover probability"))
-        .param(boolean("minimize", false).describe("smaller fitness is better"))
-        .param(text("state", "idle").describe("what the optimiser is doing (it sets this; saved with the graph)"))
-        .param(text("best_values", "")
-                   .describe("the best values so far as YAML, {dimension: value} (it sets this; the panel's "
-                             "'Apply best values' sets them on the tuned parameters as one undoable edit)"))
+        .trigger(kEvaluate)
+        .trigger(kFinished)
+        .param(kDimensions)
+        .param(kAlgorithm)
+        .param(kBudget)
+        .param(kSeed)
+        .param(kPopulation)
+        .param(kF)
+        .param(kCR)
+        .param(kMinimize)
+        .param(kState)
+        .param(kBestValues)
         .shapedBy(shapeDimensions);
   }
 
   void setup() override {
     const std::string saved = state_.get();
     if (saved.rfind("running", 0) != 0) return;
-    updateParam("state", "interrupted (" + saved + ")");
+    updateParam(kState.name(), "interrupted (" + saved + ")");
     fail("this graph was saved while a run was in progress (" + saved +
          "): the tuned parameters hold that candidate's values, not tuned ones; start a new run");
   }
@@ -111,7 +141,7 @@ class Optimizer : public apex::Node {
   void endOfSequence() override { again(); }
 
   void parameterChanged(const std::string& name) override {
-    if (name != "dimensions" || !running_) return;
+    if (name != kDimensions.name() || !running_) return;
     running_ = waiting_ = false;  // its outputs are not the run's any more: nothing to give back through them
     setState("stopped: the dimensions changed during the run");
     fail("the dimensions changed during a run: it stopped after " + std::to_string(search_->evaluations()) +
@@ -133,7 +163,7 @@ class Optimizer : public apex::Node {
     best_fitness_.publish(minimize_ ? -search_->bestFitness() : search_->bestFitness());
     evaluations_.publish(search_->evaluations());
     best_.publish(bestText());
-    updateParam("best_values", bestText());
+    updateParam(kBestValues.name(), bestText());
     if (search_->done()) return end("finished");
     propose();
   }
@@ -275,7 +305,7 @@ class Optimizer : public apex::Node {
     return out + "}";
   }
 
-  void setState(const std::string& text) { updateParam("state", text); }
+  void setState(const std::string& text) { updateParam(kState.name(), text); }
   /** An error that stays until the next start, through the firings that ignore a score. */
   void fail(const std::string& text) {
     error_ = text;
@@ -285,21 +315,21 @@ class Optimizer : public apex::Node {
     if (!error_.empty()) reportError(error_);
   }
 
-  apex::Input<double> fitness_{this, "fitness"};
-  apex::Output<double> best_fitness_{this, "best_fitness"};
-  apex::Output<int> evaluations_{this, "evaluations"};
-  apex::Output<std::string> best_{this, "best"};
-  apex::Trigger evaluate_{this, "evaluate"};
-  apex::Trigger finished_{this, "finished"};
-  apex::Param<std::vector<std::string>> dimensions_{this, "dimensions"};
-  apex::Param<std::string> algorithm_{this, "algorithm"};
-  apex::Param<int> budget_{this, "budget"};
-  apex::Param<int> seed_{this, "seed"};
-  apex::Param<int> population_{this, "population"};
-  apex::Param<double> f_{this, "F"};
-  apex::Param<double> cr_{this, "CR"};
-  apex::Param<bool> minimize_param_{this, "minimize"};
-  apex::Param<std::string> state_{this, "state"};
+  apex::Input<double> fitness_{this, kFitness};
+  apex::Output<double> best_fitness_{this, kBestFitness};
+  apex::Output<int> evaluations_{this, kEvaluations};
+  apex::Output<std::string> best_{this, kBest};
+  apex::Trigger evaluate_{this, kEvaluate};
+  apex::Trigger finished_{this, kFinished};
+  apex::Param<std::vector<std::string>> dimensions_{this, kDimensions};
+  apex::Param<std::string> algorithm_{this, kAlgorithm};
+  apex::Param<int> budget_{this, kBudget};
+  apex::Param<int> seed_{this, kSeed};
+  apex::Param<int> population_{this, kPopulation};
+  apex::Param<double> f_{this, kF};
+  apex::Param<double> cr_{this, kCR};
+  apex::Param<bool> minimize_param_{this, kMinimize};
+  apex::Param<std::string> state_{this, kState};
 
   std::vector<Dim> dims_;
   std::unique_ptr<search::Search> search_;

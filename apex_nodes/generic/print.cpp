@@ -5,16 +5,14 @@ namespace apex_nodes {
 
 class Print : public apex::Node {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Logs each message it receives")
-        .input<apex::Any>("in", "any message")
-        .param(apex::param::text("prefix", "").describe("text before each line"));
-  }
+  static inline const apex::InputPort<apex::Any> kIn{"in", "any message"};
+  static inline const apex::ParamDecl<std::string> kPrefix = apex::param::text("prefix").describe("text before each line");
+  static apex::Manifest manifest() { return apex::Manifest("Logs each message it receives").input(kIn).param(kPrefix); }
   void process() override { log(apex::LogLevel::Info, prefix_.get() + text(in_.message())); }
 
  private:
-  apex::Input<apex::Any> in_{this, "in"};
-  apex::Param<std::string> prefix_{this, "prefix"};
+  apex::Input<apex::Any> in_{this, kIn};
+  apex::Param<std::string> prefix_{this, kPrefix};
 
   static std::string text(const apex::Message& m) {
     if (auto v = m.as<int>()) return std::to_string(*v);

@@ -5,16 +5,14 @@ namespace apex_nodes {
 
 class Relay : public apex::Node {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Passes any message through unchanged")
-        .input<apex::Any>("in", "any message")
-        .output<apex::Any>("out", "the same message");
-  }
+  static inline const apex::InputPort<apex::Any> kIn{"in", "any message"};
+  static inline const apex::OutputPort<apex::Any> kOut{"out", "the same message"};
+  static apex::Manifest manifest() { return apex::Manifest("Passes any message through unchanged").input(kIn).output(kOut); }
   void process() override { out_.publishMessage(in_.message()); }
 
  private:
-  apex::Input<apex::Any> in_{this, "in"};
-  apex::Output<apex::Any> out_{this, "out"};
+  apex::Input<apex::Any> in_{this, kIn};
+  apex::Output<apex::Any> out_{this, kOut};
 };
 
 }  // namespace apex_nodes

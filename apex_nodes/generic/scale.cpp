@@ -5,18 +5,18 @@ namespace apex_nodes {
 
 class Scale : public apex::Node {
  public:
+  static inline const apex::InputPort<double> kIn{"in"};
+  static inline const apex::OutputPort<double> kOut{"out"};
+  static inline const apex::ParamDecl<double> kFactor = apex::param::number("factor").init(1.0).describe("the factor");
   static apex::Manifest manifest() {
-    return apex::Manifest("Multiplies a number by a factor")
-        .input<double>("in")
-        .output<double>("out")
-        .param(apex::param::real("factor", 1.0).describe("the factor"));
+    return apex::Manifest("Multiplies a number by a factor").input(kIn).output(kOut).param(kFactor);
   }
   void process() override { out_.publish(*in_.get() * factor_.get()); }
 
  private:
-  apex::Input<double> in_{this, "in"};
-  apex::Output<double> out_{this, "out"};
-  apex::Param<double> factor_{this, "factor"};
+  apex::Input<double> in_{this, kIn};
+  apex::Output<double> out_{this, kOut};
+  apex::Param<double> factor_{this, kFactor};
 };
 
 }  // namespace apex_nodes

@@ -10,11 +10,14 @@ namespace apex_nodes {
 
 class SequenceMean : public apex::Node {
  public:
+  static inline const apex::InputPort<double> kValue{"value", "one per frame, e.g. RegionScore's f1"};
+  static inline const apex::OutputPort<double> kMean{"mean", "at the end of a sequence: the mean of its values (0 if it had none)"};
+  static inline const apex::OutputPort<int> kCount{"count", "at the end of a sequence: how many values it had"};
   static apex::Manifest manifest() {
     return apex::Manifest("Averages a value over a sequence; sends mean and count at its end, then starts the next")
-        .input<double>("value", "one per frame, e.g. RegionScore's f1")
-        .output<double>("mean", "at the end of a sequence: the mean of its values (0 if it had none)")
-        .output<int>("count", "at the end of a sequence: how many values it had")
+        .input(kValue)
+        .output(kMean)
+        .output(kCount)
         .slot("reset", &SequenceMean::reset, "forgets the values so far: a new sequence starts")
         .slot("finish", &SequenceMean::finish,
               "ends the sequence now, as its end-of-sequence token does: sends mean and count");
@@ -38,9 +41,9 @@ class SequenceMean : public apex::Node {
   }
 
  private:
-  apex::Input<double> value_{this, "value"};
-  apex::Output<double> mean_{this, "mean"};
-  apex::Output<int> count_out_{this, "count"};
+  apex::Input<double> value_{this, kValue};
+  apex::Output<double> mean_{this, kMean};
+  apex::Output<int> count_out_{this, kCount};
   double sum_ = 0;
   int count_ = 0;
 };

@@ -5,17 +5,26 @@
 #include "apex_nodes/image_check.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class BlobDetection : public apex::Node {
  public:
+  static inline const apex::InputPort<Image> kImage{"image", "binary, single-channel 8-bit"};
+  static inline const apex::OutputPort<Regions> kRegions{"regions"};
+  static inline const apex::OutputPort<int> kCount{"count", "how many regions passed the area filter"};
+  static inline const apex::ParamDecl<int> kMinArea =
+      param::integer("min_area").range(0, 10000000).step(1).init(50).describe("pixels; smaller regions are dropped");
+  static inline const apex::ParamDecl<int> kMaxArea =
+      param::integer("max_area").range(0, 10000000).step(1).init(1000000).describe("pixels; larger regions are dropped");
+  static inline const apex::ParamDecl<std::string> kConnectivity = param::choice("connectivity", {"4", "8"}).init("8");
   static apex::Manifest manifest() {
     return apex::Manifest("Finds connected regions of non-zero pixels (bounding box, area, centroid)")
-        .input<Image>("image", "binary, single-channel 8-bit")
-        .output<Regions>("regions")
-        .output<int>("count", "how many regions passed the area filter")
-        .param(apex::param::range("min_area", 0, 10000000, 1, 50).describe("pixels; smaller regions are dropped"))
-        .param(apex::param::range("max_area", 0, 10000000, 1, 1000000).describe("pixels; larger regions are dropped"))
-        .param(apex::param::options("connectivity", {"4", "8"}, "8"));
+        .input(kImage)
+        .output(kRegions)
+        .output(kCount)
+        .param(kMinArea)
+        .param(kMaxArea)
+        .param(kConnectivity);
   }
   void process() override {
     const Image& in = *image_.get();
@@ -43,12 +52,12 @@ class BlobDetection : public apex::Node {
   }
 
  private:
-  apex::Input<Image> image_{this, "image"};
-  apex::Output<Regions> regions_{this, "regions"};
-  apex::Output<int> count_{this, "count"};
-  apex::Param<int> min_area_{this, "min_area"};
-  apex::Param<int> max_area_{this, "max_area"};
-  apex::Param<std::string> connectivity_{this, "connectivity"};
+  apex::Input<Image> image_{this, kImage};
+  apex::Output<Regions> regions_{this, kRegions};
+  apex::Output<int> count_{this, kCount};
+  apex::Param<int> min_area_{this, kMinArea};
+  apex::Param<int> max_area_{this, kMaxArea};
+  apex::Param<std::string> connectivity_{this, kConnectivity};
   cv::Mat labels_, stats_, centroids_;  // reused between frames
 };
 

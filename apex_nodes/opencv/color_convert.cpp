@@ -2,9 +2,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 
-#include "apex/core/registry.hpp"
-#include "apex_nodes/image_check.hpp"
-#include "apex_nodes/output_buffer.hpp"
+#include "apex_nodes/image_filter.hpp"
 
 namespace apex_nodes {
 namespace {
@@ -38,36 +36,27 @@ std::vector<std::string> names() {
 
 }  // namespace
 
-class ColorConvert : public apex::Node {
+class ColorConvert : public ImageFilter {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Converts between colour spaces (cv::cvtColor)")
-        .input<Image>("image")
-        .output<Image>("image")
-        .param(apex::param::options("conversion", names(), "BGR2GRAY").describe("source and target colour space"));
-  }
-  void process() override {
-    const Image& in = *image_in_.get();
+  static inline const apex::ParamDecl<std::string> kConversion =
+      apex::param::choice("conversion", names()).init("BGR2GRAY").describe("source and target colour space");
+  static apex::Manifest manifest() { return filterManifest("Converts between colour spaces (cv::cvtColor)").param(kConversion); }
+  ColorConvert() : ImageFilter("1234") {}
+
+ private:
+  void filter(const Image& in, Image& out) override {
     const auto& name = conversion_.get();
     const Conversion& c = conversions().at(name);
-    requireImage(in, "1234");
     if (in.mat.channels() != c.in_channels)
       throw std::invalid_argument(name + " needs a " + std::to_string(c.in_channels) + "-channel image, got " +
                                   std::to_string(in.mat.channels()) + " channels ('" + in.encoding + "')");
     if (c.in_channels == 2 && (in.mat.depth() != CV_8U || in.mat.cols % 2))
       throw std::invalid_argument(name + " needs 8-bit pixel pairs: an even width, got " + std::to_string(in.mat.cols) +
                                   " pixels of depth " + std::to_string(in.mat.depth()) + " ('" + in.encoding + "')");
-    auto out = buffer_.next(in);
-    cv::cvtColor(in.mat, out->mat, c.code);
-    out->encoding = c.out_encoding;
-    image_out_.publish(out);
+    cv::cvtColor(in.mat, out.mat, c.code);
+    out.encoding = c.out_encoding;
   }
-
- private:
-  apex::Input<Image> image_in_{this, "image"};
-  apex::Output<Image> image_out_{this, "image"};
-  apex::Param<std::string> conversion_{this, "conversion"};
-  OutputBuffer buffer_;
+  apex::Param<std::string> conversion_{this, kConversion};
 };
 
 }  // namespace apex_nodes

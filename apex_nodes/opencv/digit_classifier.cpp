@@ -10,20 +10,28 @@
 #include "apex_nodes/image_check.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class DigitClassifier : public apex::Node {
  public:
+  static inline const apex::InputPort<Image> kImage{"image", "the image the regions were found in"};
+  static inline const apex::InputPort<Regions> kRegions{"regions", "e.g. BlobDetection's: one sign each"};
+  static inline const apex::OutputPort<Regions> kLabelled{
+      "regions", "the regions with label (the digit, -1 if rejected) and confidence"};
+  static inline const apex::ParamDecl<std::string> kModel = param::path("model").describe("apex_train_mlp's model file");
+  static inline const apex::ParamDecl<double> kMinConfidence =
+      param::number("min_confidence").range(0.0, 1.0).step(0.01).init(0.5)
+          .describe("a region whose best digit is less certain gets label -1 (shown as '?')");
   static apex::Manifest manifest() {
     return apex::Manifest("Classifies the digit in each region with a trained MLP (apex_train_mlp's model file)")
-        .input<Image>("image", "the image the regions were found in")
-        .input<Regions>("regions", "e.g. BlobDetection's: one sign each")
-        .output<Regions>("regions", "the regions with label (the digit, -1 if rejected) and confidence")
-        .param(apex::param::path("model", "", apex::PathMode::Read).describe("apex_train_mlp's model file"))
-        .param(apex::param::range("min_confidence", 0.0, 1.0, 0.01, 0.5)
-                   .describe("a region whose best digit is less certain gets label -1 (shown as '?')"));
+        .input(kImage)
+        .input(kRegions)
+        .output(kLabelled)
+        .param(kModel)
+        .param(kMinConfidence);
   }
   void parameterChanged(const std::string& name) override {
-    if (name == "model") model_.reset(), failed_.clear();
+    if (name == kModel.name()) model_.reset(), failed_.clear();
   }
   void process() override {
     const Image& image = *image_.get();
@@ -80,11 +88,11 @@ class DigitClassifier : public apex::Node {
     bool operator==(const Stamp& o) const { return sec == o.sec && nsec == o.nsec && size == o.size; }
   };
 
-  apex::Input<Image> image_{this, "image"};
-  apex::Input<Regions> regions_{this, "regions"};
-  apex::Output<Regions> regions_out_{this, "regions"};
-  apex::Param<std::string> model_path_{this, "model"};
-  apex::Param<double> min_confidence_{this, "min_confidence"};
+  apex::Input<Image> image_{this, kImage};
+  apex::Input<Regions> regions_{this, kRegions};
+  apex::Output<Regions> regions_out_{this, kLabelled};
+  apex::Param<std::string> model_path_{this, kModel};
+  apex::Param<double> min_confidence_{this, kMinConfidence};
   std::unique_ptr<DigitModel> model_;
   Stamp stamp_;
   std::string failed_;  // why the file at stamp_ could not be read

@@ -8,26 +8,38 @@
 #include "apex_nodes/truth.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class DigitScore : public apex::Node {
  public:
   static constexpr int kDigits = 10;
 
+  static inline const apex::InputPort<Regions> kRegions{"regions", "labelled, e.g. DigitClassifier's"};
+  static inline const apex::OutputPort<double> kAccuracy{
+      "accuracy", "at the end of a sequence: right labels / regions matched to a sign (1 if none)"};
+  static inline const apex::OutputPort<int> kMatched{
+      "matched", "at the end of a sequence: regions matched to a sign, the accuracy's denominator"};
+  static inline const apex::OutputPort<int> kRegionsSeen{"regions", "at the end of a sequence: regions seen"};
+  static inline const apex::OutputPort<std::string> kConfusion{
+      "confusion", "at the end of a sequence: the confusion matrix, a row per true digit, a column per label ('?': rejected)"};
+  static inline const apex::ParamDecl<std::string> kTruth =
+      param::path("truth").describe("the ground truth with each sign's digit");
+  static inline const apex::ParamDecl<double> kIou =
+      param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a sign");
   static apex::Manifest manifest() {
     return apex::Manifest("Scores regions' digit labels against the ground truth over a sequence (accuracy, confusion matrix)")
-        .input<Regions>("regions", "labelled, e.g. DigitClassifier's")
-        .output<double>("accuracy", "at the end of a sequence: right labels / regions matched to a sign (1 if none)")
-        .output<int>("matched", "at the end of a sequence: regions matched to a sign, the accuracy's denominator")
-        .output<int>("regions", "at the end of a sequence: regions seen")
-        .output<std::string>("confusion",
-                             "at the end of a sequence: the confusion matrix, a row per true digit, a column per label ('?': rejected)")
-        .param(apex::param::path("truth", "", apex::PathMode::Read).describe("the ground truth with each sign's digit"))
-        .param(apex::param::range("iou", 0.05, 1.0, 0.05, 0.5).describe("overlap a region needs to match a sign"))
+        .input(kRegions)
+        .output(kAccuracy)
+        .output(kMatched)
+        .output(kRegionsSeen)
+        .output(kConfusion)
+        .param(kTruth)
+        .param(kIou)
         .slot("reset", &DigitScore::reset, "forgets the counts: a new sequence starts")
         .slot("finish", &DigitScore::finish, "ends the sequence now, as its end-of-sequence token does");
   }
   void parameterChanged(const std::string& name) override {
-    if (name == "truth") truth_file_.reset();
+    if (name == kTruth.name()) truth_file_.reset();
   }
   void process() override {
     const Regions& in = *regions_.get();
@@ -78,13 +90,13 @@ class DigitScore : public apex::Node {
     return out;
   }
 
-  apex::Input<Regions> regions_{this, "regions"};
-  apex::Output<double> accuracy_{this, "accuracy"};
-  apex::Output<int> matched_out_{this, "matched"};
-  apex::Output<int> regions_out_{this, "regions"};
-  apex::Output<std::string> confusion_{this, "confusion"};
-  apex::Param<std::string> truth_{this, "truth"};
-  apex::Param<double> iou_{this, "iou"};
+  apex::Input<Regions> regions_{this, kRegions};
+  apex::Output<double> accuracy_{this, kAccuracy};
+  apex::Output<int> matched_out_{this, kMatched};
+  apex::Output<int> regions_out_{this, kRegionsSeen};
+  apex::Output<std::string> confusion_{this, kConfusion};
+  apex::Param<std::string> truth_{this, kTruth};
+  apex::Param<double> iou_{this, kIou};
   TruthFile truth_file_;
   std::array<std::array<int, kDigits + 1>, kDigits> counts_{};
   int matched_ = 0, right_ = 0, regions_seen_ = 0;

@@ -6,16 +6,22 @@
 #include "apex_nodes/output_buffer.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class DrawRegions : public apex::Node {
  public:
+  static inline const apex::InputPort<Image> kImage{"image"};
+  static inline const apex::InputPort<Regions> kRegions{"regions"};
+  static inline const apex::OutputPort<Image> kDrawn{"image", "bgr8 with the boxes drawn"};
+  static inline const apex::ParamDecl<apex::Color> kColor = param::color("color").init({0, 255, 0});
+  static inline const apex::ParamDecl<int> kThickness = param::integer("thickness").range(1, 20).step(1).init(2);
   static apex::Manifest manifest() {
     return apex::Manifest("Draws regions' bounding boxes over an image, with their labels if a classifier gave them")
-        .input<Image>("image")
-        .input<Regions>("regions")
-        .output<Image>("image", "bgr8 with the boxes drawn")
-        .param(apex::param::color("color", 0, 255, 0))
-        .param(apex::param::range("thickness", 1, 20, 1, 2));
+        .input(kImage)
+        .input(kRegions)
+        .output(kDrawn)
+        .param(kColor)
+        .param(kThickness);
   }
   void process() override {
     const Image& in = *image_in_.get();
@@ -48,11 +54,11 @@ class DrawRegions : public apex::Node {
     cv::putText(img, text, at + cv::Point(1, 0), cv::FONT_HERSHEY_SIMPLEX, 0.6, colour, 2, cv::LINE_AA);
   }
 
-  apex::Input<Image> image_in_{this, "image"};
-  apex::Input<Regions> regions_{this, "regions"};
-  apex::Output<Image> image_out_{this, "image"};
-  apex::Param<apex::Color> color_{this, "color"};
-  apex::Param<int> thickness_{this, "thickness"};
+  apex::Input<Image> image_in_{this, kImage};
+  apex::Input<Regions> regions_{this, kRegions};
+  apex::Output<Image> image_out_{this, kDrawn};
+  apex::Param<apex::Color> color_{this, kColor};
+  apex::Param<int> thickness_{this, kThickness};
   OutputBuffer buffer_;
 };
 

@@ -2,53 +2,41 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 
-#include "apex/core/registry.hpp"
-#include "apex_nodes/image_check.hpp"
-#include "apex_nodes/output_buffer.hpp"
+#include "apex_nodes/image_filter.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
-class GaussianBlur : public apex::Node {
+class GaussianBlur : public ImageFilter {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Smooths an image with a Gaussian kernel")
-        .input<Image>("image")
-        .output<Image>("image")
-        .param(apex::param::range("kernel_size", 1, 31, 2, 5).describe("odd"))
-        .param(apex::param::range("sigma", 0.0, 50.0, 0.1, 0.0).describe("0: from the kernel size"));
-  }
-  void process() override {
-    const Image& in = *image_in_.get();
-    requireImage(in);
-    auto out = buffer_.next(in);
-    const int k = kernel_size_.get();
-    cv::GaussianBlur(in.mat, out->mat, cv::Size(k, k), sigma_.get());
-    out->encoding = in.encoding;
-    image_out_.publish(out);
-  }
+  static inline const apex::ParamDecl<int> kKernel = param::integer("kernel_size").range(1, 31).step(2).init(5).describe("odd");
+  static inline const apex::ParamDecl<double> kSigma =
+      param::number("sigma").range(0.0, 50.0).step(0.1).describe("0: from the kernel size");
+  static apex::Manifest manifest() { return filterManifest("Smooths an image with a Gaussian kernel").param(kKernel).param(kSigma); }
 
  private:
-  apex::Input<Image> image_in_{this, "image"};
-  apex::Output<Image> image_out_{this, "image"};
-  apex::Param<int> kernel_size_{this, "kernel_size"};
-  apex::Param<double> sigma_{this, "sigma"};
-  OutputBuffer buffer_;
+  void filter(const Image& in, Image& out) override {
+    cv::GaussianBlur(in.mat, out.mat, cv::Size(kernel_.get(), kernel_.get()), sigma_.get());
+  }
+  apex::Param<int> kernel_{this, kKernel};
+  apex::Param<double> sigma_{this, kSigma};
 };
 
-class Threshold : public apex::Node {
+class Threshold : public ImageFilter {
  public:
+  static inline const apex::ParamDecl<double> kThreshold = param::number("threshold").range(0.0, 255.0).step(1.0).init(128.0);
+  static inline const apex::ParamDecl<double> kMaxValue = param::number("max_value").range(0.0, 255.0).step(1.0).init(255.0);
+  static inline const apex::ParamDecl<std::string> kType =
+      param::choice("type", {"binary", "binary_inv", "trunc", "tozero", "tozero_inv"});
+  static inline const apex::ParamDecl<bool> kOtsu = param::flag("otsu").describe("choose the threshold from the histogram");
   static apex::Manifest manifest() {
-    return apex::Manifest("Fixed-level threshold of a single-channel image (optionally Otsu)")
-        .input<Image>("image")
-        .output<Image>("image")
-        .param(apex::param::range("threshold", 0.0, 255.0, 1.0, 128.0))
-        .param(apex::param::range("max_value", 0.0, 255.0, 1.0, 255.0))
-        .param(apex::param::options("type", {"binary", "binary_inv", "trunc", "tozero", "tozero_inv"}, "binary"))
-        .param(apex::param::boolean("otsu", false).describe("choose the threshold from the histogram"));
+    return filterManifest("Fixed-level threshold of a single-channel image (optionally Otsu)")
+        .param(kThreshold).param(kMaxValue).param(kType).param(kOtsu);
   }
-  void process() override {
-    const Image& in = *image_in_.get();
-    requireImage(in, "1");
+  Threshold() : ImageFilter("1") {}
+
+ private:
+  void filter(const Image& in, Image& out) override {
     static const std::map<std::string, int> kTypes{{"binary", cv::THRESH_BINARY}, {"binary_inv", cv::THRESH_BINARY_INV},
                                                    {"trunc", cv::THRESH_TRUNC}, {"tozero", cv::THRESH_TOZERO},
                                                    {"tozero_inv", cv::THRESH_TOZERO_INV}};
@@ -57,51 +45,36 @@ class Threshold : public apex::Node {
       if (in.mat.depth() != CV_8U) throw std::invalid_argument("Otsu needs an 8-bit image ('" + in.encoding + "')");
       type |= cv::THRESH_OTSU;
     }
-    auto out = buffer_.next(in);
-    cv::threshold(in.mat, out->mat, threshold_.get(), max_value_.get(), type);
-    out->encoding = in.encoding;
-    image_out_.publish(out);
+    cv::threshold(in.mat, out.mat, threshold_.get(), max_value_.get(), type);
   }
-
- private:
-  apex::Input<Image> image_in_{this, "image"};
-  apex::Output<Image> image_out_{this, "image"};
-  apex::Param<double> threshold_{this, "threshold"};
-  apex::Param<double> max_value_{this, "max_value"};
-  apex::Param<std::string> type_{this, "type"};
-  apex::Param<bool> otsu_{this, "otsu"};
-  OutputBuffer buffer_;
+  apex::Param<double> threshold_{this, kThreshold};
+  apex::Param<double> max_value_{this, kMaxValue};
+  apex::Param<std::string> type_{this, kType};
+  apex::Param<bool> otsu_{this, kOtsu};
 };
 
-class Canny : public apex::Node {
+class Canny : public ImageFilter {
  public:
+  static inline const apex::InputPort<Image> kImage{"image", "8-bit"};
+  static inline const apex::OutputPort<Image> kEdges{"edges", "mono8"};
+  static inline const apex::ParamDecl<double> kLow = param::number("threshold1").range(0.0, 1000.0).step(1.0).init(50.0);
+  static inline const apex::ParamDecl<double> kHigh = param::number("threshold2").range(0.0, 1000.0).step(1.0).init(150.0);
+  static inline const apex::ParamDecl<std::string> kAperture = param::choice("aperture", {"3", "5", "7"});
+  static inline const apex::ParamDecl<bool> kL2 = param::flag("l2_gradient");
   static apex::Manifest manifest() {
-    return apex::Manifest("Canny edge detector")
-        .input<Image>("image", "8-bit")
-        .output<Image>("edges", "mono8")
-        .param(apex::param::range("threshold1", 0.0, 1000.0, 1.0, 50.0))
-        .param(apex::param::range("threshold2", 0.0, 1000.0, 1.0, 150.0))
-        .param(apex::param::options("aperture", {"3", "5", "7"}, "3"))
-        .param(apex::param::boolean("l2_gradient", false));
+    return filterManifest("Canny edge detector", kImage, kEdges).param(kLow).param(kHigh).param(kAperture).param(kL2);
   }
-  void process() override {
-    const Image& in = *image_.get();
-    requireImage(in);
-    if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image ('" + in.encoding + "')");
-    auto out = buffer_.next(in);
-    cv::Canny(in.mat, out->mat, threshold1_.get(), threshold2_.get(), std::stoi(aperture_.get()), l2_gradient_.get());
-    out->encoding = "mono8";
-    edges_.publish(out);
-  }
+  Canny() : ImageFilter("134", true, kImage, kEdges) {}
 
  private:
-  apex::Input<Image> image_{this, "image"};
-  apex::Output<Image> edges_{this, "edges"};
-  apex::Param<double> threshold1_{this, "threshold1"};
-  apex::Param<double> threshold2_{this, "threshold2"};
-  apex::Param<std::string> aperture_{this, "aperture"};
-  apex::Param<bool> l2_gradient_{this, "l2_gradient"};
-  OutputBuffer buffer_;
+  void filter(const Image& in, Image& out) override {
+    cv::Canny(in.mat, out.mat, low_.get(), high_.get(), std::stoi(aperture_.get()), l2_.get());
+    out.encoding = "mono8";
+  }
+  apex::Param<double> low_{this, kLow};
+  apex::Param<double> high_{this, kHigh};
+  apex::Param<std::string> aperture_{this, kAperture};
+  apex::Param<bool> l2_{this, kL2};
 };
 
 }  // namespace apex_nodes

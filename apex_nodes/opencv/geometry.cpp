@@ -1,73 +1,59 @@
 // Resize and Crop.
 #include <opencv2/imgproc.hpp>
 
-#include "apex/core/registry.hpp"
-#include "apex_nodes/image_check.hpp"
-#include "apex_nodes/output_buffer.hpp"
+#include "apex_nodes/image_filter.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
-class Resize : public apex::Node {
+class Resize : public ImageFilter {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Scales an image")
-        .input<Image>("image")
-        .output<Image>("image")
-        .param(apex::param::range("scale", 0.01, 10.0, 0.01, 0.5))
-        .param(apex::param::options("interpolation", {"nearest", "linear", "area", "cubic"}, "area"));
-  }
-  void process() override {
-    const Image& in = *image_in_.get();
-    requireImage(in);
-    const auto& i = interpolation_.get();
-    const int interp = i == "nearest" ? cv::INTER_NEAREST : i == "linear" ? cv::INTER_LINEAR : i == "area" ? cv::INTER_AREA : cv::INTER_CUBIC;
-    const double s = scale_.get();
-    auto out = buffer_.next(in);
-    cv::resize(in.mat, out->mat, cv::Size(), s, s, interp);
-    if (out->mat.empty()) throw std::invalid_argument("scale " + std::to_string(s) + " leaves no pixels");
-    out->encoding = in.encoding;
-    image_out_.publish(out);
-  }
+  static inline const apex::ParamDecl<double> kScale = param::number("scale").range(0.01, 10.0).step(0.01).init(0.5);
+  static inline const apex::ParamDecl<std::string> kInterpolation =
+      param::choice("interpolation", {"nearest", "linear", "area", "cubic"}).init("area");
+  static apex::Manifest manifest() { return filterManifest("Scales an image").param(kScale).param(kInterpolation); }
 
  private:
-  apex::Input<Image> image_in_{this, "image"};
-  apex::Output<Image> image_out_{this, "image"};
-  apex::Param<double> scale_{this, "scale"};
-  apex::Param<std::string> interpolation_{this, "interpolation"};
-  OutputBuffer buffer_;
+  void filter(const Image& in, Image& out) override {
+    const auto& i = interpolation_.get();
+    const int interp = i == "nearest" ? cv::INTER_NEAREST : i == "linear" ? cv::INTER_LINEAR : i == "area" ? cv::INTER_AREA : cv::INTER_CUBIC;
+    cv::resize(in.mat, out.mat, cv::Size(), scale_.get(), scale_.get(), interp);
+    if (out.mat.empty()) throw std::invalid_argument("scale " + std::to_string(scale_.get()) + " leaves no pixels");
+  }
+  apex::Param<double> scale_{this, kScale};
+  apex::Param<std::string> interpolation_{this, kInterpolation};
 };
 
+/** Not an ImageFilter: its output is a view of the input's pixels (no copy), kept alive by it. */
 class Crop : public apex::Node {
  public:
+  static inline const apex::ParamDecl<int> kX = param::integer("x").range(0, 100000).step(1);
+  static inline const apex::ParamDecl<int> kY = param::integer("y").range(0, 100000).step(1);
+  static inline const apex::ParamDecl<int> kWidth = param::integer("width").range(1, 100000).step(1).init(100000);
+  static inline const apex::ParamDecl<int> kHeight = param::integer("height").range(1, 100000).step(1).init(100000);
   static apex::Manifest manifest() {
-    return apex::Manifest("Cuts out a rectangle (clipped to the image); shares the input's pixels")
-        .input<Image>("image")
-        .output<Image>("image")
-        .param(apex::param::range("x", 0, 100000, 1, 0))
-        .param(apex::param::range("y", 0, 100000, 1, 0))
-        .param(apex::param::range("width", 1, 100000, 1, 100000))
-        .param(apex::param::range("height", 1, 100000, 1, 100000));
+    return ImageFilter::filterManifest("Cuts out a rectangle (clipped to the image); shares the input's pixels")
+        .param(kX).param(kY).param(kWidth).param(kHeight);
   }
   void process() override {
-    auto in = image_in_.get();
+    auto in = in_.get();
     requireImage(*in);
-    const cv::Rect want(x_.get(), y_.get(), width_.get(), height_.get());
-    const cv::Rect box = want & cv::Rect(0, 0, in->mat.cols, in->mat.rows);
+    const cv::Rect box = cv::Rect(x_.get(), y_.get(), width_.get(), height_.get()) & cv::Rect(0, 0, in->mat.cols, in->mat.rows);
     if (box.empty()) throw std::invalid_argument("the crop lies outside the " + std::to_string(in->mat.cols) + "x" +
                                                  std::to_string(in->mat.rows) + " image");
     auto out = std::make_shared<Image>(*in);
     out->mat = in->mat(box);  // no copy: a view, kept valid by `owner`
     out->owner = in;
-    image_out_.publish(out);
+    out_.publish(out);
   }
 
  private:
-  apex::Input<Image> image_in_{this, "image"};
-  apex::Output<Image> image_out_{this, "image"};
-  apex::Param<int> x_{this, "x"};
-  apex::Param<int> y_{this, "y"};
-  apex::Param<int> width_{this, "width"};
-  apex::Param<int> height_{this, "height"};
+  apex::Input<Image> in_{this, ImageFilter::kImageIn};
+  apex::Output<Image> out_{this, ImageFilter::kImageOut};
+  apex::Param<int> x_{this, kX};
+  apex::Param<int> y_{this, kY};
+  apex::Param<int> width_{this, kWidth};
+  apex::Param<int> height_{this, kHeight};
 };
 
 }  // namespace apex_nodes

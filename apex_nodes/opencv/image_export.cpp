@@ -7,17 +7,27 @@
 #include "apex_nodes/image_check.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class ImageExport : public apex::Node {
  public:
+  static inline const apex::InputPort<Image> kImage{"image"};
+  static inline const apex::InputPort<Regions> kRegions{"regions", "if connected: one file per region crop", true};
+  static inline const apex::OutputPort<std::string> kPath{"path", "the last file written"};
+  static inline const apex::ParamDecl<std::string> kDirectory =
+      param::path("directory").init("/tmp/apex_export").mode(apex::PathMode::Directory);
+  static inline const apex::ParamDecl<std::string> kPrefix =
+      param::text("prefix").init("frame").describe("the start of each file's name").fileName();
+  static inline const apex::ParamDecl<bool> kOverwrite =
+      param::flag("overwrite").describe("replace files already there (another run's)");
   static apex::Manifest manifest() {
     return apex::Manifest("Writes each image, or each region's crop, as a PNG file")
-        .input<Image>("image")
-        .optionalInput<Regions>("regions", "if connected: one file per region crop")
-        .output<std::string>("path", "the last file written")
-        .param(apex::param::path("directory", "/tmp/apex_export", apex::PathMode::Directory))
-        .param(apex::param::text("prefix", "frame").fileName().describe("the start of each file's name"))
-        .param(apex::param::boolean("overwrite", false).describe("replace files already there (another run's)"));
+        .input(kImage)
+        .input(kRegions)
+        .output(kPath)
+        .param(kDirectory)
+        .param(kPrefix)
+        .param(kOverwrite);
   }
   void process() override {
     const Image& in = *image_.get();
@@ -38,12 +48,12 @@ class ImageExport : public apex::Node {
   }
 
  private:
-  apex::Input<Image> image_{this, "image"};
-  apex::Input<Regions> regions_{this, "regions"};
-  apex::Output<std::string> path_{this, "path"};
-  apex::Param<std::string> directory_{this, "directory"};
-  apex::Param<std::string> prefix_{this, "prefix"};
-  apex::Param<bool> overwrite_{this, "overwrite"};
+  apex::Input<Image> image_{this, kImage};
+  apex::Input<Regions> regions_{this, kRegions};
+  apex::Output<std::string> path_{this, kPath};
+  apex::Param<std::string> directory_{this, kDirectory};
+  apex::Param<std::string> prefix_{this, kPrefix};
+  apex::Param<bool> overwrite_{this, kOverwrite};
 
   /** Numbers only grow, so a file already at `path` is never one of this node's: another run's,
    *  or the user's, replaced only with `overwrite`. */

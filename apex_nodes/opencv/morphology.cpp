@@ -1,50 +1,40 @@
 // Morphology: erode, dilate, open, close with a rectangular, cross or elliptic kernel.
 #include <opencv2/imgproc.hpp>
 
-#include "apex/core/registry.hpp"
-#include "apex_nodes/image_check.hpp"
-#include "apex_nodes/output_buffer.hpp"
+#include "apex_nodes/image_filter.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
-class Morphology : public apex::Node {
+class Morphology : public ImageFilter {
  public:
+  static inline const apex::ParamDecl<std::string> kOperation =
+      param::choice("operation", {"erode", "dilate", "open", "close"}).init("open");
+  static inline const apex::ParamDecl<std::string> kShape = param::choice("shape", {"rect", "cross", "ellipse"}).describe("kernel shape");
+  static inline const apex::ParamDecl<int> kKernel =
+      param::integer("kernel_size").range(1, 31).step(2).init(3).describe("kernel width and height, odd");
+  static inline const apex::ParamDecl<int> kIterations = param::integer("iterations").range(1, 20).step(1);
   static apex::Manifest manifest() {
-    return apex::Manifest("Morphological erode, dilate, open or close")
-        .input<Image>("image")
-        .output<Image>("image")
-        .param(apex::param::options("operation", {"erode", "dilate", "open", "close"}, "open"))
-        .param(apex::param::options("shape", {"rect", "cross", "ellipse"}, "rect").describe("kernel shape"))
-        .param(apex::param::range("kernel_size", 1, 31, 2, 3).describe("kernel width and height, odd"))
-        .param(apex::param::range("iterations", 1, 20, 1, 1));
+    return filterManifest("Morphological erode, dilate, open or close").param(kOperation).param(kShape).param(kKernel).param(kIterations);
   }
   void parameterChanged(const std::string&) override { kernel_.release(); }
-  void process() override {
-    const Image& in = *image_in_.get();
-    requireImage(in);
+
+ private:
+  void filter(const Image& in, Image& out) override {
     if (kernel_.empty()) {
       const auto& s = shape_.get();
       const int shape = s == "rect" ? cv::MORPH_RECT : s == "cross" ? cv::MORPH_CROSS : cv::MORPH_ELLIPSE;
-      const int k = kernel_size_.get();
-      kernel_ = cv::getStructuringElement(shape, cv::Size(k, k));
+      kernel_ = cv::getStructuringElement(shape, cv::Size(size_.get(), size_.get()));
     }
     const auto& op = operation_.get();
     const int code = op == "erode" ? cv::MORPH_ERODE : op == "dilate" ? cv::MORPH_DILATE : op == "open" ? cv::MORPH_OPEN : cv::MORPH_CLOSE;
-    auto out = buffer_.next(in);
-    cv::morphologyEx(in.mat, out->mat, code, kernel_, cv::Point(-1, -1), iterations_.get());
-    out->encoding = in.encoding;
-    image_out_.publish(out);
+    cv::morphologyEx(in.mat, out.mat, code, kernel_, cv::Point(-1, -1), iterations_.get());
   }
-
- private:
-  apex::Input<Image> image_in_{this, "image"};
-  apex::Output<Image> image_out_{this, "image"};
-  apex::Param<std::string> operation_{this, "operation"};
-  apex::Param<std::string> shape_{this, "shape"};
-  apex::Param<int> kernel_size_{this, "kernel_size"};
-  apex::Param<int> iterations_{this, "iterations"};
+  apex::Param<std::string> operation_{this, kOperation};
+  apex::Param<std::string> shape_{this, kShape};
+  apex::Param<int> size_{this, kKernel};
+  apex::Param<int> iterations_{this, kIterations};
   cv::Mat kernel_;  // rebuilt after a parameter change
-  OutputBuffer buffer_;
 };
 
 }  // namespace apex_nodes

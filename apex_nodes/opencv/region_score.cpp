@@ -5,21 +5,29 @@
 #include "apex_nodes/truth.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class RegionScore : public apex::Node {
  public:
+  static inline const apex::InputPort<Regions> kRegions{"regions", "e.g. BlobDetection's"};
+  static inline const apex::OutputPort<double> kPrecision{"precision", "matched regions / regions (1 if none were found)"};
+  static inline const apex::OutputPort<double> kRecall{"recall", "matched truth boxes / truth boxes (1 if the frame has none)"};
+  static inline const apex::OutputPort<double> kF1{"f1", "2 precision recall / (precision + recall); 0 if both are 0"};
+  static inline const apex::ParamDecl<std::string> kTruth = param::path("truth").describe(
+      "the ground truth: frames by stamp, boxes in the upright scene and the camera's rotation");
+  static inline const apex::ParamDecl<double> kIou =
+      param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a truth box");
   static apex::Manifest manifest() {
     return apex::Manifest("Scores a frame's regions against the ground truth (apex_make_demo_bag's truth file)")
-        .input<Regions>("regions", "e.g. BlobDetection's")
-        .output<double>("precision", "matched regions / regions (1 if none were found)")
-        .output<double>("recall", "matched truth boxes / truth boxes (1 if the frame has none)")
-        .output<double>("f1", "2 precision recall / (precision + recall); 0 if both are 0")
-        .param(apex::param::path("truth", "", apex::PathMode::Read)
-                   .describe("the ground truth: frames by stamp, boxes in the upright scene and the camera's rotation"))
-        .param(apex::param::range("iou", 0.05, 1.0, 0.05, 0.5).describe("overlap a region needs to match a truth box"));
+        .input(kRegions)
+        .output(kPrecision)
+        .output(kRecall)
+        .output(kF1)
+        .param(kTruth)
+        .param(kIou);
   }
   void parameterChanged(const std::string& name) override {
-    if (name == "truth") truth_file_.reset();  // read on the next frame, where an error shows
+    if (name == kTruth.name()) truth_file_.reset();  // read on the next frame, where an error shows
   }
   void process() override {
     const Regions& in = *regions_.get();
@@ -33,12 +41,12 @@ class RegionScore : public apex::Node {
   }
 
  private:
-  apex::Input<Regions> regions_{this, "regions"};
-  apex::Output<double> precision_{this, "precision"};
-  apex::Output<double> recall_{this, "recall"};
-  apex::Output<double> f1_{this, "f1"};
-  apex::Param<std::string> truth_{this, "truth"};
-  apex::Param<double> iou_{this, "iou"};
+  apex::Input<Regions> regions_{this, kRegions};
+  apex::Output<double> precision_{this, kPrecision};
+  apex::Output<double> recall_{this, kRecall};
+  apex::Output<double> f1_{this, kF1};
+  apex::Param<std::string> truth_{this, kTruth};
+  apex::Param<double> iou_{this, kIou};
   TruthFile truth_file_;
 };
 

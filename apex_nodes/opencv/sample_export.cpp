@@ -15,27 +15,42 @@
 
 namespace apex_nodes {
 namespace fs = std::filesystem;
+namespace param = apex::param;
 
 class SampleExport : public apex::Node {
  public:
   static constexpr const char* kIndexHeader = "file,label,stamp_ns,x,y,width,height";
 
+  static inline const apex::InputPort<Image> kImage{"image", "the image the regions were found in"};
+  static inline const apex::InputPort<Regions> kRegions{"regions", "e.g. BlobDetection's"};
+  static inline const apex::OutputPort<int> kWritten{"written", "samples this frame gave"};
+  static inline const apex::OutputPort<int> kSamples{
+      "samples", "at the end of a sequence (e.g. a pass of the bag): samples in the directory's index"};
+  static inline const apex::ParamDecl<std::string> kDirectory =
+      param::path("directory")
+          .describe("where the samples go (made if missing): DIGIT/STAMP_REGION.png and index.csv")
+          .mode(apex::PathMode::Directory);
+  static inline const apex::ParamDecl<std::string> kTruth =
+      param::path("truth").describe("the ground truth with each sign's digit");
+  static inline const apex::ParamDecl<double> kIou =
+      param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a sign");
+  static inline const apex::ParamDecl<bool> kOverwrite =
+      param::flag("overwrite").describe("replace files at a sample's name that index.csv does not list (not samples)");
+
   static apex::Manifest manifest() {
     return apex::Manifest("Writes the crop of each region that matches a labelled sign of the ground truth, with an index file")
-        .input<Image>("image", "the image the regions were found in")
-        .input<Regions>("regions", "e.g. BlobDetection's")
-        .output<int>("written", "samples this frame gave")
-        .output<int>("samples", "at the end of a sequence (e.g. a pass of the bag): samples in the directory's index")
-        .param(apex::param::path("directory", "", apex::PathMode::Directory)
-                   .describe("where the samples go (made if missing): DIGIT/STAMP_REGION.png and index.csv"))
-        .param(apex::param::path("truth", "", apex::PathMode::Read).describe("the ground truth with each sign's digit"))
-        .param(apex::param::range("iou", 0.05, 1.0, 0.05, 0.5).describe("overlap a region needs to match a sign"))
-        .param(apex::param::boolean("overwrite", false)
-                   .describe("replace files at a sample's name that index.csv does not list (not samples)"));
+        .input(kImage)
+        .input(kRegions)
+        .output(kWritten)
+        .output(kSamples)
+        .param(kDirectory)
+        .param(kTruth)
+        .param(kIou)
+        .param(kOverwrite);
   }
   void parameterChanged(const std::string& name) override {
-    if (name == "truth") truth_file_.reset();
-    if (name == "directory") index_dir_.clear();  // read the new folder's index first
+    if (name == kTruth.name()) truth_file_.reset();
+    if (name == kDirectory.name()) index_dir_.clear();  // read the new folder's index first
   }
   void process() override {
     const Image& image = *image_.get();
@@ -98,14 +113,14 @@ class SampleExport : public apex::Node {
     if (!st) throw std::runtime_error(st.message());
   }
 
-  apex::Input<Image> image_{this, "image"};
-  apex::Input<Regions> regions_{this, "regions"};
-  apex::Output<int> written_{this, "written"};
-  apex::Output<int> samples_{this, "samples"};
-  apex::Param<std::string> directory_{this, "directory"};
-  apex::Param<std::string> truth_{this, "truth"};
-  apex::Param<double> iou_{this, "iou"};
-  apex::Param<bool> overwrite_{this, "overwrite"};
+  apex::Input<Image> image_{this, kImage};
+  apex::Input<Regions> regions_{this, kRegions};
+  apex::Output<int> written_{this, kWritten};
+  apex::Output<int> samples_{this, kSamples};
+  apex::Param<std::string> directory_{this, kDirectory};
+  apex::Param<std::string> truth_{this, kTruth};
+  apex::Param<double> iou_{this, kIou};
+  apex::Param<bool> overwrite_{this, kOverwrite};
   TruthFile truth_file_;
   std::map<std::string, std::string> index_;  // file → its line
   std::string index_dir_;                      // the folder index_ belongs to

@@ -6,17 +6,25 @@
 #include "apex_nodes/cloud_check.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class EuclideanClustering : public apex::Node {
  public:
+  static inline const apex::InputPort<Cloud> kCloud{"cloud"};
+  static inline const apex::OutputPort<Clusters> kClusters{"clusters", "largest first"};
+  static inline const apex::OutputPort<int> kCount{"count"};
+  static inline const apex::ParamDecl<double> kTolerance =
+      param::number("tolerance").range(0.001, 10.0).step(0.001).init(0.05).describe("metres");
+  static inline const apex::ParamDecl<int> kMinSize = param::integer("min_size").range(1, 10000000).step(1).init(50);
+  static inline const apex::ParamDecl<int> kMaxSize = param::integer("max_size").range(1, 10000000).step(1).init(1000000);
   static apex::Manifest manifest() {
     return apex::Manifest("Splits a cloud into clusters of points closer than a tolerance")
-        .input<Cloud>("cloud")
-        .output<Clusters>("clusters", "largest first")
-        .output<int>("count")
-        .param(apex::param::range("tolerance", 0.001, 10.0, 0.001, 0.05).describe("metres"))
-        .param(apex::param::range("min_size", 1, 10000000, 1, 50))
-        .param(apex::param::range("max_size", 1, 10000000, 1, 1000000));
+        .input(kCloud)
+        .output(kClusters)
+        .output(kCount)
+        .param(kTolerance)
+        .param(kMinSize)
+        .param(kMaxSize);
   }
   void process() override {
     auto in = cloud_.get();
@@ -43,12 +51,12 @@ class EuclideanClustering : public apex::Node {
   }
 
  private:
-  apex::Input<Cloud> cloud_{this, "cloud"};
-  apex::Output<Clusters> clusters_{this, "clusters"};
-  apex::Output<int> count_{this, "count"};
-  apex::Param<double> tolerance_{this, "tolerance"};
-  apex::Param<int> min_size_{this, "min_size"};
-  apex::Param<int> max_size_{this, "max_size"};
+  apex::Input<Cloud> cloud_{this, kCloud};
+  apex::Output<Clusters> clusters_{this, kClusters};
+  apex::Output<int> count_{this, kCount};
+  apex::Param<double> tolerance_{this, kTolerance};
+  apex::Param<int> min_size_{this, kMinSize};
+  apex::Param<int> max_size_{this, kMaxSize};
 };
 
 }  // namespace apex_nodes

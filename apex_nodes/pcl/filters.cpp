@@ -2,57 +2,46 @@
 #include <pcl/filters/passthrough.h>
 #include <pcl/filters/voxel_grid.h>
 
-#include "apex/core/registry.hpp"
-#include "apex_nodes/cloud_check.hpp"
+#include "apex_nodes/cloud_filter.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
-class PassThrough : public apex::Node {
+class PassThrough : public CloudFilter<pcl::PassThrough<PointT>> {
  public:
+  static inline const apex::ParamDecl<std::string> kField = param::choice("field", {"x", "y", "z"}).init("z");
+  static inline const apex::ParamDecl<apex::Interval> kLimits =
+      param::interval("limits").range(-100.0, 100.0).step(0.01).init({0.0, 3.0}).describe("metres");
+  static inline const apex::ParamDecl<bool> kNegative = param::flag("negative").describe("keep the points outside instead");
   static apex::Manifest manifest() {
-    return apex::Manifest("Keeps the points whose x, y or z lies within limits")
-        .input<Cloud>("cloud")
-        .output<Cloud>("cloud")
-        .param(apex::param::options("field", {"x", "y", "z"}, "z"))
-        .param(apex::param::interval("limits", -100.0, 100.0, 0.0, 3.0, 0.01).describe("metres"))
-        .param(apex::param::boolean("negative", false).describe("keep the points outside instead"));
-  }
-  void process() override {
-    cloud_out_.publish(filterCloud<pcl::PassThrough<PointT>>(*cloud_in_.get(), [&](auto& filter) {
-      filter.setFilterFieldName(field_.get());
-      const apex::Interval& lim = limits_.get();
-      filter.setFilterLimits(static_cast<float>(lim.low), static_cast<float>(lim.high));
-      filter.setNegative(negative_.get());
-    }));
+    return filterManifest("Keeps the points whose x, y or z lies within limits").param(kField).param(kLimits).param(kNegative);
   }
 
  private:
-  apex::Input<Cloud> cloud_in_{this, "cloud"};
-  apex::Output<Cloud> cloud_out_{this, "cloud"};
-  apex::Param<std::string> field_{this, "field"};
-  apex::Param<apex::Interval> limits_{this, "limits"};
-  apex::Param<bool> negative_{this, "negative"};
+  void configure(pcl::PassThrough<PointT>& filter) override {
+    filter.setFilterFieldName(field_.get());
+    filter.setFilterLimits(static_cast<float>(limits_.get().low), static_cast<float>(limits_.get().high));
+    filter.setNegative(negative_.get());
+  }
+  apex::Param<std::string> field_{this, kField};
+  apex::Param<apex::Interval> limits_{this, kLimits};
+  apex::Param<bool> negative_{this, kNegative};
 };
 
-class VoxelGrid : public apex::Node {
+class VoxelGrid : public CloudFilter<pcl::VoxelGrid<PointT>> {
  public:
+  static inline const apex::ParamDecl<double> kLeafSize =
+      param::number("leaf_size").range(0.001, 10.0).step(0.001).init(0.05).describe("voxel edge, metres");
   static apex::Manifest manifest() {
-    return apex::Manifest("Downsamples a cloud to one point per voxel (the centroid)")
-        .input<Cloud>("cloud")
-        .output<Cloud>("cloud")
-        .param(apex::param::range("leaf_size", 0.001, 10.0, 0.001, 0.05).describe("voxel edge, metres"));
-  }
-  void process() override {
-    cloud_out_.publish(filterCloud<pcl::VoxelGrid<PointT>>(*cloud_in_.get(), [&](auto& filter) {
-      const float leaf = static_cast<float>(leaf_size_.get());
-      filter.setLeafSize(leaf, leaf, leaf);
-    }));
+    return filterManifest("Downsamples a cloud to one point per voxel (the centroid)").param(kLeafSize);
   }
 
  private:
-  apex::Input<Cloud> cloud_in_{this, "cloud"};
-  apex::Output<Cloud> cloud_out_{this, "cloud"};
-  apex::Param<double> leaf_size_{this, "leaf_size"};
+  void configure(pcl::VoxelGrid<PointT>& filter) override {
+    const float leaf = static_cast<float>(leaf_size_.get());
+    filter.setLeafSize(leaf, leaf, leaf);
+  }
+  apex::Param<double> leaf_size_{this, kLeafSize};
 };
 
 }  // namespace apex_nodes

@@ -1,32 +1,28 @@
 // StatisticalOutlierRemoval: drops points far from their neighbours.
 #include <pcl/filters/statistical_outlier_removal.h>
 
-#include "apex/core/registry.hpp"
-#include "apex_nodes/cloud_check.hpp"
+#include "apex_nodes/cloud_filter.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
-class StatisticalOutlierRemoval : public apex::Node {
+class StatisticalOutlierRemoval : public CloudFilter<pcl::StatisticalOutlierRemoval<PointT>> {
  public:
+  static inline const apex::ParamDecl<int> kMeanK =
+      param::integer("mean_k").range(1, 200).step(1).init(20).describe("neighbours considered");
+  static inline const apex::ParamDecl<double> kStddev =
+      param::number("stddev").range(0.0, 10.0).step(0.1).init(1.0).describe("allowed standard deviations");
   static apex::Manifest manifest() {
-    return apex::Manifest("Removes points whose mean distance to their k neighbours is unusually large")
-        .input<Cloud>("cloud")
-        .output<Cloud>("cloud")
-        .param(apex::param::range("mean_k", 1, 200, 1, 20).describe("neighbours considered"))
-        .param(apex::param::range("stddev", 0.0, 10.0, 0.1, 1.0).describe("allowed standard deviations"));
-  }
-  void process() override {
-    cloud_out_.publish(filterCloud<pcl::StatisticalOutlierRemoval<PointT>>(*cloud_in_.get(), [&](auto& filter) {
-      filter.setMeanK(mean_k_.get());
-      filter.setStddevMulThresh(stddev_.get());
-    }));
+    return filterManifest("Removes points whose mean distance to their k neighbours is unusually large").param(kMeanK).param(kStddev);
   }
 
  private:
-  apex::Input<Cloud> cloud_in_{this, "cloud"};
-  apex::Output<Cloud> cloud_out_{this, "cloud"};
-  apex::Param<int> mean_k_{this, "mean_k"};
-  apex::Param<double> stddev_{this, "stddev"};
+  void configure(pcl::StatisticalOutlierRemoval<PointT>& filter) override {
+    filter.setMeanK(mean_k_.get());
+    filter.setStddevMulThresh(stddev_.get());
+  }
+  apex::Param<int> mean_k_{this, kMeanK};
+  apex::Param<double> stddev_{this, kStddev};
 };
 
 }  // namespace apex_nodes

@@ -6,17 +6,25 @@
 #include "apex_nodes/cloud_check.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 
 class PlaneSegmentation : public apex::Node {
  public:
+  static inline const apex::InputPort<Cloud> kCloud{"cloud"};
+  static inline const apex::OutputPort<Cloud> kInliers{"inliers", "the plane's points"};
+  static inline const apex::OutputPort<Cloud> kOutliers{"outliers", "everything else"};
+  static inline const apex::OutputPort<std::vector<double>> kCoefficients{"coefficients", "a, b, c, d of ax + by + cz + d = 0"};
+  static inline const apex::ParamDecl<double> kDistanceThreshold =
+      param::number("distance_threshold").range(0.001, 1.0).step(0.001).init(0.02).describe("metres");
+  static inline const apex::ParamDecl<int> kMaxIterations = param::integer("max_iterations").range(1, 100000).step(1).init(200);
   static apex::Manifest manifest() {
     return apex::Manifest("Finds the dominant plane by RANSAC")
-        .input<Cloud>("cloud")
-        .output<Cloud>("inliers", "the plane's points")
-        .output<Cloud>("outliers", "everything else")
-        .output<std::vector<double>>("coefficients", "a, b, c, d of ax + by + cz + d = 0")
-        .param(apex::param::range("distance_threshold", 0.001, 1.0, 0.001, 0.02).describe("metres"))
-        .param(apex::param::range("max_iterations", 1, 100000, 1, 200));
+        .input(kCloud)
+        .output(kInliers)
+        .output(kOutliers)
+        .output(kCoefficients)
+        .param(kDistanceThreshold)
+        .param(kMaxIterations);
   }
   void process() override {
     auto in = cloud_.get();
@@ -45,12 +53,12 @@ class PlaneSegmentation : public apex::Node {
   }
 
  private:
-  apex::Input<Cloud> cloud_{this, "cloud"};
-  apex::Output<Cloud> inliers_{this, "inliers"};
-  apex::Output<Cloud> outliers_{this, "outliers"};
-  apex::Output<std::vector<double>> coefficients_{this, "coefficients"};
-  apex::Param<double> distance_threshold_{this, "distance_threshold"};
-  apex::Param<int> max_iterations_{this, "max_iterations"};
+  apex::Input<Cloud> cloud_{this, kCloud};
+  apex::Output<Cloud> inliers_{this, kInliers};
+  apex::Output<Cloud> outliers_{this, kOutliers};
+  apex::Output<std::vector<double>> coefficients_{this, kCoefficients};
+  apex::Param<double> distance_threshold_{this, kDistanceThreshold};
+  apex::Param<int> max_iterations_{this, kMaxIterations};
 };
 
 }  // namespace apex_nodes

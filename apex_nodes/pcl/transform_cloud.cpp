@@ -22,11 +22,14 @@ inline Eigen::Affine3f toEigen(const geometry_msgs::Transform& t) {
 
 class TransformCloud : public apex::Node {
  public:
+  static inline const apex::InputPort<Cloud> kCloudIn{"cloud"};
+  static inline const apex::InputPort<geometry_msgs::TransformStamped> kTransform{"transform"};
+  static inline const apex::OutputPort<Cloud> kCloudOut{"cloud"};
   static apex::Manifest manifest() {
     return apex::Manifest("Transforms a cloud into the transform's frame (e.g. from TfLookup)")
-        .input<Cloud>("cloud")
-        .input<geometry_msgs::TransformStamped>("transform")
-        .output<Cloud>("cloud");
+        .input(kCloudIn)
+        .input(kTransform)
+        .output(kCloudOut);
   }
   void process() override {
     auto in = cloud_in_.get();
@@ -43,9 +46,9 @@ class TransformCloud : public apex::Node {
   }
 
  private:
-  apex::Input<Cloud> cloud_in_{this, "cloud"};
-  apex::Input<geometry_msgs::TransformStamped> transform_{this, "transform"};
-  apex::Output<Cloud> cloud_out_{this, "cloud"};
+  apex::Input<Cloud> cloud_in_{this, kCloudIn};
+  apex::Input<geometry_msgs::TransformStamped> transform_{this, kTransform};
+  apex::Output<Cloud> cloud_out_{this, kCloudOut};
 };
 
 }  // namespace apex_nodes

@@ -15,6 +15,7 @@
 #include "bag_frames.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 namespace {
 
 constexpr const char* kImageType = "sensor_msgs/Image";
@@ -93,37 +94,68 @@ apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
 
 class BagReader : public apex::Node {
  public:
+  static inline const apex::OutputPort<double> kStamp{"stamp", "record time of the frame's first message, seconds"};
+  static inline const apex::TriggerPort kFinished{"finished",
+                                                  "fires after the last frame of each pass, with the end-of-sequence token that "
+                                                  "follows that frame on every output"};
+  static inline const apex::ParamDecl<std::string> kFile = param::path("file").describe("the bag").shapesInterface();
+  static inline const apex::ParamDecl<std::vector<std::string>> kTopics =
+      param::textList("topics")
+          .describe("topics to play, one output each (/camera/image_raw: output camera_image_raw); "
+                    "empty: image_topic and cloud_topic, on outputs image and cloud")
+          .shapesInterface();
+  static inline const apex::ParamDecl<std::string> kImageTopic =
+      param::text("image_topic").init("/camera/image_raw").describe("used when topics is empty").shapesInterface();
+  static inline const apex::ParamDecl<std::string> kCloudTopic =
+      param::text("cloud_topic").init("/camera/points").describe("used when topics is empty").shapesInterface();
+  static inline const apex::ParamDecl<double> kSyncWindow =
+      param::number("sync_window")
+          .range(0.0, 10.0)
+          .step(0.001)
+          .init(0.02)
+          .describe("messages within this many seconds of a frame's first one belong to it")
+          .shapesInterface();
+  static inline const apex::ParamDecl<bool> kPlaying = param::flag("playing").init(true);
+  static inline const apex::ParamDecl<double> kRate =
+      param::number("rate").range(0.0, 100.0).step(0.1).init(1.0).describe("times the recorded pace; 0: as fast as possible");
+  static inline const apex::ParamDecl<bool> kLoop = param::flag("loop");
+  static inline const apex::ParamDecl<double> kStart =
+      param::number("start").range(0.0, 1e6).step(0.1).describe("play from this many seconds into the bag");
+  static inline const apex::ParamDecl<double> kEnd =
+      param::number("end").range(0.0, 1e6).step(0.1).describe("play up to this many seconds into the bag; 0: its end");
+  static inline const apex::ParamDecl<int> kFrame =
+      param::integer("frame")
+          .range(0, 10000000)
+          .step(1)
+          .describe("the current frame (its output sends each frame's index); setting it seeks there "
+                    "and sends that frame")
+          .interactive()
+          .everySet();
+  static inline const apex::ParamDecl<double> kTime =
+      param::number("time")
+          .range(0.0, 1e6)
+          .step(0.01)
+          .describe("seconds into the bag of the current frame; setting it seeks to the frame at that time")
+          .everySet();
   static apex::Manifest manifest() {
     return apex::Manifest("Plays a bag: one output per topic, one firing per frame; seeks, holds a frame")
-        .output<double>("stamp", "record time of the frame's first message, seconds")
-        .trigger("finished", "fires after the last frame of each pass, with the end-of-sequence token that "
-                             "follows that frame on every output")
+        .output(kStamp)
+        .trigger(kFinished)
         .slot("restart", &BagReader::restart, "back to the first frame (and send it)")
         .slot("next", &BagReader::next, "send the next frame")
         .slot("previous", &BagReader::previous, "send the previous frame")
-        .param(apex::param::path("file", "", apex::PathMode::Read).describe("the bag").shapesInterface())
-        .param(apex::param::textList("topics", {})
-                   .describe("topics to play, one output each (/camera/image_raw: output camera_image_raw); "
-                             "empty: image_topic and cloud_topic, on outputs image and cloud")
-                   .shapesInterface())
-        .param(apex::param::text("image_topic", "/camera/image_raw").describe("used when topics is empty").shapesInterface())
-        .param(apex::param::text("cloud_topic", "/camera/points").describe("used when topics is empty").shapesInterface())
-        .param(apex::param::range("sync_window", 0.0, 10.0, 0.001, 0.02)
-                   .describe("messages within this many seconds of a frame's first one belong to it")
-                   .shapesInterface())
-        .param(apex::param::boolean("playing", true))
-        .param(apex::param::range("rate", 0.0, 100.0, 0.1, 1.0).describe("times the recorded pace; 0: as fast as possible"))
-        .param(apex::param::boolean("loop", false))
-        .param(apex::param::range("start", 0.0, 1e6, 0.1, 0.0).describe("play from this many seconds into the bag"))
-        .param(apex::param::range("end", 0.0, 1e6, 0.1, 0.0).describe("play up to this many seconds into the bag; 0: its end"))
-        .param(apex::param::range("frame", 0, 10000000, 1, 0)
-                   .describe("the current frame (its output sends each frame's index); setting it seeks there "
-                             "and sends that frame")
-                   .everySet()
-                   .makeInteractive())
-        .param(apex::param::range("time", 0.0, 1e6, 0.01, 0.0)
-                   .describe("seconds into the bag of the current frame; setting it seeks to the frame at that time")
-                   .everySet())
+        .param(kFile)
+        .param(kTopics)
+        .param(kImageTopic)
+        .param(kCloudTopic)
+        .param(kSyncWindow)
+        .param(kPlaying)
+        .param(kRate)
+        .param(kLoop)
+        .param(kStart)
+        .param(kEnd)
+        .param(kFrame)
+        .param(kTime)
         .shapedBy(shapeOutputs)
         .driven();
   }
@@ -271,8 +303,8 @@ class BagReader : public apex::Node {
   void send(int k) {
     current_ = k;
     const BagFrame& f = frames_[k];
-    updateParam("frame", k);
-    updateParam("time", (f.start - frames_.front().start).toSec());
+    updateParam(kFrame.name(), k);
+    updateParam(kTime.name(), (f.start - frames_.front().start).toSec());
     for (const rosbag::MessageInstance& m : rosbag::View(*bag_, rosbag::TopicQuery(played_topics_), f.start, f.end)) {
       auto port = ports_.find(m.getTopic());
       if (port == ports_.end()) continue;
@@ -294,20 +326,20 @@ class BagReader : public apex::Node {
   }
 
   // The fixed ports and parameters; the outputs of the played topics are read by name (shapeOutputs).
-  apex::Output<double> stamp_{this, "stamp"};
-  apex::Trigger finished_{this, "finished"};
-  apex::Param<std::string> file_{this, "file"};
-  apex::Param<std::vector<std::string>> topics_{this, "topics"};
-  apex::Param<std::string> image_topic_{this, "image_topic"};
-  apex::Param<std::string> cloud_topic_{this, "cloud_topic"};
-  apex::Param<double> sync_window_{this, "sync_window"};
-  apex::Param<bool> playing_{this, "playing"};
-  apex::Param<double> rate_{this, "rate"};
-  apex::Param<bool> loop_{this, "loop"};
-  apex::Param<double> start_{this, "start"};
-  apex::Param<double> end_{this, "end"};
-  apex::Param<int> frame_{this, "frame"};
-  apex::Param<double> time_{this, "time"};
+  apex::Output<double> stamp_{this, kStamp};
+  apex::Trigger finished_{this, kFinished};
+  apex::Param<std::string> file_{this, kFile};
+  apex::Param<std::vector<std::string>> topics_{this, kTopics};
+  apex::Param<std::string> image_topic_{this, kImageTopic};
+  apex::Param<std::string> cloud_topic_{this, kCloudTopic};
+  apex::Param<double> sync_window_{this, kSyncWindow};
+  apex::Param<bool> playing_{this, kPlaying};
+  apex::Param<double> rate_{this, kRate};
+  apex::Param<bool> loop_{this, kLoop};
+  apex::Param<double> start_{this, kStart};
+  apex::Param<double> end_{this, kEnd};
+  apex::Param<int> frame_{this, kFrame};
+  apex::Param<double> time_{this, kTime};
 
   std::unique_ptr<rosbag::Bag> bag_;
   std::vector<std::string> played_topics_;

@@ -22,6 +22,7 @@
 #include "bag_frames.hpp"
 
 namespace apex_nodes {
+namespace param = apex::param;
 namespace {
 
 /** One optional input of any type per topic, named as BagReader names its outputs. */
@@ -49,23 +50,40 @@ ros::Time clockNow() {
 
 class BagWriter : public apex::Node {
  public:
+  static inline const apex::ParamDecl<std::string> kFile =
+      param::path("file")
+          .init("/tmp/apex_record.bag")
+          .describe("the bag; written as <file>.active until it is closed")
+          .mode(apex::PathMode::Write);
+  static inline const apex::ParamDecl<std::vector<std::string>> kTopics =
+      param::textList("topics")
+          .init({"/camera/image_raw"})
+          .describe("topics to record, one input each (/camera/image_raw: input camera_image_raw)")
+          .shapesInterface();
+  static inline const apex::ParamDecl<double> kSplitSize =
+      param::number("split_size")
+          .range(0.0, 1e6)
+          .step(1.0)
+          .describe("MB (of 1,048,576 bytes, as rosbag record): when a file grows past this, the next "
+                    "one starts; files are <stem>_0.bag, <stem>_1.bag, ...; 0: one file");
+  static inline const apex::ParamDecl<bool> kRecording =
+      param::flag("recording").init(true).describe("the start and stop slots set it; off closes the file");
+  static inline const apex::ParamDecl<bool> kOverwrite = param::flag("overwrite").describe("replace a bag this node did not record");
+  static inline const apex::ParamDecl<bool> kStopAtEnd =
+      param::flag("stop_at_end")
+          .init(true)
+          .describe("the end of a pass (e.g. a BagReader's last frame) stops recording, so the file is "
+                    "complete when the bag has played once");
   static apex::Manifest manifest() {
     return apex::Manifest("Records its inputs into a bag: one input per topic, each message at its own stamp")
         .slot("start", &BagWriter::start, "start recording (a new file: an old one of that name is replaced)")
         .slot("stop", &BagWriter::stop, "stop recording and close the file")
-        .param(apex::param::path("file", "/tmp/apex_record.bag", apex::PathMode::Write)
-                   .describe("the bag; written as <file>.active until it is closed"))
-        .param(apex::param::textList("topics", {"/camera/image_raw"})
-                   .describe("topics to record, one input each (/camera/image_raw: input camera_image_raw)")
-                   .shapesInterface())
-        .param(apex::param::range("split_size", 0.0, 1e6, 1.0, 0.0)
-                   .describe("MB (of 1,048,576 bytes, as rosbag record): when a file grows past this, the next "
-                             "one starts; files are <stem>_0.bag, <stem>_1.bag, ...; 0: one file"))
-        .param(apex::param::boolean("recording", true).describe("the start and stop slots set it; off closes the file"))
-        .param(apex::param::boolean("overwrite", false).describe("replace a bag this node did not record"))
-        .param(apex::param::boolean("stop_at_end", true)
-                   .describe("the end of a pass (e.g. a BagReader's last frame) stops recording, so the file is "
-                             "complete when the bag has played once"))
+        .param(kFile)
+        .param(kTopics)
+        .param(kSplitSize)
+        .param(kRecording)
+        .param(kOverwrite)
+        .param(kStopAtEnd)
         .shapedBy(shapeInputs);
   }
   ~BagWriter() override {
@@ -115,11 +133,11 @@ class BagWriter : public apex::Node {
   void start() {
     close();
     part_ = 0;
-    if (!recording_.get()) updateParam("recording", true);
+    if (!recording_.get()) updateParam(kRecording.name(), true);
   }
   void stop() {
     close();
-    if (recording_.get()) updateParam("recording", false);
+    if (recording_.get()) updateParam(kRecording.name(), false);
   }
 
  private:
@@ -175,12 +193,12 @@ class BagWriter : public apex::Node {
     }
   }
 
-  apex::Param<std::string> file_{this, "file"};
-  apex::Param<std::vector<std::string>> topics_{this, "topics"};
-  apex::Param<double> split_size_{this, "split_size"};
-  apex::Param<bool> recording_{this, "recording"};
-  apex::Param<bool> stop_at_end_{this, "stop_at_end"};
-  apex::Param<bool> overwrite_{this, "overwrite"};
+  apex::Param<std::string> file_{this, kFile};
+  apex::Param<std::vector<std::string>> topics_{this, kTopics};
+  apex::Param<double> split_size_{this, kSplitSize};
+  apex::Param<bool> recording_{this, kRecording};
+  apex::Param<bool> stop_at_end_{this, kStopAtEnd};
+  apex::Param<bool> overwrite_{this, kOverwrite};
 
   std::unique_ptr<rosbag::Bag> bag_;
   std::string path_;         // the file bag_ becomes when closed

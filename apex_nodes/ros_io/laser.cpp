@@ -14,10 +14,12 @@ namespace apex_nodes {
 
 class LaserScanSubscriber : public TopicSource<sensor_msgs::LaserScan> {
  public:
+  static inline const apex::OutputPort<sensor_msgs::LaserScan> kScan{"scan"};
+  static inline const apex::ParamDecl<std::string> kTopic = apex::param::text("topic").init("scan");
   static apex::Manifest manifest() {
     return apex::Manifest("Receives sensor_msgs/LaserScan; keeps only the newest")
-        .output<sensor_msgs::LaserScan>("scan")
-        .param(apex::param::text("topic", "scan"))
+        .output(kScan)
+        .param(kTopic)
         .param(holdParam())
         .driven();
   }
@@ -30,23 +32,23 @@ class LaserScanSubscriber : public TopicSource<sensor_msgs::LaserScan> {
   void send(const MsgPtr& scan) override {  // shared with ROS, not copied: boost to std ownership
     scan_.publish(std::shared_ptr<const sensor_msgs::LaserScan>(scan.get(), [scan](auto*) {}));
   }
-  apex::Output<sensor_msgs::LaserScan> scan_{this, "scan"};
-  apex::Param<std::string> topic_{this, "topic"};
+  apex::Output<sensor_msgs::LaserScan> scan_{this, kScan};
+  apex::Param<std::string> topic_{this, kTopic};
   ros::Subscriber sub_;
 };
 
 class LaserScanToCloud : public apex::Node {
  public:
+  static inline const apex::InputPort<sensor_msgs::LaserScan> kScan{"scan"};
+  static inline const apex::OutputPort<Cloud> kCloud{"cloud"};
   static apex::Manifest manifest() {
-    return apex::Manifest("Turns a scan's valid ranges into points in the scan's plane (z = 0)")
-        .input<sensor_msgs::LaserScan>("scan")
-        .output<Cloud>("cloud");
+    return apex::Manifest("Turns a scan's valid ranges into points in the scan's plane (z = 0)").input(kScan).output(kCloud);
   }
   void process() override { cloud_.publish(scanToCloud(*scan_.get())); }
 
  private:
-  apex::Input<sensor_msgs::LaserScan> scan_{this, "scan"};
-  apex::Output<Cloud> cloud_{this, "cloud"};
+  apex::Input<sensor_msgs::LaserScan> scan_{this, kScan};
+  apex::Output<Cloud> cloud_{this, kCloud};
 };
 
 }  // namespace apex_nodes

@@ -14,13 +14,22 @@ namespace apex_nodes {
 
 class TfLookup : public apex::Node {
  public:
+  static inline const apex::InputPort<apex::Any> kStamped{
+      "stamped", "an image, cloud, regions, clusters or scan: its header gives frame and time"};
+  static inline const apex::OutputPort<geometry_msgs::TransformStamped> kTransform{
+      "transform", "maps points of the source frame into the target frame"};
+  static inline const apex::ParamDecl<std::string> kTargetFrame = apex::param::text("target_frame").init("base_link");
+  static inline const apex::ParamDecl<std::string> kSourceFrame =
+      apex::param::text("source_frame").describe("empty: the message's frame_id");
+  static inline const apex::ParamDecl<double> kTimeout =
+      apex::param::number("timeout").range(0.0, 10.0).step(0.01).init(0.1).describe("seconds to wait for the transform");
   static apex::Manifest manifest() {
     return apex::Manifest("Looks up the transform from the message's frame (or source_frame) to target_frame at its stamp")
-        .input<apex::Any>("stamped", "an image, cloud, regions, clusters or scan: its header gives frame and time")
-        .output<geometry_msgs::TransformStamped>("transform", "maps points of the source frame into the target frame")
-        .param(apex::param::text("target_frame", "base_link"))
-        .param(apex::param::text("source_frame", "").describe("empty: the message's frame_id"))
-        .param(apex::param::range("timeout", 0.0, 10.0, 0.01, 0.1).describe("seconds to wait for the transform"));
+        .input(kStamped)
+        .output(kTransform)
+        .param(kTargetFrame)
+        .param(kSourceFrame)
+        .param(kTimeout);
   }
   void setup() override {
     buffer_ = std::make_unique<tf2_ros::Buffer>();
@@ -40,11 +49,11 @@ class TfLookup : public apex::Node {
   }
 
  private:
-  apex::Input<apex::Any> stamped_{this, "stamped"};
-  apex::Output<geometry_msgs::TransformStamped> transform_{this, "transform"};
-  apex::Param<std::string> target_frame_{this, "target_frame"};
-  apex::Param<std::string> source_frame_{this, "source_frame"};
-  apex::Param<double> timeout_{this, "timeout"};
+  apex::Input<apex::Any> stamped_{this, kStamped};
+  apex::Output<geometry_msgs::TransformStamped> transform_{this, kTransform};
+  apex::Param<std::string> target_frame_{this, kTargetFrame};
+  apex::Param<std::string> source_frame_{this, kSourceFrame};
+  apex::Param<double> timeout_{this, kTimeout};
   std::unique_ptr<tf2_ros::Buffer> buffer_;
   std::unique_ptr<tf2_ros::TransformListener> listener_;
 };

@@ -21,9 +21,11 @@ class TopicSource : public apex::Node {
   using MsgPtr = boost::shared_ptr<const Msg>;
 
   /** The parameter every subscriber declares. */
-  static apex::ParamSpec holdParam() {
-    return apex::param::boolean("hold", false)
-        .describe("keep the last message, ignore new ones, and send it again after any change downstream");
+  /** (A function, not a constant: a static member of a class template may be initialised after
+   *  the registration lines that read it.) */
+  static apex::ParamDecl<bool> holdParam() {
+    return apex::param::flag("hold").describe(
+        "keep the last message, ignore new ones, and send it again after any change downstream");
   }
 
   void setup() override { subscribe(); }
@@ -67,7 +69,7 @@ class TopicSource : public apex::Node {
   }
 
  private:
-  apex::Param<bool> hold_{this, "hold"};  // declared by every subclass: holdParam()
+  apex::Param<bool> hold_{this, holdParam()};  // declared by every subclass: holdParam()
   std::mutex m_;
   MsgPtr latest_;                      // m_: the newest from the callback
   MsgPtr sent_;                        // process() only: the last one sent (held)

@@ -7,17 +7,22 @@
 #include "apex/ros/node_handles.hpp"
 #include "apex_nodes/ros_convert.hpp"
 #include "shared_image_transport.hpp"
+#include "topic_sink.hpp"
 #include "topic_source.hpp"
 
 namespace apex_nodes {
 
 class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
  public:
+  static inline const apex::OutputPort<Image> kImage{"image"};
+  static inline const apex::ParamDecl<std::string> kTopic =
+      apex::param::text("topic").init("image").describe("resolved in the runtime's namespace");
+  static inline const apex::ParamDecl<std::string> kTransport = apex::param::choice("transport", {"raw", "compressed", "theora"});
   static apex::Manifest manifest() {
     return apex::Manifest("Receives images from a topic (image_transport); keeps only the newest")
-        .output<Image>("image")
-        .param(apex::param::text("topic", "image").describe("resolved in the runtime's namespace"))
-        .param(apex::param::options("transport", {"raw", "compressed", "theora"}, "raw"))
+        .output(kImage)
+        .param(kTopic)
+        .param(kTransport)
         .param(holdParam())
         .driven();
   }
@@ -28,38 +33,32 @@ class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
                           transport_.get());
   }
   void send(const MsgPtr& msg) override { image_.publish(fromRos(msg)); }
-  apex::Output<Image> image_{this, "image"};
-  apex::Param<std::string> topic_{this, "topic"};
-  apex::Param<std::string> transport_{this, "transport"};
+  apex::Output<Image> image_{this, kImage};
+  apex::Param<std::string> topic_{this, kTopic};
+  apex::Param<std::string> transport_{this, kTransport};
   image_transport::Subscriber sub_;
 };
 
-class ImagePublisher : public apex::Node {
+class ImagePublisher : public TopicSink<Image, image_transport::Publisher> {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Publishes images on a topic (image_transport)")
-        .input<Image>("image")
-        .param(apex::param::text("topic", "image_out"));
-  }
-  void setup() override { advertise(); }
-  void parameterChanged(const std::string&) override { advertise(); }
-  void process() override {
-    if (pub_.getNumSubscribers() > 0) pub_.publish(toRos(*image_.get()));
-  }
+  static inline const apex::InputPort<Image> kImage{"image", "the frame"};
+  static apex::Manifest manifest() { return sinkManifest("Publishes images on a topic (image_transport)", kImage, "image_out"); }
+  ImagePublisher() : TopicSink(kImage) {}
 
  private:
-  void advertise() { pub_ = advertiseImage(apex::nodeHandle(*this), topic_.get(), 1); }
-  apex::Input<Image> image_{this, "image"};
-  apex::Param<std::string> topic_{this, "topic"};
-  image_transport::Publisher pub_;
+  image_transport::Publisher advertise(ros::NodeHandle nh, const std::string& topic) override {
+    return advertiseImage(nh, topic, 1);
+  }
 };
 
 class PointCloudSubscriber : public TopicSource<sensor_msgs::PointCloud2> {
  public:
+  static inline const apex::OutputPort<Cloud> kCloud{"cloud"};
+  static inline const apex::ParamDecl<std::string> kTopic = apex::param::text("topic").init("points");
   static apex::Manifest manifest() {
     return apex::Manifest("Receives sensor_msgs/PointCloud2 (x, y, z); keeps only the newest")
-        .output<Cloud>("cloud")
-        .param(apex::param::text("topic", "points"))
+        .output(kCloud)
+        .param(kTopic)
         .param(holdParam())
         .driven();
   }
@@ -70,29 +69,21 @@ class PointCloudSubscriber : public TopicSource<sensor_msgs::PointCloud2> {
                                                                        [this](const MsgPtr& msg) { received(msg); });
   }
   void send(const MsgPtr& msg) override { cloud_.publish(fromRos(msg)); }
-  apex::Output<Cloud> cloud_{this, "cloud"};
-  apex::Param<std::string> topic_{this, "topic"};
+  apex::Output<Cloud> cloud_{this, kCloud};
+  apex::Param<std::string> topic_{this, kTopic};
   ros::Subscriber sub_;
 };
 
-class PointCloudPublisher : public apex::Node {
+class PointCloudPublisher : public TopicSink<Cloud, ros::Publisher> {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Publishes sensor_msgs/PointCloud2")
-        .input<Cloud>("cloud")
-        .param(apex::param::text("topic", "points_out"));
-  }
-  void setup() override { advertise(); }
-  void parameterChanged(const std::string&) override { advertise(); }
-  void process() override {
-    if (pub_.getNumSubscribers() > 0) pub_.publish(toRos(*cloud_.get()));
-  }
+  static inline const apex::InputPort<Cloud> kCloud{"cloud", "the cloud"};
+  static apex::Manifest manifest() { return sinkManifest("Publishes sensor_msgs/PointCloud2", kCloud, "points_out"); }
+  PointCloudPublisher() : TopicSink(kCloud) {}
 
  private:
-  void advertise() { pub_ = apex::nodeHandle(*this).advertise<sensor_msgs::PointCloud2>(topic_.get(), 1); }
-  apex::Input<Cloud> cloud_{this, "cloud"};
-  apex::Param<std::string> topic_{this, "topic"};
-  ros::Publisher pub_;
+  ros::Publisher advertise(ros::NodeHandle nh, const std::string& topic) override {
+    return nh.advertise<sensor_msgs::PointCloud2>(topic, 1);
+  }
 };
 
 }  // namespace apex_nodes
