@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "apex/core/connection_rules.hpp"
+#include "apex/core/node_names.hpp"
 #include "calls.hpp"
 
 #include <algorithm>
@@ -296,11 +297,7 @@ std::optional<Edit> GraphModel::move(const std::string& node_name, double x, dou
 
 std::string GraphModel::freshName(const std::string& type, const std::string& parent,
                                   const std::set<std::string>& reserved) const {
-  std::string base;
-  for (char c : type.substr(type.find('/') + 1)) {  // CamelCase -> snake_case
-    if (std::isupper(static_cast<unsigned char>(c)) && !base.empty() && base.back() != '_') base += '_';
-    base += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
+  const std::string base = apex::nodeBaseName(type);  // the runtime's rule
   for (int i = 1;; ++i) {
     std::string name = base + "_" + std::to_string(i);
     const std::string path = join(parent, name);

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 
 #include "apex/core/function_node.hpp"
+#include "apex/core/node_names.hpp"
 #include "apex_test/test_nodes.hpp"
 
 using namespace apex_test;
@@ -169,4 +170,11 @@ TEST(Registry, AUserNamesATypeWithoutItsPackageAndAMisspeltOneGetsTheClosest) {
   EXPECT_THAT(r.closest("Tick"), ::testing::ElementsAre("test/Ticker"));  // part of a name
   EXPECT_TRUE(r.closest("Zebra").empty());
   EXPECT_THAT(g.addNode("Zebra", "x").message(), ::testing::Not(HasSubstr("did you mean")));
+}
+
+TEST(NodeNames, ANewNodeIsNamedAfterItsTypeInSnakeCase) {
+  EXPECT_EQ(apex::nodeBaseName("apex_nodes/GaussianBlur"), "gaussian_blur");
+  EXPECT_EQ(apex::nodeBaseName("my_nodes/HSVFilter"), "hsv_filter");  // was "hsvfilter" here, "h_s_v_filter" in the panel
+  EXPECT_EQ(apex::nodeBaseName("PointCloud2Publisher"), "point_cloud2_publisher");
+  EXPECT_EQ(apex::nodeBaseName("a/SAC_Model"), "sac_model");
 }

@@ -118,6 +118,7 @@ TEST(GraphModel, FreshNamesFollowTheTypeAndAreUnused) {
   GraphModel m;
   m.update(graph(1));
   EXPECT_EQ(m.freshName("apex_nodes/GaussianBlur"), "gaussian_blur_1");
+  EXPECT_EQ(m.freshName("my_nodes/HSVFilter"), "hsv_filter_1");  // the runtime's rule (was h_s_v_filter here)
   auto g = graph(2);
   g.nodes[0].name = "clock_1";
   m.update(g);

@@ -2,6 +2,7 @@
 // describing and loading: graph_load.cpp; running and stepping: graph_run.cpp.
 #include "apex/core/graph.hpp"
 #include "apex/core/limits.hpp"
+#include "apex/core/node_names.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -23,17 +24,6 @@ using detail::ThreadGroup;
 namespace {
 
 constexpr const char* kDefaultGroup = "default";
-
-/** "apex_nodes/GaussianBlur" → "gaussian_blur" */
-std::string baseName(const std::string& type) {
-  std::string tail = type.substr(type.find('/') + 1), out;
-  for (std::size_t i = 0; i < tail.size(); ++i) {
-    const unsigned char c = tail[i];
-    if (std::isupper(c) && i > 0 && !std::isupper(static_cast<unsigned char>(tail[i - 1]))) out += '_';
-    out += static_cast<char>(std::tolower(c));
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -100,7 +90,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   const std::shared_ptr<const NodeType> type = found.value();
   std::string name = wanted;
   if (name.empty()) {
-    const std::string base = baseName(type->id);
+    const std::string base = nodeBaseName(type->id);
     int& counter = name_counters_[base];
     do name = base + "_" + std::to_string(++counter);
     while (nodes_.count(name));
