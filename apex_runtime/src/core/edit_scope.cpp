@@ -40,10 +40,9 @@ void EditScope::added(NodeState* n) {
 EditScope::~EditScope() {
   for (auto& [node, before] : before_) {
     const int delta = node->structuralBlockers() - before;
-    const int now = node->blockers.fetch_add(delta, std::memory_order_acq_rel) + delta;
     // Re-check every touched node, not only those the delta made ready: a ready node
     // moved to another group, or taken off a queue, must be queued again (push is idempotent).
-    if (now == 0) node->group->push(node);
+    if (node->readiness.correct(delta)) node->group->push(node);
   }
   for (ThreadGroup* g : paused_) g->resume();
 }

@@ -1,6 +1,6 @@
 // An edit's critical section: pauses the thread groups of the nodes it touches
 // and of their neighbours, and afterwards corrects each touched node's
-// `blockers` by how much its structural part changed (has_data and other
+// blockers (readiness.hpp) by how much its structural part changed (has_data and other
 // atomic changes made meanwhile by other threads stay counted).
 #pragma once
 

@@ -189,13 +189,13 @@ Status Graph::connectDirect(const ConnectionDescription& c) {
     from->params[s.index].out_edges.push_back(e);
   } else {
     from->outputs[s.index].edges.push_back(e);
-    ++from->counted_out;
+    from->readiness.receiverConnected();
   }
   if (e->to_param) {
     to->params[d.index].in_edge = e;
   } else {
     to->inputs[d.index]->edge = e;
-    ++to->connected_inputs;
+    to->readiness.inputConnected();
   }
   ++links_;
   return Status::ok();
@@ -278,7 +278,7 @@ void Graph::removeEdge(std::shared_ptr<Edge> e) {
     erase(from->params[e->from_index].out_edges);
   } else {
     erase(from->outputs[e->from_index].edges);
-    --from->counted_out;
+    from->readiness.receiverDisconnected();
   }
   if (e->to_param) {
     to->params[e->to_index].in_edge.reset();
@@ -288,7 +288,7 @@ void Graph::removeEdge(std::shared_ptr<Edge> e) {
     in.msg = Message();  // a pending message is dropped with its connection
     in.full.store(false, std::memory_order_relaxed);
     in.edge.reset();
-    --to->connected_inputs;
+    to->readiness.inputDisconnected();
   }
   e->unread.store(false, std::memory_order_release);
 }

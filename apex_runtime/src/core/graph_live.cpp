@@ -44,13 +44,14 @@ namespace {
 
 void updateLiveness(const std::vector<NodeState*>& region) {
   for (NodeState* n : topological(region)) {
-    n->live_inputs = 0;
+    int live_inputs = 0;
     for (auto& in : n->inputs) {
       if (!in->edge) continue;
       in->edge->live = in->edge->from->live;
-      n->live_inputs += in->edge->live ? 1 : 0;
+      live_inputs += in->edge->live ? 1 : 0;
     }
-    n->live = n->type && (n->isSource() || n->live_inputs > 0);
+    n->readiness.setLiveInputs(live_inputs);
+    n->live = n->type && (n->isSource() || live_inputs > 0);
   }
 }
 

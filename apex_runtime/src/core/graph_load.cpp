@@ -226,7 +226,7 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
       x.runSetup();  // applies the parameters first
     });
   for (auto& [seq, n] : order_)
-    if (n->blockers.load() == 0) n->group->push(n);
+    if (n->readiness.ready()) n->group->push(n);
   bump();
   for (ThreadGroup* g : paused) g->resume();
 }

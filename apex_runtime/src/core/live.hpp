@@ -27,7 +27,7 @@ std::vector<NodeState*> componentOf(const std::vector<NodeState*>& roots);
  *  other nodes the edit touches (`others`): pauses the groups of everything
  *  that may change. Destroyed after the edit: recomputes liveness downstream of
  *  the targets and, when a join is downstream and the graph has run, flushes the
- *  connected part. The EditScope then corrects each node's `blockers`. */
+ *  connected part. The EditScope then corrects each node's blockers (readiness.hpp). */
 class Restructure {
  public:
   Restructure(const std::vector<NodeState*>& targets, const std::vector<NodeState*>& others, bool flush_allowed);

@@ -53,7 +53,7 @@ bool NodeState::sendFromSlot(const std::string& slot) {
       continue;
     }
     if (out.tap) out.tap(m);
-    blockers.fetch_add(counted, std::memory_order_acq_rel);  // released as the receivers read, as after a firing
+    readiness.block(counted);  // released as the receivers read, as after a firing
     for (auto& e : out.edges)
       if (reaches(*e)) deliver(e, m);
   }

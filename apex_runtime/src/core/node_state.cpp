@@ -1,5 +1,6 @@
-// The firing rule (see docs/architecture.md): a node fires when `blockers` is
-// zero; it takes its inputs first (freeing its sources), processes, publishes.
+// The firing rule (see docs/architecture.md; its counters in readiness.hpp): a node fires when
+// nothing blocks it; it reserves what it consumes, takes its inputs (freeing its sources), runs,
+// and delivers.
 #include "node_state.hpp"
 #include "names.hpp"
 
@@ -34,7 +35,7 @@ NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint
   }
   trigger_edges.resize(m.triggers.size());
   slot_edges.resize(m.slots.size());
-  blockers.store(driven() ? 1 : 0);  // a driven source waits for its first notifyNewData()
+  readiness.start(driven());
   last_fired_.store(ticks());  // idle since added
 }
 
@@ -58,7 +59,7 @@ std::string NodeState::error() const {
 // ---------------------------------------------------------------- counting
 
 bool NodeState::isSource() const {
-  if (connected_inputs > 0) return false;
+  if (readiness.connectedInputs() > 0) return false;
   for (const auto& in : manifest().inputs)
     if (!in.optional) return false;
   return true;
@@ -66,9 +67,9 @@ bool NodeState::isSource() const {
 
 int NodeState::gates() const {
   if (!type || !live) return 1;  // a placeholder, or a node cut off from every source, never fires
-  if (live_inputs > 0) return 0;
+  if (readiness.liveInputs() > 0) return 0;
   if (!active_enabled_) return 1;                    // a disabled source stays quiet
-  if (!driven() && counted_out == 0) return 1;       // a free-running source with no receiver
+  if (!driven() && readiness.countedReceivers() == 0) return 1;  // a free-running source with no receiver
   return 0;
 }
 
@@ -117,7 +118,7 @@ std::string NodeState::waitingFor() const {
 }
 
 void NodeState::unblock(int k, ThreadGroup* here) {
-  if (blockers.fetch_sub(k, std::memory_order_acq_rel) != k) return;
+  if (!readiness.release(k)) return;
   if (here == group) {
     here->runNext(this);  // made ready by a firing on its own group's thread: runs next, no queue
   } else {
@@ -126,7 +127,7 @@ void NodeState::unblock(int k, ThreadGroup* here) {
 }
 
 void NodeState::adjust(int delta) {
-  if (delta > 0) blockers.fetch_add(delta, std::memory_order_acq_rel);
+  if (delta > 0) readiness.block(delta);
   if (delta < 0) unblock(-delta);
 }
 
@@ -151,35 +152,35 @@ void NodeState::take(InputState& in, bool optional, bool& skip) {
   if (in.current.isNothing() && !optional) skip = true;
 }
 
-bool NodeState::fireIfReady() {
-  if (blockers.load(std::memory_order_acquire) != 0 || removed || !live) return false;
-  if (params_dirty_.load(std::memory_order_acquire)) applyParams();
-  // Reserve every condition this firing consumes: inputs become empty, receivers
-  // get an unread message, a driven source uses up its data. has_data is cleared
-  // first: a notifyNewData() arriving meanwhile then counts for the next firing
-  // (its release finds nothing to release yet and drives the count below zero; the
-  // reservation then lands on zero exactly when that release was the only thing missing).
+[[gnu::always_inline]] inline void NodeState::reserve() {
+  // Every condition this firing consumes: inputs become empty, receivers get an unread
+  // message, a driven source uses up its data. has_data is cleared first: a notifyNewData()
+  // arriving meanwhile then counts for the next firing (its release finds nothing to release
+  // yet and drives the count below zero; the reservation then lands on zero exactly when that
+  // release was the only thing missing).
   if (driven()) has_data.store(false, std::memory_order_release);
-  const int reserved = live_inputs + counted_out + (driven() ? 1 : 0);
-  if (blockers.fetch_add(reserved, std::memory_order_acq_rel) + reserved == 0) {
-    group->runNext(this);  // new data came between the two lines above: its release found nothing to release yet
-  }
+  if (readiness.reserve(driven())) group->runNext(this);  // new data came between the two lines
+}
 
-  bool skip = !active_enabled_;
-  bool end = false;  // the end of a sequence: passed on in step, whatever else the inputs hold
+[[gnu::always_inline]] inline NodeState::Firing NodeState::takeInputs() {
+  Firing f;
+  f.skip = !active_enabled_;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
-    take(*inputs[i], manifest().inputs[i].optional, skip);
-    end = end || inputs[i]->current.isEndOfSequence();
+    take(*inputs[i], manifest().inputs[i].optional, f.skip);
+    f.end = f.end || inputs[i]->current.isEndOfSequence();
   }
+  return f;
+}
 
+[[gnu::always_inline]] inline void NodeState::run(const Firing& f) {
   bool ok = true;
   in_handler_ = true;
-  if (end && active_enabled_) {
+  if (f.end && active_enabled_) {
     static const std::string kAtEnd = "at the end of a sequence";
     ok = guarded(kAtEnd, [this] { node->endOfSequence(); });
-  } else if (end) {
+  } else if (f.end) {
     for (auto& out : outputs) out.pending = Message::endOfSequence();  // a disabled node passes the end on
-  } else if (!skip) {
+  } else if (!f.skip) {
     static const std::string kProcess;
     ok = guarded(kProcess, [this] { node->process(); });
     if (ok && !reported_ && has_error_.load(std::memory_order_relaxed)) clearError();
@@ -187,7 +188,10 @@ bool NodeState::fireIfReady() {
   in_handler_ = false;
   reported_ = false;
   if (!ok)  // a failed firing sends Nothing; a failed end of a sequence still ends it downstream
-    for (auto& out : outputs) out.pending = end ? Message::endOfSequence() : Message();
+    for (auto& out : outputs) out.pending = f.end ? Message::endOfSequence() : Message();
+}
+
+[[gnu::always_inline]] inline void NodeState::deliverOutputs() {
   bool data = false;  // consumed or produced a frame (not Nothing, not the end token): for rates
   auto frame = [](const Message& m) { return !m.isNothing() && !m.isEndOfSequence(); };
   for (auto& in : inputs) data = data || frame(in->current);
@@ -202,9 +206,20 @@ bool NodeState::fireIfReady() {
   }
   for (std::size_t i = 0; i < params.size(); ++i)
     if (!params[i].out_edges.empty() || params[i].tap) publishParam(static_cast<int>(i), group);
+}
+
+// The steps of a firing are functions of their own for the reader, inlined into fireIfReady:
+// as calls they cost ~5-10% per hop (bench/core_bench.cpp, old and new interleaved).
+bool NodeState::fireIfReady() {
+  if (!readiness.ready() || removed || !live) return false;
+  if (params_dirty_.load(std::memory_order_acquire)) applyParams();
+  reserve();
+  Firing f = takeInputs();
+  run(f);
+  deliverOutputs();
   for (auto& in : inputs) in->current = Message();
   releaseTriggers();
-  if (!skip && !end) fireTrigger(kProcessedIndex);
+  if (!f.skip && !f.end) fireTrigger(kProcessedIndex);
   return true;
 }
 

@@ -12,10 +12,10 @@
 //    the receiver took the last message; the receiver takes only when full), so
 //    the `blockers` atomics order it; an uncounted edge (from a parameter output,
 //    which overwrites) uses the slot's mutex.
-//  - `blockers` counts what keeps the node from firing: empty live inputs,
+//  - the blockers (readiness.hpp) count what keeps the node from firing: empty live inputs,
 //    receivers that have not read its last message, and gates. Whoever brings
 //    it to zero pushes the node onto its group's ready queue: exactly once.
-//  - Liveness (`live`, `Edge::live`, `live_inputs`) is structure: only edits
+//  - Liveness (`live`, `Edge::live`, Readiness::liveInputs) is structure: only edits
 //    change it (graph_live.cpp), with the groups of every node it touches paused.
 //  - state_mutex guards what other threads read: requested parameter values,
 //    the error text, the enabled flag, UI metadata.
@@ -31,6 +31,7 @@
 
 #include "apex/core/description.hpp"
 #include "apex/core/registry.hpp"
+#include "readiness.hpp"
 #include "thread_group.hpp"
 #include "ticks.hpp"
 
@@ -122,9 +123,6 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::vector<ParamState> params;
   std::vector<std::vector<std::shared_ptr<EventEdge>>> trigger_edges;  // per trigger
   std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;     // per slot, incoming
-  int connected_inputs = 0;  // data inputs with an edge
-  int live_inputs = 0;       // ... whose edge is live
-  int counted_out = 0;
   /** Can fire at all (edits only): a source, or fed by a live input. A node cut
    *  off from every source never fires and holds no other path hostage. */
   bool live = false;
@@ -132,7 +130,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   bool isSource() const;
 
   // scheduling
-  std::atomic<int> blockers{0};
+  Readiness readiness;  // the firing rule's counters (readiness.hpp)
   bool queued = false;               // group mutex
   bool queued_from_outside = false;  // group mutex: by push(), not by this group's own firing
   std::atomic<bool> has_data{false};
@@ -187,7 +185,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void requestParam(int index, ParamValue v);
 
   // --- edits (groups paused) ---
-  /** The part of `blockers` that only edits and firings change (not has_data). */
+  /** The part of the blockers that only edits and firings change (not has_data). */
   int structuralBlockers();
   bool driven() const { return driven_; }
   NodeStats stats() const;
@@ -242,6 +240,15 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   bool last_had_data_ = false;  // group thread: the firing recorded next moved a message
   std::atomic<std::int64_t> last_t_{0}, total_t_{0}, max_t_{0}, last_fired_{0};  // in ticks (ticks.hpp)
   void take(InputState& in, bool optional, bool& skip);
+  // fireIfReady's steps, in order
+  struct Firing {
+    bool skip = false;  // disabled, or a mandatory input holds Nothing: process() is not run
+    bool end = false;   // an input holds the end of a sequence
+  };
+  inline void reserve();
+  inline Firing takeInputs();
+  inline void run(const Firing& f);
+  inline void deliverOutputs();
 };
 
 template <class F>
