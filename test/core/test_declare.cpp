@@ -53,6 +53,7 @@ TEST(Declare, ARangeStartsAtItsMinimumUnlessInitSaysOtherwise) {
   EXPECT_EQ(toText(param::integer("k").range(3, 9).spec().default_value), "3");
   EXPECT_EQ(toText(param::integer("k").init(5).range(3, 9).spec().default_value), "5");  // init kept, in any order
   EXPECT_EQ(toText(param::interval("v").range(1.0, 2.0).spec().default_value), "[1.0, 2.0]");
+  EXPECT_EQ(toText(param::angle("a").spec().default_value), "0.0");  // within its default bounds, not -pi
   // A default outside the range is the manifest's error, named, as before
   Manifest m("x");
   m.param(param::integer("k").range(3, 9).init(20));

@@ -28,6 +28,7 @@ template <class T>
 class ParamDecl;
 namespace param {
 ParamDecl<std::string> choice(std::string name, std::vector<std::string> options);
+ParamDecl<double> angle(std::string name);
 }
 
 /** @brief An input carrying T. `optional`: ignored while unconnected, may receive Nothing. */
@@ -133,6 +134,7 @@ class ParamDecl {
 
  private:
   friend ParamDecl<std::string> param::choice(std::string, std::vector<std::string>);
+  friend ParamDecl<double> param::angle(std::string);
   ParamSpec spec_;
   bool init_given_ = false;
 };
@@ -144,7 +146,9 @@ inline ParamDecl<int> integer(std::string name) { return {std::move(name), Param
 inline ParamDecl<double> number(std::string name) { return {std::move(name), ParamKind::Double, 0.0}; }
 /** @brief Radians, within [-pi, pi] unless range() says otherwise. */
 inline ParamDecl<double> angle(std::string name) {
-  return ParamDecl<double>(std::move(name), ParamKind::Angle, 0.0).range(-3.14159265358979323846, 3.14159265358979323846);
+  ParamDecl<double> d(std::move(name), ParamKind::Angle, 0.0);  // 0 unless init() says otherwise, not -pi
+  d.spec_.min = -3.14159265358979323846, d.spec_.max = 3.14159265358979323846;
+  return d;
 }
 inline ParamDecl<std::string> text(std::string name) { return {std::move(name), ParamKind::String, std::string()}; }
 /** @brief One of `options` (the first unless init() says otherwise). */
