@@ -1,6 +1,6 @@
-// Graph lifecycle, node edits and reading. Connections: graph_connect.cpp;
-// describing and loading: graph_load.cpp; running and stepping: graph_run.cpp.
-#include "apex/core/graph.hpp"
+// Graph::Impl (graph_impl.hpp): lifecycle, node edits and reading. Connections:
+// graph_connect.cpp; describing and loading: graph_load.cpp; running and stepping:
+// graph_run.cpp; subgraphs: graph_subgraph.cpp.
 #include "apex/core/limits.hpp"
 #include "apex/core/node_names.hpp"
 
@@ -8,10 +8,10 @@
 #include <cctype>
 
 #include "edit_scope.hpp"
+#include "graph_impl.hpp"
 #include "live.hpp"
 #include "names.hpp"
 #include "node_state.hpp"
-#include "subgraph.hpp"
 #include "yaml_text.hpp"
 
 namespace apex {
@@ -27,20 +27,20 @@ constexpr const char* kDefaultGroup = "default";
 
 }  // namespace
 
-Graph::Graph(NodeRegistry registry) : registry_(std::move(registry)) { group(kDefaultGroup); }
+Graph::Impl::Impl(NodeRegistry registry) : registry_(std::move(registry)) { group(kDefaultGroup); }
 
-void Graph::setHost(std::shared_ptr<const Host> host) {
+void Graph::Impl::setHost(std::shared_ptr<const Host> host) {
   auto lock = lockEdits();
   host_ = std::move(host);
 }
 
-Graph::~Graph() {
+Graph::Impl::~Impl() {
   stop();
   std::lock_guard<std::mutex> lock(edit_mutex_);
   clearLocked();
 }
 
-std::unique_lock<std::mutex> Graph::lockEdits() const {
+std::unique_lock<std::mutex> Graph::Impl::lockEdits() const {
   const ThreadGroup* caller = ThreadGroup::current();
   if (caller && caller->owner() == this) {
     throw std::logic_error("apex::Graph cannot be called from node code (process() or a slot handler) on thread group '" +
@@ -49,17 +49,17 @@ std::unique_lock<std::mutex> Graph::lockEdits() const {
   return std::unique_lock<std::mutex>(edit_mutex_);
 }
 
-Graph::NodePtr Graph::find(const std::string& name) const {
+Graph::Impl::NodePtr Graph::Impl::find(const std::string& name) const {
   auto it = nodes_.find(name);
   return it == nodes_.end() ? nullptr : it->second;
 }
 
-Result<Graph::NodePtr> Graph::require(const std::string& name) const {
+Result<Graph::Impl::NodePtr> Graph::Impl::require(const std::string& name) const {
   if (auto n = find(name)) return n;
   return Status::error("no node named '" + name + "'");
 }
 
-ThreadGroup* Graph::group(const std::string& name) {
+ThreadGroup* Graph::Impl::group(const std::string& name) {
   auto& g = groups_[name];
   if (!g) {
     g = std::make_shared<ThreadGroup>(name, this);
@@ -69,7 +69,7 @@ ThreadGroup* Graph::group(const std::string& name) {
   return g.get();
 }
 
-Status Graph::roomFor(const std::string& group_name, std::size_t extra_nodes) const {
+Status Graph::Impl::roomFor(const std::string& group_name, std::size_t extra_nodes) const {
   if (!groups_.count(group_name) && groups_.size() >= kMaxGraphGroups)
     return Status::error("thread group '" + group_name + "': the graph has " + std::to_string(groups_.size()) +
                          " thread groups, the limit (each is a thread of the process)");
@@ -79,11 +79,11 @@ Status Graph::roomFor(const std::string& group_name, std::size_t extra_nodes) co
   return Status::ok();
 }
 
-std::size_t Graph::connectionCount() const { return links_ + dormant_.size(); }
+std::size_t Graph::Impl::connectionCount() const { return links_ + dormant_.size(); }
 
 // ------------------------------------------------------------------ nodes
 
-Result<std::string> Graph::addNode(const std::string& type_id, const std::string& wanted, const std::string& group_name) {
+Result<std::string> Graph::Impl::addNode(const std::string& type_id, const std::string& wanted, const std::string& group_name) {
   auto lock = lockEdits();
   auto found = registry_.lookup(type_id);  // its id, or its name without the package prefix
   if (!found) return found.status();
@@ -116,8 +116,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   }
   state->attach(std::move(object));
   state->group = group(gname);
-  for (std::string p = detail::parentOf(name); !p.empty(); p = detail::parentOf(p))
-    if (auto sg = subgraph(p); sg && !sg->enabled) state->outer_enabled = false;
+  if (!subgraphs_.enabledAround(name)) state->outer_enabled = false;
   detail::initLiveness(state.get());
   EditScope scope;
   scope.added(state.get());
@@ -128,7 +127,7 @@ Result<std::string> Graph::addNode(const std::string& type_id, const std::string
   return name;
 }
 
-Result<std::string> Graph::addNode(const NodeDescription& d) {
+Result<std::string> Graph::Impl::addNode(const NodeDescription& d) {
   if (d.type == kSubgraphType) return addSubgraph(d);
   auto type = registry_.lookup(d.type);
   if (!type) return type.status();
@@ -154,7 +153,7 @@ Result<std::string> Graph::addNode(const NodeDescription& d) {
   return name;
 }
 
-void Graph::detachAll(NodeState* n) {
+void Graph::Impl::detachAll(NodeState* n) {
   for (std::size_t i = 0; i < n->inputs.size(); ++i)
     if (n->inputs[i]->edge) removeEdge(n->inputs[i]->edge);
   for (auto& o : n->outputs) while (!o.edges.empty()) removeEdge(o.edges.back());
@@ -166,14 +165,14 @@ void Graph::detachAll(NodeState* n) {
   for (auto& s : n->slot_edges) while (!s.empty()) removeEvent(s.back());
 }
 
-std::vector<NodeState*> Graph::dataReceivers(NodeState* n) {
+std::vector<NodeState*> Graph::Impl::dataReceivers(NodeState* n) {
   std::vector<NodeState*> out;
   for (auto& o : n->outputs) for (auto& e : o.edges) if (!e->to_param) out.push_back(e->to);
   for (auto& p : n->params) for (auto& e : p.out_edges) if (!e->to_param) out.push_back(e->to);
   return out;
 }
 
-void Graph::retire(NodeState* n, bool restructure) {
+void Graph::Impl::retire(NodeState* n, bool restructure) {
   std::vector<NodeState*> others = EditScope::neighbours(n);
   others.push_back(n);
   Restructure change(restructure ? dataReceivers(n) : std::vector<NodeState*>{}, others, restructure && ran_);
@@ -186,9 +185,9 @@ void Graph::retire(NodeState* n, bool restructure) {
   n->group->unqueue(n);
 }
 
-Status Graph::removeNode(const std::string& name) {
+Status Graph::Impl::removeNode(const std::string& name) {
   auto lock = lockEdits();
-  if (subgraph(name)) {
+  if (subgraphs_.find(name)) {
     removeSubgraphLocked(name);
   } else {
     auto node = require(name);
@@ -197,7 +196,7 @@ Status Graph::removeNode(const std::string& name) {
     order_.erase(node.value()->seq);
     nodes_.erase(name);
   }
-  dropExportsOf(name);
+  subgraphs_.dropExportsOf(name);
   bump();
   dormant_.erase(std::remove_if(dormant_.begin(), dormant_.end(),
                                 [&](const auto& c) { return c.from_node == name || c.to_node == name; }),
@@ -205,7 +204,7 @@ Status Graph::removeNode(const std::string& name) {
   return Status::ok();
 }
 
-void Graph::clearLocked() {
+void Graph::Impl::clearLocked() {
   for (auto& [name, n] : nodes_) retire(n.get(), false);  // all go: nothing left to keep alive
   nodes_.clear();
   order_.clear();
@@ -216,9 +215,9 @@ void Graph::clearLocked() {
 
 // ------------------------------------------------------------------ node settings
 
-Result<std::string> Graph::setParameter(const std::string& outer, const std::string& outer_param, const std::string& text) {
+Result<std::string> Graph::Impl::setParameter(const std::string& outer, const std::string& outer_param, const std::string& text) {
   auto lock = lockEdits();
-  auto at = exportedParam(outer, outer_param);
+  auto at = subgraphs_.exportedParam(outer, outer_param);
   if (!at) return at.status();
   const std::string node = at.value().first, param = at.value().second;
   auto n = require(node);
@@ -245,7 +244,7 @@ Result<std::string> Graph::setParameter(const std::string& outer, const std::str
   return toText(value.value());
 }
 
-void Graph::changedDownstreamOf(NodeState* node) {
+void Graph::Impl::changedDownstreamOf(NodeState* node) {
   for (NodeState* up : detail::upstreamOf(node)) {
     if (!up->type || !up->isSource()) continue;  // a held frame starts at a source
     // At most one re-send per pass of a frame through what it feeds (the sum of those nodes'
@@ -259,9 +258,9 @@ void Graph::changedDownstreamOf(NodeState* node) {
   }
 }
 
-Status Graph::setInteractive(const std::string& outer, const std::string& outer_param, bool on) {
+Status Graph::Impl::setInteractive(const std::string& outer, const std::string& outer_param, bool on) {
   auto lock = lockEdits();
-  auto at = exportedParam(outer, outer_param);
+  auto at = subgraphs_.exportedParam(outer, outer_param);
   if (!at) return at.status();
   const std::string node = at.value().first, param = at.value().second;
   auto n = require(node);
@@ -287,9 +286,9 @@ Status Graph::setInteractive(const std::string& outer, const std::string& outer_
   return Status::ok();
 }
 
-Status Graph::setEnabled(const std::string& node, bool enabled) {
+Status Graph::Impl::setEnabled(const std::string& node, bool enabled) {
   auto lock = lockEdits();
-  if (auto sg = subgraph(node)) {  // all of its nodes, keeping their own settings
+  if (auto sg = subgraphs_.find(node)) {  // all of its nodes, keeping their own settings
     sg->enabled = enabled;
     applyOuterEnabled(node);
     bump();
@@ -308,10 +307,10 @@ Status Graph::setEnabled(const std::string& node, bool enabled) {
   return Status::ok();
 }
 
-Status Graph::setThreadGroup(const std::string& node, const std::string& group_name) {
+Status Graph::Impl::setThreadGroup(const std::string& node, const std::string& group_name) {
   auto lock = lockEdits();
   std::vector<std::string> names{node};
-  if (subgraph(node)) names = nodesUnder(node);  // all of its nodes
+  if (subgraphs_.find(node)) names = nodesUnder(node);  // all of its nodes
   else if (auto n = require(node); !n) return n.status();
   if (!validName(group_name)) return Status::error("thread group name '" + group_name + "' " + kNameRule);
   if (auto room = roomFor(group_name); !room) return room;
@@ -333,10 +332,10 @@ Status Graph::setThreadGroup(const std::string& node, const std::string& group_n
   return Status::ok();
 }
 
-Status Graph::fireSlot(const std::string& outer, const std::string& outer_slot) {
+Status Graph::Impl::fireSlot(const std::string& outer, const std::string& outer_slot) {
   auto lock = lockEdits();
-  if (subgraph(outer)) {  // every slot it stands for
-    auto targets = receivers(outer, outer_slot);
+  if (subgraphs_.find(outer)) {  // every slot it stands for
+    auto targets = subgraphs_.receivers(outer, outer_slot);
     if (!targets) return targets.status();
     for (const auto& [node, slot] : targets.value()) {
       lock.unlock();
@@ -360,9 +359,9 @@ Status Graph::fireSlot(const std::string& outer, const std::string& outer_slot) 
   return Status::error("node '" + node + "' (" + s.typeId() + ") has no slot '" + slot + "' (slots: " + s.manifest().listSlots() + ")");
 }
 
-Status Graph::setUi(const std::string& node, const std::string& ui) {
+Status Graph::Impl::setUi(const std::string& node, const std::string& ui) {
   auto lock = lockEdits();
-  auto sg = subgraph(node);
+  auto sg = subgraphs_.find(node);
   auto n = require(node);
   if (!n && !sg) return n.status();
   if (auto st = detail::checkYamlText(ui); !st) return Status::error("node '" + node + "': UI metadata " + st.message());
@@ -376,9 +375,9 @@ Status Graph::setUi(const std::string& node, const std::string& ui) {
   return Status::ok();
 }
 
-Status Graph::setTap(const std::string& outer, const std::string& outer_port, PortTap tap) {
+Status Graph::Impl::setTap(const std::string& outer, const std::string& outer_port, PortTap tap) {
   auto lock = lockEdits();
-  auto at = sender(outer, outer_port);
+  auto at = subgraphs_.sender(outer, outer_port);
   if (!at) return at.status();
   const std::string node = at.value().first, port = at.value().second;
   auto n = require(node);
@@ -400,7 +399,7 @@ Status Graph::setTap(const std::string& outer, const std::string& outer_port, Po
 
 // ------------------------------------------------------------------ reading
 
-std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const {
+std::vector<NodeStats> Graph::Impl::nodeStats(double stall_after_s) const {
   auto lock = lockEdits();
   std::vector<NodeState*> all;
   for (auto& [seq, n] : order_) all.push_back(n);
@@ -427,35 +426,35 @@ std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const {
   return out;
 }
 
-std::vector<GroupStats> Graph::groupStats() const {
+std::vector<GroupStats> Graph::Impl::groupStats() const {
   auto lock = lockEdits();
   std::vector<GroupStats> out;
   for (auto& [name, g] : groups_) out.push_back(g->stats());
   return out;
 }
 
-std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const {
+std::shared_ptr<const NodeType> Graph::Impl::nodeType(const std::string& node) const {
   auto lock = lockEdits();
   auto n = find(node);
   return n ? n->type : nullptr;
 }
 
-std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const {
+std::shared_ptr<const Manifest> Graph::Impl::nodeInterface(const std::string& node) const {
   auto lock = lockEdits();
-  if (auto sg = subgraph(node)) return facade(*sg);
+  if (auto sg = subgraphs_.find(node)) return facade(*sg);
   auto n = find(node);
   return n && n->type ? n->iface : nullptr;
 }
 
-Node* Graph::nodeObject(const std::string& node) const {
+Node* Graph::Impl::nodeObject(const std::string& node) const {
   auto lock = lockEdits();
   auto n = find(node);
   return n ? n->node.get() : nullptr;
 }
 
-Result<ParamValue> Graph::parameterValue(const std::string& outer, const std::string& outer_param) const {
+Result<ParamValue> Graph::Impl::parameterValue(const std::string& outer, const std::string& outer_param) const {
   auto lock = lockEdits();
-  auto at = exportedParam(outer, outer_param);
+  auto at = subgraphs_.exportedParam(outer, outer_param);
   if (!at) return at.status();
   const std::string node = at.value().first, param = at.value().second;
   auto n = require(node);
@@ -466,7 +465,7 @@ Result<ParamValue> Graph::parameterValue(const std::string& outer, const std::st
   return n.value()->params[i].requested;
 }
 
-std::size_t Graph::size() const {
+std::size_t Graph::Impl::size() const {
   auto lock = lockEdits();
   return nodes_.size();
 }

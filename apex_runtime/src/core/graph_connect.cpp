@@ -3,9 +3,9 @@
 #include <set>
 
 #include "apex/core/connection_rules.hpp"
-#include "apex/core/graph.hpp"
 #include "apex/core/limits.hpp"
 #include "edit_scope.hpp"
+#include "graph_impl.hpp"
 #include "live.hpp"
 #include "node_state.hpp"
 #include "names.hpp"
@@ -116,11 +116,11 @@ std::shared_ptr<Edge> findEdge(NodeState& from, const Endpoint& src, NodeState& 
 
 }  // namespace
 
-Status Graph::connect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
+Status Graph::Impl::connect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
   auto lock = lockEdits();
   auto st = connectLocked({fn, fp, tn, tp, 0});
   if (!st) return st;
-  if (auto targets = receivers(tn, tp))  // the part it feeds now gets the held frame
+  if (auto targets = subgraphs_.receivers(tn, tp))  // the part it feeds now gets the held frame
     for (const auto& [node, port] : targets.value())
       if (auto to = find(node)) changedDownstreamOf(to.get());
   bump();
@@ -135,10 +135,10 @@ std::string through(const ConnectionDescription& asked, const ConnectionDescript
 }
 }  // namespace
 
-Status Graph::connectLocked(const ConnectionDescription& c) {
-  auto from = sender(c.from_node, c.from_port);
+Status Graph::Impl::connectLocked(const ConnectionDescription& c) {
+  auto from = subgraphs_.sender(c.from_node, c.from_port);
   if (!from) return Status::error("cannot connect " + connectionLabel(c) + ": " + from.message());
-  auto to = receivers(c.to_node, c.to_port);
+  auto to = subgraphs_.receivers(c.to_node, c.to_port);
   if (!to) return Status::error("cannot connect " + connectionLabel(c) + ": " + to.message());
   std::vector<ConnectionDescription> done;
   for (const auto& [node, port] : to.value()) {
@@ -152,7 +152,7 @@ Status Graph::connectLocked(const ConnectionDescription& c) {
   return Status::ok();
 }
 
-Status Graph::connectDirect(const ConnectionDescription& c) {
+Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
   auto checked = checkConnection(LiveView(nodes_), c);
   if (!checked) return checked.status();
   if (const std::size_t n = connectionCount(); n >= kMaxGraphConnections)
@@ -201,12 +201,12 @@ Status Graph::connectDirect(const ConnectionDescription& c) {
   return Status::ok();
 }
 
-Status Graph::disconnect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
+Status Graph::Impl::disconnect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
   auto lock = lockEdits();
   const ConnectionDescription c{fn, fp, tn, tp, 0};
-  auto from = sender(fn, fp);
+  auto from = subgraphs_.sender(fn, fp);
   if (!from) return Status::error("cannot disconnect " + connectionLabel(c) + ": " + from.message());
-  auto to = receivers(tn, tp);
+  auto to = subgraphs_.receivers(tn, tp);
   if (!to) return Status::error("cannot disconnect " + connectionLabel(c) + ": " + to.message());
   Status result = Status::ok();
   bool any = false;
@@ -220,7 +220,7 @@ Status Graph::disconnect(const std::string& fn, const std::string& fp, const std
   return any ? Status::ok() : result;
 }
 
-Status Graph::disconnectDirect(const ConnectionDescription& c) {
+Status Graph::Impl::disconnectDirect(const ConnectionDescription& c) {
   const std::string &fn = c.from_node, &fp = c.from_port, &tn = c.to_node, &tp = c.to_port;
   auto fail = [&](const std::string& why) { return Status::error("cannot disconnect " + connectionLabel(c) + ": " + why); };
   auto dormant = std::find(dormant_.begin(), dormant_.end(), c);
@@ -262,12 +262,12 @@ Status Graph::disconnectDirect(const ConnectionDescription& c) {
   return Status::ok();
 }
 
-Restructure Graph::restructure(NodeState* from, NodeState* to, bool into_data_input) const {
+Restructure Graph::Impl::restructure(NodeState* from, NodeState* to, bool into_data_input) const {
   if (into_data_input) return Restructure({to}, {from}, ran_);
   return Restructure({}, {from, to}, false);  // a parameter input: no data path changes
 }
 
-void Graph::removeEdge(std::shared_ptr<Edge> e) {
+void Graph::Impl::removeEdge(std::shared_ptr<Edge> e) {
   if (e->dead) return;  // removed already
   e->dead = true;
   --links_;
@@ -293,7 +293,7 @@ void Graph::removeEdge(std::shared_ptr<Edge> e) {
   e->unread.store(false, std::memory_order_release);
 }
 
-void Graph::removeEvent(std::shared_ptr<EventEdge> e) {
+void Graph::Impl::removeEvent(std::shared_ptr<EventEdge> e) {
   auto erase = [&](std::vector<std::shared_ptr<EventEdge>>& v) {
     const auto size = v.size();
     v.erase(std::remove(v.begin(), v.end(), e), v.end());

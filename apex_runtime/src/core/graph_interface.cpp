@@ -6,8 +6,8 @@
 // any other edit.
 #include <algorithm>
 
-#include "apex/core/graph.hpp"
 #include "edit_scope.hpp"
+#include "graph_impl.hpp"
 #include "live.hpp"
 #include "node_state.hpp"
 #include "names.hpp"
@@ -150,7 +150,7 @@ void NodeState::setInterface(std::shared_ptr<const Manifest> next_ptr) {
 
 }  // namespace detail
 
-Result<std::shared_ptr<const Manifest>> Graph::interfaceFor(const NodeState& n, const std::string& param,
+Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeState& n, const std::string& param,
                                                             const ParamValue* value) const {
   const Manifest& type = *n.type->manifest;
   if (!type.shape) return n.iface;
@@ -175,7 +175,7 @@ Result<std::shared_ptr<const Manifest>> Graph::interfaceFor(const NodeState& n, 
   return std::shared_ptr<const Manifest>(std::move(next));
 }
 
-void Graph::applyInterface(NodeState* n, std::shared_ptr<const Manifest> next, const std::function<void()>& also) {
+void Graph::Impl::applyInterface(NodeState* n, std::shared_ptr<const Manifest> next, const std::function<void()>& also) {
   if (next == n->iface) {
     if (also) also();
     return;

@@ -6,11 +6,10 @@
 #include <set>
 #include <tuple>
 
-#include "apex/core/graph.hpp"
 #include "edit_scope.hpp"
+#include "graph_impl.hpp"
 #include "names.hpp"
 #include "node_state.hpp"
-#include "subgraph.hpp"
 
 namespace apex {
 
@@ -64,12 +63,12 @@ void describeConnections(const NodeState& n, std::vector<ConnectionDescription>&
 
 }  // namespace
 
-GraphDescription Graph::describe() const {
+GraphDescription Graph::Impl::describe() const {
   auto lock = lockEdits();
   return describeLocked();
 }
 
-std::vector<ConnectionDescription> Graph::connections() const {
+std::vector<ConnectionDescription> Graph::Impl::connections() const {
   auto lock = lockEdits();
   std::vector<ConnectionDescription> out;
   for (auto& [seq, n] : order_) describeConnections(*n, out);
@@ -77,7 +76,7 @@ std::vector<ConnectionDescription> Graph::connections() const {
   return out;
 }
 
-GraphDescription Graph::describeLocked() const {
+GraphDescription Graph::Impl::describeLocked() const {
   GraphDescription flat;
   for (auto& [name, g] : groups_) if (name != "default") flat.thread_groups.push_back(name);
   // insertion order, subgraphs among the nodes (a grouped one where its first node was); a
@@ -87,7 +86,7 @@ GraphDescription Graph::describeLocked() const {
     auto& d = nodes[{seq, 1, ""}] = describeNode(*n);
     if (n->type) d.error = n->error();
   }
-  for (auto& [path, sg] : subgraphs_) {
+  for (auto& [path, sg] : subgraphs_.all()) {
     NodeDescription d;
     d.name = path;
     d.type = kSubgraphType;
@@ -96,7 +95,7 @@ GraphDescription Graph::describeLocked() const {
     d.ui = sg->ui;
     d.interface = facade(*sg);
     for (const auto& spec : d.interface->params) {
-      auto at = exportedParam(path, spec.name);
+      auto at = subgraphs_.exportedParam(path, spec.name);
       auto n = at ? find(at.value().first) : nullptr;
       const int i = n && n->type ? n->findParam(at.value().second) : -1;
       if (i < 0) continue;
@@ -113,10 +112,10 @@ GraphDescription Graph::describeLocked() const {
   for (auto& [seq, d] : nodes) flat.nodes.push_back(std::move(d));
   for (auto& [seq, n] : order_) describeConnections(*n, flat.connections);
   flat.connections.insert(flat.connections.end(), dormant_.begin(), dormant_.end());
-  return nest(flat);
+  return subgraphs_.nest(flat);
 }
 
-Result<std::string> Graph::addPlaceholder(const NodeDescription& d) {
+Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   if (auto why = checkNewPath(d.name); !why.empty()) return Status::error(why);
   const std::string group_name = d.thread_group.empty() ? "default" : d.thread_group;
   if (auto room = roomFor(group_name, 1); !room) return Status::error("node '" + d.name + "': " + room.message());
@@ -132,7 +131,7 @@ Result<std::string> Graph::addPlaceholder(const NodeDescription& d) {
   return d.name;
 }
 
-Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
+Status Graph::Impl::applyNode(const NodeDescription& d, LoadReport& report) {
   auto fail = [&](const std::string& why) { return Status::error(at(d.line) + why); };
   if (!d.thread_group.empty() && !validName(d.thread_group))
     return fail("thread group name '" + d.thread_group + "' " + kNameRule);
@@ -156,10 +155,10 @@ Status Graph::applyNode(const NodeDescription& d, LoadReport& report) {
   return Status::ok();
 }
 
-Result<LoadReport> Graph::load(const GraphDescription& description) {
+Result<LoadReport> Graph::Impl::load(const GraphDescription& description) {
   auto check = lockEdits();  // refuses node code; released: building the staged graph needs no lock
   check.unlock();
-  Graph staged(registry_);
+  Impl staged(registry_);
   staged.host_ = host_;
   LoadReport report;
   for (const auto& g : description.thread_groups) {
@@ -178,7 +177,7 @@ Result<LoadReport> Graph::load(const GraphDescription& description) {
   return report;
 }
 
-void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
+void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description) {
   std::vector<ThreadGroup*> paused;
   for (auto& [name, g] : groups_) {
     g->pause();
@@ -210,8 +209,7 @@ void Graph::adoptLocked(Graph& staged, const GraphDescription& description) {
   order_ = std::move(staged.order_);
   dormant_ = std::move(staged.dormant_);
   links_ = staged.links_;
-  subgraphs_ = std::move(staged.subgraphs_);
-  ungrouped_.clear();  // another graph: nothing of this one to bring back
+  subgraphs_ = std::move(staged.subgraphs_);  // with nothing ungrouped: nothing of the old graph to bring back
   name_counters_ = std::move(staged.name_counters_);
   next_seq_ = staged.next_seq_;
   staged.nodes_.clear();

@@ -2,46 +2,46 @@
 // until nothing more can fire.
 #include <chrono>
 
-#include "apex/core/graph.hpp"
+#include "graph_impl.hpp"
 #include "node_state.hpp"
 
 namespace apex {
 
 using detail::ThreadGroup;
 
-void Graph::start() {
+void Graph::Impl::start() {
   auto lock = lockEdits();
   running_ = true;
   ran_ = true;
   for (auto& [name, g] : groups_) g->start();
 }
 
-void Graph::stop() {
+void Graph::Impl::stop() {
   auto lock = lockEdits();
   running_ = false;
   for (auto& [name, g] : groups_) g->stop();
 }
 
-void Graph::pause() {
+void Graph::Impl::pause() {
   auto lock = lockEdits();
   paused_ = true;
   bump();
   for (auto& [name, g] : groups_) g->hold(true);
 }
 
-void Graph::resume() {
+void Graph::Impl::resume() {
   auto lock = lockEdits();
   paused_ = false;
   bump();
   for (auto& [name, g] : groups_) g->hold(false);
 }
 
-bool Graph::paused() const {
+bool Graph::Impl::paused() const {
   auto lock = lockEdits();
   return paused_;
 }
 
-void Graph::step() {
+void Graph::Impl::step() {
   auto lock = lockEdits();
   if (!paused_) return;
   // Every group's budget is the nodes ready at one instant: groups stay paused
@@ -52,7 +52,7 @@ void Graph::step() {
   for (auto& [name, g] : groups_) g->waitStep();
 }
 
-Status Graph::stepFrame(double timeout_s) {
+Status Graph::Impl::stepFrame(double timeout_s) {
   auto lock = lockEdits();
   if (!paused_) return Status::error("the graph is running; pause it first");
   std::vector<std::shared_ptr<ThreadGroup>> groups;
@@ -68,7 +68,7 @@ Status Graph::stepFrame(double timeout_s) {
   return Status::ok();
 }
 
-bool Graph::waitIdle(double timeout_s) const {
+bool Graph::Impl::waitIdle(double timeout_s) const {
   std::vector<std::shared_ptr<ThreadGroup>> groups;  // shared: a load may drop a group meanwhile
   {
     auto lock = lockEdits();
@@ -77,7 +77,7 @@ bool Graph::waitIdle(double timeout_s) const {
   return allIdle(groups, timeout_s);
 }
 
-bool Graph::allIdle(const std::vector<std::shared_ptr<ThreadGroup>>& groups, double timeout_s) {
+bool Graph::Impl::allIdle(const std::vector<std::shared_ptr<ThreadGroup>>& groups, double timeout_s) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                                 std::chrono::duration<double>(timeout_s));
   // A group found idle may be given work by one checked later: idle means two

@@ -7,6 +7,7 @@
 #include <diagnostic_msgs/DiagnosticStatus.h>
 
 #include <cstdio>
+#include <set>
 
 #include "convert.hpp"
 

@@ -5,12 +5,9 @@
 // throws std::logic_error, since the call would wait for its own thread group.
 #pragma once
 
-#include <atomic>
+#include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
-#include <mutex>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -19,15 +16,6 @@
 #include "apex/core/result.hpp"
 
 namespace apex {
-
-namespace detail {
-class NodeState;
-class ThreadGroup;
-struct Edge;
-struct EventEdge;
-class Restructure;
-struct Subgraph;
-}  // namespace detail
 
 /** @brief Sees every message sent on one port; runs on the node's thread group, so it must be quick. */
 using PortTap = std::function<void(const Message&)>;
@@ -47,8 +35,8 @@ class Graph {
   Graph(const Graph&) = delete;
   Graph& operator=(const Graph&) = delete;
 
-  const NodeRegistry& registry() const { return registry_; }
-  NodeRegistry& registry() { return registry_; }
+  const NodeRegistry& registry() const;
+  NodeRegistry& registry();
   /** @brief What nodes added from now on see as Node::host(): set it before adding nodes. */
   void setHost(std::shared_ptr<const Host> host);
 
@@ -147,97 +135,15 @@ class Graph {
   Result<ParamValue> parameterValue(const std::string& node, const std::string& param) const;
   /** @brief Grows with every visible change from any source (edits, parameter values
    *  arriving through ports, errors, enable events): poll it to know when to republish. */
-  std::uint64_t revision() const { return revision_->load(std::memory_order_relaxed); }
+  std::uint64_t revision() const;
 
   /** @brief Waits until no node is ready or firing and no event is pending (a stopped
    *  group counts as idle), or the timeout passes; true if idle. For tests and shutdown. */
   bool waitIdle(double timeout_s) const;
 
  private:
-  using NodePtr = std::shared_ptr<detail::NodeState>;
-  /** Takes the edit mutex; throws std::logic_error when called from this graph's
-   *  own node code, where waiting for the node's thread group would deadlock. */
-  std::unique_lock<std::mutex> lockEdits() const;
-  /** Every group idle (nothing ready that may fire, running or posted), twice in a row. */
-  static bool allIdle(const std::vector<std::shared_ptr<detail::ThreadGroup>>& groups, double timeout_s);
-  NodePtr find(const std::string& name) const;
-  Result<NodePtr> require(const std::string& name) const;
-  detail::ThreadGroup* group(const std::string& name);  // creates
-  /** OK if `group_name` exists or one more group stays within kMaxGraphGroups; `extra_nodes`
-   *  more nodes within kMaxGraphNodes (limits.hpp: what a file may hold). */
-  Status roomFor(const std::string& group_name, std::size_t extra_nodes = 0) const;
-  /** Connections in the whole graph: data, parameter and event links, and placeholders'. */
-  std::size_t connectionCount() const;
-  Result<std::string> addPlaceholder(const NodeDescription& d);
-  // --- subgraphs (graph_subgraph.cpp) ---
-  std::shared_ptr<detail::Subgraph> subgraph(const std::string& path) const;
-  /** "" if `path` may name a new node or subgraph: free, each part a name, its parent a subgraph. */
-  std::string checkNewPath(const std::string& path) const;
-  Result<std::string> addSubgraph(const NodeDescription& d);
-  Status checkExports(const detail::Subgraph& sg) const;
-  /** What "node/port" stands for as a sender (outputs, parameter outputs, triggers) or as
-   *  receivers (inputs, parameter inputs, slots): itself, or the inner ones a subgraph exports. */
-  Result<std::pair<std::string, std::string>> sender(const std::string& node, const std::string& port) const;
-  Result<std::vector<std::pair<std::string, std::string>>> receivers(const std::string& node, const std::string& port) const;
-  /** An exported parameter's inner node and parameter (through nested subgraphs). */
-  Result<std::pair<std::string, std::string>> exportedParam(const std::string& node, const std::string& param) const;
-  std::vector<std::string> nodesUnder(const std::string& path) const;  // every node inside, nested too
-  void removeSubgraphLocked(const std::string& path);
-  /** Renames a node or a subgraph and everything in it (`from` and `to` are paths). */
-  void moveLocked(const std::string& from, const std::string& to);
-  void dropExportsOf(const std::string& node);
-  void applyOuterEnabled(const std::string& path);
-  /** The subgraph `path` as ungrouped, if `members` are the nodes it had (taken out of the record). */
-  std::shared_ptr<detail::Subgraph> takeUngrouped(const std::string& path, const std::vector<std::string>& members);
-  std::shared_ptr<const Manifest> facade(const detail::Subgraph& sg) const;
-  GraphDescription describeLocked() const;
-  /** The flat description (every node by its path) nested into subgraphs. */
-  GraphDescription nest(const GraphDescription& flat) const;
-  /** Connects what the two ends stand for (through subgraph exports), all or nothing. */
-  Status connectLocked(const ConnectionDescription& c);
-  Status connectDirect(const ConnectionDescription& c);
-  Status disconnectDirect(const ConnectionDescription& c);
-  Status applyNode(const NodeDescription& d, LoadReport& report);
-  void adoptLocked(Graph& staged, const GraphDescription& description);
-  void clearLocked();
-  void detachAll(detail::NodeState* node);
-  /** Disconnects a node and takes it off its group's queue; it never fires again.
-   *  `restructure`: keep the rest of the graph consistent (false when all nodes go). */
-  void retire(detail::NodeState* node, bool restructure = true);
-  static std::vector<detail::NodeState*> dataReceivers(detail::NodeState* node);
-  /** The edit of one data or parameter connection between two nodes (see live.hpp). */
-  detail::Restructure restructure(detail::NodeState* from, detail::NodeState* to, bool into_data_input) const;
-  void removeEdge(std::shared_ptr<detail::Edge> edge);
-  /** Tells every node upstream of `node` that something downstream of it changed
-   *  (Node::downstreamChanged: a holding source re-sends its frame). */
-  void changedDownstreamOf(detail::NodeState* node);
-  /** The node's interface if `param` had `value` (nullptr: as it is); refused with a message
-   *  naming the node when the type's interface function fails or breaks a rule. */
-  Result<std::shared_ptr<const Manifest>> interfaceFor(const detail::NodeState& node, const std::string& param,
-                                                       const ParamValue* value) const;
-  /** Gives the node `next` as one edit (graph_interface.cpp); `also` runs inside it. */
-  void applyInterface(detail::NodeState* node, std::shared_ptr<const Manifest> next,
-                      const std::function<void()>& also = {});
-  void removeEvent(std::shared_ptr<detail::EventEdge> edge);
-
-  NodeRegistry registry_;
-  std::shared_ptr<const Host> host_;  // edit_mutex_
-  mutable std::mutex edit_mutex_;  // serialises edits and reads of the structure
-  std::map<std::string, NodePtr> nodes_;
-  std::map<std::uint64_t, detail::NodeState*> order_;  // insertion order
-  std::uint64_t next_seq_ = 0;
-  std::map<std::string, int> name_counters_;  // generated names: gaussian_blur_1, _2, ...
-  std::map<std::string, std::shared_ptr<detail::ThreadGroup>> groups_;
-  std::map<std::string, std::shared_ptr<detail::Subgraph>> subgraphs_;  // by path
-  /** Subgraphs ungrouped, by path, with their nodes' names after it: what group(restore) brings back. */
-  std::map<std::string, std::pair<std::shared_ptr<detail::Subgraph>, std::set<std::string>>> ungrouped_;
-  std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
-  std::size_t links_ = 0;  // data, parameter and event links: made in connectDirect, gone in removeEdge/removeEvent
-  bool running_ = false;
-  bool ran_ = false;  // started at least once: messages may be in flight
-  bool paused_ = false;
-  std::shared_ptr<std::atomic<std::uint64_t>> revision_ = std::make_shared<std::atomic<std::uint64_t>>(0);
-  void bump() { revision_->fetch_add(1, std::memory_order_relaxed); }
+  struct Impl;  // the members and every private step: src/core/graph_impl.hpp
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace apex

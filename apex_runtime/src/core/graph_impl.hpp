@@ -1,0 +1,148 @@
+// What apex::Graph holds (graph.hpp keeps only a pointer to it): the graph's members and
+// every step of an edit. Graph's public calls forward here one for one (graph_api.cpp) and
+// are documented in graph.hpp; the bodies are in graph.cpp (nodes and their settings),
+// graph_connect.cpp, graph_interface.cpp, graph_load.cpp, graph_run.cpp and
+// graph_subgraph.cpp. Subgraph records and their rules are detail::Subgraphs (subgraph.hpp).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "apex/core/graph.hpp"
+#include "subgraph.hpp"
+
+namespace apex {
+
+namespace detail {
+class NodeState;
+class ThreadGroup;
+struct Edge;
+struct EventEdge;
+class Restructure;
+}  // namespace detail
+
+struct Graph::Impl {
+  explicit Impl(NodeRegistry registry);
+  ~Impl();  // stops, then retires every node
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+
+  // --- Graph's public calls (graph.hpp) ---
+  void setHost(std::shared_ptr<const Host> host);
+  Result<std::string> addNode(const std::string& type, const std::string& name, const std::string& thread_group);
+  Result<std::string> addNode(const NodeDescription& description);
+  Status removeNode(const std::string& name);
+  Status group(const std::vector<std::string>& nodes, const std::string& name, bool restore);
+  Status ungroup(const std::string& name);
+  Status rename(const std::string& name, const std::string& new_name);
+  Status connect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
+                 const std::string& to_port);
+  Status disconnect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
+                    const std::string& to_port);
+  Result<std::string> setParameter(const std::string& node, const std::string& param, const std::string& yaml_text);
+  Status setInteractive(const std::string& node, const std::string& param, bool interactive);
+  Status setEnabled(const std::string& node, bool enabled);
+  Status setThreadGroup(const std::string& node, const std::string& group);
+  Status fireSlot(const std::string& node, const std::string& slot);
+  Status setUi(const std::string& node, const std::string& ui_yaml);
+  Status setTap(const std::string& node, const std::string& port, PortTap tap);
+  void start();
+  void stop();
+  void pause();
+  void resume();
+  bool paused() const;
+  void step();
+  Status stepFrame(double timeout_s);
+  GraphDescription describe() const;
+  std::vector<ConnectionDescription> connections() const;
+  Result<LoadReport> load(const GraphDescription& description);
+  std::vector<NodeStats> nodeStats(double stall_after_s) const;
+  std::vector<GroupStats> groupStats() const;
+  std::shared_ptr<const NodeType> nodeType(const std::string& node) const;
+  std::shared_ptr<const Manifest> nodeInterface(const std::string& node) const;
+  Node* nodeObject(const std::string& node) const;
+  std::size_t size() const;
+  Result<ParamValue> parameterValue(const std::string& node, const std::string& param) const;
+  bool waitIdle(double timeout_s) const;
+
+  // --- the steps ---
+  using NodePtr = std::shared_ptr<detail::NodeState>;
+  /** Takes the edit mutex; throws std::logic_error when called from this graph's
+   *  own node code, where waiting for the node's thread group would deadlock. */
+  std::unique_lock<std::mutex> lockEdits() const;
+  /** Every group idle (nothing ready that may fire, running or posted), twice in a row. */
+  static bool allIdle(const std::vector<std::shared_ptr<detail::ThreadGroup>>& groups, double timeout_s);
+  NodePtr find(const std::string& name) const;
+  Result<NodePtr> require(const std::string& name) const;
+  detail::ThreadGroup* group(const std::string& name);  // creates
+  /** OK if `group_name` exists or one more group stays within kMaxGraphGroups; `extra_nodes`
+   *  more nodes within kMaxGraphNodes (limits.hpp: what a file may hold). */
+  Status roomFor(const std::string& group_name, std::size_t extra_nodes = 0) const;
+  /** Connections in the whole graph: data, parameter and event links, and placeholders'. */
+  std::size_t connectionCount() const;
+  Result<std::string> addPlaceholder(const NodeDescription& d);
+  // --- subgraphs (graph_subgraph.cpp; the records alone: subgraphs_) ---
+  /** "" if `path` may name a new node or subgraph: free, each part a name, its parent a subgraph. */
+  std::string checkNewPath(const std::string& path) const {
+    return subgraphs_.checkNewPath(path, nodes_.count(path) > 0);
+  }
+  Result<std::string> addSubgraph(const NodeDescription& d);
+  Status checkExports(const detail::Subgraph& sg) const;
+  std::vector<std::string> nodesUnder(const std::string& path) const;  // every node inside, nested too
+  void removeSubgraphLocked(const std::string& path);
+  /** Renames a node or a subgraph and everything in it (`from` and `to` are paths). */
+  void moveLocked(const std::string& from, const std::string& to);
+  void applyOuterEnabled(const std::string& path);
+  std::shared_ptr<const Manifest> facade(const detail::Subgraph& sg) const;
+  GraphDescription describeLocked() const;
+  /** Connects what the two ends stand for (through subgraph exports), all or nothing. */
+  Status connectLocked(const ConnectionDescription& c);
+  Status connectDirect(const ConnectionDescription& c);
+  Status disconnectDirect(const ConnectionDescription& c);
+  Status applyNode(const NodeDescription& d, LoadReport& report);
+  void adoptLocked(Impl& staged, const GraphDescription& description);
+  void clearLocked();
+  void detachAll(detail::NodeState* node);
+  /** Disconnects a node and takes it off its group's queue; it never fires again.
+   *  `restructure`: keep the rest of the graph consistent (false when all nodes go). */
+  void retire(detail::NodeState* node, bool restructure = true);
+  static std::vector<detail::NodeState*> dataReceivers(detail::NodeState* node);
+  /** The edit of one data or parameter connection between two nodes (see live.hpp). */
+  detail::Restructure restructure(detail::NodeState* from, detail::NodeState* to, bool into_data_input) const;
+  void removeEdge(std::shared_ptr<detail::Edge> edge);
+  /** Tells every node upstream of `node` that something downstream of it changed
+   *  (Node::downstreamChanged: a holding source re-sends its frame). */
+  void changedDownstreamOf(detail::NodeState* node);
+  /** The node's interface if `param` had `value` (nullptr: as it is); refused with a message
+   *  naming the node when the type's interface function fails or breaks a rule. */
+  Result<std::shared_ptr<const Manifest>> interfaceFor(const detail::NodeState& node, const std::string& param,
+                                                       const ParamValue* value) const;
+  /** Gives the node `next` as one edit (graph_interface.cpp); `also` runs inside it. */
+  void applyInterface(detail::NodeState* node, std::shared_ptr<const Manifest> next,
+                      const std::function<void()>& also = {});
+  void removeEvent(std::shared_ptr<detail::EventEdge> edge);
+
+  NodeRegistry registry_;
+  std::shared_ptr<const Host> host_;  // edit_mutex_
+  mutable std::mutex edit_mutex_;  // serialises edits and reads of the structure
+  std::map<std::string, NodePtr> nodes_;
+  std::map<std::uint64_t, detail::NodeState*> order_;  // insertion order
+  std::uint64_t next_seq_ = 0;
+  std::map<std::string, int> name_counters_;  // generated names: gaussian_blur_1, _2, ...
+  std::map<std::string, std::shared_ptr<detail::ThreadGroup>> groups_;
+  detail::Subgraphs subgraphs_;  // by path, and the ones ungrouped
+  std::vector<ConnectionDescription> dormant_;  // connections of placeholder nodes, kept verbatim
+  std::size_t links_ = 0;  // data, parameter and event links: made in connectDirect, gone in removeEdge/removeEvent
+  bool running_ = false;
+  bool ran_ = false;  // started at least once: messages may be in flight
+  bool paused_ = false;
+  std::shared_ptr<std::atomic<std::uint64_t>> revision_ = std::make_shared<std::atomic<std::uint64_t>>(0);
+  void bump() { revision_->fetch_add(1, std::memory_order_relaxed); }
+};
+
+}  // namespace apex
