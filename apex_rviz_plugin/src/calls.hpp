@@ -1,5 +1,5 @@
 // The service calls the panel's edits are made of, and the path helpers they
-// need (private to the model: graph_model.cpp, clipboard.cpp).
+// need (private to the model: graph_model.cpp, graph_model_optimise.cpp, clipboard.cpp).
 #pragma once
 
 #include <string>

@@ -1,11 +1,9 @@
 #include "apex_rviz_plugin/panel_widget.hpp"
 
-#include <QClipboard>
 #include <QDir>
 #include <QFileInfo>
 #include <QGraphicsView>
 #include <QSaveFile>
-#include <QGuiApplication>
 #include <QTimer>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -53,189 +51,116 @@ void PanelWidget::setNamespace(const QString& ns) {
 void PanelWidget::connectEditor() {
   GraphEditor* e = editor_;
   GraphScene* s = e->scene();
-  auto str = [](const QString& q) { return q.toStdString(); };
-  connect(e, &GraphEditor::namespaceChanged, this, [this](const QString& ns) {
-    if (ns.toStdString() != link_.ns()) setNamespace(ns);
-  });
-  connect(e, &GraphEditor::addRequested, this, [this, str](const QString& type, QPointF at) {
-    const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
-    std::set<std::string> sent;  // added a moment ago, not shown yet: their names are taken too
-    for (const auto& [n, box] : placing_) sent.insert(n);
-    const std::string name = model_.freshName(str(type), inside, sent);
-    const std::string path = inside.empty() ? name : inside + "/" + name;
-    const auto shown = editor_->scene()->boxes();
-    std::vector<Box> taken;
-    for (const auto& [n, box] : shown) taken.push_back(box);
-    for (const auto& [n, box] : placing_)  // added a moment ago, not shown yet: their places are taken too
-      if (!shown.count(n)) taken.push_back(box);
-    Box wanted = typeBox(str(type));  // as a new node of the type is shown
-    wanted.x = at.x(), wanted.y = at.y();
-    const Box free = freePlace(wanted, taken);  // on no other
-    placing_[path] = free;
-    perform(model_.addNode(str(type), path, free.x, free.y));
-  });
-  connect(e, &GraphEditor::removeRequested, this, [this, str](const QString& n) { perform(model_.removeNode(str(n))); });
-  connect(e, &GraphEditor::groupIntoSubgraphRequested, this, [this, str](const QStringList& nodes) {
-    std::vector<std::string> names;
-    for (const auto& n : nodes) names.push_back(str(n));
-    perform(model_.group(names));
-  });
-  connect(e, &GraphEditor::ungroupRequested, this, [this, str](const QString& n) { perform(model_.ungroup(str(n))); });
-  auto names = [str](const QStringList& nodes) {
-    std::vector<std::string> out;
-    for (const auto& n : nodes) out.push_back(str(n));
-    return out;
-  };
-  auto shown = [this] {  // where the boxes are, placed or not yet saved
-    std::map<std::string, std::pair<double, double>> at;
-    for (const auto& [name, box] : editor_->scene()->boxes()) at[name] = {box.x, box.y};
-    return at;
-  };
-  connect(e, &GraphEditor::duplicateRequested, this, [this, names, shown](const QStringList& nodes) {
-    if (!nodes.isEmpty()) pasted(model_.duplicate(names(nodes), 40, 40, shown()));
-  });
-  connect(e, &GraphEditor::copyRequested, this, [this, names, shown](const QStringList& nodes) {
-    if (nodes.isEmpty()) return;
-    std::string left_out;
-    QGuiApplication::clipboard()->setText(QString::fromStdString(model_.copy(names(nodes), &left_out, shown())));
-    if (!left_out.empty()) return editor_->showMessage(QString::fromStdString(left_out + " is an inline subgraph: save it to a file to copy it"), true);
-    editor_->showMessage(nodes.size() == 1 ? "copied " + nodes.front() : QString("copied %1 nodes").arg(nodes.size()), false);
-  });
-  connect(e, &GraphEditor::pasteRequested, this, [this](QPointF at) {
-    const std::string text = QGuiApplication::clipboard()->text().toStdString();
-    const std::string& level = editor_->scene()->level();
-    Pasted p = model_.paste(text, level, at.x(), at.y());
-    if (!p.edit) return pasted(p);
-    Box group{at.x(), at.y(), 0, 0};  // where the copies go, as boxes of a usual size
-    for (const auto& call : p.edit->apply)
-      if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) {
-        const auto [x, y] = GraphModel::positionIn(ui->ui);
-        group.width = std::max(group.width, x + NodeItem::kMinWidth - at.x());
-        group.height = std::max(group.height, y + 150 - at.y());
-      }
-    std::vector<Box> taken;
-    for (const auto& [n, box] : editor_->scene()->boxes()) taken.push_back(box);
-    const Box free = freePlace(group, taken);  // not on top of what is there
-    pasted(free.x == at.x() && free.y == at.y() ? p : model_.paste(text, level, free.x, free.y));
-  });
-  connect(e, &GraphEditor::renameRequested, this, [this, str](const QString& n, const QString& to) {
-    perform(model_.rename(str(n), str(to)));
-  });
-  connect(e, &GraphEditor::resetRequested, this, [this, str](const QString& n, const QString& p) {
-    perform(model_.resetToDefault(str(n), str(p)));
-  });
-  connect(e, &GraphEditor::enabledRequested, this, [this, str](const QString& n, bool on) { perform(model_.setEnabled(str(n), on)); });
-  connect(e, &GraphEditor::groupRequested, this, [this, str](const QString& n, const QString& g) {
-    perform(model_.setThreadGroup(str(n), str(g)));
-  });
-  connect(s, &GraphScene::connectRequested, this, [this](const apex::Connection& c) { perform(model_.connect(c)); });
-  connect(s, &GraphScene::disconnectRequested, this, [this](const apex::Connection& c) { perform(model_.disconnect(c)); });
-  connect(s, &GraphScene::parameterEdited, this,
-          [this, str](const QString& n, const QString& p, const QString& v, bool dragging) {
-            perform(model_.setParameter(str(n), str(p), str(v), dragging));
-          });
-  connect(s, &GraphScene::interactiveToggled, this, [this, str](const QString& n, const QString& p, bool on) {
-    perform(model_.setInteractive(str(n), str(p), on));
-  });
-  connect(s, &GraphScene::nodeMoved, this, [this, str](const QString& n, QPointF at) { perform(model_.move(str(n), at.x(), at.y())); });
-  connect(s, &GraphScene::insertRequested, this, [this, str](const QString& n, const apex::Connection& c, QPointF at) {
-    perform(model_.insert(str(n), c, at.x(), at.y()));
-  });
-  connect(e, &GraphEditor::undoRequested, this, [this] { replay(history_.undo(), "undo"); });
-  connect(e, &GraphEditor::redoRequested, this, [this] { replay(history_.redo(), "redo"); });
-  connect(e, &GraphEditor::controlRequested, this, [this](const QString& cmd) {
-    link_.control(cmd.toStdString(), [this, cmd](bool ok, const std::string& m) { report(ok, m, cmd); });
-  });
+  // edits of the model (panel_edits.cpp)
+  connect(e, &GraphEditor::addRequested, this, &PanelWidget::onAddRequested);
+  connect(e, &GraphEditor::removeRequested, this, &PanelWidget::onRemoveRequested);
+  connect(e, &GraphEditor::groupIntoSubgraphRequested, this, &PanelWidget::onGroupIntoSubgraphRequested);
+  connect(e, &GraphEditor::ungroupRequested, this, &PanelWidget::onUngroupRequested);
+  connect(e, &GraphEditor::duplicateRequested, this, &PanelWidget::onDuplicateRequested);
+  connect(e, &GraphEditor::copyRequested, this, &PanelWidget::onCopyRequested);
+  connect(e, &GraphEditor::pasteRequested, this, &PanelWidget::onPasteRequested);
+  connect(e, &GraphEditor::renameRequested, this, &PanelWidget::onRenameRequested);
+  connect(e, &GraphEditor::resetRequested, this, &PanelWidget::onResetRequested);
+  connect(e, &GraphEditor::enabledRequested, this, &PanelWidget::onEnabledRequested);
+  connect(e, &GraphEditor::groupRequested, this, &PanelWidget::onThreadGroupRequested);
+  connect(s, &GraphScene::connectRequested, this, &PanelWidget::onConnectRequested);
+  connect(s, &GraphScene::disconnectRequested, this, &PanelWidget::onDisconnectRequested);
+  connect(s, &GraphScene::parameterEdited, this, &PanelWidget::onParameterEdited);
+  connect(s, &GraphScene::interactiveToggled, this, &PanelWidget::onInteractiveToggled);
+  connect(s, &GraphScene::nodeMoved, this, &PanelWidget::onNodeMoved);
+  connect(s, &GraphScene::insertRequested, this, &PanelWidget::onInsertRequested);
+  connect(e, &GraphEditor::optimiseRequested, this, &PanelWidget::onOptimiseRequested);
+  connect(e, &GraphEditor::applyBestRequested, this, &PanelWidget::onApplyBestRequested);
+  connect(e, &GraphEditor::tidyRequested, this, &PanelWidget::tidy);  // panel_placement.cpp
+  // the namespace, the history, the runtime's controls and files
+  connect(e, &GraphEditor::namespaceChanged, this, &PanelWidget::onNamespaceEdited);
+  connect(e, &GraphEditor::undoRequested, this, &PanelWidget::onUndoRequested);
+  connect(e, &GraphEditor::redoRequested, this, &PanelWidget::onRedoRequested);
+  connect(e, &GraphEditor::controlRequested, this, &PanelWidget::onControlRequested);
   connect(s, &GraphScene::slotFired, e, &GraphEditor::fireSlotRequested);  // a player's transport bar
-  connect(e, &GraphEditor::fireSlotRequested, this, [this](const QString& n, const QString& slot) {
-    link_.fireSlot(n.toStdString(), slot.toStdString(),
-                   [this, n, slot](bool ok, const std::string& m) { report(ok, m, "fire " + n + "/" + slot); });
-  });
-  connect(e, &GraphEditor::saveRequested, this, [this](const QString& path) {
-    link_.saveGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "saved " + path); });
-  });
-  connect(e, &GraphEditor::loadRequested, this, [this](const QString& path) {
-    const auto done = replacingGraph("loaded " + path);
-    link_.loadGraph(path.toStdString(), [this, done](bool ok, const std::string& m, std::uint64_t revision) {
-      done(ok, m);
-      if (!ok) return;
-      // Positions written for other box sizes (by hand, another panel) are laid out again once the
-      // loaded graph is shown (its revision or a later one): now, or when its ~graph comes.
-      untangle_from_ = revision;
-      if (model_.graph().revision >= revision) untangleLoaded();
-    });
-  });
-  connect(e, &GraphEditor::newRequested, this, [this] { link_.control("clear", replacingGraph("new graph")); });
-  connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
-  connect(e, &GraphEditor::optimiseRequested, this, [this, str](const QString& n, const QString& p, const QString& opt) {
-    const auto [x, y] = model_.position(str(n));
-    perform(model_.optimise(str(n), str(p), str(opt), x, y + 320));
-  });
-  connect(e, &GraphEditor::applyBestRequested, this, [this, str](const QString& opt) {
-    const auto edit = model_.applyBest(str(opt));
-    if (!edit) return editor_->showMessage(opt + " has no best values yet: run it first", true);
-    perform(edit);
-  });
+  connect(e, &GraphEditor::fireSlotRequested, this, &PanelWidget::onFireSlotRequested);
+  connect(e, &GraphEditor::saveRequested, this, &PanelWidget::onSaveRequested);
+  connect(e, &GraphEditor::loadRequested, this, &PanelWidget::onLoadRequested);
+  connect(e, &GraphEditor::newRequested, this, &PanelWidget::onNewRequested);
   connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
-  connect(e, &GraphEditor::tidyRequested, this, &PanelWidget::tidy);
-  connect(e, &GraphEditor::previewsToggled, this, [this](bool on) {
-    previews_ = on;
-    if (on) preview_timer_->start(300);
-    else preview_timer_->stop();
-    updatePreviews();
-    if (on) place(pushDown(editor_->scene()->boxes()));  // the boxes grew: none lies on another
-  });
+  // what is shown: inspections, previews, presets, the level
+  connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
+  connect(e, &GraphEditor::previewsToggled, this, &PanelWidget::onPreviewsToggled);
   connect(e, &GraphEditor::presetSaveRequested, this, &PanelWidget::savePreset);
-  connect(e, &GraphEditor::presetRestoreRequested, this, [this](const QString& name) {
-    const std::string text = readPreset(name);
-    if (text.empty()) return;
-    std::string error;
-    auto edit = model_.restore(text, name.toStdString(), &error);
-    if (!edit) return editor_->showMessage(error.empty() ? "the parameters are as preset " + name + " has them already"
-                                                         : QString::fromStdString(error), !error.empty());
-    perform(edit);
-  });
-  connect(e, &GraphEditor::presetCompareRequested, this, [this](const QString& name) {
-    const std::string text = readPreset(name);
-    if (text.empty()) return;
-    std::string error;
-    const auto changes = model_.compare(text, &error);
-    if (!error.empty()) return editor_->showMessage(QString::fromStdString(error), true);
-    QString out = changes.empty() ? "Every parameter is as the preset has it." : "now -> preset " + name + ":\n";
-    for (const auto& c : changes)
-      out += QString::fromStdString("\n" + c.node + "/" + c.param + ": " + (c.now.empty() ? "(not in the graph)" : c.now) + " -> " + c.then);
-    editor_->showPresetDiff(name, out);
-  });
+  connect(e, &GraphEditor::presetRestoreRequested, this, &PanelWidget::onPresetRestoreRequested);
+  connect(e, &GraphEditor::presetCompareRequested, this, &PanelWidget::onPresetCompareRequested);
   listPresets();
-  connect(s, &GraphScene::levelChanged, this, [this] {
-    untangle_ = true;
-    QTimer::singleShot(0, this, [this] { placeUnplaced(); });  // once the level's nodes are shown
+  connect(s, &GraphScene::levelChanged, this, &PanelWidget::onLevelChanged);
+}
+
+void PanelWidget::onNamespaceEdited(const QString& ns) {
+  if (ns.toStdString() != link_.ns()) setNamespace(ns);
+}
+
+void PanelWidget::onUndoRequested() { replay(history_.undo(), "undo"); }
+
+void PanelWidget::onRedoRequested() { replay(history_.redo(), "redo"); }
+
+void PanelWidget::onControlRequested(const QString& command) {
+  link_.control(command.toStdString(), [this, command](bool ok, const std::string& m) { report(ok, m, command); });
+}
+
+void PanelWidget::onFireSlotRequested(const QString& node, const QString& slot) {
+  link_.fireSlot(node.toStdString(), slot.toStdString(),
+                 [this, node, slot](bool ok, const std::string& m) { report(ok, m, "fire " + node + "/" + slot); });
+}
+
+void PanelWidget::onSaveRequested(const QString& path) {
+  link_.saveGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "saved " + path); });
+}
+
+void PanelWidget::onLoadRequested(const QString& path) {
+  const auto done = replacingGraph("loaded " + path);
+  link_.loadGraph(path.toStdString(), [this, done](bool ok, const std::string& m, std::uint64_t revision) {
+    done(ok, m);
+    if (!ok) return;
+    // Positions written for other box sizes (by hand, another panel) are laid out again once the
+    // loaded graph is shown (its revision or a later one): now, or when its ~graph comes.
+    untangle_from_ = revision;
+    if (model_.graph().revision >= revision) untangleLoaded();
   });
 }
 
-void PanelWidget::perform(const std::optional<Edit>& edit) {
-  if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
-  reservePlaces(edit->apply);
-  ++pending_;
-  link_.run(edit->apply, [this, edit = *edit, epoch = history_epoch_](bool ok, const std::string& message) {
-    --pending_;
-    if (!ok)  // its places are free again
-      for (const auto& call : edit.apply)
-        if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) placing_.erase(ui->node);
-    if (ok && epoch == history_epoch_) history_.done(edit);  // not into a history started since: another graph
-    editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
-    report(ok, message, QString::fromStdString(edit.label));
-    if (!ok) editor_->showGraph(model_);  // widgets back to the values the runtime holds
-  });
+void PanelWidget::onNewRequested() { link_.control("clear", replacingGraph("new graph")); }
+
+void PanelWidget::onPreviewsToggled(bool on) {
+  previews_ = on;
+  if (on) preview_timer_->start(300);
+  else preview_timer_->stop();
+  updatePreviews();
+  if (on) place(pushDown(editor_->scene()->boxes()));  // the boxes grew: none lies on another
 }
 
-void PanelWidget::pasted(const Pasted& p) {
-  if (!p.edit) return editor_->showMessage(QString::fromStdString(p.error), true);
-  QStringList names;
-  for (const auto& n : p.names) names << QString::fromStdString(n);
-  editor_->selectWhenShown(names);  // the copies, not the originals: Delete and Ctrl+D act on them
-  perform(p.edit);
-  if (!p.error.empty()) editor_->showMessage(QString::fromStdString(p.error), true);
+void PanelWidget::onPresetRestoreRequested(const QString& name) {
+  const std::string text = readPreset(name);
+  if (text.empty()) return;
+  std::string error;
+  auto edit = model_.restore(text, name.toStdString(), &error);
+  if (!edit) return editor_->showMessage(error.empty() ? "the parameters are as preset " + name + " has them already"
+                                                       : QString::fromStdString(error), !error.empty());
+  perform(edit);
+}
+
+void PanelWidget::onPresetCompareRequested(const QString& name) {
+  const std::string text = readPreset(name);
+  if (text.empty()) return;
+  std::string error;
+  const auto changes = model_.compare(text, &error);
+  if (!error.empty()) return editor_->showMessage(QString::fromStdString(error), true);
+  QString out = changes.empty() ? "Every parameter is as the preset has it." : "now -> preset " + name + ":\n";
+  for (const auto& c : changes)
+    out += QString::fromStdString("\n" + c.node + "/" + c.param + ": " + (c.now.empty() ? "(not in the graph)" : c.now) + " -> " + c.then);
+  editor_->showPresetDiff(name, out);
+}
+
+void PanelWidget::onLevelChanged() {
+  untangle_ = true;
+  QTimer::singleShot(0, this, [this] { placeUnplaced(); });  // once the level's nodes are shown
 }
 
 void PanelWidget::replay(std::vector<Call> calls, const QString& what) {

@@ -3,45 +3,13 @@
 #include <gmock/gmock.h>
 
 #include "apex_rviz_plugin/graph_model.hpp"
+#include "graph_model_fixture.hpp"
 
 using namespace apex_rviz_plugin;
+using namespace graph_model_fixture;
 using ::testing::HasSubstr;
 
 namespace {
-
-apex::PortInfo port(const std::string& name, const std::string& kind, const std::string& type) {
-  apex::PortInfo p;
-  p.name = name, p.kind = kind, p.type = type;
-  return p;
-}
-
-apex::ParamInfo param(const std::string& name, const std::string& value, bool interactive = false) {
-  apex::ParamInfo p;
-  p.name = name, p.value = value, p.interactive = interactive;
-  return p;
-}
-
-/** clock --count--> relay --out--> count, and clock/processed --> count/reset */
-apex::GraphState graph(std::uint64_t revision) {
-  apex::GraphState g;
-  g.revision = revision;
-  apex::NodeInfo clock, relay, count;
-  clock.name = "clock", clock.type = "apex_nodes/Clock", clock.thread_group = "default", clock.enabled = true;
-  clock.ports = {port("count", "output", "int"), port("time", "output", "double"), port("processed", "trigger", "")};
-  clock.parameters = {param("rate", "20.0", true)};
-  clock.ui = "{x: 10, y: 20}";
-  relay.name = "relay", relay.type = "apex_nodes/Relay", relay.thread_group = "vision", relay.enabled = false;
-  relay.ports = {port("in", "input", "any"), port("out", "output", "any")};
-  count.name = "count", count.type = "apex_nodes/Counter", count.enabled = true;
-  count.ports = {port("in", "input", "any"), port("count", "output", "int"), port("reset", "slot", "")};
-  g.nodes = {clock, relay, count};
-  apex::Connection a, b, e;
-  a.from_node = "clock", a.from_port = "count", a.to_node = "relay", a.to_port = "in";
-  b.from_node = "relay", b.from_port = "out", b.to_node = "count", b.to_port = "in";
-  e.from_node = "clock", e.from_port = "processed", e.to_node = "count", e.to_port = "reset";
-  g.connections = {a, b, e};
-  return g;
-}
 
 TEST(GraphModel, TakesOnlyNewerRevisions) {
   GraphModel m;
@@ -350,37 +318,13 @@ TEST(GraphModel, UndoOfAParameterThatShapesPortsConnectsWhatItDropped) {
   }
 }
 
-/** graph(1) with the clock's rate a double and an int `size`, and (if `opt`) an Optimizer tuning the rate. */
-apex::GraphState tunable(bool opt) {
-  auto g = graph(1);
-  g.nodes[0].parameters[0].type = "double";
-  g.nodes[0].parameters.push_back(param("size", "3"));
-  g.nodes[0].parameters.back().type = "int";
-  g.nodes[0].parameters.push_back(param("label", "'x'"));
-  g.nodes[0].parameters.back().type = "string";
-  if (!opt) return g;
-  apex::NodeInfo o;
-  o.name = "tuner", o.type = kOptimizerType, o.enabled = true;
-  o.ports = {port("fitness", "input", "double"), port("rate", "output", "double")};
-  o.parameters = {param("dimensions", "[rate]"), param("best_values", "'{rate: 42.5}'")};
-  g.nodes.push_back(o);
-  apex::Connection c;
-  c.from_node = "tuner", c.from_port = "rate", c.to_node = "clock", c.to_port = "rate";
-  g.connections.push_back(c);
-  return g;
-}
-
-std::vector<std::string> services(const std::vector<Call>& calls) {
-  std::vector<std::string> out;
-  for (const auto& c : calls) out.push_back(c.service);
-  return out;
-}
-
 TEST(GraphModel, OptimisingAParameterWithANewOptimizerIsOneEdit) {
   GraphModel m;
   m.update(tunable(false));
   EXPECT_TRUE(m.optimizers().empty());
-  auto e = m.optimise("clock", "size", "", 10, 300);
+  const apex::NodeTypeInfo type = optimizerType();
+  EXPECT_FALSE(m.optimise("clock", "size", "", 10, 300, nullptr)) << "a new Optimizer's names unknown: not guessed";
+  auto e = m.optimise("clock", "size", "", 10, 300, &type);
   ASSERT_TRUE(e);
   EXPECT_EQ(e->label, "Optimise clock/size with optimizer_1");
   EXPECT_THAT(services(e->apply), ::testing::ElementsAre("add_node", "set_ui", "set_interactive", "set_parameter", "connect"));
@@ -389,8 +333,34 @@ TEST(GraphModel, OptimisingAParameterWithANewOptimizerIsOneEdit) {
   const auto& link = std::get<apex::Connect::Request>(e->apply[4].request);
   EXPECT_EQ(link.from_node + "/" + link.from_port + " -> " + link.to_node + "/" + link.to_port, "optimizer_1/size -> clock/size");
   EXPECT_THAT(services(e->revert), ::testing::ElementsAre("disconnect", "remove_node", "set_interactive"));
-  EXPECT_FALSE(m.optimise("clock", "label", "", 0, 0)) << "a string is not tuned";
-  EXPECT_FALSE(m.optimise("clock", "nothing", "", 0, 0));
+  EXPECT_FALSE(m.optimise("clock", "label", "", 0, 0, &type)) << "a string is not tuned";
+  EXPECT_FALSE(m.optimise("clock", "nothing", "", 0, 0, &type));
+}
+
+TEST(GraphModel, ADimensionIsNamedAfterNoneOfTheOptimizersOwnPortsOrParameters) {
+  auto g = tunable(true);
+  for (const char* name : {"seed", "fitness"}) {  // as the Optimizer's manifest names a parameter and an input
+    g.nodes[0].parameters.push_back(param(name, "1"));
+    g.nodes[0].parameters.back().type = "int";
+  }
+  GraphModel m;
+  m.update(g);
+  const apex::NodeTypeInfo type = optimizerType();
+  auto dimension = [](const std::optional<Edit>& e) {
+    return e ? std::get<apex::Connect::Request>(e->apply.back().request).from_port : "(refused)";
+  };
+  // a new Optimizer: the names its type lists
+  const auto seed = m.optimise("clock", "seed", "", 0, 0, &type);
+  ASSERT_TRUE(seed);
+  EXPECT_EQ(dimension(seed), "clock_seed");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(seed->apply[3].request).value, "[clock_seed int]");
+  EXPECT_EQ(dimension(m.optimise("clock", "fitness", "", 0, 0, &type)), "clock_fitness");
+  EXPECT_EQ(dimension(m.optimise("clock", "size", "", 0, 0, &type)), "size") << "a name the type does not have is kept";
+  // the graph's Optimizer: its type's names, and without the type those the node has (`tuner` lists
+  // fitness, not seed)
+  EXPECT_EQ(dimension(m.optimise("clock", "seed", "tuner", 0, 0, &type)), "clock_seed");
+  EXPECT_EQ(dimension(m.optimise("clock", "fitness", "tuner", 0, 0, nullptr)), "clock_fitness");
+  EXPECT_EQ(dimension(m.optimise("clock", "seed", "tuner", 0, 0, nullptr)), "seed");
 }
 
 TEST(GraphModel, OptimisingWithAnExistingOptimizerAddsADimensionUnderAFreeName) {
@@ -401,14 +371,14 @@ TEST(GraphModel, OptimisingWithAnExistingOptimizerAddsADimensionUnderAFreeName) 
   g.nodes.push_back(other);
   m.update(g);
   EXPECT_EQ(m.optimizers(), std::vector<std::string>{"tuner"});
-  auto e = m.optimise("clock2", "rate", "tuner", 0, 0);
+  auto e = m.optimise("clock2", "rate", "tuner", 0, 0, nullptr);  // the type not known: the node's own names
   ASSERT_TRUE(e);
   EXPECT_THAT(services(e->apply), ::testing::ElementsAre("set_parameter", "connect"));  // rate is interactive already
   EXPECT_EQ(std::get<apex::SetParameter::Request>(e->apply[0].request).value, "[rate, clock2_rate]");
   EXPECT_EQ(std::get<apex::Connect::Request>(e->apply[1].request).from_port, "clock2_rate");
   EXPECT_THAT(services(e->revert), ::testing::ElementsAre("disconnect", "set_parameter"));
   EXPECT_EQ(std::get<apex::SetParameter::Request>(e->revert[1].request).value, "[rate]");
-  EXPECT_FALSE(m.optimise("clock", "rate", "nobody", 0, 0));
+  EXPECT_FALSE(m.optimise("clock", "rate", "nobody", 0, 0, nullptr));
 }
 
 TEST(GraphModel, ApplyingTheBestValuesIsOneEditUndoneToTheValuesBefore) {

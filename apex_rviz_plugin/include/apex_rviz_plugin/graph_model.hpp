@@ -8,6 +8,7 @@
 #include <apex/Connect.h>
 #include <apex/GraphState.h>
 #include <apex/Group.h>
+#include <apex/NodeTypeInfo.h>
 #include <apex/RemoveNode.h>
 #include <apex/RenameNode.h>
 #include <apex/SetEnabled.h>
@@ -156,11 +157,14 @@ class GraphModel {
   std::optional<Edit> setInteractive(const std::string& node, const std::string& param, bool interactive) const;
   /** @brief Tunes a number parameter with an Optimizer (`optimizer`, or a new one at (x, y) if
    *  empty): the parameter gets ports, the Optimizer a dimension named after it (its range and
-   *  step from the parameter) and the two are connected; one edit. Nothing for a parameter that
-   *  is not an int or a double, shapes the node's ports or is linked already, or an Optimizer
-   *  that is not there. */
+   *  step from the parameter) and the two are connected; one edit. A dimension is an output of
+   *  the Optimizer, so never named after one of its own ports, events or parameters: those of
+   *  `optimizer_type` (the Optimizer node type as the runtime lists it; nullptr if not known),
+   *  and those the Optimizer node in the graph has. Nothing for a parameter that is not an int
+   *  or a double, shapes the node's ports or is linked already, an Optimizer that is not there,
+   *  or a new Optimizer while its type is not known (its names are not guessed). */
   std::optional<Edit> optimise(const std::string& node, const std::string& param, const std::string& optimizer,
-                               double x, double y) const;
+                               double x, double y, const apex::NodeTypeInfo* optimizer_type) const;
   /** @brief The Optimizer's best values (its `best_values`) set on the parameters it tunes, as
    *  one edit; undone to the values they hold now. Nothing before it has best values, or while it runs. */
   std::optional<Edit> applyBest(const std::string& optimizer) const;

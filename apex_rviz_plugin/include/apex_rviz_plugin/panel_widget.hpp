@@ -91,7 +91,54 @@ class PanelWidget : public QWidget {
   /** Inspects each Optimizer's progress (evaluations, best fitness) once, for its box to draw. */
   void watchOptimizers();
   void report(bool ok, const std::string& message, const QString& what);
+  /** What the panel does on each signal of the editor and its scene: the handlers below. */
   void connectEditor();
+
+  // --- the editor's requests that become edits of the model, made through perform() (panel_edits.cpp) ---
+  /** A new node of `type` in the subgraph shown, on a free place near `at`. */
+  void onAddRequested(const QString& type, QPointF at);
+  void onRemoveRequested(const QString& node);
+  void onGroupIntoSubgraphRequested(const QStringList& nodes);
+  void onUngroupRequested(const QString& subgraph);
+  void onDuplicateRequested(const QStringList& nodes);
+  /** The nodes as graph file text on the clipboard (not an edit). */
+  void onCopyRequested(const QStringList& nodes);
+  /** The clipboard's nodes with their top-left corner at `at`, or on a free place near it. */
+  void onPasteRequested(QPointF at);
+  void onRenameRequested(const QString& node, const QString& new_name);
+  void onResetRequested(const QString& node, const QString& param);
+  void onEnabledRequested(const QString& node, bool enabled);
+  void onThreadGroupRequested(const QString& node, const QString& group);
+  void onConnectRequested(const apex::Connection& c);
+  void onDisconnectRequested(const apex::Connection& c);
+  void onParameterEdited(const QString& node, const QString& param, const QString& yaml, bool dragging);
+  void onInteractiveToggled(const QString& node, const QString& param, bool interactive);
+  void onNodeMoved(const QString& node, QPointF at);
+  void onInsertRequested(const QString& node, const apex::Connection& c, QPointF at);
+  /** Tunes node/param with `optimizer`, or a new one below the node (its names from types_). */
+  void onOptimiseRequested(const QString& node, const QString& param, const QString& optimizer);
+  void onApplyBestRequested(const QString& optimizer);
+  /** Where the boxes are shown, placed or not yet saved: positions for a copy. */
+  std::map<std::string, std::pair<double, double>> shownPositions() const;
+
+  // --- the editor's other requests: the namespace, history, the runtime's controls, files, presets, views ---
+  /** The namespace typed in the editor: another runtime, if it differs. */
+  void onNamespaceEdited(const QString& ns);
+  void onUndoRequested();
+  void onRedoRequested();
+  void onControlRequested(const QString& command);
+  void onFireSlotRequested(const QString& node, const QString& slot);
+  void onSaveRequested(const QString& path);
+  /** Loads a graph file: a fresh history; laid out once shown if its boxes lie on each other. */
+  void onLoadRequested(const QString& path);
+  void onNewRequested();
+  void onPreviewsToggled(bool on);
+  /** The preset's values set where they differ, as one edit. */
+  void onPresetRestoreRequested(const QString& name);
+  /** What differs between the preset and the graph, in the editor's window for it. */
+  void onPresetCompareRequested(const QString& name);
+  /** Another subgraph shown: its nodes without a position get one once shown. */
+  void onLevelChanged();
 
   GraphEditor* editor_;
   GraphModel model_;

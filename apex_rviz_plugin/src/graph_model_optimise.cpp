@@ -1,0 +1,124 @@
+// GraphModel, tuning: a parameter given to an Optimizer (a new one or one of the graph's) as one
+// edit, and the Optimizer's best values applied as one edit.
+#include "apex_rviz_plugin/graph_model.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+
+#include "calls.hpp"
+
+namespace apex_rviz_plugin {
+namespace {
+
+using namespace calls;
+
+/** A text list parameter's value (YAML) as strings; empty if it cannot be read. */
+std::vector<std::string> textList(const std::string& yaml) {
+  try {
+    const YAML::Node n = YAML::Load(yaml);
+    return n.IsSequence() ? n.as<std::vector<std::string>>() : std::vector<std::string>{};
+  } catch (const YAML::Exception&) {
+    return {};
+  }
+}
+
+std::string yamlList(const std::vector<std::string>& items) {
+  YAML::Emitter out;
+  out << YAML::Flow << items;
+  return out.c_str();
+}
+
+}  // namespace
+
+std::vector<std::string> GraphModel::optimizers() const {
+  std::vector<std::string> out;
+  for (const auto& n : graph_.nodes)
+    if (n.type == kOptimizerType) out.push_back(n.name);
+  return out;
+}
+
+std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std::string& param,
+                                         const std::string& optimizer, double x, double y,
+                                         const apex::NodeTypeInfo* optimizer_type) const {
+  const apex::ParamInfo* p = parameter(node_name, param);
+  if (!p || (p->type != "int" && p->type != "double") || p->shapes_ports) return std::nullopt;
+  for (const auto& c : graph_.connections)  // a parameter input has one source
+    if (c.to_node == node_name && c.to_port == param) return std::nullopt;
+  const bool make = optimizer.empty();
+  if (make && !optimizer_type) return std::nullopt;  // a new Optimizer's own names unknown: not guessed
+  const std::string opt = make ? freshName(kOptimizerType) : optimizer;
+  std::vector<std::string> dims;
+  if (!make) {
+    const apex::ParamInfo* d = parameter(opt, "dimensions");
+    if (!d) return std::nullopt;
+    dims = textList(d->value);
+  }
+  // A dimension is an output of the Optimizer: named after the parameter, unless taken by one of
+  // its own ports, events or parameters (as its type lists them, and as the node in the graph
+  // has them) or by another dimension.
+  std::set<std::string> own;
+  auto add = [&own](const auto& ports, const auto& params) {
+    for (const auto& q : ports) own.insert(q.name);
+    for (const auto& q : params) own.insert(q.name);
+  };
+  if (optimizer_type) add(optimizer_type->ports, optimizer_type->parameters);
+  if (const apex::NodeInfo* o = make ? nullptr : node(opt)) add(o->ports, o->parameters);
+  auto taken = [&](const std::string& name) {
+    if (own.count(name)) return true;
+    for (const auto& d : dims)
+      if (d.substr(0, d.find(' ')) == name) return true;
+    return false;
+  };
+  std::string dim = param;
+  for (int k = 2; taken(dim); ++k) dim = node_name + "_" + param + (k > 2 ? "_" + std::to_string(k - 1) : "");
+  const std::string old_dims = yamlList(dims);
+  dims.push_back(dim + (p->type == "int" ? " int" : ""));
+
+  Edit e{"Optimise " + node_name + "/" + param + " with " + opt, {}, {}};
+  if (make) e.apply = addNode(kOptimizerType, opt, x, y).apply;
+  if (!p->interactive) e.apply.push_back(interactive(node_name, param, true));
+  e.apply.push_back(setParam(opt, "dimensions", yamlList(dims)));
+  const apex::Connection link = [&] {
+    apex::Connection c;
+    c.from_node = opt, c.from_port = dim, c.to_node = node_name, c.to_port = param;
+    return c;
+  }();
+  e.apply.push_back(calls::connect("connect", link));
+  e.revert.push_back(calls::connect("disconnect", link));
+  if (make) {
+    apex::RemoveNode::Request remove;
+    remove.name = opt;
+    e.revert.push_back({"remove_node", remove});
+  } else {
+    e.revert.push_back(setParam(opt, "dimensions", old_dims));
+  }
+  if (!p->interactive) e.revert.push_back(interactive(node_name, param, false));
+  return e;
+}
+
+std::optional<Edit> GraphModel::applyBest(const std::string& opt) const {
+  const apex::ParamInfo* b = parameter(opt, "best_values");
+  const apex::ParamInfo* state = parameter(opt, "state");
+  if (!b || (state && state->value.find("running") <= 1)) return std::nullopt;  // not while it runs: 'running: ...'
+
+  YAML::Node best;
+  try {
+    best = YAML::Load(YAML::Load(b->value).as<std::string>());  // a text parameter holding a YAML map
+  } catch (const YAML::Exception&) {
+    return std::nullopt;
+  }
+  if (!best.IsMap()) return std::nullopt;
+  Edit e{"Apply the best values of " + opt, {}, {}};
+  for (const auto& c : graph_.connections) {
+    if (c.from_node != opt || !best[c.from_port]) continue;
+    const apex::ParamInfo* target = parameter(c.to_node, c.to_port);
+    if (!target) continue;
+    e.apply.push_back(setParam(c.to_node, c.to_port, best[c.from_port].Scalar()));
+    e.revert.push_back(setParam(c.to_node, c.to_port, target->value));
+  }
+  if (e.apply.empty()) return std::nullopt;
+  return e;
+}
+
+}  // namespace apex_rviz_plugin

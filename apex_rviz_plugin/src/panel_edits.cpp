@@ -1,0 +1,159 @@
+// PanelWidget, the editor's requests that become edits: each handler turns one signal of the
+// editor or its scene (connected in connectEditor) into an edit of the model, made through
+// perform(): sent to the runtime, recorded in the history once it accepts it.
+#include "apex_rviz_plugin/panel_widget.hpp"
+
+#include <QClipboard>
+#include <QGuiApplication>
+
+#include <algorithm>
+#include <variant>
+
+namespace apex_rviz_plugin {
+namespace {
+
+std::vector<std::string> stdNames(const QStringList& nodes) {
+  std::vector<std::string> out;
+  for (const auto& n : nodes) out.push_back(n.toStdString());
+  return out;
+}
+
+}  // namespace
+
+void PanelWidget::perform(const std::optional<Edit>& edit) {
+  if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
+  reservePlaces(edit->apply);
+  ++pending_;
+  link_.run(edit->apply, [this, edit = *edit, epoch = history_epoch_](bool ok, const std::string& message) {
+    --pending_;
+    if (!ok)  // its places are free again
+      for (const auto& call : edit.apply)
+        if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) placing_.erase(ui->node);
+    if (ok && epoch == history_epoch_) history_.done(edit);  // not into a history started since: another graph
+    editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
+    report(ok, message, QString::fromStdString(edit.label));
+    if (!ok) editor_->showGraph(model_);  // widgets back to the values the runtime holds
+  });
+}
+
+void PanelWidget::pasted(const Pasted& p) {
+  if (!p.edit) return editor_->showMessage(QString::fromStdString(p.error), true);
+  QStringList names;
+  for (const auto& n : p.names) names << QString::fromStdString(n);
+  editor_->selectWhenShown(names);  // the copies, not the originals: Delete and Ctrl+D act on them
+  perform(p.edit);
+  if (!p.error.empty()) editor_->showMessage(QString::fromStdString(p.error), true);
+}
+
+void PanelWidget::onAddRequested(const QString& type_name, QPointF at) {
+  const std::string type = type_name.toStdString();
+  const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
+  std::set<std::string> sent;  // added a moment ago, not shown yet: their names are taken too
+  for (const auto& [n, box] : placing_) sent.insert(n);
+  const std::string name = model_.freshName(type, inside, sent);
+  const std::string path = inside.empty() ? name : inside + "/" + name;
+  const auto shown = editor_->scene()->boxes();
+  std::vector<Box> taken;
+  for (const auto& [n, box] : shown) taken.push_back(box);
+  for (const auto& [n, box] : placing_)  // added a moment ago, not shown yet: their places are taken too
+    if (!shown.count(n)) taken.push_back(box);
+  Box wanted = typeBox(type);  // as a new node of the type is shown
+  wanted.x = at.x(), wanted.y = at.y();
+  const Box free = freePlace(wanted, taken);  // on no other
+  placing_[path] = free;
+  perform(model_.addNode(type, path, free.x, free.y));
+}
+
+void PanelWidget::onRemoveRequested(const QString& node) { perform(model_.removeNode(node.toStdString())); }
+
+void PanelWidget::onGroupIntoSubgraphRequested(const QStringList& nodes) { perform(model_.group(stdNames(nodes))); }
+
+void PanelWidget::onUngroupRequested(const QString& subgraph) { perform(model_.ungroup(subgraph.toStdString())); }
+
+std::map<std::string, std::pair<double, double>> PanelWidget::shownPositions() const {
+  std::map<std::string, std::pair<double, double>> at;
+  for (const auto& [name, box] : editor_->scene()->boxes()) at[name] = {box.x, box.y};
+  return at;
+}
+
+void PanelWidget::onDuplicateRequested(const QStringList& nodes) {
+  if (!nodes.isEmpty()) pasted(model_.duplicate(stdNames(nodes), 40, 40, shownPositions()));
+}
+
+void PanelWidget::onCopyRequested(const QStringList& nodes) {
+  if (nodes.isEmpty()) return;
+  std::string left_out;
+  QGuiApplication::clipboard()->setText(QString::fromStdString(model_.copy(stdNames(nodes), &left_out, shownPositions())));
+  if (!left_out.empty()) return editor_->showMessage(QString::fromStdString(left_out + " is an inline subgraph: save it to a file to copy it"), true);
+  editor_->showMessage(nodes.size() == 1 ? "copied " + nodes.front() : QString("copied %1 nodes").arg(nodes.size()), false);
+}
+
+void PanelWidget::onPasteRequested(QPointF at) {
+  const std::string text = QGuiApplication::clipboard()->text().toStdString();
+  const std::string& level = editor_->scene()->level();
+  Pasted p = model_.paste(text, level, at.x(), at.y());
+  if (!p.edit) return pasted(p);
+  Box group{at.x(), at.y(), 0, 0};  // where the copies go, as boxes of a usual size
+  for (const auto& call : p.edit->apply)
+    if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) {
+      const auto [x, y] = GraphModel::positionIn(ui->ui);
+      group.width = std::max(group.width, x + NodeItem::kMinWidth - at.x());
+      group.height = std::max(group.height, y + 150 - at.y());
+    }
+  std::vector<Box> taken;
+  for (const auto& [n, box] : editor_->scene()->boxes()) taken.push_back(box);
+  const Box free = freePlace(group, taken);  // not on top of what is there
+  pasted(free.x == at.x() && free.y == at.y() ? p : model_.paste(text, level, free.x, free.y));
+}
+
+void PanelWidget::onRenameRequested(const QString& node, const QString& new_name) {
+  perform(model_.rename(node.toStdString(), new_name.toStdString()));
+}
+
+void PanelWidget::onResetRequested(const QString& node, const QString& param) {
+  perform(model_.resetToDefault(node.toStdString(), param.toStdString()));
+}
+
+void PanelWidget::onEnabledRequested(const QString& node, bool enabled) {
+  perform(model_.setEnabled(node.toStdString(), enabled));
+}
+
+void PanelWidget::onThreadGroupRequested(const QString& node, const QString& group) {
+  perform(model_.setThreadGroup(node.toStdString(), group.toStdString()));
+}
+
+void PanelWidget::onConnectRequested(const apex::Connection& c) { perform(model_.connect(c)); }
+
+void PanelWidget::onDisconnectRequested(const apex::Connection& c) { perform(model_.disconnect(c)); }
+
+void PanelWidget::onParameterEdited(const QString& node, const QString& param, const QString& yaml, bool dragging) {
+  perform(model_.setParameter(node.toStdString(), param.toStdString(), yaml.toStdString(), dragging));
+}
+
+void PanelWidget::onInteractiveToggled(const QString& node, const QString& param, bool interactive) {
+  perform(model_.setInteractive(node.toStdString(), param.toStdString(), interactive));
+}
+
+void PanelWidget::onNodeMoved(const QString& node, QPointF at) { perform(model_.move(node.toStdString(), at.x(), at.y())); }
+
+void PanelWidget::onInsertRequested(const QString& node, const apex::Connection& c, QPointF at) {
+  perform(model_.insert(node.toStdString(), c, at.x(), at.y()));
+}
+
+void PanelWidget::onOptimiseRequested(const QString& node, const QString& param, const QString& optimizer) {
+  // The Optimizer type as the runtime listed it: a new dimension is named after none of its ports or parameters.
+  const auto t = types_.find(kOptimizerType);
+  const apex::NodeTypeInfo* type = t == types_.end() ? nullptr : &t->second;
+  if (optimizer.isEmpty() && !type)
+    return editor_->showMessage("the runtime has not listed an Optimizer node type: no new Optimizer", true);
+  const auto [x, y] = model_.position(node.toStdString());
+  perform(model_.optimise(node.toStdString(), param.toStdString(), optimizer.toStdString(), x, y + 320, type));
+}
+
+void PanelWidget::onApplyBestRequested(const QString& optimizer) {
+  const auto edit = model_.applyBest(optimizer.toStdString());
+  if (!edit) return editor_->showMessage(optimizer + " has no best values yet: run it first", true);
+  perform(edit);
+}
+
+}  // namespace apex_rviz_plugin
