@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 using namespace apex_test;
 using ::testing::HasSubstr;
@@ -97,12 +98,11 @@ TEST(Events, ADisabledSourceStopsAndResumes) {
 
 TEST(ParamPorts, LinkedParametersStayInSync) {
   Graph g(testRegistry());
-  add(g, "test/Gain", "a");
-  add(g, "test/Gain", "b");
-  ASSERT_TRUE(g.setInteractive("a", "gain", true));
-  ASSERT_TRUE(g.setInteractive("b", "gain", true));
-  link(g, "a", "gain", "b", "gain");
-  link(g, "b", "gain", "a", "gain");
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: a, type: test/Gain, interactive: [gain]}
+      - {name: b, type: test/Gain, interactive: [gain]}
+    connections: [{from: a/gain, to: b/gain}, {from: b/gain, to: a/gain}])"));
   g.start();
   ASSERT_EQ(g.setParameter("a", "gain", "7").value(), "7");
   ASSERT_TRUE(g.waitIdle(kWait));
@@ -114,14 +114,13 @@ TEST(ParamPorts, LinkedParametersStayInSync) {
 
 TEST(ParamPorts, DataDrivesAParameterWithoutHoldingTheNodeBack) {
   Graph g(testRegistry());
-  add(g, "test/Feeder", "values");
-  add(g, "test/Feeder", "data");
-  add(g, "test/Gain", "gain");
-  add(g, "test/Collector", "sink");
-  ASSERT_TRUE(g.setInteractive("gain", "gain", true));
-  link(g, "values", "out", "gain", "gain");
-  link(g, "data", "out", "gain", "in");
-  link(g, "gain", "out", "sink", "in");
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: values, type: test/Feeder}
+      - {name: data, type: test/Feeder}
+      - {name: gain, type: test/Gain, interactive: [gain]}
+      - {name: sink, type: test/Collector}
+    connections: [{from: values/out, to: gain/gain}, {from: data/out, to: gain/in}, {from: gain/out, to: sink/in}])"));
   g.start();
   object<Feeder>(g, "data")->feed(2);  // no value at the parameter input yet: fires anyway
   ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(1));
@@ -138,13 +137,12 @@ TEST(ParamPorts, DataDrivesAParameterWithoutHoldingTheNodeBack) {
 
 TEST(ParamPorts, AParameterOutputCarriesTheValueOnEveryFiring) {
   Graph g(testRegistry());
-  add(g, "test/Feeder", "src");
-  add(g, "test/Gain", "gain");
-  add(g, "test/Collector", "values");
-  ASSERT_TRUE(g.setInteractive("gain", "gain", true));
-  ASSERT_TRUE(g.setParameter("gain", "gain", "4"));
-  link(g, "src", "out", "gain", "in");
-  link(g, "gain", "gain", "values", "in");
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: gain, type: test/Gain, parameters: {gain: 4}, interactive: [gain]}
+      - {name: values, type: test/Collector}
+    connections: [{from: src/out, to: gain/in}, {from: gain/gain, to: values/in}])"));
   g.start();
   object<Feeder>(g, "src")->feed(1);
   ASSERT_TRUE(object<Collector>(g, "values")->waitFor(1));

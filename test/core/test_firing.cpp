@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 using namespace apex_test;
 using ::testing::HasSubstr;
@@ -25,14 +26,13 @@ struct MakeCounted : Node {
 
 TEST(Firing, AChainDeliversEveryMessageInOrder) {
   Graph g(testRegistry());
-  add(g, "test/Feeder", "src");
-  add(g, "test/Gain", "a");
-  add(g, "test/Relay", "b");
-  add(g, "test/Collector", "sink");
-  link(g, "src", "out", "a", "in");
-  link(g, "a", "out", "b", "in");
-  link(g, "b", "out", "sink", "in");
-  ASSERT_TRUE(g.setParameter("a", "gain", "2"));
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: a, type: test/Gain, parameters: {gain: 2}}
+      - {name: b, type: test/Relay}
+      - {name: sink, type: test/Collector}
+    connections: [{from: src/out, to: a/in}, {from: a/out, to: b/in}, {from: b/out, to: sink/in}])"));
   g.start();
   for (int i = 0; i < 100; ++i) object<Feeder>(g, "src")->feed(i);
   ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(100));
@@ -102,12 +102,12 @@ TEST(Firing, OptionalInputsAreIgnoredUntilConnectedAndMayHoldNothing) {
 
 TEST(Firing, AThrowingNodeReportsSendsNothingAndRecovers) {
   Graph g(testRegistry());
-  add(g, "test/Feeder", "src");
-  add(g, "test/Thrower", "t");
-  add(g, "test/Collector", "sink");
-  link(g, "src", "out", "t", "in");
-  link(g, "t", "out", "sink", "in");
-  ASSERT_TRUE(g.setParameter("t", "throw_on", "2"));
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: t, type: test/Thrower, parameters: {throw_on: 2}}
+      - {name: sink, type: test/Collector}
+    connections: [{from: src/out, to: t/in}, {from: t/out, to: sink/in}])"));
   g.start();
   for (int i = 1; i <= 2; ++i) object<Feeder>(g, "src")->feed(i);
   ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(2));

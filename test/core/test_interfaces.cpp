@@ -4,6 +4,7 @@
 
 #include "apex/core/graph_file.hpp"
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 using namespace apex_test;
 using testing::ElementsAre;
@@ -155,16 +156,15 @@ TEST(Interfaces, ARetypedPortKeepsTheConnectionsItsNewTypeFits) {
 
 TEST(Interfaces, AJoinCanNarrowWhileFramesFlow) {
   Graph g(registry());
-  add(g, "test/Feeder", "src");
-  add(g, "test/Relay", "slow_path");
-  add(g, "test/Merge", "merge");
-  add(g, "test/Collector", "sink");
-  set(g, "merge", "inputs", "3");
-  link(g, "src", "out", "merge", "in_0");
-  link(g, "src", "out", "slow_path", "in");
-  link(g, "slow_path", "out", "merge", "in_1");
-  link(g, "src", "out", "merge", "in_2");
-  link(g, "merge", "sum", "sink", "in");
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: slow_path, type: test/Relay}
+      - {name: merge, type: test/Merge, parameters: {inputs: 3}}
+      - {name: sink, type: test/Collector}
+    connections: [{from: src/out, to: merge/in_0},
+                  {from: src/out, to: slow_path/in}, {from: slow_path/out, to: merge/in_1},
+                  {from: src/out, to: merge/in_2}, {from: merge/sum, to: sink/in}])"));
   g.start();
   for (int v = 1; v <= 3; ++v) object<Feeder>(g, "src")->feed(v);
   ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(3));

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 using namespace apex_test;
 using ::testing::HasSubstr;
@@ -95,12 +96,12 @@ TEST(Observe, ErrorsGoToTheLogSinkOncePerChange) {
   });
   {
     Graph g(testRegistry());
-    add(g, "test/Feeder", "src");
-    add(g, "test/Thrower", "t");
-    add(g, "test/Collector", "sink");
-    link(g, "src", "out", "t", "in");
-    link(g, "t", "out", "sink", "in");
-    ASSERT_TRUE(g.setParameter("t", "throw_on", "1"));
+    ASSERT_TRUE(buildFromText(g, R"(
+      nodes:
+        - {name: src, type: test/Feeder}
+        - {name: t, type: test/Thrower, parameters: {throw_on: 1}}
+        - {name: sink, type: test/Collector}
+      connections: [{from: src/out, to: t/in}, {from: t/out, to: sink/in}])"));
     g.start();
     for (int v : {1, 1, 1, 2}) object<Feeder>(g, "src")->feed(v);
     ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(4));

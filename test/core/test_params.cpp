@@ -8,12 +8,13 @@
 #include "apex/core/graph.hpp"
 #include "apex/core/param.hpp"
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 namespace {
 
 using namespace apex;
 using apex_test::add;
-using apex_test::link;
+using apex_test::buildFromText;
 using apex_test::object;
 using apex_test::testRegistry;
 
@@ -390,12 +391,12 @@ TEST(GraphSetParameter, UnknownNodeOrParameterIsNamed) {
 
 TEST(GraphSetParameter, NewValueIsUsedByTheNextFiring) {
   Graph g(testRegistry());
-  add(g, "test/Feeder", "feed");
-  add(g, "test/Gain", "amp");
-  add(g, "test/Collector", "sink");
-  link(g, "feed", "out", "amp", "in");
-  link(g, "amp", "out", "sink", "in");
-  ASSERT_TRUE(g.setParameter("amp", "gain", "3"));
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: feed, type: test/Feeder}
+      - {name: amp, type: test/Gain, parameters: {gain: 3}}
+      - {name: sink, type: test/Collector}
+    connections: [{from: feed/out, to: amp/in}, {from: amp/out, to: sink/in}])"));
   g.start();
   auto* feed = object<apex_test::Feeder>(g, "feed");
   auto* sink = object<apex_test::Collector>(g, "sink");

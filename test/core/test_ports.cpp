@@ -4,6 +4,7 @@
 
 #include "apex/core/ports.hpp"
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 using namespace apex_test;
 using testing::ElementsAre;
@@ -83,14 +84,14 @@ TEST(Ports, AHandleReadsAndWritesByIndexWhileRunning) {
   NodeRegistry r = testRegistry();
   ASSERT_TRUE(r.add<HandleGain>("test/HandleGain"));
   Graph g(std::move(r));
-  add(g, "test/Feeder", "src");
-  add(g, "test/HandleGain", "gain");
-  add(g, "test/Collector", "sink");
-  add(g, "test/Counter", "overflows");
-  link(g, "src", "out", "gain", "in");
-  link(g, "gain", "out", "sink", "in");
-  link(g, "gain", "overflow", "overflows", "reset");
-  ASSERT_TRUE(g.setParameter("gain", "gain", "3"));
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: gain, type: test/HandleGain, parameters: {gain: 3}}
+      - {name: sink, type: test/Collector}
+      - {name: overflows, type: test/Counter}
+    connections: [{from: src/out, to: gain/in}, {from: gain/out, to: sink/in},
+                  {from: gain/overflow, to: overflows/reset}])"));
   g.start();
   for (int v : {1, 2, 400}) object<Feeder>(g, "src")->feed(v);
   ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(3));

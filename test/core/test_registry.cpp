@@ -5,6 +5,7 @@
 #include "apex/core/function_node.hpp"
 #include "apex/core/node_names.hpp"
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 using namespace apex_test;
 using ::testing::HasSubstr;
@@ -124,18 +125,16 @@ TEST(FunctionNode, DeducesPortsFromTheSignature) {
   EXPECT_THAT(wrong.message(), HasSubstr("has 2 inputs and 1 outputs"));
 
   Graph g(std::move(r));
-  add(g, "test/Feeder", "fa");
-  add(g, "test/Feeder", "fb");
-  add(g, "fn/Add", "sum");
-  add(g, "fn/DivMod", "dm");
-  add(g, "test/Collector", "q");
-  add(g, "test/Collector", "rem");
-  link(g, "fa", "out", "sum", "a");
-  link(g, "fb", "out", "sum", "b");
-  link(g, "sum", "sum", "dm", "in0");
-  link(g, "fb", "out", "dm", "in1");
-  link(g, "dm", "q", "q", "in");
-  link(g, "dm", "r", "rem", "in");
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: fa, type: test/Feeder}
+      - {name: fb, type: test/Feeder}
+      - {name: sum, type: fn/Add}
+      - {name: dm, type: fn/DivMod}
+      - {name: q, type: test/Collector}
+      - {name: rem, type: test/Collector}
+    connections: [{from: fa/out, to: sum/a}, {from: fb/out, to: sum/b}, {from: sum/sum, to: dm/in0},
+                  {from: fb/out, to: dm/in1}, {from: dm/q, to: q/in}, {from: dm/r, to: rem/in}])"));
   g.start();
   object<Feeder>(g, "fa")->feed(11);
   object<Feeder>(g, "fb")->feed(3);

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 using namespace apex_test;
 using ::testing::HasSubstr;
@@ -96,16 +97,15 @@ NodeRegistry registry() {
 
 TEST(Sequences, TheEndTravelsInStepThroughAChainAndADisabledNode) {
   Graph g(registry());
-  add(g, "test/Sequence", "seq");
-  add(g, "test/Relay", "a", "one");
-  add(g, "test/Relay", "b", "two");  // disabled below: passes the end on all the same
-  add(g, "test/Summer", "sum", "three");
-  add(g, "test/Collector", "sums");
-  link(g, "seq", "out", "a", "in");
-  link(g, "a", "out", "b", "in");
-  link(g, "b", "out", "sum", "in");
-  link(g, "sum", "sum", "sums", "in");
-  ASSERT_TRUE(g.setParameter("seq", "frames", "50"));
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: seq, type: test/Sequence, parameters: {frames: 50}}
+      - {name: a, type: test/Relay, thread_group: one}
+      - {name: b, type: test/Relay, thread_group: two}  # disabled below: passes the end on all the same
+      - {name: sum, type: test/Summer, thread_group: three}
+      - {name: sums, type: test/Collector}
+    connections: [{from: seq/out, to: a/in}, {from: a/out, to: b/in}, {from: b/out, to: sum/in},
+                  {from: sum/sum, to: sums/in}])"));
   g.start();
   ASSERT_TRUE(g.fireSlot("seq", "restart"));
   ASSERT_TRUE(object<Collector>(g, "sums")->waitFor(50 + 1));  // Nothing per frame, then the sum
@@ -153,12 +153,12 @@ TEST(Sequences, EventsLeaveAfterTheMessagesOfTheirFiringAndSlot) {
 
 TEST(Sequences, EventsFromProcessLeaveAfterItsMessagesHoweverLongItTakes) {
   Graph g(registry());
-  add(g, "test/Feeder", "src");
-  add(g, "test/SlowSetter", "set", "one");
-  add(g, "test/GainProbe", "probe", "two");
-  link(g, "src", "out", "set", "in");
-  link(g, "set", "value", "probe", "gain");
-  link(g, "set", "sent", "probe", "probe");
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: set, type: test/SlowSetter, thread_group: one}
+      - {name: probe, type: test/GainProbe, thread_group: two, interactive: [gain]}
+    connections: [{from: src/out, to: set/in}, {from: set/value, to: probe/gain}, {from: set/sent, to: probe/probe}])"));
   g.start();
   for (int v = 10; v < 15; ++v) object<Feeder>(g, "src")->feed(v);
   ASSERT_TRUE(g.waitIdle(kWait));

@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 using namespace apex_test;
 
@@ -36,13 +37,13 @@ struct Threads : ::testing::Test {
 };
 
 TEST_F(Threads, EachGroupRunsOnItsOwnThread) {
-  add(g, "test/Feeder", "src");
-  add(g, "test/WhereAmI", "a", "vision");
-  add(g, "test/WhereAmI", "b", "lidar");
-  add(g, "test/Collector", "sink");
-  link(g, "src", "out", "a", "in");
-  link(g, "a", "out", "b", "in");
-  link(g, "b", "out", "sink", "in");
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: a, type: test/WhereAmI, thread_group: vision}
+      - {name: b, type: test/WhereAmI, thread_group: lidar}
+      - {name: sink, type: test/Collector}
+    connections: [{from: src/out, to: a/in}, {from: a/out, to: b/in}, {from: b/out, to: sink/in}])"));
   g.start();
   for (int i = 0; i < 20; ++i) src()->feed(i);
   ASSERT_TRUE(sink()->waitFor(20));
@@ -138,17 +139,16 @@ TEST_F(Threads, StepAdvancesOneWaveAtATime) {
  *  every node the frame reaches fires exactly once, the source once. */
 void stepFrames(NodeRegistry registry) {
   Graph g(std::move(registry));
-  add(g, "test/Feeder", "src");
-  add(g, "test/Relay", "a", "vision");
-  add(g, "test/Relay", "b");
-  add(g, "test/Relay", "c", "cloud");
-  add(g, "test/Collector", "sink");
-  add(g, "test/Collector", "sink2", "cloud");
-  link(g, "src", "out", "a", "in");
-  link(g, "a", "out", "b", "in");
-  link(g, "b", "out", "sink", "in");
-  link(g, "src", "out", "c", "in");
-  link(g, "c", "out", "sink2", "in");
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: a, type: test/Relay, thread_group: vision}
+      - {name: b, type: test/Relay}
+      - {name: c, type: test/Relay, thread_group: cloud}
+      - {name: sink, type: test/Collector}
+      - {name: sink2, type: test/Collector, thread_group: cloud}
+    connections: [{from: src/out, to: a/in}, {from: a/out, to: b/in}, {from: b/out, to: sink/in},
+                  {from: src/out, to: c/in}, {from: c/out, to: sink2/in}])"));
   g.pause();
   g.start();
   auto* src = object<Feeder>(g, "src");
