@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "apex_nodes/cloud.hpp"
 #include "apex_nodes/ros_convert.hpp"
 #include "message_bytes.hpp"
 
@@ -23,9 +24,25 @@ void touch(const apex_nodes::Image& image) {
   }
 }
 
+/** What a cloud node does with it: the x, y, z view, every point selected whole. */
 void touch(const apex_nodes::Cloud& cloud) {
   volatile float sum = 0;
-  for (const auto& p : *cloud.points) sum = sum + p.x + p.y + p.z;
+  const auto xyz = apex_nodes::xyzOf(cloud);
+  for (const auto& p : *xyz) sum = sum + p.x + p.y + p.z;
+  pcl::Indices all(xyz->size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
+  sum = sum + static_cast<float>(apex_nodes::selectPoints(*cloud.points, all)->data.size());
+}
+
+/** The message's bytes read as a subscriber reads them (ros_cloud.hpp), then checked. */
+std::shared_ptr<const apex_nodes::Cloud> received(const sensor_msgs::PointCloud2& m) {
+  std::vector<std::uint8_t> bytes(ros::serialization::serializationLength(m));
+  ros::serialization::OStream out(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  ros::serialization::serialize(out, m);
+  auto cloud = boost::make_shared<apex_nodes::Cloud>();
+  ros::serialization::IStream in(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+  ros::serialization::deserialize(in, *cloud);
+  return apex_nodes::fromRos(boost::shared_ptr<const apex_nodes::Cloud>(cloud));
 }
 
 }  // namespace
@@ -38,7 +55,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         touch(*apex_nodes::fromRos(boost::make_shared<const sensor_msgs::Image>(apex_fuzz::readImage(in))));
         break;
       case apex_fuzz::kCloud:
-        touch(*apex_nodes::fromRos(boost::make_shared<const sensor_msgs::PointCloud2>(apex_fuzz::readCloud(in))));
+      {
+        const auto m = boost::make_shared<const sensor_msgs::PointCloud2>(apex_fuzz::readCloud(in));
+        touch(*apex_nodes::fromRos(m));
+        touch(*received(*m));
+      }
         break;
       case apex_fuzz::kScan:
         touch(*apex_nodes::scanToCloud(apex_fuzz::readScan(in)));

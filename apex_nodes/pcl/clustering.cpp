@@ -1,9 +1,9 @@
-// EuclideanClustering: groups points closer than a tolerance.
+// EuclideanClustering: groups points closer than a tolerance; each cluster keeps every field.
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 
 #include "apex/core/registry.hpp"
-#include "apex_nodes/cloud_check.hpp"
+#include "apex_nodes/cloud.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
@@ -27,25 +27,21 @@ class EuclideanClustering : public apex::Node {
         .param(kMaxSize);
   }
   void process() override {
-    auto in = cloud_.get();
-    requirePoints(*in);
-    auto tree = std::make_shared<pcl::search::KdTree<PointT>>();
-    tree->setInputCloud(in->points);
+    const auto in = cloud_.get();
+    const auto xyz = xyzOf(*in);
+    auto tree = std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>();
+    tree->setInputCloud(xyz);
     std::vector<pcl::PointIndices> found;
-    pcl::EuclideanClusterExtraction<PointT> ec;
+    pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
     ec.setClusterTolerance(tolerance_.get());
     ec.setMinClusterSize(min_size_.get());
     ec.setMaxClusterSize(max_size_.get());
     ec.setSearchMethod(tree);
-    ec.setInputCloud(in->points);
+    ec.setInputCloud(xyz);
     ec.extract(found);
     auto out = std::make_shared<Clusters>();
     out->header = in->header;
-    for (const auto& indices : found) {
-      auto c = std::make_shared<PclCloud>();
-      for (int i : indices.indices) c->push_back((*in->points)[i]);
-      out->clusters.push_back(std::move(c));
-    }
+    for (const auto& indices : found) out->clusters.push_back(selectPoints(*in->points, indices.indices));
     count_.publish(static_cast<int>(out->clusters.size()));
     clusters_.publish(out);
   }

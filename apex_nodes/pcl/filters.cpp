@@ -1,13 +1,13 @@
-// PassThrough and VoxelGrid: the point-cloud half of the demo pipeline.
+// PassThrough and CropBox: keep the points within limits, every field of them.
+#include <pcl/filters/crop_box.h>
 #include <pcl/filters/passthrough.h>
-#include <pcl/filters/voxel_grid.h>
 
 #include "apex_nodes/cloud_filter.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
 
-class PassThrough : public CloudFilter<pcl::PassThrough<PointT>> {
+class PassThrough : public CloudFilter<pcl::PassThrough<pcl::PointXYZ>> {
  public:
   static inline const apex::ParamDecl<std::string> kField = param::choice("field", {"x", "y", "z"}).init("z");
   static inline const apex::ParamDecl<apex::Interval> kLimits =
@@ -18,7 +18,7 @@ class PassThrough : public CloudFilter<pcl::PassThrough<PointT>> {
   }
 
  private:
-  void configure(pcl::PassThrough<PointT>& filter) override {
+  void configure(pcl::PassThrough<pcl::PointXYZ>& filter) override {
     filter.setFilterFieldName(field_.get());
     filter.setFilterLimits(static_cast<float>(limits_.get().low), static_cast<float>(limits_.get().high));
     filter.setNegative(negative_.get());
@@ -28,23 +28,35 @@ class PassThrough : public CloudFilter<pcl::PassThrough<PointT>> {
   apex::Param<bool> negative_{this, kNegative};
 };
 
-class VoxelGrid : public CloudFilter<pcl::VoxelGrid<PointT>> {
+/** One side of CropBox's box. */
+apex::ParamDecl<apex::Interval> limits(const char* axis, double low, double high) {
+  return param::interval(axis).range(-100.0, 100.0).step(0.01).init({low, high}).describe("the box's extent in metres");
+}
+
+class CropBox : public CloudFilter<pcl::CropBox<pcl::PointXYZ>> {
  public:
-  static inline const apex::ParamDecl<double> kLeafSize =
-      param::number("leaf_size").range(0.001, 10.0).step(0.001).init(0.05).describe("voxel edge, metres");
+  static inline const apex::ParamDecl<apex::Interval> kX = limits("x", -1.0, 1.0);
+  static inline const apex::ParamDecl<apex::Interval> kY = limits("y", -1.0, 1.0);
+  static inline const apex::ParamDecl<apex::Interval> kZ = limits("z", 0.0, 3.0);
+  static inline const apex::ParamDecl<bool> kNegative = param::flag("negative").describe("keep the points outside instead");
   static apex::Manifest manifest() {
-    return filterManifest("Downsamples a cloud to one point per voxel (the centroid)").param(kLeafSize);
+    return filterManifest("Keeps the points inside an axis-aligned box").param(kX).param(kY).param(kZ).param(kNegative);
   }
 
  private:
-  void configure(pcl::VoxelGrid<PointT>& filter) override {
-    const float leaf = static_cast<float>(leaf_size_.get());
-    filter.setLeafSize(leaf, leaf, leaf);
+  void configure(pcl::CropBox<pcl::PointXYZ>& filter) override {
+    const apex::Interval x = x_.get(), y = y_.get(), z = z_.get();
+    filter.setMin(Eigen::Vector4f(float(x.low), float(y.low), float(z.low), 1.f));
+    filter.setMax(Eigen::Vector4f(float(x.high), float(y.high), float(z.high), 1.f));
+    filter.setNegative(negative_.get());
   }
-  apex::Param<double> leaf_size_{this, kLeafSize};
+  apex::Param<apex::Interval> x_{this, kX};
+  apex::Param<apex::Interval> y_{this, kY};
+  apex::Param<apex::Interval> z_{this, kZ};
+  apex::Param<bool> negative_{this, kNegative};
 };
 
 }  // namespace apex_nodes
 
 APEX_REGISTER_NODE(apex_nodes::PassThrough, "apex_nodes/PassThrough");
-APEX_REGISTER_NODE(apex_nodes::VoxelGrid, "apex_nodes/VoxelGrid");
+APEX_REGISTER_NODE(apex_nodes::CropBox, "apex_nodes/CropBox");

@@ -1,9 +1,8 @@
-// PlaneSegmentation: RANSAC plane fit; inliers, outliers and the coefficients.
-#include <pcl/filters/extract_indices.h>
+// PlaneSegmentation: RANSAC plane fit; inliers, outliers (every field) and the coefficients.
 #include <pcl/segmentation/sac_segmentation.h>
 
 #include "apex/core/registry.hpp"
-#include "apex_nodes/cloud_check.hpp"
+#include "apex_nodes/cloud.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
@@ -27,28 +26,21 @@ class PlaneSegmentation : public apex::Node {
         .param(kMaxIterations);
   }
   void process() override {
-    auto in = cloud_.get();
-    requirePoints(*in);
-    pcl::SACSegmentation<PointT> seg;
+    const auto in = cloud_.get();
+    const auto xyz = xyzOf(*in);
+    pcl::SACSegmentation<pcl::PointXYZ> seg;
     seg.setOptimizeCoefficients(true);
     seg.setModelType(pcl::SACMODEL_PLANE);
     seg.setMethodType(pcl::SAC_RANSAC);
     seg.setDistanceThreshold(distance_threshold_.get());
     seg.setMaxIterations(max_iterations_.get());
-    seg.setInputCloud(in->points);
-    auto indices = std::make_shared<pcl::PointIndices>();
+    seg.setInputCloud(xyz);
+    pcl::PointIndices inliers;
     pcl::ModelCoefficients coefficients;
-    seg.segment(*indices, coefficients);
-    if (indices->indices.empty()) throw std::invalid_argument("no plane found in " + std::to_string(in->points->size()) + " points");
-    pcl::ExtractIndices<PointT> extract;
-    extract.setInputCloud(in->points);
-    extract.setIndices(indices);
-    auto inliers = std::make_shared<PclCloud>(), outliers = std::make_shared<PclCloud>();
-    extract.filter(*inliers);
-    extract.setNegative(true);
-    extract.filter(*outliers);
-    inliers_.publish(cloudResult(*in, std::move(inliers)));
-    outliers_.publish(cloudResult(*in, std::move(outliers)));
+    seg.segment(inliers, coefficients);
+    if (inliers.indices.empty()) throw std::invalid_argument("no plane found in " + std::to_string(xyz->size()) + " points");
+    inliers_.publish(cloudResult(*in, selectPoints(*in->points, inliers.indices)));
+    outliers_.publish(cloudResult(*in, selectPoints(*in->points, complement(inliers.indices, xyz->size()))));
     coefficients_.publish(std::vector<double>(coefficients.values.begin(), coefficients.values.end()));
   }
 

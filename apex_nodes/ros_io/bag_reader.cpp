@@ -42,7 +42,7 @@ const apex::TypeInfo* typeFor(const std::string& datatype) {
 
 apex::Message convert(const rosbag::MessageInstance& m) {
   if (auto image = m.instantiate<sensor_msgs::Image>()) return apex::Message::share<Image>(fromRos(image));
-  if (auto cloud = m.instantiate<sensor_msgs::PointCloud2>()) return apex::Message::share<Cloud>(fromRos(cloud));
+  if (auto cloud = m.instantiate<Cloud>()) return apex::Message::share<Cloud>(fromRos(boost::shared_ptr<const Cloud>(cloud)));
   return {};
 }
 

@@ -1,10 +1,11 @@
 // ~inspect for the node library's types: images as sensor_msgs/Image, clouds
-// as sensor_msgs/PointCloud2, scans as themselves (see apex/ros/inspect.hpp).
+// as sensor_msgs/PointCloud2 (every field), scans as themselves (see apex/ros/inspect.hpp).
 #include <sensor_msgs/LaserScan.h>
 
 #include <opencv2/imgproc.hpp>
 
 #include "apex/ros/inspect.hpp"
+#include "apex_nodes/cloud.hpp"
 #include "apex_nodes/ros_convert.hpp"
 
 namespace apex_nodes {
@@ -23,7 +24,10 @@ const bool kRegistered = [] {
   apex::addDescribe<Image>([](const Image& i) {  // the size a preview no longer has
     return std::to_string(i.mat.cols) + "×" + std::to_string(i.mat.rows) + (i.encoding.empty() ? "" : " " + i.encoding);
   });
-  apex::addInspector<Cloud, sensor_msgs::PointCloud2>([](const Cloud& c) { return *toRos(c); });
+  apex::addInspector<Cloud, Cloud>([](const Cloud& c) { return c; });  // itself: a PointCloud2 (ros_cloud.hpp)
+  apex::addDescribe<Cloud>([](const Cloud& c) {  // e.g. "307200 points: x, y, z, rgb"
+    return std::to_string(pointCount(c)) + " points: " + (c.points ? fieldNames(*c.points) : "none");
+  });
   apex::addInspector<sensor_msgs::LaserScan, sensor_msgs::LaserScan>([](const sensor_msgs::LaserScan& s) { return s; });
   return true;
 }();

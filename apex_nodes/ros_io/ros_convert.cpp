@@ -2,6 +2,8 @@
 
 #include <cv_bridge/cv_bridge.h>
 #include <pcl_conversions/pcl_conversions.h>
+
+#include "apex_nodes/cloud.hpp"
 #include <sensor_msgs/image_encodings.h>
 
 #include <cmath>
@@ -37,42 +39,6 @@ void checkImage(const sensor_msgs::Image& m) {
         std::to_string(Size(m.step) * Size(m.height)));
 }
 
-/** Bytes of one value of a sensor_msgs/PointField datatype; 0 if unknown. */
-Size fieldSize(std::uint8_t datatype) {
-  using F = sensor_msgs::PointField;
-  switch (datatype) {
-    case F::INT8: case F::UINT8: return 1;
-    case F::INT16: case F::UINT16: return 2;
-    case F::INT32: case F::UINT32: case F::FLOAT32: return 4;
-    case F::FLOAT64: return 8;
-    default: return 0;
-  }
-}
-
-void checkCloud(const sensor_msgs::PointCloud2& m) {
-  auto bad = [&](const std::string& why) {
-    throw std::invalid_argument("point cloud " + std::to_string(m.width) + "x" + std::to_string(m.height) + " on frame '" +
-                                m.header.frame_id + "': " + why);
-  };
-  if (Size(m.width) * Size(m.height) > (Size(1) << 28)) bad("absurd size: over 2^28 points");
-  if (m.point_step == 0) bad("point_step is 0");
-  bool x = false, y = false, z = false;
-  for (const auto& f : m.fields) {
-    const Size size = fieldSize(f.datatype);
-    if (size == 0) bad("field '" + f.name + "' has the unknown datatype " + std::to_string(f.datatype));
-    if (Size(f.offset) + size * std::max<Size>(1, f.count) > Size(m.point_step))
-      bad("field '" + f.name + "' (offset " + std::to_string(f.offset) + ") does not fit in point_step " +
-          std::to_string(m.point_step));
-    x |= f.name == "x", y |= f.name == "y", z |= f.name == "z";
-  }
-  if (!(x && y && z)) bad("it has no x, y, z fields");
-  if (Size(m.row_step) < Size(m.width) * Size(m.point_step))
-    bad("row_step " + std::to_string(m.row_step) + " is shorter than width x point_step");
-  if (Size(m.row_step) * Size(m.height) > Size(m.data.size()))
-    bad("data has " + std::to_string(m.data.size()) + " bytes, row_step x height needs " +
-        std::to_string(Size(m.row_step) * Size(m.height)));
-}
-
 }  // namespace
 
 std::shared_ptr<const Image> fromRos(const sensor_msgs::ImageConstPtr& msg) {
@@ -95,22 +61,41 @@ sensor_msgs::ImagePtr toRos(const Image& image) {
   return cv_bridge::CvImage(image.header, image.encoding, image.mat).toImageMsg();
 }
 
-std::shared_ptr<const Cloud> fromRos(const sensor_msgs::PointCloud2ConstPtr& msg) {
+std::shared_ptr<const Cloud> fromRos(const boost::shared_ptr<const Cloud>& msg) {
   checkCloud(*msg);
-  auto points = std::make_shared<PclCloud>();
-  if (msg->width != 0 && msg->height != 0) pcl::fromROSMsg(*msg, *points);  // PCL indexes point 0 of an empty cloud
+  return std::shared_ptr<const Cloud>(msg.get(), [msg](const Cloud*) {});  // holds the boost pointer
+}
+
+std::shared_ptr<const Cloud> fromRos(const sensor_msgs::PointCloud2ConstPtr& msg) {
+  auto points = std::make_shared<pcl::PCLPointCloud2>();
+  pcl_conversions::toPCL(*msg, *points);
   auto cloud = std::make_shared<Cloud>();
   cloud->header = msg->header;
   cloud->points = std::move(points);
+  checkCloud(*cloud);
   return cloud;
 }
 
-sensor_msgs::PointCloud2Ptr toRos(const Cloud& cloud) {
-  auto msg = boost::make_shared<sensor_msgs::PointCloud2>();
-  pcl::toROSMsg(*cloud.points, *msg);
-  msg->header = cloud.header;
-  return msg;
+boost::shared_ptr<Cloud> toRos(const Cloud& cloud) { return boost::make_shared<Cloud>(cloud); }
+
+namespace {
+
+template <class Point, class Make>
+std::shared_ptr<const Cloud> scanPoints(const sensor_msgs::LaserScan& scan, Make make) {
+  pcl::PointCloud<Point> points;
+  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+    const float r = scan.ranges[i];
+    if (!std::isfinite(r) || r < scan.range_min || r > scan.range_max) continue;
+    const double a = scan.angle_min + i * static_cast<double>(scan.angle_increment);
+    points.push_back(make(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), i));
+  }
+  if (points.empty())
+    throw std::invalid_argument("scan of " + std::to_string(scan.ranges.size()) + " ranges has none within [" +
+                                std::to_string(scan.range_min) + ", " + std::to_string(scan.range_max) + "]");
+  return makeCloud(scan.header, points);
 }
+
+}  // namespace
 
 std::shared_ptr<const Cloud> scanToCloud(const sensor_msgs::LaserScan& scan) {
   if (!scan.intensities.empty() && scan.intensities.size() != scan.ranges.size())
@@ -118,20 +103,11 @@ std::shared_ptr<const Cloud> scanToCloud(const sensor_msgs::LaserScan& scan) {
                                 " ranges but " + std::to_string(scan.intensities.size()) + " intensities");
   if (!std::isfinite(scan.angle_min) || !std::isfinite(scan.angle_increment))
     throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has a non-finite angle_min or angle_increment");
-  auto points = std::make_shared<PclCloud>();
-  for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
-    const float r = scan.ranges[i];
-    if (!std::isfinite(r) || r < scan.range_min || r > scan.range_max) continue;
-    const double a = scan.angle_min + i * static_cast<double>(scan.angle_increment);
-    points->push_back(PointT(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), 0.f));
-  }
-  if (points->empty())
-    throw std::invalid_argument("scan of " + std::to_string(scan.ranges.size()) + " ranges has none within [" +
-                                std::to_string(scan.range_min) + ", " + std::to_string(scan.range_max) + "]");
-  auto out = std::make_shared<Cloud>();
-  out->header = scan.header;
-  out->points = std::move(points);
-  return out;
+  if (scan.intensities.empty())
+    return scanPoints<pcl::PointXYZ>(scan, [](float x, float y, std::size_t) { return pcl::PointXYZ(x, y, 0.f); });
+  return scanPoints<pcl::PointXYZI>(scan, [&](float x, float y, std::size_t i) {
+    return pcl::PointXYZI(x, y, 0.f, scan.intensities[i]);
+  });
 }
 
 }  // namespace apex_nodes

@@ -51,12 +51,12 @@ class ImagePublisher : public TopicSink<Image, image_transport::Publisher> {
   }
 };
 
-class PointCloudSubscriber : public TopicSource<sensor_msgs::PointCloud2> {
+class PointCloudSubscriber : public TopicSource<Cloud> {
  public:
   static inline const apex::OutputPort<Cloud> kCloud{"cloud"};
   static inline const apex::ParamDecl<std::string> kTopic = apex::param::text("topic").init("points");
   static apex::Manifest manifest() {
-    return apex::Manifest("Receives sensor_msgs/PointCloud2 (x, y, z); keeps only the newest")
+    return apex::Manifest("Receives sensor_msgs/PointCloud2 with every field (x, y, z and the rest); keeps only the newest")
         .output(kCloud)
         .param(kTopic)
         .param(holdParam())
@@ -65,8 +65,7 @@ class PointCloudSubscriber : public TopicSource<sensor_msgs::PointCloud2> {
 
  private:
   void subscribe() override {
-    sub_ = apex::nodeHandle(*this).subscribe<sensor_msgs::PointCloud2>(topic_.get(), 1,
-                                                                       [this](const MsgPtr& msg) { received(msg); });
+    sub_ = apex::nodeHandle(*this).subscribe<Cloud>(topic_.get(), 1, [this](const MsgPtr& msg) { received(msg); });
   }
   void send(const MsgPtr& msg) override { cloud_.publish(fromRos(msg)); }
   apex::Output<Cloud> cloud_{this, kCloud};
@@ -77,12 +76,14 @@ class PointCloudSubscriber : public TopicSource<sensor_msgs::PointCloud2> {
 class PointCloudPublisher : public TopicSink<Cloud, ros::Publisher> {
  public:
   static inline const apex::InputPort<Cloud> kCloud{"cloud", "the cloud"};
-  static apex::Manifest manifest() { return sinkManifest("Publishes sensor_msgs/PointCloud2", kCloud, "points_out"); }
+  static apex::Manifest manifest() {
+    return sinkManifest("Publishes sensor_msgs/PointCloud2 with every field the cloud has", kCloud, "points_out");
+  }
   PointCloudPublisher() : TopicSink(kCloud) {}
 
  private:
   ros::Publisher advertise(ros::NodeHandle nh, const std::string& topic) override {
-    return nh.advertise<sensor_msgs::PointCloud2>(topic, 1);
+    return nh.advertise<Cloud>(topic, 1);
   }
 };
 

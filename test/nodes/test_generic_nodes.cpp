@@ -12,7 +12,7 @@ namespace {
 std::shared_ptr<const apex_nodes::Cloud> stamped(double t) {
   auto c = std::make_shared<apex_nodes::Cloud>();
   c->header.stamp = ros::Time(t);
-  c->points = std::make_shared<apex_nodes::PclCloud>();
+  c->points = std::make_shared<pcl::PCLPointCloud2>();
   return c;
 }
 

@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "apex/core/graph_file.hpp"
+#include "apex_nodes/cloud.hpp"
 #include "apex_nodes/types.hpp"
 #include "apex_test/node_harness.hpp"
 
@@ -39,7 +40,7 @@ void play(const std::string& graph_file, const std::string& count_node, const st
   ASSERT_TRUE(g.setTap(cloud_node, cloud_port, [&](const Message& m) {
     if (auto c = m.as<apex_nodes::Cloud>()) {
       std::lock_guard<std::mutex> l(out.m);
-      out.points.push_back(c->points->size());
+      out.points.push_back(apex_nodes::pointCount(*c));
     }
   }));
   g.start();

@@ -1,14 +1,15 @@
-// A node shape: one cloud in, one cloud out through a PCL filter (pcl::VoxelGrid<PointT>, ...).
-// The shape checks the cloud (points, some finite), hands the filter the input without a copy,
-// lets the node set the filter's parameters, and publishes the result with the input's header:
+// A node shape: one cloud in, the points a PCL filter keeps out (pcl::PassThrough<pcl::PointXYZ>,
+// any pcl::FilterIndices). The shape checks the cloud (x, y, z, some finite), gives the filter its
+// x, y, z, lets the node set the filter's parameters, and publishes the kept points whole, with
+// every field (colour, intensity, ring...) and the input's header:
 //
-//   class VoxelGrid : public CloudFilter<pcl::VoxelGrid<PointT>> {
+//   class PassThrough : public CloudFilter<pcl::PassThrough<pcl::PointXYZ>> {
 //    public:
-//     static inline const apex::ParamDecl<double> kLeaf = apex::param::number("leaf_size").range(0.001, 10.0).init(0.05);
-//     static apex::Manifest manifest() { return filterManifest("Downsamples a cloud").param(kLeaf); }
+//     static inline const apex::ParamDecl<double> kMax = apex::param::number("max").range(0, 100).init(3);
+//     static apex::Manifest manifest() { return filterManifest("Keeps the near points").param(kMax); }
 //    private:
-//     void configure(pcl::VoxelGrid<PointT>& f) override { f.setLeafSize(leaf_.get(), leaf_.get(), leaf_.get()); }
-//     apex::Param<double> leaf_{this, kLeaf};
+//     void configure(pcl::PassThrough<pcl::PointXYZ>& f) override { f.setFilterFieldName("z"); f.setFilterLimits(0, max_.get()); }
+//     apex::Param<double> max_{this, kMax};
 //   };
 #pragma once
 
@@ -16,7 +17,7 @@
 #include <utility>
 
 #include "apex/core/registry.hpp"
-#include "apex_nodes/cloud_check.hpp"
+#include "apex_nodes/cloud.hpp"
 
 namespace apex_nodes {
 
@@ -39,7 +40,13 @@ class CloudFilter : public apex::Node, public CloudFilterPorts {
 
  private:
   void process() final {
-    out_.publish(filterCloud<Filter>(*in_.get(), [this](Filter& filter) { configure(filter); }));
+    const auto in = in_.get();
+    Filter filter;
+    filter.setInputCloud(xyzOf(*in));
+    configure(filter);
+    pcl::Indices kept;
+    filter.filter(kept);
+    out_.publish(cloudResult(*in, selectPoints(*in->points, kept)));
   }
   apex::Input<Cloud> in_{this, kCloudIn};
   apex::Output<Cloud> out_{this, kCloudOut};

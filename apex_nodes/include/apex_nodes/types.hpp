@@ -4,8 +4,7 @@
 // input, it publishes a new object.
 #pragma once
 
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
+#include <pcl/PCLPointCloud2.h>
 #include <sensor_msgs/LaserScan.h>
 #include <std_msgs/Header.h>
 
@@ -28,19 +27,20 @@ struct Image {
   std::shared_ptr<const void> owner;
 };
 
-using PointT = pcl::PointXYZ;
-using PclCloud = pcl::PointCloud<PointT>;
-
-/** @brief A point cloud with the header of its sensor message. */
+/** @brief A point cloud as its sensor sent it: every field of every point (x, y, z and rgb,
+ *  intensity, ring, time, normals...) in PCL's field-described layout, shared, never copied to be
+ *  passed on; and the header of its sensor message (exact: `points->header` is not used).
+ *  cloud.hpp has what nodes do with it; ros_cloud.hpp makes it a ROS message. */
 struct Cloud {
   std_msgs::Header header;
-  std::shared_ptr<const PclCloud> points;
+  std::shared_ptr<const pcl::PCLPointCloud2> points;
 };
 
-/** @brief Clusters of one cloud (e.g. from EuclideanClustering), with its header. */
+/** @brief Clusters of one cloud (e.g. from EuclideanClustering), each with every field of its
+ *  points, and the cloud's header. */
 struct Clusters {
   std_msgs::Header header;
-  std::vector<std::shared_ptr<const PclCloud>> clusters;
+  std::vector<std::shared_ptr<const pcl::PCLPointCloud2>> clusters;
 };
 
 /** @brief One connected region of a binary image. */

@@ -1,0 +1,69 @@
+// What point-cloud nodes do with a cloud (types.hpp): it keeps every field its sensor sent, so
+// a node computes on an x, y, z view of it and publishes whole points, selected by index with
+// every field; the fields it does not know pass through. docs/architecture.md says why.
+#pragma once
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/conversions.h>
+
+#include <memory>
+#include <string>
+
+#include "apex_nodes/types.hpp"
+
+namespace apex_nodes {
+
+using Blob = pcl::PCLPointCloud2;
+using XyzCloud = pcl::PointCloud<pcl::PointXYZ>;
+
+/** @brief width x height. */
+std::size_t pointCount(const Cloud& cloud);
+/** @brief The names of the cloud's fields, e.g. "x, y, z, rgb", for messages. */
+std::string fieldNames(const Blob& points);
+bool hasField(const Blob& points, const std::string& name);
+/** @brief Throws std::invalid_argument naming the field, the cloud and the fields it has,
+ *  unless the cloud has `field` (one of x, y, z: as float32). */
+void requireField(const Cloud& cloud, const std::string& field);
+/** @brief Throws std::invalid_argument naming the flaw unless the layout is sound: sizes that fit
+ *  the data, known datatypes, fields within a point, little-endian, x, y and z present. For
+ *  clouds from outside (topics, bags): nodes may then read any point. */
+void checkCloud(const Cloud& cloud);
+/** @brief Throws std::invalid_argument if the cloud lacks x, y or z, is empty, or has no finite
+ *  point (it reads up to the first finite one). For a node that needs points. */
+void requirePoints(const Cloud& cloud);
+/** @brief The points' x, y, z, organised as the cloud is, once requirePoints passes. */
+std::shared_ptr<const XyzCloud> xyzOf(const Cloud& cloud);
+/** @brief The points at `indices`, whole (every field), as one row. */
+std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indices);
+/** @brief Every index below `count` that `indices` (ascending) lacks. */
+pcl::Indices complement(const pcl::Indices& indices, std::size_t count);
+/** @brief A result: `points` with the header of the cloud it came from. */
+std::shared_ptr<Cloud> cloudResult(const Cloud& in, std::shared_ptr<const Blob> points);
+
+/** @brief A typed PCL cloud as a cloud's points (its fields named as PCL names them). */
+template <class PointT>
+std::shared_ptr<Blob> toBlob(const pcl::PointCloud<PointT>& typed) {
+  auto out = std::make_shared<Blob>();
+  pcl::toPCLPointCloud2(typed, *out);
+  return out;
+}
+/** @brief A cloud with `header` holding `typed`: for tests and for sources that make points. */
+template <class PointT>
+std::shared_ptr<Cloud> makeCloud(const std_msgs::Header& header, const pcl::PointCloud<PointT>& typed) {
+  auto out = std::make_shared<Cloud>();
+  out->header = header;
+  out->points = toBlob(typed);
+  return out;
+}
+/** @brief The points as a typed PCL cloud (fields the type lacks are dropped, ones the cloud
+ *  lacks stay zero: check with hasField first). */
+template <class PointT>
+pcl::PointCloud<PointT> typedPoints(const Cloud& cloud) {
+  pcl::PointCloud<PointT> out;
+  if (cloud.points && pointCount(cloud) > 0) pcl::fromPCLPointCloud2(*cloud.points, out);
+  return out;
+}
+
+}  // namespace apex_nodes
