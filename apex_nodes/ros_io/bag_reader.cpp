@@ -20,6 +20,7 @@ namespace {
 
 constexpr const char* kImageType = "sensor_msgs/Image";
 constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
+constexpr const char* kCameraInfoType = "sensor_msgs/CameraInfo";
 
 /** The topics a node plays and their outputs: `topics`, one output each; or, when that is
  *  empty, as graphs made before it: `image_topic` on output image, `cloud_topic` on cloud. */
@@ -37,12 +38,15 @@ std::vector<std::pair<std::string, std::string>> playedTopics(const std::vector<
 const apex::TypeInfo* typeFor(const std::string& datatype) {
   if (datatype == kImageType) return apex::typeOf<Image>();
   if (datatype == kCloudType) return apex::typeOf<Cloud>();
+  if (datatype == kCameraInfoType) return apex::typeOf<sensor_msgs::CameraInfo>();
   return nullptr;
 }
 
 apex::Message convert(const rosbag::MessageInstance& m) {
   if (auto image = m.instantiate<sensor_msgs::Image>()) return apex::Message::share<Image>(fromRos(image));
   if (auto cloud = m.instantiate<Cloud>()) return apex::Message::share<Cloud>(fromRos(boost::shared_ptr<const Cloud>(cloud)));
+  if (auto info = m.instantiate<sensor_msgs::CameraInfo>())  // shared: the pointer holds the message
+    return apex::Message::share<sensor_msgs::CameraInfo>(std::shared_ptr<const sensor_msgs::CameraInfo>(info.get(), [info](const void*) {}));
   return {};
 }
 
@@ -76,7 +80,7 @@ apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
       type = typeFor(it->second);
       if (!type)
         return apex::Status::error("topic '" + topic + "' holds " + it->second + "; BagReader plays " + kImageType +
-                                   " and " + kCloudType);
+                                   ", " + kCloudType + " and " + kCameraInfoType);
       desc += " (" + it->second + ")";
     }
     outputs.push_back({port, type, false, desc});

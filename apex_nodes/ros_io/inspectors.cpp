@@ -1,5 +1,5 @@
 // ~inspect for the node library's types: images as sensor_msgs/Image, clouds
-// as sensor_msgs/PointCloud2 (every field), scans as themselves (see apex/ros/inspect.hpp).
+// as sensor_msgs/PointCloud2 (every field), scans and camera models as themselves (see apex/ros/inspect.hpp).
 #include <sensor_msgs/LaserScan.h>
 
 #include <opencv2/imgproc.hpp>
@@ -29,6 +29,7 @@ const bool kRegistered = [] {
     return std::to_string(pointCount(c)) + " points: " + (c.points ? fieldNames(*c.points) : "none");
   });
   apex::addInspector<sensor_msgs::LaserScan, sensor_msgs::LaserScan>([](const sensor_msgs::LaserScan& s) { return s; });
+  apex::addInspector<sensor_msgs::CameraInfo, sensor_msgs::CameraInfo>([](const sensor_msgs::CameraInfo& c) { return c; });
   return true;
 }();
 

@@ -35,4 +35,18 @@ image_transport::Subscriber subscribeImage(const ros::NodeHandle& nh, const std:
                                image_transport::TransportHints(transport_name));
 }
 
+image_transport::CameraPublisher advertiseCamera(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size) {
+  const std::string resolved = nh.resolveName(topic);
+  std::lock_guard<std::mutex> lock(pluginLoaderMutex());
+  return transport().advertiseCamera(resolved, queue_size);
+}
+
+image_transport::CameraSubscriber subscribeCamera(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size,
+                                                  const CameraCallback& callback, const std::string& transport_name) {
+  const std::string resolved = nh.resolveName(topic);
+  std::lock_guard<std::mutex> lock(pluginLoaderMutex());
+  return transport().subscribeCamera(resolved, queue_size, callback, ros::VoidPtr(),
+                                     image_transport::TransportHints(transport_name));
+}
+
 }  // namespace apex_nodes

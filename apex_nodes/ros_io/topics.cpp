@@ -17,7 +17,7 @@ class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
   static inline const apex::OutputPort<Image> kImage{"image"};
   static inline const apex::ParamDecl<std::string> kTopic =
       apex::param::text("topic").init("image").describe("resolved in the runtime's namespace");
-  static inline const apex::ParamDecl<std::string> kTransport = apex::param::choice("transport", {"raw", "compressed", "theora"});
+  static inline const apex::ParamDecl<std::string> kTransport = transportParam();
   static apex::Manifest manifest() {
     return apex::Manifest("Receives images from a topic (image_transport); keeps only the newest")
         .output(kImage)

@@ -77,6 +77,26 @@ TEST(BagReader, OneOutputPerTopicTypedByItsMessageType) {
   for (const auto& c : p.graph().describe().connections) EXPECT_NE(c.from_port, "camera_points");
 }
 
+TEST(BagReader, CameraInfoTopicsPlayAsCameraModelsBesideTheirImages) {
+  Graph g(pluginRegistry());
+  NodeDescription d = Player::description(writeBag(3), "");
+  d.parameters = {{"file", writeBag(3)}, {"topics", "[/camera/image_raw, /camera/camera_info]"}, {"rate", "0"}};
+  ASSERT_TRUE(g.addNode(d));
+  EXPECT_EQ(g.nodeInterface("bag")->outputs[1].type, typeOf<sensor_msgs::CameraInfo>());
+  add(g, "test/Collector", "images"), add(g, "test/Collector", "models");
+  link(g, "bag", "camera_image_raw", "images", "in");
+  link(g, "bag", "camera_camera_info", "models", "in");
+  g.start();
+  ASSERT_TRUE(object<Collector>(g, "models")->waitFor(3));
+  const auto models = object<Collector>(g, "models")->messages();
+  const auto images = object<Collector>(g, "images")->messages();
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(models[k].as<sensor_msgs::CameraInfo>());
+    EXPECT_EQ(models[k].as<sensor_msgs::CameraInfo>()->K, cameraInfo(k).K);
+    EXPECT_EQ(models[k].as<sensor_msgs::CameraInfo>()->header.stamp, images[k].as<apex_nodes::Image>()->header.stamp);
+  }
+}
+
 TEST(BagReader, TheMessagesOfAFrameLeaveInOneFiringAndFinishedFiresOncePerPass) {
   Player p(40);
   ASSERT_TRUE(p.sink("stamps").waitFor(40));

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <pcl/PCLPointCloud2.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/LaserScan.h>
 #include <std_msgs/Header.h>
 
@@ -69,3 +70,6 @@ APEX_TYPE_NAME(apex_nodes::Cloud, "apex_nodes/Cloud");
 APEX_TYPE_NAME(apex_nodes::Regions, "apex_nodes/Regions");
 APEX_TYPE_NAME(apex_nodes::Clusters, "apex_nodes/Clusters");
 APEX_TYPE_NAME(sensor_msgs::LaserScan, "sensor_msgs/LaserScan");  // scans travel as the ROS message itself
+// A camera's model (K, D, R, P, size, binning, ROI) travels as the ROS message itself, on a port of
+// its own beside the image it belongs to (same header): a node that needs geometry takes both.
+APEX_TYPE_NAME(sensor_msgs::CameraInfo, "sensor_msgs/CameraInfo");

@@ -44,15 +44,24 @@ inline sensor_msgs::PointCloud2 cloud(int k) {
   return m;
 }
 
-/** A bag of `frames` frames: an image, then 5 ms later a cloud, every 100 ms; and a text topic. */
+inline sensor_msgs::CameraInfo cameraInfo(int k) {
+  sensor_msgs::CameraInfo m;
+  m.header.stamp = frameTime(k);
+  m.width = 3, m.height = 2, m.K = {100, 0, 1.5, 0, 100, 1, 0, 0, 1};
+  return m;
+}
+
+/** A bag of `frames` frames: an image with its camera_info, then 5 ms later a cloud, every 100 ms;
+ *  and a text topic. */
 inline std::string writeBag(int frames) {
-  const std::string path = (bagDirectory() / ("frames_" + std::to_string(frames) + ".bag")).string();
+  const std::string path = (bagDirectory() / ("frames_v2_" + std::to_string(frames) + ".bag")).string();
   if (std::filesystem::exists(path)) return path;
   rosbag::Bag bag(path, rosbag::bagmode::Write);
   std_msgs::String note;
   note.data = "not a frame";
   for (int k = 0; k < frames; ++k) {
     bag.write("/camera/image_raw", frameTime(k), image(k));
+    bag.write("/camera/camera_info", frameTime(k), cameraInfo(k));
     bag.write("/camera/points", frameTime(k) + ros::Duration(0.005), cloud(k));
   }
   bag.write("/notes", frameTime(0), note);

@@ -1,0 +1,39 @@
+// Clusters' boxes for rviz: what MarkerPublisher (ros_io/markers.cpp, in apex_nodes_ros) publishes,
+// built without ROS running so that tests check it.
+#pragma once
+
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cstddef>
+#include <limits>
+#include <string>
+
+#include "apex/core/param.hpp"
+#include "apex_nodes/cluster_features.hpp"
+
+namespace apex_nodes {
+
+/** @brief How clusterMarkers draws. */
+struct MarkerOptions {
+  std::string ns = "clusters";  ///< the boxes' marker namespace; labels go in "<ns>/labels"
+  bool oriented = false;        ///< the oriented boxes (PCA) instead of the axis-aligned ones
+  bool labels = true;           ///< above each box, its label and point count
+  apex::Color color{0, 255, 0}; ///< the boxes', 0..255
+  double alpha = 0.5;           ///< the boxes' opacity, 0..1
+  double lifetime = 0;          ///< seconds a marker stays without an update; 0: until replaced
+  double text_height = 0.15;    ///< the labels' letter height, metres
+};
+
+/** @brief For `last_count`: what the previous array drew is not known (the first one, or the
+ *  options changed since): the array clears the display first. */
+constexpr std::size_t kUnknownMarkerCount = std::numeric_limits<std::size_t>::max();
+
+/** @brief Boxes (CUBE) for `features`' clusters, with their header: cluster i has id i in
+ *  `options.ns`, its label (TEXT_VIEW_FACING, if `options.labels`) id i in "<ns>/labels". When
+ *  there are fewer clusters than `last_count` (the previous array's), a DELETEALL comes first, so
+ *  no box of the previous array stays. A cluster without points gets DELETEs for its ids instead.
+ *  Scales are at least 0.001 m, so that flat clusters show. */
+visualization_msgs::MarkerArray clusterMarkers(const ClusterFeatures& features, const MarkerOptions& options,
+                                               std::size_t last_count);
+
+}  // namespace apex_nodes

@@ -1,0 +1,118 @@
+// ClusterFeatures: each cluster's centroid, axis-aligned box and oriented box (cluster_features.hpp).
+// The oriented box comes from PCA of the points' covariance (Eigen), as
+// pcl::MomentOfInertiaEstimation::getOBB makes it (its axes, its box), without what that class
+// computes besides (moments of inertia and eccentricities at 370 angles, each a pass over the
+// points) and without pcl_features, which the node libraries do not link.
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "apex/core/registry.hpp"
+#include "apex_nodes/cloud.hpp"
+#include "apex_nodes/cluster_features.hpp"
+
+namespace apex_nodes {
+namespace {
+
+bool finite(const pcl::PointXYZ& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+Eigen::Vector3d at(const pcl::PointXYZ& p) { return {p.x, p.y, p.z}; }
+
+/** `v` or -v, whichever has its largest component positive: the same axis comes out the same way. */
+Eigen::Vector3d canonical(const Eigen::Vector3d& v) {
+  Eigen::Index i = 0;
+  v.cwiseAbs().maxCoeff(&i);
+  return v[i] < 0 ? Eigen::Vector3d(-v) : v;
+}
+
+/** The features of one cluster's finite points (in double: clouds far from their origin keep their
+ *  millimetres). */
+ClusterFeature measure(const XyzCloud& points, int label) {
+  ClusterFeature f;
+  f.label = label;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  f.min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  f.max = -f.min;
+  for (const auto& p : points) {
+    if (!finite(p)) continue;
+    const Eigen::Vector3d q = at(p);
+    sum += q, f.min = f.min.cwiseMin(q), f.max = f.max.cwiseMax(q);
+    ++f.points;
+  }
+  if (f.points == 0) {
+    f.min = f.max = Eigen::Vector3d::Zero();
+    return f;
+  }
+  f.centroid = sum / double(f.points);
+  f.extent = f.max - f.min;
+
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) {
+    if (!finite(p)) continue;
+    const Eigen::Vector3d d = at(p) - f.centroid;
+    covariance += d * d.transpose();
+  }
+  covariance /= double(f.points);
+  // Eigenvalues ascending: the last vector spreads the points most. z = x × y, so the axes are a
+  // rotation (not a reflection) and make a valid quaternion.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(covariance);
+  Eigen::Matrix3d axes;
+  axes.col(0) = canonical(pca.eigenvectors().col(2)).normalized();
+  axes.col(1) = canonical(pca.eigenvectors().col(1)).normalized();
+  axes.col(2) = axes.col(0).cross(axes.col(1));
+
+  Eigen::Vector3d low = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (const auto& p : points) {
+    if (!finite(p)) continue;
+    const Eigen::Vector3d local = axes.transpose() * (at(p) - f.centroid);
+    low = low.cwiseMin(local), high = high.cwiseMax(local);
+  }
+  f.oriented.extent = high - low;
+  f.oriented.centre = f.centroid + axes * (0.5 * (low + high));
+  f.oriented.orientation = Eigen::Quaterniond(axes).normalized();
+  return f;
+}
+
+}  // namespace
+
+/** The node type apex_nodes/ClusterFeatures (the C++ name ClusterFeatures is its output's type). */
+class ClusterFeaturesNode : public apex::Node {
+ public:
+  static inline const apex::InputPort<Clusters> kClusters{"clusters"};
+  static inline const apex::OutputPort<ClusterFeatures> kFeatures{
+      "features", "per cluster, in its order: centroid, axis-aligned and oriented box, point count"};
+  static inline const apex::OutputPort<int> kCount{"count", "clusters"};
+  static apex::Manifest manifest() {
+    return apex::Manifest("Measures each cluster: centroid, axis-aligned box, oriented box (PCA), point count")
+        .input(kClusters)
+        .output(kFeatures)
+        .output(kCount);
+  }
+  void process() override {
+    const auto in = clusters_.get();
+    auto out = std::make_shared<ClusterFeatures>();
+    out->header = in->header;
+    out->clusters.reserve(in->clusters.size());
+    for (std::size_t i = 0; i < in->clusters.size(); ++i) {
+      const Cloud cluster{in->header, in->clusters[i]};
+      try {
+        for (const char* xyz : {"x", "y", "z"}) requireField(cluster, xyz);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("cluster " + std::to_string(i) + ": " + e.what());
+      }
+      out->clusters.push_back(measure(typedPoints<pcl::PointXYZ>(cluster), static_cast<int>(i)));
+    }
+    count_.publish(static_cast<int>(out->clusters.size()));
+    features_.publish(out);
+  }
+
+ private:
+  apex::Input<Clusters> clusters_{this, kClusters};
+  apex::Output<ClusterFeatures> features_{this, kFeatures};
+  apex::Output<int> count_{this, kCount};
+};
+
+}  // namespace apex_nodes
+
+APEX_REGISTER_NODE(apex_nodes::ClusterFeaturesNode, "apex_nodes/ClusterFeatures");

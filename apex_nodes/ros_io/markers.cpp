@@ -1,0 +1,196 @@
+// MarkerPublisher: clusters' boxes (ClusterFeatures) as visualization_msgs/MarkerArray, for rviz.
+// Like the publishers of topic_sink.hpp it advertises at setup and when its topic changes, and
+// builds an array only while someone subscribes. Also ClusterFeatures' inspector: a port of that
+// type shows in rviz (~inspect) and is recorded (BagWriter) as the same boxes.
+#include "apex_nodes/markers.hpp"
+
+#include <ros/ros.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "apex/core/registry.hpp"
+#include "apex/ros/inspect.hpp"
+#include "apex/ros/node_handles.hpp"
+
+namespace apex_nodes {
+namespace {
+
+constexpr double kMinScale = 0.001;  // rviz hides a box with a zero side: flat clusters keep a thin one
+
+geometry_msgs::Point point(const Eigen::Vector3d& v) {
+  geometry_msgs::Point p;
+  p.x = v.x(), p.y = v.y(), p.z = v.z();
+  return p;
+}
+
+geometry_msgs::Vector3 scale(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 s;
+  s.x = std::max(v.x(), kMinScale), s.y = std::max(v.y(), kMinScale), s.z = std::max(v.z(), kMinScale);
+  return s;
+}
+
+geometry_msgs::Quaternion quaternion(const Eigen::Quaterniond& q) {
+  geometry_msgs::Quaternion out;
+  out.x = q.x(), out.y = q.y(), out.z = q.z(), out.w = q.w();
+  return out;
+}
+
+float unit(int channel) { return static_cast<float>(std::clamp(channel, 0, 255)) / 255.f; }
+
+/** A marker of `ns` and `id` with the array's header, lifetime and a valid (identity) orientation. */
+visualization_msgs::Marker marker(const ClusterFeatures& features, const MarkerOptions& options, const std::string& ns,
+                                  int id, int action) {
+  visualization_msgs::Marker m;
+  m.header = features.header;
+  m.ns = ns;
+  m.id = id;
+  m.action = action;
+  m.pose.orientation.w = 1.0;
+  m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
+  return m;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray clusterMarkers(const ClusterFeatures& features, const MarkerOptions& options,
+                                               std::size_t last_count) {
+  using visualization_msgs::Marker;
+  const std::string label_ns = options.ns + "/labels";
+  visualization_msgs::MarkerArray out;
+  if (features.clusters.size() < last_count) out.markers.push_back(marker(features, options, options.ns, 0, Marker::DELETEALL));
+  for (std::size_t i = 0; i < features.clusters.size(); ++i) {
+    const ClusterFeature& f = features.clusters[i];
+    const int id = static_cast<int>(i);
+    if (f.points == 0) {  // nothing to draw: none of an earlier array's boxes either
+      out.markers.push_back(marker(features, options, options.ns, id, Marker::DELETE));
+      if (options.labels) out.markers.push_back(marker(features, options, label_ns, id, Marker::DELETE));
+      continue;
+    }
+    Marker box = marker(features, options, options.ns, id, Marker::ADD);
+    box.type = Marker::CUBE;
+    double half_height = 0;  // how far the box reaches above its centre, in the frame's z
+    if (options.oriented) {
+      box.pose.position = point(f.oriented.centre);
+      box.pose.orientation = quaternion(f.oriented.orientation);
+      box.scale = scale(f.oriented.extent);
+      const Eigen::Matrix3d r = f.oriented.orientation.toRotationMatrix();
+      for (int k = 0; k < 3; ++k) half_height += 0.5 * std::abs(r(2, k)) * f.oriented.extent[k];
+    } else {
+      box.pose.position = point(f.centre());
+      box.scale = scale(f.extent);
+      half_height = 0.5 * f.extent.z();
+    }
+    box.color.r = unit(options.color.r), box.color.g = unit(options.color.g), box.color.b = unit(options.color.b);
+    box.color.a = static_cast<float>(std::clamp(options.alpha, 0.0, 1.0));
+    out.markers.push_back(box);
+    if (!options.labels) continue;
+    Marker text = marker(features, options, label_ns, id, Marker::ADD);
+    text.type = Marker::TEXT_VIEW_FACING;
+    text.text = std::to_string(f.label) + ": " + std::to_string(f.points) + " points";
+    text.pose.position = box.pose.position;
+    text.pose.position.z += half_height + 0.75 * options.text_height;
+    text.scale.x = text.scale.y = text.scale.z = std::max(options.text_height, kMinScale);  // rviz reads z: the letters' height
+    text.color.r = text.color.g = text.color.b = text.color.a = 1.f;
+    out.markers.push_back(text);
+  }
+  return out;
+}
+
+namespace {
+
+// A ClusterFeatures port inspected or recorded: its boxes as MarkerPublisher draws them by default.
+// Each array clears first: its viewer may have seen any array before it. A MarkerArray has no
+// header of its own: a recording takes the features' stamp.
+const bool kInspectorRegistered = [] {
+  const apex::TypeInfo* type = apex::typeOf<ClusterFeatures>();
+  apex::addInspector<ClusterFeatures, visualization_msgs::MarkerArray>(
+      [](const ClusterFeatures& f) { return clusterMarkers(f, MarkerOptions(), kUnknownMarkerCount); });
+  apex::Inspector inspector = apex::findInspector(type);
+  inspector.serialize = [serialize = inspector.serialize](const apex::Message& m) {
+    apex::SerializedMessage out = serialize(m);
+    if (auto f = m.as<ClusterFeatures>()) out.stamp = f->header.stamp;
+    return out;
+  };
+  apex::registerInspector(type, std::move(inspector));
+  apex::addDescribe<ClusterFeatures>([](const ClusterFeatures& f) {
+    return std::to_string(f.clusters.size()) + (f.clusters.size() == 1 ? " cluster" : " clusters");
+  });
+  return true;
+}();
+
+}  // namespace
+
+class MarkerPublisher : public apex::Node {
+ public:
+  static inline const apex::InputPort<ClusterFeatures> kFeatures{"features", "the clusters to draw"};
+  static inline const apex::ParamDecl<std::string> kTopic =
+      apex::param::text("topic").init("markers").describe("resolved in the runtime's namespace");
+  static inline const apex::ParamDecl<std::string> kNamespace =
+      apex::param::text("namespace").init("clusters").describe("the markers' ns; labels go in '<namespace>/labels'");
+  static inline const apex::ParamDecl<bool> kOriented =
+      apex::param::flag("oriented").describe("oriented boxes (PCA axes) instead of axis-aligned ones");
+  static inline const apex::ParamDecl<bool> kLabels =
+      apex::param::flag("labels").init(true).describe("each cluster's label and point count above its box");
+  static inline const apex::ParamDecl<apex::Color> kColor = apex::param::color("color").init({0, 255, 0});
+  static inline const apex::ParamDecl<double> kAlpha =
+      apex::param::number("alpha").range(0.0, 1.0).step(0.05).init(0.5).describe("the boxes' opacity");
+  static inline const apex::ParamDecl<double> kLifetime = apex::param::number("lifetime").range(0.0, 3600.0).step(0.1).init(0.0)
+      .describe("seconds a box stays without an update; 0: until the next message replaces it");
+  static apex::Manifest manifest() {
+    return apex::Manifest("Publishes clusters' boxes as visualization_msgs/MarkerArray, for rviz")
+        .input(kFeatures)
+        .param(kTopic)
+        .param(kNamespace)
+        .param(kOriented)
+        .param(kLabels)
+        .param(kColor)
+        .param(kAlpha)
+        .param(kLifetime);
+  }
+
+  void setup() override { advertise(); }
+  void parameterChanged(const std::string& name) override {
+    if (name == kTopic.name()) advertise();
+    last_count_ = kUnknownMarkerCount;  // the next array clears what this one's options drew
+  }
+  void process() override {
+    if (pub_.getNumSubscribers() == 0) {  // a viewer that subscribes later may have seen anything
+      last_count_ = kUnknownMarkerCount;
+      return;
+    }
+    const auto in = features_.get();
+    pub_.publish(clusterMarkers(*in, options(), last_count_));
+    last_count_ = in->clusters.size();
+  }
+
+ private:
+  void advertise() { pub_ = apex::nodeHandle(*this).advertise<visualization_msgs::MarkerArray>(topic_.get(), 1); }
+  MarkerOptions options() const {
+    MarkerOptions o;
+    o.ns = namespace_.get();
+    o.oriented = oriented_.get();
+    o.labels = labels_.get();
+    o.color = color_.get();
+    o.alpha = alpha_.get();
+    o.lifetime = lifetime_.get();
+    return o;
+  }
+
+  apex::Input<ClusterFeatures> features_{this, kFeatures};
+  apex::Param<std::string> topic_{this, kTopic};
+  apex::Param<std::string> namespace_{this, kNamespace};
+  apex::Param<bool> oriented_{this, kOriented};
+  apex::Param<bool> labels_{this, kLabels};
+  apex::Param<apex::Color> color_{this, kColor};
+  apex::Param<double> alpha_{this, kAlpha};
+  apex::Param<double> lifetime_{this, kLifetime};
+  ros::Publisher pub_;
+  std::size_t last_count_ = kUnknownMarkerCount;  // the first array clears what an earlier run left
+};
+
+}  // namespace apex_nodes
+
+APEX_REGISTER_NODE(apex_nodes::MarkerPublisher, "apex_nodes/MarkerPublisher");
