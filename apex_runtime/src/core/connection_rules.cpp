@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <set>
 
+#include "apex/core/node_names.hpp"
+
 namespace apex {
 namespace {
 
@@ -13,7 +15,7 @@ std::string withArticle(PortKind k) {
   return (n[0] == 'i' || n[0] == 'o' ? "an " : "a ") + n;
 }
 
-std::string where(const std::string& name, const NodeView& n) { return "node '" + name + "' (" + n.type + ")"; }
+std::string where(const std::string& name, const NodeView& n) { return nodeLabel(name, n.type); }
 
 /** "a, b" of the ports of `kind`, or "none" */
 std::string list(const NodeView& n, PortKind kind) {
@@ -35,8 +37,8 @@ Result<PortView> connectionEnd(const std::string& name, const NodeView& n, const
   for (const auto& p : n.ports)
     if (p.name == port && isSource(p.kind) == source) return p;
   if (std::find(n.params.begin(), n.params.end(), port) != n.params.end())
-    return Status::error("parameter '" + port + "' of node '" + name +
-                         "' is not interactive: make it interactive to give it ports");
+    return Status::error(portLabel("parameter", port, name) +
+                         " is not interactive: make it interactive to give it ports");
   for (const auto& p : n.ports)
     if (p.name == port)
       return Status::error("'" + port + "' is " + (source ? "an input" : "an output") + " of " + where(name, n) +
@@ -122,8 +124,8 @@ Result<ConnectionEnds> checkConnection(const ConnectionView& view, const Connect
                 ", " + portKindName(d.kind) + " '" + c.to_port + "' takes " + d.type);
   const std::string feeder = view.feeding(c.to_node, c.to_port);
   if (!feeder.empty())
-    return fail(std::string(portKindName(d.kind)) + " '" + c.to_port + "' of node '" + c.to_node +
-                "' is already connected (from " + feeder + "); an input has one source: disconnect it first");
+    return fail(portLabel(portKindName(d.kind), c.to_port, c.to_node) +
+                " is already connected (from " + feeder + "); an input has one source: disconnect it first");
   if (d.kind == PortKind::Input && reaches(view, c.to_node, c.from_node))
     return fail("it would close a cycle (" + c.to_node + " already feeds " + c.from_node +
                 "); a data cycle can never fire");

@@ -99,7 +99,7 @@ Result<std::string> Graph::Impl::addNode(const std::string& type_id, const std::
   }
   const std::string gname = group_name.empty() ? kDefaultGroup : group_name;
   if (!validName(gname)) return Status::error("thread group name '" + gname + "' " + kNameRule);
-  if (auto room = roomFor(gname, 1); !room) return Status::error("cannot add node '" + name + "': " + room.message());
+  if (auto room = roomFor(gname, 1); !room) return Status::error("cannot add " + nodeLabel(name) + ": " + room.message());
 
   std::unique_ptr<Node> object;
   try {
@@ -223,15 +223,15 @@ Result<std::string> Graph::Impl::setParameter(const std::string& outer, const st
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
-  if (!s.type) return Status::error("node '" + node + "' has the unknown type '" + s.typeId() + "': its parameters are kept unchanged");
+  if (!s.type) return Status::error(nodeLabel(node) + " has the unknown type '" + s.typeId() + "': its parameters are kept unchanged");
   const int i = s.findParam(param);
-  if (i < 0) return Status::error("node '" + node + "' (" + s.typeId() + ") has no parameter '" + param + "' (parameters: " + s.manifest().listParams() + ")");
+  if (i < 0) return Status::error(nodeLabel(node, s.typeId()) + " has no parameter '" + param + "' (parameters: " + s.manifest().listParams() + ")");
   const ParamSpec& spec = s.manifest().params[i];
   if (text.size() > kMaxYamlString)  // a graph file could not hold it
-    return Status::error("node '" + node + "': parameter '" + param + "': a value of " + std::to_string(text.size()) +
+    return Status::error(nodeLabel(node) + ": parameter '" + param + "': a value of " + std::to_string(text.size()) +
                          " characters, over the limit of " + std::to_string(kMaxYamlString));
   auto value = spec.parse(text);
-  if (!value) return Status::error("node '" + node + "': " + value.message());
+  if (!value) return Status::error(nodeLabel(node) + ": " + value.message());
   if (spec.shapes_interface) {
     auto iface = interfaceFor(s, param, &value.value());
     if (!iface) return iface.status();
@@ -267,10 +267,10 @@ Status Graph::Impl::setInteractive(const std::string& outer, const std::string& 
   if (!n) return n.status();
   NodeState* s = n.value().get();
   const int i = s->findParam(param);
-  if (i < 0) return Status::error("node '" + node + "' (" + s->typeId() + ") has no parameter '" + param + "' (parameters: " + s->manifest().listParams() + ")");
+  if (i < 0) return Status::error(nodeLabel(node, s->typeId()) + " has no parameter '" + param + "' (parameters: " + s->manifest().listParams() + ")");
   if (on && s->manifest().params[i].shapes_interface)
-    return Status::error("parameter '" + param + "' of node '" + node +
-                         "' decides the node's ports: it is set by edits only and cannot have ports");
+    return Status::error(portLabel("parameter", param, node) +
+                         " decides the node's ports: it is set by edits only and cannot have ports");
   auto& p = s->params[i];
   if (!on && (p.in_edge || !p.out_edges.empty())) {
     std::vector<NodeState*> receivers;
@@ -356,7 +356,7 @@ Status Graph::Impl::fireSlot(const std::string& outer, const std::string& outer_
     s.post([index](NodeState& x) { x.runSlot(index); });
     return Status::ok();
   }
-  return Status::error("node '" + node + "' (" + s.typeId() + ") has no slot '" + slot + "' (slots: " + s.manifest().listSlots() + ")");
+  return Status::error(nodeLabel(node, s.typeId()) + " has no slot '" + slot + "' (slots: " + s.manifest().listSlots() + ")");
 }
 
 Status Graph::Impl::setUi(const std::string& node, const std::string& ui) {
@@ -364,7 +364,7 @@ Status Graph::Impl::setUi(const std::string& node, const std::string& ui) {
   auto sg = subgraphs_.find(node);
   auto n = require(node);
   if (!n && !sg) return n.status();
-  if (auto st = detail::checkYamlText(ui); !st) return Status::error("node '" + node + "': UI metadata " + st.message());
+  if (auto st = detail::checkYamlText(ui); !st) return Status::error(nodeLabel(node) + ": UI metadata " + st.message());
   if (sg) {
     sg->ui = ui;
   } else {
@@ -393,7 +393,7 @@ Status Graph::Impl::setTap(const std::string& outer, const std::string& outer_po
     s->params[i].tap = std::move(tap);
     return Status::ok();
   }
-  return Status::error("node '" + node + "' (" + s->typeId() + ") has no output or interactive parameter '" + port +
+  return Status::error(nodeLabel(node, s->typeId()) + " has no output or interactive parameter '" + port +
                        "' (outputs: " + s->manifest().listOutputs() + ")");
 }
 
@@ -460,7 +460,7 @@ Result<ParamValue> Graph::Impl::parameterValue(const std::string& outer, const s
   auto n = require(node);
   if (!n) return n.status();
   const int i = n.value()->findParam(param);
-  if (i < 0) return Status::error("node '" + node + "' has no parameter '" + param + "'");
+  if (i < 0) return Status::error(nodeLabel(node) + " has no parameter '" + param + "'");
   std::lock_guard<std::mutex> g(n.value()->state_mutex);
   return n.value()->params[i].requested;
 }

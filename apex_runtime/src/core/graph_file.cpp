@@ -20,6 +20,7 @@
 #include <set>
 #include <sstream>
 
+#include "apex/core/node_names.hpp"
 #include "yaml_text.hpp"
 
 namespace apex {
@@ -71,7 +72,7 @@ NodeDescription parseNode(const YAML::Node& n, int version, int depth) {
   NodeDescription d;
   d.line = lineOf(n);
   d.name = scalar(n, "name", "node");
-  const std::string what = "node '" + d.name + "'";
+  const std::string what = nodeLabel(d.name);
   const YAML::Node sub = n["subgraph"];
   if (sub && version < 2) fail(sub, what + ": subgraphs need 'apex_graph: 2'");
   if (sub) {
@@ -476,7 +477,7 @@ Status expand(GraphDescription& d, const std::string& file, const GraphFileOptio
         if (auto st = options.check(node); !st) return Status::error(at(file, node.line) + st.message());
       continue;
     }
-    const std::string where = at(file, node.line) + "subgraph '" + node.name + "'";
+    const std::string where = at(file, node.line) + subgraphLabel(node.name);
     if (node.source.empty()) {  // inline: its nodes are in this file
       auto inner = std::make_shared<GraphDescription>(*node.subgraph);
       if (auto st = expand(*inner, file, options, chain); !st) return st;
@@ -492,7 +493,7 @@ Status expand(GraphDescription& d, const std::string& file, const GraphFileOptio
 
 Status expandFile(NodeDescription& node, const std::string& file, const GraphFileOptions& options,
                 std::vector<std::string>& chain) {
-  const std::string where = at(file, node.line) + "subgraph '" + node.name + "'";
+  const std::string where = at(file, node.line) + subgraphLabel(node.name);
   std::string path = joinReference(node.source, file);
   if (options.open) {
     auto opened = options.open(path);

@@ -6,6 +6,7 @@
 // any other edit.
 #include <algorithm>
 
+#include "apex/core/node_names.hpp"
 #include "edit_scope.hpp"
 #include "graph_impl.hpp"
 #include "live.hpp"
@@ -162,7 +163,7 @@ Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeStat
   if (value) values.set(param, *value);
   auto next = std::make_shared<Manifest>(type);
   auto fail = [&](const std::string& why) {
-    return Status::error("node '" + n.name + "' (" + n.type->id + ") cannot make its ports" +
+    return Status::error(nodeLabel(n.name, n.type->id) + " cannot make its ports" +
                          (value ? " for " + param + " = " + toText(*value) : std::string()) + ": " + why);
   };
   try {

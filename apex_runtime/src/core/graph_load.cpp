@@ -6,6 +6,7 @@
 #include <set>
 #include <tuple>
 
+#include "apex/core/node_names.hpp"
 #include "edit_scope.hpp"
 #include "graph_impl.hpp"
 #include "names.hpp"
@@ -118,7 +119,7 @@ GraphDescription Graph::Impl::describeLocked() const {
 Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   if (auto why = checkNewPath(d.name); !why.empty()) return Status::error(why);
   const std::string group_name = d.thread_group.empty() ? "default" : d.thread_group;
-  if (auto room = roomFor(group_name, 1); !room) return Status::error("node '" + d.name + "': " + room.message());
+  if (auto room = roomFor(group_name, 1); !room) return Status::error(nodeLabel(d.name) + ": " + room.message());
   auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revision_);
   state->placeholder = d;
   state->ui = d.ui;
@@ -139,14 +140,14 @@ Status Graph::Impl::applyNode(const NodeDescription& d, LoadReport& report) {
     auto added = addSubgraph(d);
     return added ? Status::ok() : fail(added.message());
   }
-  if (!validTypeId(d.type)) return fail("node '" + d.name + "': type '" + d.type + "' " + kTypeIdRule);
+  if (!validTypeId(d.type)) return fail(nodeLabel(d.name) + ": type '" + d.type + "' " + kTypeIdRule);
   if (!registry_.find(d.type)) {
     auto lock = lockEdits();
     auto added = addPlaceholder(d);
     if (!added) return fail(added.message());
     std::string near;
     for (const auto& id : registry_.closest(d.type)) near += (near.empty() ? " (did you mean " : " or ") + id;
-    report.warnings.push_back(at(d.line) + "node '" + d.name + "' has the unknown type '" + d.type + "'" +
+    report.warnings.push_back(at(d.line) + nodeLabel(d.name) + " has the unknown type '" + d.type + "'" +
                               (near.empty() ? "" : near + "?)") + ": kept as a placeholder with its settings, it does not run");
     return Status::ok();
   }

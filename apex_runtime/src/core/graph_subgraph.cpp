@@ -7,6 +7,7 @@
 #include <set>
 
 #include "apex/core/limits.hpp"
+#include "apex/core/node_names.hpp"
 #include "edit_scope.hpp"
 #include "graph_impl.hpp"
 #include "names.hpp"
@@ -69,7 +70,7 @@ Status Graph::Impl::checkExports(const Subgraph& sg) const {
         continue;
       }
       auto n = find(path);
-      if (!n) return Status::error(says + "there is no node '" + rel + "' in it");
+      if (!n) return Status::error(says + "there is no " + nodeLabel(rel) + " in it");
       if (!n->type) continue;  // a placeholder: its ports are unknown
       const Manifest& m = n->manifest();
       const bool has = [&] {
@@ -83,7 +84,7 @@ Status Graph::Impl::checkExports(const Subgraph& sg) const {
         return false;
       }();
       if (!has)
-        return Status::error(says + "node '" + path + "' (" + n->typeId() + ") has no " + kindName(e.kind) + " '" +
+        return Status::error(says + nodeLabel(path, n->typeId()) + " has no " + kindName(e.kind) + " '" +
                              port + "'");
     }
   }
@@ -93,18 +94,18 @@ Status Graph::Impl::checkExports(const Subgraph& sg) const {
 Result<std::string> Graph::Impl::addSubgraph(const NodeDescription& d) {
   const std::string from = d.source.empty() ? "" : " ('" + d.source + "')";
   if (!d.subgraph)
-    return Status::error("subgraph '" + d.name + "'" + from + " was not read: subgraph files are read with the graph file");
+    return Status::error(subgraphLabel(d.name) + from + " was not read: subgraph files are read with the graph file");
   auto sg = std::make_shared<Subgraph>();
   {
     auto lock = lockEdits();
     if (auto why = checkNewPath(d.name); !why.empty()) return Status::error(why);
     std::set<std::string> more;  // the limit counts the groups it would add, together
     for (const auto& g : d.subgraph->thread_groups) {
-      if (!validName(g)) return Status::error("subgraph '" + d.name + "': thread group name '" + g + "' " + kNameRule);
+      if (!validName(g)) return Status::error(subgraphLabel(d.name) + ": thread group name '" + g + "' " + kNameRule);
       if (!groups_.count(g)) more.insert(g);
     }
     if (groups_.size() + more.size() > kMaxGraphGroups)
-      return Status::error("subgraph '" + d.name + "': its " + std::to_string(more.size()) + " new thread groups would " +
+      return Status::error(subgraphLabel(d.name) + ": its " + std::to_string(more.size()) + " new thread groups would " +
                            "pass the limit of " + std::to_string(kMaxGraphGroups) + " (the graph has " +
                            std::to_string(groups_.size()) + ")");
     sg->path = d.name;
@@ -119,7 +120,7 @@ Result<std::string> Graph::Impl::addSubgraph(const NodeDescription& d) {
   }
   auto undo = [&](int line, const std::string& why) {
     (void)removeNode(d.name);
-    return Status::error("subgraph '" + d.name + "'" + from + ": " + (line ? "line " + std::to_string(line) + ": " : "") + why);
+    return Status::error(subgraphLabel(d.name) + from + ": " + (line ? "line " + std::to_string(line) + ": " : "") + why);
   };
   LoadReport ignored;
   for (const auto& inner : d.subgraph->nodes) {
@@ -305,8 +306,8 @@ Status Graph::Impl::ungroup(const std::string& path) {
   for (const auto& c : children) {
     const std::string to = join(parent, c.substr(path.size() + 1));
     if (to != path && (find(to) || subgraphs_.find(to)))
-      return Status::error("cannot ungroup '" + path + "': its node '" + c.substr(path.size() + 1) +
-                           "' would take the name of the node '" + to + "' beside it (rename one first)");
+      return Status::error("cannot ungroup '" + path + "': its " + nodeLabel(c.substr(path.size() + 1)) +
+                           " would take the name of the " + nodeLabel(to) + " beside it (rename one first)");
   }
   subgraphs_.dissolve(path);
   for (const auto& c : children) moveLocked(c, join(parent, c.substr(path.size() + 1)));

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "apex/core/node_names.hpp"
 #include "node_state.hpp"
 
 namespace apex {
@@ -10,7 +11,7 @@ namespace {
 
 [[noreturn]] void unknown(const detail::NodeState& s, const std::string& what, std::string_view name,
                           const std::string& list) {
-  throw std::invalid_argument("node '" + s.name + "' (" + s.typeId() + ") has no " + what + " '" + std::string(name) + "' (" +
+  throw std::invalid_argument(nodeLabel(s.name, s.typeId()) + " has no " + what + " '" + std::string(name) + "' (" +
                               what + "s: " + list + ")");
 }
 
@@ -62,7 +63,7 @@ void Node::publishAt(int index, Message message) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const TypeInfo* want = s.manifest().outputs[index].type;
   if (!message.isNothing() && !message.isEndOfSequence() && !compatible(message.type(), want)) {
-    throw std::invalid_argument("node '" + s.name + "' published a " + message.typeName() + " on output '" +
+    throw std::invalid_argument(nodeLabel(s.name) + " published a " + message.typeName() + " on output '" +
                                 s.manifest().outputs[index].name + "', which carries " + want->name);
   }
   s.setOutput(index, std::move(message));
@@ -81,7 +82,7 @@ void Node::updateParam(std::string_view name, ParamValue value) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findParam(name);
   if (i < 0) unknown(s, "parameter", name, s.manifest().listParams());
-  if (auto st = s.manifest().params[i].validate(value); !st) throw std::invalid_argument("node '" + s.name + "': " + st.message());
+  if (auto st = s.manifest().params[i].validate(value); !st) throw std::invalid_argument(nodeLabel(s.name) + ": " + st.message());
   s.updateParam(i, std::move(value));
 }
 
@@ -111,12 +112,12 @@ void Node::reportError(const std::string& text) { stateOf(state_.load(std::memor
 void Node::log(LogLevel level, const std::string& text) const { apex::log(level, name(), text); }
 
 void Node::throwWrongType(std::string_view input, const Message& m, const TypeInfo* want) const {
-  throw std::invalid_argument("node '" + name() + "': input '" + std::string(input) + "' holds a " + m.typeName() + ", not a " +
+  throw std::invalid_argument(nodeLabel(name()) + ": input '" + std::string(input) + "' holds a " + m.typeName() + ", not a " +
                               want->name);
 }
 
 void Node::throwWrongParamType(std::string_view n) const {
-  throw std::invalid_argument("node '" + name() + "': parameter '" + std::string(n) + "' is read with the wrong C++ type");
+  throw std::invalid_argument(nodeLabel(name()) + ": parameter '" + std::string(n) + "' is read with the wrong C++ type");
 }
 
 }  // namespace apex

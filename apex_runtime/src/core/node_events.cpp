@@ -3,6 +3,8 @@
 // feeds (see docs/architecture.md, "Sequences, events in order, and the tuning loop").
 #include "node_state.hpp"
 
+#include "apex/core/node_names.hpp"
+
 namespace apex {
 namespace detail {
 
@@ -47,7 +49,7 @@ bool NodeState::sendFromSlot(const std::string& slot) {
       counted += e->counted() && reaches(*e) ? 1 : 0;
     }
     if (busy) {
-      setError("node '" + name + "' (" + type->id + ") slot '" + slot + "' published on output '" +
+      setError(nodeLabel(name, type->id) + " slot '" + slot + "' published on output '" +
                manifest().outputs[i].name + "' while '" + busy->to->name + "' had not read its last message: not sent");
       all = false;
       continue;
@@ -61,7 +63,7 @@ bool NodeState::sendFromSlot(const std::string& slot) {
 }
 
 void NodeState::reportError(const std::string& text) {
-  setError("node '" + name + "' (" + typeId() + "): " + text);
+  setError(nodeLabel(name, typeId()) + ": " + text);
   reported_ = in_handler_;  // outside a firing there is nothing to keep it from clearing
 }
 

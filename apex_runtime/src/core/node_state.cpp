@@ -2,6 +2,7 @@
 // nothing blocks it; it reserves what it consumes, takes its inputs (freeing its sources), runs,
 // and delivers.
 #include "node_state.hpp"
+#include "apex/core/node_names.hpp"
 #include "names.hpp"
 
 #include <algorithm>
@@ -360,7 +361,7 @@ void NodeState::applyParams() {
     try {
       node->parameterChanged(manifest().params[i].name);
     } catch (const std::exception& ex) {
-      setError("node '" + name + "' (" + type->id + ") failed to apply parameter '" + manifest().params[i].name +
+      setError(nodeLabel(name, type->id) + " failed to apply parameter '" + manifest().params[i].name +
                "': " + ex.what());
     }
     publishParam(i);  // a parameter output carries every change
@@ -394,7 +395,7 @@ void NodeState::receiveParam(Edge& edge, const Message& m) {
       requestParam(edge.to_index, value.value());
       applyParams();
     } else {
-      setError("node '" + name + "': parameter input refused a value: " + value.message());
+      setError(nodeLabel(name) + ": parameter input refused a value: " + value.message());
     }
   }
   // A flush (an edit) may have cleared the mark already: release the sender once.
@@ -406,7 +407,7 @@ void NodeState::runSetup() {
   try {
     node->setup();
   } catch (const std::exception& ex) {
-    setError("node '" + name + "' (" + type->id + ") failed to set up: " + ex.what());
+    setError(nodeLabel(name, type->id) + " failed to set up: " + ex.what());
   }
 }
 
@@ -449,7 +450,7 @@ void NodeState::runDownstreamChanged() {
   try {
     node->downstreamChanged();
   } catch (const std::exception& ex) {
-    setError("node '" + name + "' (" + type->id + ") failed to re-send after a change downstream: " + ex.what());
+    setError(nodeLabel(name, type->id) + " failed to re-send after a change downstream: " + ex.what());
   }
 }
 

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "apex/core/description.hpp"
+#include "apex/core/node_names.hpp"
 #include "apex/core/registry.hpp"
 #include "readiness.hpp"
 #include "thread_group.hpp"
@@ -253,7 +254,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 
 template <class F>
 inline bool NodeState::guarded(const std::string& what, F&& fn) {
-  auto where = [&] { return "node '" + name + "' (" + type->id + ")" + (what.empty() ? "" : " " + what); };
+  auto where = [&] { return nodeLabel(name, type->id) + (what.empty() ? "" : " " + what); };
   try {
     fn();
     return true;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "apex/core/manifest.hpp"
+#include "apex/core/node_names.hpp"
 #include "names.hpp"
 
 namespace apex {
@@ -55,12 +56,12 @@ Status Handle::resolve(const Manifest& m) {
 }
 
 void Handle::throwGone() const {
-  throw std::invalid_argument("node '" + node_->name() + "': " + cpp_ + " '" + name_ +
+  throw std::invalid_argument(nodeLabel(node_->name()) + ": " + cpp_ + " '" + name_ +
                               "' is not in this instance's interface (its parameters removed it)");
 }
 
 void Handle::throwWrongType(const Message& m) const {
-  throw std::invalid_argument("node '" + node_->name() + "': input '" + name_ + "' holds a " + m.typeName() +
+  throw std::invalid_argument(nodeLabel(node_->name()) + ": input '" + name_ + "' holds a " + m.typeName() +
                               ", not a " + type_->name);
 }
 

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "apex/core/graph_file.hpp"
+#include "apex/core/node_names.hpp"
 #include "names.hpp"
 #include "subgraph.hpp"
 
@@ -114,7 +115,7 @@ std::string Subgraphs::checkNewPath(const std::string& path, bool node_there) co
   if (node_there || records_.count(path)) return "a node named '" + path + "' already exists";
   const std::string parent = parentOf(path);
   if (!parent.empty() && !records_.count(parent))
-    return "node name '" + path + "': there is no subgraph '" + parent + "' to put it in";
+    return "node name '" + path + "': there is no " + subgraphLabel(parent) + " to put it in";
   return "";
 }
 
@@ -150,7 +151,7 @@ Result<std::pair<std::string, std::string>> Subgraphs::sender(const std::string&
     auto [n, p] = splitEnd(e.inner.front());
     return sender(join(node, n), p);
   }
-  return Status::error("subgraph '" + node + "' exports no output, trigger or parameter '" + port +
+  return Status::error(subgraphLabel(node) + " exports no output, trigger or parameter '" + port +
                        "' (it exports: " + listExports(*sg, sendingExport) + ")");
 }
 
@@ -172,7 +173,7 @@ Result<std::vector<std::pair<std::string, std::string>>> Subgraphs::receivers(co
     }
     return out;
   }
-  return Status::error("subgraph '" + node + "' exports no input, slot or parameter '" + port +
+  return Status::error(subgraphLabel(node) + " exports no input, slot or parameter '" + port +
                        "' (it exports: " + listExports(*sg, receivingExport) + ")");
 }
 
@@ -187,7 +188,7 @@ Result<std::pair<std::string, std::string>> Subgraphs::exportedParam(const std::
   }
   std::string list;
   for (const auto& e : sg->exports) if (e.kind == Kind::Parameter) list += (list.empty() ? "" : ", ") + e.name;
-  return Status::error("subgraph '" + node + "' exports no parameter '" + param + "' (parameters: " +
+  return Status::error(subgraphLabel(node) + " exports no parameter '" + param + "' (parameters: " +
                        (list.empty() ? "none" : list) + ")");
 }
 

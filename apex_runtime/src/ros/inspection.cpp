@@ -4,6 +4,8 @@
 
 #include <std_msgs/String.h>
 
+#include "apex/core/node_names.hpp"
+
 namespace apex {
 namespace ros_host {
 
@@ -59,7 +61,7 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
       auto iface = graph.nodeInterface(node);
       if (!iface && !findNode(graph.describe(), node)) return Status::error("no node named '" + node + "'");
       if (iface && !iface->findOutput(port) && !iface->findParam(port))
-        return Status::error("node '" + node + "' has no output or parameter '" + port + "'");
+        return Status::error(nodeLabel(node) + " has no output or parameter '" + port + "'");
       return std::make_pair(std::string(), std::string());
     }
     {
@@ -79,7 +81,7 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
   } else {
     auto iface = graph.nodeInterface(node);  // a subgraph's: its exports
     if (!iface && !findNode(graph.describe(), node)) return Status::error("no node named '" + node + "'");
-    if (!iface) return Status::error("node '" + node + "' has a type unknown here: it has no ports to inspect");
+    if (!iface) return Status::error(nodeLabel(node) + " has a type unknown here: it has no ports to inspect");
     const TypeInfo* port_type = nullptr;
     if (auto* out = iface->findOutput(port)) port_type = out->type;
     if (auto* p = iface->findParam(port)) port_type = p->portType();

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "apex/core/node_names.hpp"
+
 namespace apex {
 namespace ros_host {
 namespace {
@@ -92,7 +94,7 @@ Result<std::string> pathValue(const std::shared_ptr<const Manifest>& iface, cons
   if (!value || std::get<std::string>(value.value()).empty()) return text;  // the graph says why / nothing to open
   const std::string& path = std::get<std::string>(value.value());
   auto resolved = confined ? roots.check(path, spec->path_mode) : FileRoots::anywhere(packagePath).resolve(path);
-  if (!resolved) return Status::error("node '" + node + "': parameter '" + param + "': " + resolved.message());
+  if (!resolved) return Status::error(nodeLabel(node) + ": parameter '" + param + "': " + resolved.message());
   return yamlQuoted(resolved.value());
 }
 

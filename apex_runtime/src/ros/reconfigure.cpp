@@ -13,6 +13,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "apex/core/node_names.hpp"
+
 namespace apex {
 namespace ros_host {
 namespace {
@@ -204,7 +206,7 @@ void Reconfigure::update(const GraphState& state) {
               return setParameters(name, req.config, res.config);
             });
       } catch (const ros::InvalidNameException& e) {
-        ROS_WARN_STREAM_NAMED("apex", "node '" << node.name << "': no dynamic_reconfigure server: " << e.what());
+        ROS_WARN_STREAM_NAMED("apex", nodeLabel(node.name) << ": no dynamic_reconfigure server: " << e.what());
         continue;
       }
     }
@@ -226,7 +228,7 @@ void Reconfigure::update(const GraphState& state) {
 
 bool Reconfigure::setParameters(const std::string& node, const Config& request, Config& applied) {
   const auto iface = graph_.nodeInterface(node);
-  if (!iface) throw std::runtime_error("there is no node '" + node + "'");
+  if (!iface) throw std::runtime_error("there is no " + nodeLabel(node));
   std::vector<std::pair<std::string, std::string>> changes;  // parameter, YAML text
   for (const auto& b : request.bools) changes.emplace_back(b.name, b.value ? "true" : "false");
   for (const auto& i : request.ints) changes.emplace_back(i.name, std::to_string(i.value));

@@ -1,5 +1,5 @@
 // The name a new node of a type gets, one rule for the runtime (add_node without a name) and the
-// panel (a node dropped from the palette).
+// panel (a node dropped from the palette); and how messages name a node, a subgraph or a port.
 #pragma once
 
 #include <cctype>
@@ -22,6 +22,20 @@ inline std::string nodeBaseName(const std::string& type) {
     out += static_cast<char>(std::tolower(static_cast<unsigned char>(tail[i])));
   }
   return out;
+}
+
+/** @brief A node as messages name it: "node 'blur'". */
+inline std::string nodeLabel(const std::string& node) { return "node '" + node + "'"; }
+
+/** @brief A node with its type: "node 'blur' (apex_nodes/GaussianBlur)". */
+inline std::string nodeLabel(const std::string& node, const std::string& type) { return nodeLabel(node) + " (" + type + ")"; }
+
+/** @brief A subgraph as messages name it: "subgraph 'stage'". */
+inline std::string subgraphLabel(const std::string& subgraph) { return "subgraph '" + subgraph + "'"; }
+
+/** @brief A port of a node, `kind` being "input", "parameter", ...: "parameter 'sigma' of node 'blur'". */
+inline std::string portLabel(const std::string& kind, const std::string& port, const std::string& node) {
+  return kind + " '" + port + "' of " + nodeLabel(node);
 }
 
 }  // namespace apex
