@@ -137,6 +137,8 @@ class MarkerPublisher : public apex::Node {
   static inline const apex::ParamDecl<apex::Color> kColor = apex::param::color("color").init({0, 255, 0});
   static inline const apex::ParamDecl<double> kAlpha =
       apex::param::number("alpha").range(0.0, 1.0).step(0.05).init(0.5).describe("the boxes' opacity");
+  static inline const apex::ParamDecl<double> kTextHeight =
+      apex::param::number("text_height").range(0.005, 2.0).step(0.005).init(0.15).describe("the labels' letter height, metres");
   static inline const apex::ParamDecl<double> kLifetime = apex::param::number("lifetime").range(0.0, 3600.0).step(0.1).init(0.0)
       .describe("seconds a box stays without an update; 0: until the next message replaces it");
   static apex::Manifest manifest() {
@@ -148,6 +150,7 @@ class MarkerPublisher : public apex::Node {
         .param(kLabels)
         .param(kColor)
         .param(kAlpha)
+        .param(kTextHeight)
         .param(kLifetime);
   }
 
@@ -175,6 +178,7 @@ class MarkerPublisher : public apex::Node {
     o.labels = labels_.get();
     o.color = color_.get();
     o.alpha = alpha_.get();
+    o.text_height = text_height_.get();
     o.lifetime = lifetime_.get();
     return o;
   }
@@ -186,6 +190,7 @@ class MarkerPublisher : public apex::Node {
   apex::Param<bool> labels_{this, kLabels};
   apex::Param<apex::Color> color_{this, kColor};
   apex::Param<double> alpha_{this, kAlpha};
+  apex::Param<double> text_height_{this, kTextHeight};
   apex::Param<double> lifetime_{this, kLifetime};
   ros::Publisher pub_;
   std::size_t last_count_ = kUnknownMarkerCount;  // the first array clears what an earlier run left

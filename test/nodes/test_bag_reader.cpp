@@ -88,10 +88,12 @@ TEST(BagReader, CameraInfoTopicsPlayAsCameraModelsBesideTheirImages) {
   link(g, "bag", "camera_camera_info", "models", "in");
   g.start();
   ASSERT_TRUE(object<Collector>(g, "models")->waitFor(3));
+  ASSERT_TRUE(object<Collector>(g, "images")->waitFor(3));
   const auto models = object<Collector>(g, "models")->messages();
   const auto images = object<Collector>(g, "images")->messages();
   for (int k = 0; k < 3; ++k) {
     ASSERT_TRUE(models[k].as<sensor_msgs::CameraInfo>());
+    ASSERT_TRUE(images[k].as<apex_nodes::Image>());
     EXPECT_EQ(models[k].as<sensor_msgs::CameraInfo>()->K, cameraInfo(k).K);
     EXPECT_EQ(models[k].as<sensor_msgs::CameraInfo>()->header.stamp, images[k].as<apex_nodes::Image>()->header.stamp);
   }

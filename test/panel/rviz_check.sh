@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# The real rviz, under Xvfb, opens launch/apex_panel.rviz against a runtime
-# playing the demo graph: the panel plugin loads without errors, shows the
-# graph and the runtime's timing. Writes a JUnit result and a screenshot.
-#   rviz_check.sh RESULT_XML SCREENSHOT_PNG BAG
+# The real rviz, under Xvfb, opens an rviz config (launch/apex_panel.rviz) against a
+# runtime playing a graph (graphs/demo.yaml) on a bag: the panel plugin loads
+# without errors, shows the graph and the runtime's timing. Writes a JUnit result
+# and a screenshot.
+#   rviz_check.sh RESULT_XML SCREENSHOT_PNG BAG [GRAPH CONFIG [NAME]]
 # Needs the devel space sourced; starts (and stops) its own X server and master.
 set -uo pipefail
 result=$1 shot=$2 bag=$3
 root=$(cd "$(dirname "$0")/../.." && pwd)
+graph=${4:-$root/graphs/demo.yaml} config=${5:-$root/launch/apex_panel.rviz} name=${6:-PanelLoadsAndShowsTheDemoGraph}
 work=$(mktemp -d)
 pids=()
 failure=""
@@ -45,9 +47,9 @@ if ! wait_for 30 test -e "/tmp/.X11-unix/X$display"; then failure="Xvfb did not 
 elif ! wait_for 60 rosparam get /rosdistro; then failure="the ROS master did not start"
 else
   rosparam set /apex/overrides "{bag: {file: '$bag', loop: true}}"
-  rosrun apex apex_runtime_node __name:=apex _graph:="$root/graphs/demo.yaml" >"$work/runtime.log" 2>&1 &
+  rosrun apex apex_runtime_node __name:=apex _graph:="$graph" >"$work/runtime.log" 2>&1 &
   pids+=($!)
-  rosrun rviz rviz -d "$root/launch/apex_panel.rviz" >"$work/rviz.log" 2>&1 &
+  rosrun rviz rviz -d "$config" >"$work/rviz.log" 2>&1 &
   pids+=($!)
   if ! wait_for 120 grep -q "GraphPanel: showing the graph of /apex" "$work/rviz.log"; then
     failure="the panel did not show the graph of /apex"
@@ -66,12 +68,12 @@ esc() { sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g' -e 's/"/\&quot;/
 mkdir -p "$(dirname "$result")"
 if [ -z "$failure" ]; then
   echo "rviz check: ok (screenshot $shot)"
-  printf '<testsuite name="rviz" tests="1" failures="0"><testcase classname="Rviz" name="PanelLoadsAndShowsTheDemoGraph"/></testsuite>\n' >"$result"
+  printf '<testsuite name="rviz" tests="1" failures="0"><testcase classname="Rviz" name="%s"/></testsuite>\n' "$name" >"$result"
 else
   echo "rviz check: FAILED: $failure"
   tail -20 "$work/rviz.log"
   msg=$(printf '%s' "$failure" | esc)
-  printf '<testsuite name="rviz" tests="1" failures="1"><testcase classname="Rviz" name="PanelLoadsAndShowsTheDemoGraph"><failure message="%s"/></testcase></testsuite>\n' "$msg" >"$result"
+  printf '<testsuite name="rviz" tests="1" failures="1"><testcase classname="Rviz" name="%s"><failure message="%s"/></testcase></testsuite>\n' "$name" "$msg" >"$result"
 fi
 rm -rf "$work"
 [ -z "$failure" ]

@@ -1,5 +1,5 @@
 // TfLookup finds the transform at each message's stamp; a missing frame is a
-// named error while the graph keeps running.
+// named error while the graph keeps running. MergeClouds moves clouds by tf2.
 #include <apex/AddNode.h>
 #include <apex/Connect.h>
 #include <apex/GraphState.h>
@@ -7,6 +7,8 @@
 #include <apex/SetParameter.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <sensor_msgs/LaserScan.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <sensor_msgs/point_cloud2_iterator.h>
 #include <gmock/gmock.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
@@ -93,6 +95,38 @@ TEST(Laser, ASubscribedScanReachesTheGraph) {
   ASSERT_TRUE(receive(nh, topic.topic, got));
   EXPECT_EQ(got.header.frame_id, "laser");
   EXPECT_EQ(got.ranges, scan.ranges);
+}
+
+TEST(Tf, MergeCloudsMovesEachCloudAtItsStamp) {
+  tf2_ros::StaticTransformBroadcaster broadcaster;  // latched: the new node's listener receives it
+  geometry_msgs::TransformStamped t;
+  t.header.frame_id = "base_link";
+  t.child_frame_id = "camera";  // the demo bag's clouds
+  t.transform.translation.z = 1.25;
+  t.transform.rotation.w = 1.0;
+  broadcaster.sendTransform(t);
+
+  add("apex_nodes/BagReader", "clouds", "{file: '" + g_bag + "', rate: 0, loop: true, playing: false}");
+  add("apex_nodes/MergeClouds", "merge", "{frame: base_link, timeout: 2.0}");
+  link("clouds", "cloud", "merge", "cloud_0");
+  link("clouds", "cloud", "merge", "cloud_1");
+  apex::Inspect::Request inspect;
+  inspect.node = "merge", inspect.port = "cloud", inspect.enable = true;
+  auto topic = call<apex::Inspect>("inspect", inspect);
+  ASSERT_TRUE(topic.success) << topic.message;
+  EXPECT_EQ(topic.message_type, "sensor_msgs/PointCloud2");
+  apex::SetParameter::Request play;
+  play.node = "clouds", play.parameter = "playing", play.value = "true";
+  ASSERT_TRUE(call<apex::SetParameter>("set_parameter", play).success);
+
+  ros::NodeHandle nh;
+  sensor_msgs::PointCloud2 got;
+  ASSERT_TRUE(receive(nh, topic.topic, got));
+  EXPECT_EQ(got.header.frame_id, "base_link");
+  EXPECT_EQ(std::size_t(got.width) * got.height, 2 * 18000u);  // the bag's cloud, twice
+  float low = 1e9f;
+  for (sensor_msgs::PointCloud2ConstIterator<float> z(got, "z"); z != z.end(); ++z) low = std::min(low, *z);
+  EXPECT_NEAR(low, 0.3 + 1.25, 0.01);  // the floor starts 0.3 m ahead of the camera: 1.25 m up
 }
 
 }  // namespace
