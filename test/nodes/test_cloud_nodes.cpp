@@ -243,6 +243,29 @@ TEST(CloudNodes, EuclideanClusteringMatchesPcl) {
   for (std::size_t i = 0; i < want.size(); ++i) EXPECT_EQ(clusters->clusters[i]->width, want[i].indices.size());
 }
 
+TEST(CloudNodes, ClustersBecomeOneCloudLabelledByCluster) {
+  NodeHarness h("apex_nodes/EuclideanClustering", {"cloud"}, "clusters");
+  h.set("tolerance", "0.02");
+  const auto clusters = h.run(scene()).as<apex_nodes::Clusters>();
+  ASSERT_TRUE(clusters);
+  ASSERT_EQ(clusters->clusters.size(), 2u);  // the two blobs (the floor's points are 5 cm apart)
+  NodeHarness join("apex_nodes/ClustersToCloud", {"clusters"}, "cloud");
+  const Cloud& got = out(join.run(clusters));
+  EXPECT_EQ(apex_nodes::fieldNames(*got.points), "x, y, z, label");
+  const auto labelled = apex_nodes::typedPoints<pcl::PointXYZL>(got);
+  std::size_t k = 0;
+  for (std::uint32_t c = 0; c < clusters->clusters.size(); ++c) {
+    const auto cluster = apex_nodes::typedPoints<pcl::PointXYZ>(*apex_nodes::cloudResult(got, clusters->clusters[c]));
+    for (const auto& p : cluster) {
+      ASSERT_LT(k, labelled.size());
+      EXPECT_EQ(labelled[k].label, c) << k;
+      EXPECT_EQ(labelled[k].x, p.x) << k;
+      ++k;
+    }
+  }
+  EXPECT_EQ(k, labelled.size());
+}
+
 TEST(CloudNodes, LaserScanToCloudKeepsValidRanges) {
   NodeHarness h("apex_nodes/LaserScanToCloud", {"scan"}, "cloud");
   auto scan = std::make_shared<sensor_msgs::LaserScan>();
