@@ -96,6 +96,28 @@ TEST(CameraNodes, AModelThatDoesNotFitTheImageIsAnErrorNamingBoth) {
   EXPECT_THAT(rectify.error(), HasSubstr("is not calibrated: K is all zero"));
 }
 
+TEST(CameraNodes, UndistortRegionsMovesCentroidsAsOpenCvDoes) {
+  const auto image = chessboard();
+  const Message info = modelFrom(kData + "/left_intrinsics.yml", image);
+  auto regions = std::make_shared<apex_nodes::Regions>();
+  regions->header = image->header;
+  apex_nodes::Region corner;  // near the image's corner, where the lens bends most
+  corner.box = cv::Rect(10, 10, 40, 30), corner.centroid = cv::Point2d(30, 25);
+  regions->regions = {corner};
+  NodeHarness h("apex_nodes/UndistortRegions", {"regions", "camera_info"}, "regions");
+  const Message out = h.run({Message::share<apex_nodes::Regions>(regions), info});
+  ASSERT_TRUE(out.as<apex_nodes::Regions>()) << h.error();
+  const auto& got = out.as<apex_nodes::Regions>()->regions.at(0);
+  const CameraInfo& c = *info.as<CameraInfo>();
+  std::vector<cv::Point2d> want;
+  cv::undistortPoints(std::vector<cv::Point2d>{corner.centroid}, want, cv::Matx33d(c.K.data()), cv::Mat(c.D),
+                      cv::Matx33d(c.R.data()), cv::Matx34d(c.P.data()));
+  EXPECT_NEAR(got.centroid.x, want[0].x, 1e-9);
+  EXPECT_NEAR(got.centroid.y, want[0].y, 1e-9);
+  EXPECT_GT(cv::norm(got.centroid - corner.centroid), 5.0);  // the distortion near the corner is pixels, not noise
+  EXPECT_TRUE(got.box.contains(cv::Point(int(got.centroid.x), int(got.centroid.y))));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
