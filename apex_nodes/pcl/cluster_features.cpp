@@ -10,6 +10,7 @@
 #include <string>
 
 #include "apex/core/registry.hpp"
+#include "apex_nodes/stamp.hpp"
 #include "apex_nodes/cloud.hpp"
 #include "apex_nodes/cluster_features.hpp"
 
@@ -83,11 +84,14 @@ class ClusterFeaturesNode : public apex::Node {
   static inline const apex::OutputPort<ClusterFeatures> kFeatures{
       "features", "per cluster, in its order: centroid, axis-aligned and oriented box, point count"};
   static inline const apex::OutputPort<int> kCount{"count", "clusters"};
+  static inline const apex::OutputPort<geometry_msgs::PoseArray> kPoses{
+      "poses", "each cluster's oriented box as a pose (centre, PCA axes): rviz shows them as arrows"};
   static apex::Manifest manifest() {
     return apex::Manifest("Measures each cluster: centroid, axis-aligned box, oriented box (PCA), point count")
         .input(kClusters)
         .output(kFeatures)
-        .output(kCount);
+        .output(kCount)
+        .output(kPoses);
   }
   void process() override {
     const auto in = clusters_.get();
@@ -103,7 +107,17 @@ class ClusterFeaturesNode : public apex::Node {
       }
       out->clusters.push_back(measure(typedPoints<pcl::PointXYZ>(cluster), static_cast<int>(i)));
     }
+    auto poses = std::make_shared<geometry_msgs::PoseArray>();
+    poses->header = in->header;
+    for (const auto& c : out->clusters) {
+      geometry_msgs::Pose p;
+      p.position.x = c.oriented.centre.x(), p.position.y = c.oriented.centre.y(), p.position.z = c.oriented.centre.z();
+      const Eigen::Quaterniond& q = c.oriented.orientation;
+      p.orientation.x = q.x(), p.orientation.y = q.y(), p.orientation.z = q.z(), p.orientation.w = q.w();
+      poses->poses.push_back(p);
+    }
     count_.publish(static_cast<int>(out->clusters.size()));
+    poses_.publish(std::move(poses));
     features_.publish(out);
   }
 
@@ -111,6 +125,7 @@ class ClusterFeaturesNode : public apex::Node {
   apex::Input<Clusters> clusters_{this, kClusters};
   apex::Output<ClusterFeatures> features_{this, kFeatures};
   apex::Output<int> count_{this, kCount};
+  apex::Output<geometry_msgs::PoseArray> poses_{this, kPoses};
 };
 
 }  // namespace apex_nodes

@@ -6,6 +6,7 @@
 
 #include "apex/ros/inspect.hpp"
 #include "apex_nodes/cloud.hpp"
+#include "apex_nodes/stamp.hpp"
 #include "apex_nodes/ros_convert.hpp"
 
 namespace apex_nodes {
@@ -30,6 +31,8 @@ const bool kRegistered = [] {
   });
   apex::addInspector<sensor_msgs::LaserScan, sensor_msgs::LaserScan>([](const sensor_msgs::LaserScan& s) { return s; });
   apex::addInspector<sensor_msgs::CameraInfo, sensor_msgs::CameraInfo>([](const sensor_msgs::CameraInfo& c) { return c; });
+  apex::addInspector<geometry_msgs::PoseStamped, geometry_msgs::PoseStamped>([](const geometry_msgs::PoseStamped& p) { return p; });
+  apex::addInspector<geometry_msgs::PoseArray, geometry_msgs::PoseArray>([](const geometry_msgs::PoseArray& p) { return p; });
   return true;
 }();
 

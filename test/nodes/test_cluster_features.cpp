@@ -13,6 +13,7 @@
 #include "apex_nodes/cloud.hpp"
 #include "apex_nodes/cluster_features.hpp"
 #include "apex_nodes/markers.hpp"
+#include "apex_nodes/stamp.hpp"
 #include "apex_test/node_harness.hpp"
 
 using namespace apex_test;
@@ -145,6 +146,19 @@ TEST(ClusterFeatures, OrientedBoxIsTheTurnedBoxsTrueSize) {
   EXPECT_NEAR(axes.determinant(), 1.0, 1e-9);
   EXPECT_NEAR(std::abs(axes.col(0).dot(Eigen::Vector3d(c, s, 0))), 1.0, 1e-6);
   EXPECT_NEAR(std::abs(axes.col(2).z()), 1.0, 1e-6);
+}
+
+TEST(ClusterFeatures, EachOrientedBoxIsAlsoAPoseForRviz) {
+  NodeHarness h("apex_nodes/ClusterFeatures", {"clusters"}, "poses");
+  const auto poses = h.run(clusters(boxes())).as<geometry_msgs::PoseArray>();
+  ASSERT_TRUE(poses);
+  EXPECT_EQ(poses->header, lidarHeader());
+  ASSERT_EQ(poses->poses.size(), 2u);
+  const auto& turned = poses->poses[1];
+  expectNear(Eigen::Vector3d(turned.position.x, turned.position.y, turned.position.z), kTurnedCentre.cast<double>(), 1e-5,
+             "turned: pose position");
+  const Eigen::Quaterniond q(turned.orientation.w, turned.orientation.x, turned.orientation.y, turned.orientation.z);
+  EXPECT_NEAR(std::abs(q.toRotationMatrix().col(0).dot(Eigen::Vector3d(std::cos(kYaw), std::sin(kYaw), 0))), 1.0, 1e-6);
 }
 
 TEST(ClusterFeatures, CountsClustersAndMeasuresEmptyOnesAsNothing) {
