@@ -4,6 +4,8 @@
 // type shows in rviz (~inspect) and is recorded (BagWriter) as the same boxes.
 #include "apex_nodes/markers.hpp"
 
+#include "apex_nodes/cloud.hpp"
+
 #include <ros/ros.h>
 
 #include <algorithm>
@@ -99,6 +101,28 @@ visualization_msgs::MarkerArray clusterMarkers(const ClusterFeatures& features, 
   return out;
 }
 
+visualization_msgs::Marker hullMarker(const Cloud& hull, const MarkerOptions& options) {
+  const auto points = xyzOf(hull);
+  if (points->size() < 3) throw std::invalid_argument("a hull of " + std::to_string(points->size()) + " points outlines nothing");
+  visualization_msgs::Marker m;
+  m.header = hull.header;
+  m.ns = options.ns + "/plane";
+  m.id = 0;
+  m.action = visualization_msgs::Marker::ADD;
+  m.type = visualization_msgs::Marker::LINE_STRIP;
+  m.pose.orientation.w = 1.0;
+  m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
+  m.scale.x = 0.01;
+  m.color.r = unit(options.color.r), m.color.g = unit(options.color.g), m.color.b = unit(options.color.b), m.color.a = 1.f;
+  for (const auto& p : *points) {
+    geometry_msgs::Point q;
+    q.x = p.x, q.y = p.y, q.z = p.z;
+    m.points.push_back(q);
+  }
+  m.points.push_back(m.points.front());  // closed
+  return m;
+}
+
 namespace {
 
 // A ClusterFeatures port inspected or recorded: its boxes as MarkerPublisher draws them by default.
@@ -126,6 +150,7 @@ const bool kInspectorRegistered = [] {
 class MarkerPublisher : public apex::Node {
  public:
   static inline const apex::InputPort<ClusterFeatures> kFeatures{"features", "the clusters to draw"};
+  static inline const apex::InputPort<Cloud> kHull{"hull", "if connected: a plane's hull (ConvexHull), drawn as its outline", true};
   static inline const apex::ParamDecl<std::string> kTopic =
       apex::param::text("topic").init("markers").describe("resolved in the runtime's namespace");
   static inline const apex::ParamDecl<std::string> kNamespace =
@@ -144,6 +169,7 @@ class MarkerPublisher : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Publishes clusters' boxes as visualization_msgs/MarkerArray, for rviz")
         .input(kFeatures)
+        .input(kHull)
         .param(kTopic)
         .param(kNamespace)
         .param(kOriented)
@@ -165,7 +191,9 @@ class MarkerPublisher : public apex::Node {
       return;
     }
     const auto in = features_.get();
-    pub_.publish(clusterMarkers(*in, options(), last_count_));
+    auto markers = clusterMarkers(*in, options(), last_count_);
+    if (const auto hull = hull_.get()) markers.markers.push_back(hullMarker(*hull, options()));
+    pub_.publish(markers);
     last_count_ = in->clusters.size();
   }
 
@@ -184,6 +212,7 @@ class MarkerPublisher : public apex::Node {
   }
 
   apex::Input<ClusterFeatures> features_{this, kFeatures};
+  apex::Input<Cloud> hull_{this, kHull};
   apex::Param<std::string> topic_{this, kTopic};
   apex::Param<std::string> namespace_{this, kNamespace};
   apex::Param<bool> oriented_{this, kOriented};

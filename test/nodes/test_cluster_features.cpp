@@ -161,6 +161,22 @@ TEST(ClusterFeatures, EachOrientedBoxIsAlsoAPoseForRviz) {
   EXPECT_NEAR(std::abs(q.toRotationMatrix().col(0).dot(Eigen::Vector3d(std::cos(kYaw), std::sin(kYaw), 0))), 1.0, 1e-6);
 }
 
+TEST(Markers, AHullIsAClosedOutlineInItsFrame) {
+  Xyz square;
+  for (auto [x, y] : {std::pair{0.f, 0.f}, {1.f, 0.f}, {1.f, 1.f}, {0.f, 1.f}}) square.push_back(pcl::PointXYZ(x, y, 0.7f));
+  const auto hull = apex_nodes::makeCloud(lidarHeader(), square);
+  const auto m = apex_nodes::hullMarker(*hull, apex_nodes::MarkerOptions());
+  EXPECT_EQ(m.header, lidarHeader());
+  EXPECT_EQ(m.type, visualization_msgs::Marker::LINE_STRIP);
+  EXPECT_EQ(m.ns, "clusters/plane");
+  ASSERT_EQ(m.points.size(), 5u);  // closed: back to the first corner
+  EXPECT_EQ(m.points.back(), m.points.front());
+  EXPECT_EQ(m.points[2].x, 1.0);
+  Xyz two;
+  two.push_back(square[0]), two.push_back(square[1]);
+  EXPECT_THROW(apex_nodes::hullMarker(*apex_nodes::makeCloud(lidarHeader(), two), apex_nodes::MarkerOptions()), std::invalid_argument);
+}
+
 TEST(ClusterFeatures, CountsClustersAndMeasuresEmptyOnesAsNothing) {
   NodeHarness h("apex_nodes/ClusterFeatures", {"clusters"}, "count");
   auto typed = boxes();

@@ -1,4 +1,4 @@
-// Clusters' boxes for rviz: what MarkerPublisher (ros_io/markers.cpp, in apex_nodes_ros) publishes,
+// Clusters' boxes and a plane's outline for rviz: what MarkerPublisher (ros_io/markers.cpp, in apex_nodes_ros) publishes,
 // built without ROS running so that tests check it.
 #pragma once
 
@@ -10,6 +10,7 @@
 
 #include "apex/core/param.hpp"
 #include "apex_nodes/cluster_features.hpp"
+#include "apex_nodes/types.hpp"
 
 namespace apex_nodes {
 
@@ -35,5 +36,10 @@ constexpr std::size_t kUnknownMarkerCount = std::numeric_limits<std::size_t>::ma
  *  Scales are at least 0.001 m, so that flat clusters show. */
 visualization_msgs::MarkerArray clusterMarkers(const ClusterFeatures& features, const MarkerOptions& options,
                                                std::size_t last_count);
+
+/** @brief A plane's outline: the hull's points (ConvexHull's, in order round it) joined into a
+ *  closed LINE_STRIP in the hull's frame, id 0 in "<ns>/plane", 1 cm wide, in `options.color`.
+ *  Throws std::invalid_argument if the hull has fewer than 3 points or no x, y, z. */
+visualization_msgs::Marker hullMarker(const Cloud& hull, const MarkerOptions& options);
 
 }  // namespace apex_nodes
