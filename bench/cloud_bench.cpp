@@ -178,14 +178,16 @@ int main(int argc, char** argv) {
   const std::shared_ptr<const Cloud> received = apex_nodes::makeCloud(msg.header, cloud);
 
   const std::vector<Case> cases = {
-      {"apex_nodes/VoxelGrid", {{"leaf_size", "0.05"}},
+      {"apex_nodes/VoxelGrid",
+       {{"leaf_size", "0.05"}},
        [](const Rgb::ConstPtr& in, Rgb& out) {
          pcl::VoxelGrid<pcl::PointXYZRGB> f;
          f.setInputCloud(in);
          f.setLeafSize(0.05f, 0.05f, 0.05f);
          f.filter(out);
        }},
-      {"apex_nodes/PassThrough", {{"field", "z"}, {"limits", "[2.0, 4.0]"}},
+      {"apex_nodes/PassThrough",
+       {{"field", "z"}, {"limits", "[2.0, 4.0]"}},
        [](const Rgb::ConstPtr& in, Rgb& out) {
          pcl::PassThrough<pcl::PointXYZRGB> f;
          f.setInputCloud(in);
@@ -193,7 +195,8 @@ int main(int argc, char** argv) {
          f.setFilterLimits(2.f, 4.f);
          f.filter(out);
        }},
-      {"apex_nodes/CropBox", {{"x", "[-1, 1]"}, {"y", "[-1, 1]"}, {"z", "[2, 4]"}},
+      {"apex_nodes/CropBox",
+       {{"x", "[-1, 1]"}, {"y", "[-1, 1]"}, {"z", "[2, 4]"}},
        [](const Rgb::ConstPtr& in, Rgb& out) {
          pcl::CropBox<pcl::PointXYZRGB> f;
          f.setInputCloud(in);
@@ -210,7 +213,8 @@ int main(int argc, char** argv) {
   std::printf("→ bytes. The node's own cost: the node alone (a cloud already received, two hops, nothing\n");
   std::printf("serialised) against its PCL call on a typed cloud: what keeping every field costs a node.\n");
   std::printf("Interleaved, %d repetitions: median (min–max) ms.\n\n", reps);
-  std::printf("| node | loop ms | APEX ms | APEX / loop | PCL call ms | node alone ms | node / call |\n|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| node | loop ms | APEX ms | APEX / loop | PCL call ms | node alone ms | node / call |\n|---|---|---|---|---|---|---|\n");
   for (const auto& c : cases) {
     ApexChain chain(c.type, c.params);
     Spread loop, apex, call, node;
@@ -222,9 +226,9 @@ int main(int argc, char** argv) {
       node.add(chain.runNode(received));
     }
     chain.g.stop();
-    std::printf("| %s | %s | %s | %.2fx | %s | %s | %.2fx |\n", c.type + 11, loop.text("%.1f").c_str(),
-                apex.text("%.1f").c_str(), apex.median() / loop.median(), call.text("%.1f").c_str(),
-                node.text("%.1f").c_str(), node.median() / call.median());
+    std::printf("| %s | %s | %s | %.2fx | %s | %s | %.2fx |\n", c.type + 11, loop.text("%.1f").c_str(), apex.text("%.1f").c_str(),
+                apex.median() / loop.median(), call.text("%.1f").c_str(), node.text("%.1f").c_str(),
+                node.median() / call.median());
   }
   return 0;
 }

@@ -208,7 +208,7 @@ double subgraphHopNs(int k, long messages) {
 
 struct Latency {
   double us_per_message;
-  double feed_wakeups;   // of the source's group, woken by the outside feed
+  double feed_wakeups;  // of the source's group, woken by the outside feed
   double cross_wakeups;  // of group "b", woken by messages crossing into it
 };
 
@@ -306,7 +306,9 @@ int main(int argc, char** argv) {
   std::printf("interleaved, %d repetitions each: median (min–max) ns per hop; ratios of the medians.\n", reps);
   std::printf("APEX relays read and write by name (`publishMessage(\"out\", inputMessage(\"in\"))`), or through\n");
   std::printf("typed handles resolved once (`out_.publishMessage(in_.message())`, ports.hpp).\n\n");
-  std::printf("| k | APEX, names | APEX, handles | TBB flow_graph | std::function | names / TBB | handles / TBB | handles / names |\n|---|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| k | APEX, names | APEX, handles | TBB flow_graph | std::function | names / TBB | handles / TBB | handles / names "
+      "|\n|---|---|---|---|---|---|---|---|\n");
   for (int k : {1, 4, 16, 64}) {
     const long m = std::max<long>(2000, hop_messages / k);
     Spread base, tbb, apex_ns, handles_ns;
@@ -347,7 +349,9 @@ int main(int argc, char** argv) {
   std::printf("is usually still finishing when the next feed comes, so it rarely sleeps; with two, group\n");
   std::printf("`default` sleeps while b works, so the feed wakes it too.\n\n");
   std::printf("Interleaved, %d repetitions: median (min–max).\n\n", reps);
-  std::printf("| layout | latency µs/message | wake-ups of `default` per message | wake-ups of b per message (boundary crossings) |\n|---|---|---|---|\n");
+  std::printf(
+      "| layout | latency µs/message | wake-ups of `default` per message | wake-ups of b per message (boundary crossings) "
+      "|\n|---|---|---|---|\n");
   const int lat_messages = quick ? 300 : 3000;
   Spread one_us, one_feed, two_us, two_feed, two_cross;
   for (int r = 0; r < reps; ++r) {
@@ -375,9 +379,11 @@ int main(int argc, char** argv) {
 
   std::printf("\n## Graph size\n\n");
   std::printf("A chain of n relays edited on a started (idle) graph: time per edit, the whole build, and\n");
-  std::printf("saving/loading the file. Targets: ≤ 10 µs per edit, 10,000 nodes built in ≤ 100 ms, ≤ 50 µs per node saved or loaded.\n");
+  std::printf(
+      "saving/loading the file. Targets: ≤ 10 µs per edit, 10,000 nodes built in ≤ 100 ms, ≤ 50 µs per node saved or loaded.\n");
   std::printf("Medians of 3 repetitions.\n\n");
-  std::printf("| n | add µs | connect µs | remove µs | build ms | save µs/node | load µs/node |\n|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| n | add µs | connect µs | remove µs | build ms | save µs/node | load µs/node |\n|---|---|---|---|---|---|---|\n");
   for (int n : {100, 1000, 10000}) {
     Spread add, con, rem, build, save, load;
     for (int r = 0; r < 3; ++r) {
@@ -385,8 +391,8 @@ int main(int argc, char** argv) {
       add.add(row.add_us), con.add(row.connect_us), rem.add(row.remove_us);
       build.add(row.build_ms), save.add(row.save_us), load.add(row.load_us);
     }
-    std::printf("| %d | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f |\n", n, add.median(), con.median(), rem.median(),
-                build.median(), save.median(), load.median());
+    std::printf("| %d | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f |\n", n, add.median(), con.median(), rem.median(), build.median(),
+                save.median(), load.median());
   }
   return 0;
 }

@@ -23,7 +23,8 @@ cv::Mat sign(int digit, int font, cv::Size size = {80, 90}) {
   const double scale = cv::getFontScaleFromHeight(font, size.height * 2 / 3, 3);
   int base = 0;
   const cv::Size t = cv::getTextSize(std::to_string(digit), font, scale, 3, &base);
-  cv::putText(m, std::to_string(digit), {(size.width - t.width) / 2, (size.height + t.height) / 2}, font, scale, 235, 3, cv::LINE_AA);
+  cv::putText(m, std::to_string(digit), {(size.width - t.width) / 2, (size.height + t.height) / 2}, font, scale, 235, 3,
+              cv::LINE_AA);
   return m;
 }
 
@@ -78,11 +79,12 @@ int main(int argc, char** argv) {
     network.add(microseconds(n, [&](int) { sink = model.predict(features).confidence; }));
   }
   std::printf("## Reading a sign's digit (DigitClassifier)\n\n");
-  std::printf("One 80 x 90 sign of a 640 x 480 gray frame, the model of `apex_train_mlp` (16 x 16 features, 64\n"
-              "hidden neurons, 10 classes); one thread (cv::setNumThreads(1)); %d runs interleaved; median\n"
-              "(min–max), microseconds. Baseline: detecting the signs of the frame (the Fig. 2 chain's adaptive\n"
-              "threshold, closing and connected components, the same OpenCV calls).\n\n",
-              repeats);
+  std::printf(
+      "One 80 x 90 sign of a 640 x 480 gray frame, the model of `apex_train_mlp` (16 x 16 features, 64\n"
+      "hidden neurons, 10 classes); one thread (cv::setNumThreads(1)); %d runs interleaved; median\n"
+      "(min–max), microseconds. Baseline: detecting the signs of the frame (the Fig. 2 chain's adaptive\n"
+      "threshold, closing and connected components, the same OpenCV calls).\n\n",
+      repeats);
   std::printf("| | per call | vs. detecting the frame |\n|---|---|---|\n");
   std::printf("| detect the frame's signs (baseline) | %s µs | 1 |\n", detect.text("%.0f").c_str());
   std::printf("| **classify one sign** (features + network) | **%s µs** | %.3f |\n", classify.text("%.1f").c_str(),

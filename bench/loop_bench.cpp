@@ -76,8 +76,10 @@ void must(const Status& st) {
 /** Microseconds per evaluation of a run of `evaluations` on sequences of `frames`. */
 double perEvaluation(int frames, int evaluations) {
   Graph g(registry());
-  for (auto [type, name, group] : {std::tuple{"bench/Sequence", "seq", "player"}, {"bench/Probe", "probe", "vision"},
-                                   {"apex_nodes/SequenceMean", "mean", "tuning"}, {"apex_nodes/Optimizer", "opt", "tuning"}})
+  for (auto [type, name, group] : {std::tuple{"bench/Sequence", "seq", "player"},
+                                   {"bench/Probe", "probe", "vision"},
+                                   {"apex_nodes/SequenceMean", "mean", "tuning"},
+                                   {"apex_nodes/Optimizer", "opt", "tuning"}})
     must(g.addNode(type, name, group).status());
   must(g.setParameter("seq", "frames", std::to_string(frames)).status());
   must(g.setParameter("opt", "dimensions", "[gain 0 100]").status());
@@ -120,10 +122,11 @@ int main(int argc, char** argv) {
     loop.add(t1 - (t21 - t1) / 20);
   }
   std::printf("## The tuning loop's own cost per evaluation\n\n");
-  std::printf("The loop of graphs/tune_paper_pipeline.yaml (Optimizer, SequenceMean, a player's restart; three thread\n"
-              "groups) around a trivial pipeline, %d evaluations per run, runs of 1-frame and 21-frame sequences\n"
-              "interleaved, %d each; median (min–max), microseconds.\n\n",
-              evaluations, repeats);
+  std::printf(
+      "The loop of graphs/tune_paper_pipeline.yaml (Optimizer, SequenceMean, a player's restart; three thread\n"
+      "groups) around a trivial pipeline, %d evaluations per run, runs of 1-frame and 21-frame sequences\n"
+      "interleaved, %d each; median (min–max), microseconds.\n\n",
+      evaluations, repeats);
   std::printf("| | per evaluation |\n|---|---|\n");
   std::printf("| sequence of 1 frame | %s µs |\n", one.text("%.1f").c_str());
   std::printf("| sequence of 21 frames | %s µs |\n", many.text("%.1f").c_str());

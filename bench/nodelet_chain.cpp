@@ -28,8 +28,7 @@ class Stage : public nodelet::Nodelet {
   void onInit() override {
     ros::NodeHandle& nh = getNodeHandle();
     pub_ = nh.advertise<sensor_msgs::Image>(getPrivateNodeHandle().param<std::string>("out", "out"), 1);
-    sub_ = nh.subscribe<sensor_msgs::Image>(getPrivateNodeHandle().param<std::string>("in", "in"), 1,
-                                            &Stage::callback, this);
+    sub_ = nh.subscribe<sensor_msgs::Image>(getPrivateNodeHandle().param<std::string>("in", "in"), 1, &Stage::callback, this);
   }
   void callback(const sensor_msgs::ImageConstPtr& msg) {
     std::string encoding = msg->encoding;
@@ -78,8 +77,8 @@ class Blobs : public nodelet::Nodelet {
   }
   void callback(const sensor_msgs::ImageConstPtr& msg) {
     cv::Mat labels, stats, centroids;
-    const int n = cv::connectedComponentsWithStats(cv_bridge::toCvShare(msg)->image, labels, stats, centroids, 8, CV_32S,
-                                                   cv::CCL_DEFAULT);
+    const int n =
+        cv::connectedComponentsWithStats(cv_bridge::toCvShare(msg)->image, labels, stats, centroids, 8, CV_32S, cv::CCL_DEFAULT);
     auto out = boost::make_shared<geometry_msgs::PolygonStamped>();
     out->header = msg->header;
     for (int i = 1; i < n; ++i) {
@@ -145,9 +144,12 @@ class Driver : public nodelet::Nodelet {
     }
     pub_ = getNodeHandle().advertise<sensor_msgs::Image>("frames", 1);
     sub_ = getNodeHandle().subscribe<sensor_msgs::Image>("overlay", 1, &Driver::arrived, this);
-    timer_ = getNodeHandle().createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
-      if (sent_ == 0) send();  // the chain is connected by now
-    }, true);
+    timer_ = getNodeHandle().createWallTimer(
+        ros::WallDuration(1.0),
+        [this](const ros::WallTimerEvent&) {
+          if (sent_ == 0) send();  // the chain is connected by now
+        },
+        true);
   }
   void send() {
     std_msgs::Header h;

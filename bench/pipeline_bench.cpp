@@ -190,7 +190,8 @@ int main(int argc, char** argv) {
   const int reps = quick ? 3 : 5;
   std::printf("Variants interleaved (loop, 1 group, 2 groups, loop, ...), %d repetitions each: median\n", reps);
   std::printf("(min–max); ratios are of the medians.\n\n");
-  std::printf("| OpenCV threads | variant | latency ms | vs loop | frames/s | vs loop | vs 1 group |\n|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "| OpenCV threads | variant | latency ms | vs loop | frames/s | vs loop | vs 1 group |\n|---|---|---|---|---|---|---|\n");
   std::vector<double> apex_latency;
   for (int threads : {1, default_threads}) {
     cv::setNumThreads(threads);
@@ -222,8 +223,8 @@ int main(int argc, char** argv) {
     std::printf("shared between them, cv_bridge in and out at each stage. Latency per frame, one frame in flight.\n\n");
     std::printf("| OpenCV threads | nodelet chain ms | APEX 1 group ms | APEX / nodelets |\n|---|---|---|---|\n");
     for (int i = 0; i < 2; ++i)
-      std::printf("| %s | %.3f | %.3f | %.3f |\n", i == 0 ? "1" : std::to_string(default_threads).c_str(),
-                  std::atof(nodelet[i]), apex_latency[i], apex_latency[i] / std::atof(nodelet[i]));
+      std::printf("| %s | %.3f | %.3f | %.3f |\n", i == 0 ? "1" : std::to_string(default_threads).c_str(), std::atof(nodelet[i]),
+                  apex_latency[i], apex_latency[i] / std::atof(nodelet[i]));
   }
   return 0;
 }

@@ -56,9 +56,7 @@ class ResultSink : public Node {
 };
 
 NodeRegistry& registry() {
-  return apex_bench::pluginRegistry([](NodeRegistry& r) {
-    (void)r.add<ResultSink>("bench/ResultSink");
-  });
+  return apex_bench::pluginRegistry([](NodeRegistry& r) { (void)r.add<ResultSink>("bench/ResultSink"); });
 }
 
 /** A bag of `n` frames of `cols` x `rows` with dark squares, on /camera/image_raw at 10 Hz. */

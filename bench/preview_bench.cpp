@@ -21,7 +21,7 @@ namespace {
 
 std::mutex g_mutex;
 double g_stamp = 0, g_firings = 0;  // of the overlay node, from the newest ~status
-int g_received = 0;                 // previews received
+int g_received = 0;  // previews received
 
 /** Frames per second of the overlay over `seconds`, from two ~status messages. */
 double throughput(double seconds) {
@@ -76,7 +76,8 @@ int main(int argc, char** argv) {
   std::vector<std::pair<std::string, std::string>> topics;  // (topic, ROS type) of every preview
   for (const auto& n : graph.response.graph.nodes)
     for (const auto& p : n.ports) {
-      if (p.kind != "output" || (p.type != "apex_nodes/Image" && p.type != "int" && p.type != "double" && p.type != "bool")) continue;
+      if (p.kind != "output" || (p.type != "apex_nodes/Image" && p.type != "int" && p.type != "double" && p.type != "bool"))
+        continue;
       apex::Inspect inspect;
       inspect.request.node = n.name, inspect.request.port = p.name, inspect.request.enable = true, inspect.request.preview = true;
       if (ros::service::call("/apex/inspect", inspect) && inspect.response.success)
@@ -102,9 +103,11 @@ int main(int argc, char** argv) {
   std::ofstream out(result);
   out << "## What the panel's previews cost the graph\n\n"
       << "The demo pipeline (graphs/paper_pipeline.yaml) plays the demo bag as fast as it can. Every output that\n"
-      << "carries an image or a number is previewed (" << topics.size() << " ports: what the panel's Previews ask for with every node\n"
+      << "carries an image or a number is previewed (" << topics.size()
+      << " ports: what the panel's Previews ask for with every node\n"
       << "in view): at most 5 a second, images scaled to 160 px wide. A subscriber in another process takes all\n"
-      << "previews (on) or none (off), alternately, " << reps << " times " << seconds << " s each: median (min–max) frames per second\n"
+      << "previews (on) or none (off), alternately, " << reps << " times " << seconds
+      << " s each: median (min–max) frames per second\n"
       << "of the overlay node, from ~status; ratio of the medians. Target: a cost below 5% (ratio above 0.95).\n\n"
       << "| previews off | previews on, all nodes | on / off |\n|---|---|---|\n"
       << "| " << off.text("%.1f") << " | " << on.text("%.1f") << " | " << ratio(on.median() / off.median()) << "x |\n\n"

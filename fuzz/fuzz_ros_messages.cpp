@@ -54,13 +54,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       case apex_fuzz::kImage:
         touch(*apex_nodes::fromRos(boost::make_shared<const sensor_msgs::Image>(apex_fuzz::readImage(in))));
         break;
-      case apex_fuzz::kCloud:
-      {
+      case apex_fuzz::kCloud: {
         const auto m = boost::make_shared<const sensor_msgs::PointCloud2>(apex_fuzz::readCloud(in));
         touch(*apex_nodes::fromRos(m));
         touch(*received(*m));
-      }
-        break;
+      } break;
       case apex_fuzz::kScan:
         touch(*apex_nodes::scanToCloud(apex_fuzz::readScan(in)));
         break;

@@ -19,11 +19,20 @@ std::string cloudName(const Cloud& c) {
 /** Bytes of one value of a PointField datatype; 0 if unknown. */
 Size fieldSize(std::uint8_t datatype) {
   switch (datatype) {
-    case pcl::PCLPointField::INT8: case pcl::PCLPointField::UINT8: return 1;
-    case pcl::PCLPointField::INT16: case pcl::PCLPointField::UINT16: return 2;
-    case pcl::PCLPointField::INT32: case pcl::PCLPointField::UINT32: case pcl::PCLPointField::FLOAT32: return 4;
-    case pcl::PCLPointField::FLOAT64: return 8;
-    default: return 0;
+    case pcl::PCLPointField::INT8:
+    case pcl::PCLPointField::UINT8:
+      return 1;
+    case pcl::PCLPointField::INT16:
+    case pcl::PCLPointField::UINT16:
+      return 2;
+    case pcl::PCLPointField::INT32:
+    case pcl::PCLPointField::UINT32:
+    case pcl::PCLPointField::FLOAT32:
+      return 4;
+    case pcl::PCLPointField::FLOAT64:
+      return 8;
+    default:
+      return 0;
   }
 }
 
@@ -35,9 +44,7 @@ const pcl::PCLPointField* findField(const Blob& points, const std::string& name)
 
 }  // namespace
 
-std::size_t pointCount(const Cloud& cloud) {
-  return cloud.points ? std::size_t(cloud.points->width) * cloud.points->height : 0;
-}
+std::size_t pointCount(const Cloud& cloud) { return cloud.points ? std::size_t(cloud.points->width) * cloud.points->height : 0; }
 
 std::string fieldNames(const Blob& points) {
   std::string out;
@@ -50,8 +57,8 @@ bool hasField(const Blob& points, const std::string& name) { return findField(po
 void requireField(const Cloud& cloud, const std::string& field) {
   const pcl::PCLPointField* f = cloud.points ? findField(*cloud.points, field) : nullptr;
   if (!f)
-    throw std::invalid_argument(cloudName(cloud) + " has no field '" + field + "' (its fields: " +
-                                (cloud.points ? fieldNames(*cloud.points) : "none") + ")");
+    throw std::invalid_argument(cloudName(cloud) + " has no field '" + field +
+                                "' (its fields: " + (cloud.points ? fieldNames(*cloud.points) : "none") + ")");
   if ((field == "x" || field == "y" || field == "z") && f->datatype != pcl::PCLPointField::FLOAT32)
     throw std::invalid_argument(cloudName(cloud) + ": field '" + field + "' is not float32");
 }

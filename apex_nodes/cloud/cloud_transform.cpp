@@ -47,10 +47,16 @@ void moveRange(Blob& points, const Eigen::Affine3f& m, std::size_t begin, std::s
 /** Bytes of one value of a PointField datatype (cloud.cpp's checkCloud refused unknown ones). */
 std::uint32_t valueSize(std::uint8_t datatype) {
   switch (datatype) {
-    case pcl::PCLPointField::INT8: case pcl::PCLPointField::UINT8: return 1;
-    case pcl::PCLPointField::INT16: case pcl::PCLPointField::UINT16: return 2;
-    case pcl::PCLPointField::FLOAT64: return 8;
-    default: return 4;
+    case pcl::PCLPointField::INT8:
+    case pcl::PCLPointField::UINT8:
+      return 1;
+    case pcl::PCLPointField::INT16:
+    case pcl::PCLPointField::UINT16:
+      return 2;
+    case pcl::PCLPointField::FLOAT64:
+      return 8;
+    default:
+      return 4;
   }
 }
 std::uint32_t fieldBytes(const pcl::PCLPointField& f) { return valueSize(f.datatype) * std::max<std::uint32_t>(1, f.count); }
@@ -67,7 +73,8 @@ bool sameLayout(const Blob& a, const Blob& b) {
 /** The field of `points` named as `f`, with its datatype and count; nullptr if none. */
 const pcl::PCLPointField* sameField(const Blob& points, const pcl::PCLPointField& f) {
   for (const auto& g : points.fields)
-    if (g.name == f.name && g.datatype == f.datatype && std::max<std::uint32_t>(1, g.count) == std::max<std::uint32_t>(1, f.count))
+    if (g.name == f.name && g.datatype == f.datatype &&
+        std::max<std::uint32_t>(1, g.count) == std::max<std::uint32_t>(1, f.count))
       return &g;
   return nullptr;
 }
@@ -75,8 +82,8 @@ const pcl::PCLPointField* sameField(const Blob& points, const pcl::PCLPointField
 }  // namespace
 
 Eigen::Affine3f toEigen(const geometry_msgs::Transform& t) {
-  const Eigen::Quaternionf q(static_cast<float>(t.rotation.w), static_cast<float>(t.rotation.x),
-                             static_cast<float>(t.rotation.y), static_cast<float>(t.rotation.z));
+  const Eigen::Quaternionf q(static_cast<float>(t.rotation.w), static_cast<float>(t.rotation.x), static_cast<float>(t.rotation.y),
+                             static_cast<float>(t.rotation.z));
   Eigen::Affine3f m = Eigen::Affine3f::Identity();
   m.translate(Eigen::Vector3f(static_cast<float>(t.translation.x), static_cast<float>(t.translation.y),
                               static_cast<float>(t.translation.z)));
@@ -106,7 +113,8 @@ std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds) {
       throw std::invalid_argument("cloud " + std::to_string(i) + " to merge has no float32 x, y, z (its fields: " +
                                   (clouds[i].points ? fieldNames(*clouds[i].points) : std::string("none")) + ")");
   const Blob& first = *clouds.front().points;
-  const bool same = std::all_of(clouds.begin(), clouds.end(), [&](const PlacedPoints& c) { return sameLayout(*c.points, first); });
+  const bool same =
+      std::all_of(clouds.begin(), clouds.end(), [&](const PlacedPoints& c) { return sameLayout(*c.points, first); });
   auto out = std::make_shared<Blob>();
   out->header = first.header;
   out->is_bigendian = first.is_bigendian;
@@ -117,7 +125,9 @@ std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds) {
   } else {  // the fields every cloud has, packed (not PCL's padding, "_")
     out->point_step = 0;
     for (const auto& f : first.fields) {
-      if (f.name == "_" || !std::all_of(clouds.begin(), clouds.end(), [&](const PlacedPoints& c) { return sameField(*c.points, f); })) continue;
+      if (f.name == "_" ||
+          !std::all_of(clouds.begin(), clouds.end(), [&](const PlacedPoints& c) { return sameField(*c.points, f); }))
+        continue;
       pcl::PCLPointField kept = f;
       kept.offset = out->point_step;
       out->point_step += fieldBytes(f);
@@ -135,7 +145,9 @@ std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds) {
   std::size_t at = 0;
   for (const auto& c : clouds) {
     const Blob& p = *c.points;
-    struct Copy { std::uint32_t from, to, bytes; };
+    struct Copy {
+      std::uint32_t from, to, bytes;
+    };
     std::vector<Copy> copies;
     if (same) copies.push_back({0, 0, p.point_step});
     else

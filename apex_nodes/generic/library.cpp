@@ -1,5 +1,5 @@
-// The library apex_nodes_generic: relays, clocks, counters, arithmetic, logging, time sync and selection. Its node types register themselves
-// (APEX_REGISTER_NODE next to each class); this hands them to the ROS host.
+// The library apex_nodes_generic: relays, clocks, counters, arithmetic, logging, time sync and selection. Its node types register
+// themselves (APEX_REGISTER_NODE next to each class); this hands them to the ROS host.
 #include "apex/ros/node_library.hpp"
 
 APEX_NODE_LIBRARY(apex_nodes_generic)

@@ -61,8 +61,12 @@ class TimeSync : public apex::Node {
   static inline const apex::InputPort<apex::Any> kInB{"b"};
   static inline const apex::OutputPort<apex::Any> kOutA{"a"};
   static inline const apex::OutputPort<apex::Any> kOutB{"b"};
-  static inline const apex::ParamDecl<int> kInputs = param::integer("inputs").range(2, 8).step(1).init(2).describe(
-      "how many messages to synchronise: a, b, c, ...").shapesInterface();
+  static inline const apex::ParamDecl<int> kInputs = param::integer("inputs")
+                                                         .range(2, 8)
+                                                         .step(1)
+                                                         .init(2)
+                                                         .describe("how many messages to synchronise: a, b, c, ...")
+                                                         .shapesInterface();
   static inline const apex::ParamDecl<double> kTolerance =
       param::number("tolerance").range(0.0, 10.0).step(0.001).init(0.05).describe("seconds");
   static apex::Manifest manifest() {
@@ -88,8 +92,9 @@ class TimeSync : public apex::Node {
     ros::Time low, high;
     for (std::size_t i = 0; i < ports.size(); ++i) {
       const auto header = headerOf(inputMessage(ports[i].name));
-      if (!header) throw std::invalid_argument("cannot read a stamp from a " + inputMessage(ports[i].name).typeName() +
-                                               " on input '" + ports[i].name + "'");
+      if (!header)
+        throw std::invalid_argument("cannot read a stamp from a " + inputMessage(ports[i].name).typeName() + " on input '" +
+                                    ports[i].name + "'");
       if (i == 0 || header->stamp < low) low = header->stamp;
       if (i == 0 || header->stamp > high) high = header->stamp;
     }

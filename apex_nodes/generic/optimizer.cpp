@@ -75,14 +75,16 @@ class Optimizer : public apex::Node {
   static inline const apex::OutputPort<std::string> kBest{
       "best", "after each evaluation: the best values so far, as YAML ({c: 12.5, block_size: 31})"};
   static inline const apex::TriggerPort kEvaluate{
-      "evaluate", "a candidate's values are in effect: replay the data (a player's restart) and start the "
-                  "score (SequenceMean's reset)"};
+      "evaluate",
+      "a candidate's values are in effect: replay the data (a player's restart) and start the "
+      "score (SequenceMean's reset)"};
   static inline const apex::TriggerPort kFinished{"finished",
                                                   "the run ended (its budget is spent, or stop): the best values are known"};
   static inline const apex::ParamDecl<std::vector<std::string>> kDimensions =
       param::textList("dimensions")
-          .describe("one output each: 'name [min max] [int]', e.g. 'c 0 60' or 'block_size int'; without "
-                    "min and max, the range of the parameter its output is connected to")
+          .describe(
+              "one output each: 'name [min max] [int]', e.g. 'c 0 60' or 'block_size int'; without "
+              "min and max, the range of the parameter its output is connected to")
           .shapesInterface();
   static inline const apex::ParamDecl<std::string> kAlgorithm =
       param::choice("algorithm", {"differential_evolution", "random", "grid"});
@@ -91,8 +93,10 @@ class Optimizer : public apex::Node {
   static inline const apex::ParamDecl<int> kSeed =
       param::integer("seed").range(0, 1000000000).step(1).init(1).describe("the same seed gives the same candidates");
   static inline const apex::ParamDecl<int> kPopulation =
-      param::integer("population").range(0, 10000).step(1).describe(
-          "differential evolution: candidates per generation; 0: 15 per dimension, at least 5");
+      param::integer("population")
+          .range(0, 10000)
+          .step(1)
+          .describe("differential evolution: candidates per generation; 0: 15 per dimension, at least 5");
   static inline const apex::ParamDecl<double> kF =
       param::number("F").range(0.0, 2.0).step(0.05).init(0.8).describe("differential evolution: differential weight");
   static inline const apex::ParamDecl<double> kCR =
@@ -102,11 +106,13 @@ class Optimizer : public apex::Node {
       param::text("state").init("idle").describe("what the optimiser is doing (it sets this; saved with the graph)");
   static inline const apex::ParamDecl<std::string> kBestValues =
       param::text("best_values")
-          .describe("the best values so far as YAML, {dimension: value} (it sets this; the panel's "
-                    "'Apply best values' sets them on the tuned parameters as one undoable edit)");
+          .describe(
+              "the best values so far as YAML, {dimension: value} (it sets this; the panel's "
+              "'Apply best values' sets them on the tuned parameters as one undoable edit)");
   static apex::Manifest manifest() {
-    return apex::Manifest("Tunes other nodes' parameters: one output per dimension, connected to the parameter it tunes; "
-                          "each candidate is evaluated by the graph (evaluate: replay and score; the score comes back at fitness)")
+    return apex::Manifest(
+               "Tunes other nodes' parameters: one output per dimension, connected to the parameter it tunes; "
+               "each candidate is evaluated by the graph (evaluate: replay and score; the score comes back at fitness)")
         .input(kFitness)
         .output(kBestFitness)
         .output(kEvaluations)
@@ -169,8 +175,7 @@ class Optimizer : public apex::Node {
   }
 
   void start() {
-    if (running_)
-      throw std::invalid_argument("a run is in progress (" + state_.get() + "): stop it first, or wait for it");
+    if (running_) throw std::invalid_argument("a run is in progress (" + state_.get() + "): stop it first, or wait for it");
     error_.clear();
     auto dims = resolveDimensions();
     std::vector<search::Dimension> ranges;
@@ -206,7 +211,7 @@ class Optimizer : public apex::Node {
     std::string port;
     search::Dimension range;
     double step = 0, origin = 0;  // integers on a grid (e.g. odd sizes: 3, 5, ...): the target's step
-    apex::ParamValue before;      // what the (first) target held when the run started
+    apex::ParamValue before;  // what the (first) target held when the run started
   };
 
   /** Every dimension with its range (given, or the target's) and the value to give back. */
@@ -216,7 +221,8 @@ class Optimizer : public apex::Node {
       const DimensionText d = parseDimension(text).value();  // the interface function read it already
       const auto targets = parameterTargets(d.name);
       if (targets.empty())
-        throw std::invalid_argument("dimension '" + d.name + "': its output feeds no parameter; connect it to the "
+        throw std::invalid_argument("dimension '" + d.name +
+                                    "': its output feeds no parameter; connect it to the "
                                     "parameter it tunes");
       const apex::ParamSpec& spec = targets.front().spec;
       const std::string where = targets.front().node + "/" + spec.name;
@@ -228,11 +234,11 @@ class Optimizer : public apex::Node {
         dim.range.min = d.has_range ? std::max(d.min, spec.min) : spec.min;
         dim.range.max = d.has_range ? std::min(d.max, spec.max) : spec.max;
         if (dim.range.min > dim.range.max)
-          throw std::invalid_argument("dimension '" + text + "' lies outside the range of " + where + " [" +
-                                      number(spec.min) + ", " + number(spec.max) + "]");
+          throw std::invalid_argument("dimension '" + text + "' lies outside the range of " + where + " [" + number(spec.min) +
+                                      ", " + number(spec.max) + "]");
       } else if (!d.has_range) {
-        throw std::invalid_argument("dimension '" + d.name + "': " + where + " has no range; give one, e.g. '" +
-                                    d.name + " 0 10'");
+        throw std::invalid_argument("dimension '" + d.name + "': " + where + " has no range; give one, e.g. '" + d.name +
+                                    " 0 10'");
       }
       if (d.integer && spec.step > 1) dim.step = spec.step, dim.origin = spec.min;
       out.push_back(dim);
@@ -264,8 +270,7 @@ class Optimizer : public apex::Node {
     const auto x = search_->ask();
     for (std::size_t i = 0; i < dims_.size(); ++i) send(dims_[i], snap(dims_[i], x[i]));
     waiting_ = true;
-    setState("running: evaluation " + std::to_string(search_->evaluations() + 1) + " of " +
-             std::to_string(search_->budget()));
+    setState("running: evaluation " + std::to_string(search_->evaluations() + 1) + " of " + std::to_string(search_->budget()));
     evaluate_.fire();
   }
 
@@ -276,8 +281,9 @@ class Optimizer : public apex::Node {
       if (!targetsOf(d.port).empty()) publishMessage(d.port, apex::toMessage(d.before));
     const int n = search_->evaluations();
     setState(how + " after " + std::to_string(n) + " evaluation" + (n == 1 ? "" : "s") +
-             (search_->best().empty() ? "" : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
-                                                  " at " + bestText()));
+             (search_->best().empty() ? ""
+                                      : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
+                                            " at " + bestText()));
     finished_.fire();
   }
 

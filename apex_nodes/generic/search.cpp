@@ -86,8 +86,7 @@ class GridSearch : public Search {
  *  replaces the member if it is at least as fit. Out of range: a random value in range. */
 class DifferentialEvolution : public Search {
  public:
-  DifferentialEvolution(std::vector<Dimension> d, const Settings& s)
-      : Search(std::move(d), s), F_(s.F), CR_(s.CR) {
+  DifferentialEvolution(std::vector<Dimension> d, const Settings& s) : Search(std::move(d), s), F_(s.F), CR_(s.CR) {
     const int n = s.population > 0 ? s.population : std::max(5, 15 * static_cast<int>(dims_.size()));
     population_.resize(n, std::vector<double>(dims_.size()));
     fitness_.assign(n, -HUGE_VAL);
@@ -106,9 +105,12 @@ class DifferentialEvolution : public Search {
     if (initialised_ < n) return population_[initialised_];
     std::uniform_int_distribution<int> pick(0, n - 1);
     int a, b, c;
-    do a = pick(rng_); while (a == target_);
-    do b = pick(rng_); while (b == target_ || b == a);
-    do c = pick(rng_); while (c == target_ || c == a || c == b);
+    do a = pick(rng_);
+    while (a == target_);
+    do b = pick(rng_);
+    while (b == target_ || b == a);
+    do c = pick(rng_);
+    while (c == target_ || c == a || c == b);
     const std::size_t dims = dims_.size();
     const std::size_t forced = std::uniform_int_distribution<std::size_t>(0, dims - 1)(rng_);
     std::vector<double> trial = population_[target_];
@@ -138,8 +140,7 @@ class DifferentialEvolution : public Search {
 
 }  // namespace
 
-apex::Result<std::unique_ptr<Search>> makeSearch(const std::string& algorithm, std::vector<Dimension> dims,
-                                                 const Settings& s) {
+apex::Result<std::unique_ptr<Search>> makeSearch(const std::string& algorithm, std::vector<Dimension> dims, const Settings& s) {
   if (dims.empty()) return apex::Status::error("no dimensions to tune");
   for (const auto& d : dims) {
     if (!std::isfinite(d.min) || !std::isfinite(d.max) || d.min > d.max)

@@ -11,7 +11,8 @@ namespace apex_nodes {
 class SequenceMean : public apex::Node {
  public:
   static inline const apex::InputPort<double> kValue{"value", "one per frame, e.g. RegionScore's f1"};
-  static inline const apex::OutputPort<double> kMean{"mean", "at the end of a sequence: the mean of its values (0 if it had none)"};
+  static inline const apex::OutputPort<double> kMean{"mean",
+                                                     "at the end of a sequence: the mean of its values (0 if it had none)"};
   static inline const apex::OutputPort<int> kCount{"count", "at the end of a sequence: how many values it had"};
   static apex::Manifest manifest() {
     return apex::Manifest("Averages a value over a sequence; sends mean and count at its end, then starts the next")
@@ -19,8 +20,7 @@ class SequenceMean : public apex::Node {
         .output(kMean)
         .output(kCount)
         .slot("reset", &SequenceMean::reset, "forgets the values so far: a new sequence starts")
-        .slot("finish", &SequenceMean::finish,
-              "ends the sequence now, as its end-of-sequence token does: sends mean and count");
+        .slot("finish", &SequenceMean::finish, "ends the sequence now, as its end-of-sequence token does: sends mean and count");
   }
   void process() override {
     const double v = *value_.get();

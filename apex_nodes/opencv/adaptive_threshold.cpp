@@ -17,10 +17,16 @@ class AdaptiveThreshold : public ImageFilter {
   static inline const apex::ParamDecl<std::string> kType = param::choice("threshold_type", {"binary", "binary_inv"});
   static inline const apex::ParamDecl<int> kBlock =
       param::integer("block_size").range(3, 101).step(2).init(11).describe("neighbourhood size, odd");
-  static inline const apex::ParamDecl<double> kC = param::number("c").range(-100.0, 100.0).step(0.5).init(2.0).describe("subtracted from the mean");
+  static inline const apex::ParamDecl<double> kC =
+      param::number("c").range(-100.0, 100.0).step(0.5).init(2.0).describe("subtracted from the mean");
   static apex::Manifest manifest() {
-    return filterManifest("Thresholds each pixel against the mean or Gaussian-weighted mean of its neighbourhood", kImage, kBinary)
-        .param(kMaxValue).param(kMethod).param(kType).param(kBlock).param(kC);
+    return filterManifest("Thresholds each pixel against the mean or Gaussian-weighted mean of its neighbourhood", kImage,
+                          kBinary)
+        .param(kMaxValue)
+        .param(kMethod)
+        .param(kType)
+        .param(kBlock)
+        .param(kC);
   }
   AdaptiveThreshold() : ImageFilter("1", true, kImage, kBinary) {}
 

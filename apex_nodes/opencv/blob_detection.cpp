@@ -30,9 +30,8 @@ class BlobDetection : public apex::Node {
     const Image& in = *image_.get();
     requireImage(in, "1");
     if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit binary image ('" + in.encoding + "')");
-    const int n = cv::connectedComponentsWithStats(in.mat, labels_, stats_, centroids_,
-                                                   connectivity_.get() == "4" ? 4 : 8, CV_32S,
-                                                   cv::CCL_DEFAULT);
+    const int n = cv::connectedComponentsWithStats(in.mat, labels_, stats_, centroids_, connectivity_.get() == "4" ? 4 : 8,
+                                                   CV_32S, cv::CCL_DEFAULT);
     auto out = std::make_shared<Regions>();
     out->header = in.header;
     out->image_size = in.mat.size();

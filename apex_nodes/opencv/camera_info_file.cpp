@@ -13,7 +13,10 @@ class CameraInfoFile : public apex::Node {
   static inline const apex::ParamDecl<std::string> kFile = param::path("file").describe(
       "a calibration: ROS camera_calibration YAML or INI, or OpenCV's (camera_matrix, distortion_coefficients)");
   static apex::Manifest manifest() {
-    return apex::Manifest("Sends a calibration file's camera model with each image's header").input(kImage).output(kInfo).param(kFile);
+    return apex::Manifest("Sends a calibration file's camera model with each image's header")
+        .input(kImage)
+        .output(kInfo)
+        .param(kFile);
   }
   void parameterChanged(const std::string&) override { model_.reset(); }
   void process() override {

@@ -11,8 +11,8 @@ namespace apex_nodes {
 namespace {
 
 std::string cameraName(const sensor_msgs::CameraInfo& info) {
-  return "camera model " + std::to_string(info.width) + "x" + std::to_string(info.height) + " on frame '" +
-         info.header.frame_id + "'";
+  return "camera model " + std::to_string(info.width) + "x" + std::to_string(info.height) + " on frame '" + info.header.frame_id +
+         "'";
 }
 
 /** OpenCV's calibration output (calibration.cpp sample, cv::FileStorage); false if it is not one. */
@@ -56,8 +56,7 @@ void requireCameraFor(const sensor_msgs::CameraInfo& info, const Image* image) {
   if (!image) return;
   const int w = image->mat.cols, h = image->mat.rows;
   if (int(info.width) != w || int(info.height) != h)
-    throw std::invalid_argument(cameraName(info) + " is not for an image of " + std::to_string(w) + "x" +
-                                std::to_string(h));
+    throw std::invalid_argument(cameraName(info) + " is not for an image of " + std::to_string(w) + "x" + std::to_string(h));
   if (!info.header.frame_id.empty() && !image->header.frame_id.empty() && info.header.frame_id != image->header.frame_id)
     throw std::invalid_argument(cameraName(info) + " is not for the image on frame '" + image->header.frame_id + "'");
 }
@@ -68,7 +67,8 @@ sensor_msgs::CameraInfo readCameraFile(const std::string& path) {
   sensor_msgs::CameraInfo info;
   std::string name;
   if (!readOpenCvFile(path, info) && !camera_calibration_parsers::readCalibration(path, name, info))
-    throw std::invalid_argument("'" + path + "' is neither a ROS camera calibration (YAML or INI) nor OpenCV's "
+    throw std::invalid_argument("'" + path +
+                                "' is neither a ROS camera calibration (YAML or INI) nor OpenCV's "
                                 "(camera_matrix, distortion_coefficients, image_width, image_height)");
   requireCameraFor(info);
   return info;

@@ -15,16 +15,24 @@ struct Conversion {
 
 const std::map<std::string, Conversion>& conversions() {
   static const std::map<std::string, Conversion> table{
-      {"BGR2GRAY", {cv::COLOR_BGR2GRAY, 3, "mono8"}}, {"RGB2GRAY", {cv::COLOR_RGB2GRAY, 3, "mono8"}},
-      {"GRAY2BGR", {cv::COLOR_GRAY2BGR, 1, "bgr8"}},  {"BGR2RGB", {cv::COLOR_BGR2RGB, 3, "rgb8"}},
-      {"RGB2BGR", {cv::COLOR_RGB2BGR, 3, "bgr8"}},    {"BGR2HSV", {cv::COLOR_BGR2HSV, 3, "8UC3"}},
-      {"RGB2HSV", {cv::COLOR_RGB2HSV, 3, "8UC3"}},    {"HSV2BGR", {cv::COLOR_HSV2BGR, 3, "bgr8"}},
-      {"BGR2YUV", {cv::COLOR_BGR2YUV, 3, "8UC3"}},    {"YUV2BGR", {cv::COLOR_YUV2BGR, 3, "bgr8"}},
-      {"BGRA2BGR", {cv::COLOR_BGRA2BGR, 4, "bgr8"}},  {"BGR2BGRA", {cv::COLOR_BGR2BGRA, 3, "bgra8"}},
+      {"BGR2GRAY", {cv::COLOR_BGR2GRAY, 3, "mono8"}},
+      {"RGB2GRAY", {cv::COLOR_RGB2GRAY, 3, "mono8"}},
+      {"GRAY2BGR", {cv::COLOR_GRAY2BGR, 1, "bgr8"}},
+      {"BGR2RGB", {cv::COLOR_BGR2RGB, 3, "rgb8"}},
+      {"RGB2BGR", {cv::COLOR_RGB2BGR, 3, "bgr8"}},
+      {"BGR2HSV", {cv::COLOR_BGR2HSV, 3, "8UC3"}},
+      {"RGB2HSV", {cv::COLOR_RGB2HSV, 3, "8UC3"}},
+      {"HSV2BGR", {cv::COLOR_HSV2BGR, 3, "bgr8"}},
+      {"BGR2YUV", {cv::COLOR_BGR2YUV, 3, "8UC3"}},
+      {"YUV2BGR", {cv::COLOR_YUV2BGR, 3, "bgr8"}},
+      {"BGRA2BGR", {cv::COLOR_BGRA2BGR, 4, "bgr8"}},
+      {"BGR2BGRA", {cv::COLOR_BGR2BGRA, 3, "bgra8"}},
       // YUV 4:2:2 as cameras send it (2 channels): ROS's "yuv422" is UYVY; YUYV for drivers that send it (Debian 12's
       // sensor_msgs has no name for it, so it comes as a 2-channel image from a node, not through fromRos)
-      {"UYVY2BGR", {cv::COLOR_YUV2BGR_UYVY, 2, "bgr8"}}, {"UYVY2GRAY", {cv::COLOR_YUV2GRAY_UYVY, 2, "mono8"}},
-      {"YUYV2BGR", {cv::COLOR_YUV2BGR_YUYV, 2, "bgr8"}}, {"YUYV2GRAY", {cv::COLOR_YUV2GRAY_YUYV, 2, "mono8"}}};
+      {"UYVY2BGR", {cv::COLOR_YUV2BGR_UYVY, 2, "bgr8"}},
+      {"UYVY2GRAY", {cv::COLOR_YUV2GRAY_UYVY, 2, "mono8"}},
+      {"YUYV2BGR", {cv::COLOR_YUV2BGR_YUYV, 2, "bgr8"}},
+      {"YUYV2GRAY", {cv::COLOR_YUV2GRAY_YUYV, 2, "mono8"}}};
   return table;
 }
 

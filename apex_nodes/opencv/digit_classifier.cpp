@@ -16,11 +16,14 @@ class DigitClassifier : public apex::Node {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "the image the regions were found in"};
   static inline const apex::InputPort<Regions> kRegions{"regions", "e.g. BlobDetection's: one sign each"};
-  static inline const apex::OutputPort<Regions> kLabelled{
-      "regions", "the regions with label (the digit, -1 if rejected) and confidence"};
+  static inline const apex::OutputPort<Regions> kLabelled{"regions",
+                                                          "the regions with label (the digit, -1 if rejected) and confidence"};
   static inline const apex::ParamDecl<std::string> kModel = param::path("model").describe("apex_train_mlp's model file");
   static inline const apex::ParamDecl<double> kMinConfidence =
-      param::number("min_confidence").range(0.0, 1.0).step(0.01).init(0.5)
+      param::number("min_confidence")
+          .range(0.0, 1.0)
+          .step(0.01)
+          .init(0.5)
           .describe("a region whose best digit is less certain gets label -1 (shown as '?')");
   static apex::Manifest manifest() {
     return apex::Manifest("Classifies the digit in each region with a trained MLP (apex_train_mlp's model file)")

@@ -13,20 +13,27 @@
 namespace apex_nodes {
 namespace {
 
-constexpr int kFormat = 1;          // the model file's version
+constexpr int kFormat = 1;  // the model file's version
 constexpr double kSharpness = 10;
 // RPROP's first weight steps. Its default, 0.1, is too big for a few hundred inputs: the network
 // saturates and stalls near 60% on the demo's samples; 0.01 learns them all. A batch that goes on
 // from the last starts smaller still, or its first steps undo what the last batch learned.
-constexpr double kRpropStart = 0.01, kRpropResume = 1e-3;   // softmax temperature: outputs are trained towards 0 and 1
+constexpr double kRpropStart = 0.01, kRpropResume = 1e-3;  // softmax temperature: outputs are trained towards 0 and 1
 
 cv::Mat toGray8(const cv::Mat& crop) {
   cv::Mat gray;
   switch (crop.channels()) {
-    case 1: gray = crop; break;
-    case 3: cv::cvtColor(crop, gray, cv::COLOR_BGR2GRAY); break;
-    case 4: cv::cvtColor(crop, gray, cv::COLOR_BGRA2GRAY); break;
-    default: throw std::invalid_argument("cannot take digits from " + std::to_string(crop.channels()) + "-channel crops");
+    case 1:
+      gray = crop;
+      break;
+    case 3:
+      cv::cvtColor(crop, gray, cv::COLOR_BGR2GRAY);
+      break;
+    case 4:
+      cv::cvtColor(crop, gray, cv::COLOR_BGRA2GRAY);
+      break;
+    default:
+      throw std::invalid_argument("cannot take digits from " + std::to_string(crop.channels()) + "-channel crops");
   }
   if (gray.depth() != CV_8U) cv::normalize(gray, gray, 0, 255, cv::NORM_MINMAX, CV_8U);
   return gray;
@@ -217,7 +224,8 @@ void DigitModel::save(const std::string& path) const {
   fs << "feature_size" << features_.size;
   fs << "classes" << classes_;
   fs << "validation_accuracy" << validation_accuracy_;
-  fs << "mlp" << "{";
+  fs << "mlp"
+     << "{";
   mlp_->write(fs);
   fs << "}";
   const apex::Status st = apex::writeFileAtomically(path, fs.releaseAndGetString());
@@ -239,7 +247,8 @@ DigitModel DigitModel::load(const std::string& path) {
     m.mlp_->read(fs["mlp"]);
     // The network's weights are there, one matrix per layer after the first: a file cut short
     // after its sizes still reads, with weights of zero.
-    if (fs["mlp"]["weights"].size() + 1 != m.mlp_->getLayerSizes().total()) throw bad("is damaged: it lacks weights (cut short?)");
+    if (fs["mlp"]["weights"].size() + 1 != m.mlp_->getLayerSizes().total())
+      throw bad("is damaged: it lacks weights (cut short?)");
   } catch (const cv::Exception& e) {
     throw bad("is damaged: " + e.err);  // e.g. a file cut short
   }

@@ -45,12 +45,13 @@ class DrawRegions : public apex::Node {
   /** A classified region's label and confidence above its box ('?' if the classifier rejected it). */
   static void drawLabel(cv::Mat& img, const Region& r, const cv::Scalar& colour) {
     if (r.label < 0 && r.confidence <= 0) return;  // not classified
-    const std::string text = (r.label >= 0 ? std::to_string(r.label) : std::string("?")) + " " +
-                             std::to_string(cvRound(100 * r.confidence)) + "%";
+    const std::string text =
+        (r.label >= 0 ? std::to_string(r.label) : std::string("?")) + " " + std::to_string(cvRound(100 * r.confidence)) + "%";
     int baseline = 0;
     const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, 0.6, 2, &baseline);
     const cv::Point at(r.box.x, r.box.y > size.height + 6 ? r.box.y - 6 : r.box.br().y + size.height + 4);
-    cv::rectangle(img, cv::Rect(at.x, at.y - size.height - 2, size.width + 2, size.height + baseline + 2), cv::Scalar::all(0), cv::FILLED);
+    cv::rectangle(img, cv::Rect(at.x, at.y - size.height - 2, size.width + 2, size.height + baseline + 2), cv::Scalar::all(0),
+                  cv::FILLED);
     cv::putText(img, text, at + cv::Point(1, 0), cv::FONT_HERSHEY_SIMPLEX, 0.6, colour, 2, cv::LINE_AA);
   }
 

@@ -12,7 +12,9 @@ class GaussianBlur : public ImageFilter {
   static inline const apex::ParamDecl<int> kKernel = param::integer("kernel_size").range(1, 31).step(2).init(5).describe("odd");
   static inline const apex::ParamDecl<double> kSigma =
       param::number("sigma").range(0.0, 50.0).step(0.1).describe("0: from the kernel size");
-  static apex::Manifest manifest() { return filterManifest("Smooths an image with a Gaussian kernel").param(kKernel).param(kSigma); }
+  static apex::Manifest manifest() {
+    return filterManifest("Smooths an image with a Gaussian kernel").param(kKernel).param(kSigma);
+  }
 
  private:
   void filter(const Image& in, Image& out) override {
@@ -31,14 +33,19 @@ class Threshold : public ImageFilter {
   static inline const apex::ParamDecl<bool> kOtsu = param::flag("otsu").describe("choose the threshold from the histogram");
   static apex::Manifest manifest() {
     return filterManifest("Fixed-level threshold of a single-channel image (optionally Otsu)")
-        .param(kThreshold).param(kMaxValue).param(kType).param(kOtsu);
+        .param(kThreshold)
+        .param(kMaxValue)
+        .param(kType)
+        .param(kOtsu);
   }
   Threshold() : ImageFilter("1") {}
 
  private:
   void filter(const Image& in, Image& out) override {
-    static const std::map<std::string, int> kTypes{{"binary", cv::THRESH_BINARY}, {"binary_inv", cv::THRESH_BINARY_INV},
-                                                   {"trunc", cv::THRESH_TRUNC}, {"tozero", cv::THRESH_TOZERO},
+    static const std::map<std::string, int> kTypes{{"binary", cv::THRESH_BINARY},
+                                                   {"binary_inv", cv::THRESH_BINARY_INV},
+                                                   {"trunc", cv::THRESH_TRUNC},
+                                                   {"tozero", cv::THRESH_TOZERO},
                                                    {"tozero_inv", cv::THRESH_TOZERO_INV}};
     int type = kTypes.at(type_.get());
     if (otsu_.get()) {

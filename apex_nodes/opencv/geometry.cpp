@@ -16,7 +16,10 @@ class Resize : public ImageFilter {
  private:
   void filter(const Image& in, Image& out) override {
     const auto& i = interpolation_.get();
-    const int interp = i == "nearest" ? cv::INTER_NEAREST : i == "linear" ? cv::INTER_LINEAR : i == "area" ? cv::INTER_AREA : cv::INTER_CUBIC;
+    const int interp = i == "nearest"  ? cv::INTER_NEAREST
+                       : i == "linear" ? cv::INTER_LINEAR
+                       : i == "area"   ? cv::INTER_AREA
+                                       : cv::INTER_CUBIC;
     cv::resize(in.mat, out.mat, cv::Size(), scale_.get(), scale_.get(), interp);
     if (out.mat.empty()) throw std::invalid_argument("scale " + std::to_string(scale_.get()) + " leaves no pixels");
   }
@@ -33,14 +36,18 @@ class Crop : public apex::Node {
   static inline const apex::ParamDecl<int> kHeight = param::integer("height").range(1, 100000).step(1).init(100000);
   static apex::Manifest manifest() {
     return ImageFilter::filterManifest("Cuts out a rectangle (clipped to the image); shares the input's pixels")
-        .param(kX).param(kY).param(kWidth).param(kHeight);
+        .param(kX)
+        .param(kY)
+        .param(kWidth)
+        .param(kHeight);
   }
   void process() override {
     auto in = in_.get();
     requireImage(*in);
     const cv::Rect box = cv::Rect(x_.get(), y_.get(), width_.get(), height_.get()) & cv::Rect(0, 0, in->mat.cols, in->mat.rows);
-    if (box.empty()) throw std::invalid_argument("the crop lies outside the " + std::to_string(in->mat.cols) + "x" +
-                                                 std::to_string(in->mat.rows) + " image");
+    if (box.empty())
+      throw std::invalid_argument("the crop lies outside the " + std::to_string(in->mat.cols) + "x" +
+                                  std::to_string(in->mat.rows) + " image");
     auto out = std::make_shared<Image>(*in);
     out->mat = in->mat(box);  // no copy: a view, kept valid by `owner`
     out->owner = in;

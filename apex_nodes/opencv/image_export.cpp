@@ -40,7 +40,8 @@ class ImageExport : public apex::Node {
     std::string last;
     if (auto regions = regions_.get()) {
       int i = 0;
-      for (const auto& r : regions->regions) write(last = stem + "_" + std::to_string(i++) + ".png", in.mat(r.box & cv::Rect(0, 0, in.mat.cols, in.mat.rows)));
+      for (const auto& r : regions->regions)
+        write(last = stem + "_" + std::to_string(i++) + ".png", in.mat(r.box & cv::Rect(0, 0, in.mat.cols, in.mat.rows)));
     } else {
       write(last = stem + ".png", in.mat);
     }

@@ -10,12 +10,17 @@ class Morphology : public ImageFilter {
  public:
   static inline const apex::ParamDecl<std::string> kOperation =
       param::choice("operation", {"erode", "dilate", "open", "close"}).init("open");
-  static inline const apex::ParamDecl<std::string> kShape = param::choice("shape", {"rect", "cross", "ellipse"}).describe("kernel shape");
+  static inline const apex::ParamDecl<std::string> kShape =
+      param::choice("shape", {"rect", "cross", "ellipse"}).describe("kernel shape");
   static inline const apex::ParamDecl<int> kKernel =
       param::integer("kernel_size").range(1, 31).step(2).init(3).describe("kernel width and height, odd");
   static inline const apex::ParamDecl<int> kIterations = param::integer("iterations").range(1, 20).step(1);
   static apex::Manifest manifest() {
-    return filterManifest("Morphological erode, dilate, open or close").param(kOperation).param(kShape).param(kKernel).param(kIterations);
+    return filterManifest("Morphological erode, dilate, open or close")
+        .param(kOperation)
+        .param(kShape)
+        .param(kKernel)
+        .param(kIterations);
   }
   void parameterChanged(const std::string&) override { kernel_.release(); }
 
@@ -27,7 +32,10 @@ class Morphology : public ImageFilter {
       kernel_ = cv::getStructuringElement(shape, cv::Size(size_.get(), size_.get()));
     }
     const auto& op = operation_.get();
-    const int code = op == "erode" ? cv::MORPH_ERODE : op == "dilate" ? cv::MORPH_DILATE : op == "open" ? cv::MORPH_OPEN : cv::MORPH_CLOSE;
+    const int code = op == "erode"    ? cv::MORPH_ERODE
+                     : op == "dilate" ? cv::MORPH_DILATE
+                     : op == "open"   ? cv::MORPH_OPEN
+                                      : cv::MORPH_CLOSE;
     cv::morphologyEx(in.mat, out.mat, code, kernel_, cv::Point(-1, -1), iterations_.get());
   }
   apex::Param<std::string> operation_{this, kOperation};

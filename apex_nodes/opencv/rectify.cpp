@@ -39,9 +39,9 @@ class Rectify : public apex::Node {
  private:
   int interpolation() const {
     const std::string& i = interpolation_.get();
-    return i == "nearest" ? cv::INTER_NEAREST
-           : i == "cubic" ? cv::INTER_CUBIC
-           : i == "area"  ? cv::INTER_AREA
+    return i == "nearest"    ? cv::INTER_NEAREST
+           : i == "cubic"    ? cv::INTER_CUBIC
+           : i == "area"     ? cv::INTER_AREA
            : i == "lanczos4" ? cv::INTER_LANCZOS4
                              : cv::INTER_LINEAR;
   }

@@ -13,8 +13,8 @@ class RegionScore : public apex::Node {
   static inline const apex::OutputPort<double> kPrecision{"precision", "matched regions / regions (1 if none were found)"};
   static inline const apex::OutputPort<double> kRecall{"recall", "matched truth boxes / truth boxes (1 if the frame has none)"};
   static inline const apex::OutputPort<double> kF1{"f1", "2 precision recall / (precision + recall); 0 if both are 0"};
-  static inline const apex::ParamDecl<std::string> kTruth = param::path("truth").describe(
-      "the ground truth: frames by stamp, boxes in the upright scene and the camera's rotation");
+  static inline const apex::ParamDecl<std::string> kTruth =
+      param::path("truth").describe("the ground truth: frames by stamp, boxes in the upright scene and the camera's rotation");
   static inline const apex::ParamDecl<double> kIou =
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a truth box");
   static apex::Manifest manifest() {

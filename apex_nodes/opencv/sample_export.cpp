@@ -88,8 +88,8 @@ class SampleExport : public apex::Node {
       throw std::runtime_error("'" + dir + "/" + file + "' exists and is not a sample of index.csv: left as it is; " +
                                "set 'overwrite' to replace it, or choose another directory");
     if (!cv::imwrite(dir + "/" + file, crop)) throw std::runtime_error("cannot write '" + dir + "/" + file + "'");
-    index_[file] = file + "," + folder + "," + std::to_string(stamp) + "," + std::to_string(box.x) + "," +
-                   std::to_string(box.y) + "," + std::to_string(box.width) + "," + std::to_string(box.height);
+    index_[file] = file + "," + folder + "," + std::to_string(stamp) + "," + std::to_string(box.x) + "," + std::to_string(box.y) +
+                   "," + std::to_string(box.width) + "," + std::to_string(box.height);
   }
   /** The index already in `dir` (from an earlier run), read once per folder. */
   void openIndex(const std::string& dir) {
@@ -101,7 +101,8 @@ class SampleExport : public apex::Node {
       if (n == 1 && line == kIndexHeader) continue;
       const auto comma = line.find(',');
       if (comma == std::string::npos || comma == 0)
-        throw std::invalid_argument("'" + dir + "/index.csv' line " + std::to_string(n) + " is not 'file,label,...': move the file away");
+        throw std::invalid_argument("'" + dir + "/index.csv' line " + std::to_string(n) +
+                                    " is not 'file,label,...': move the file away");
       index_[line.substr(0, comma)] = line;
     }
     index_dir_ = dir;
@@ -123,7 +124,7 @@ class SampleExport : public apex::Node {
   apex::Param<bool> overwrite_{this, kOverwrite};
   TruthFile truth_file_;
   std::map<std::string, std::string> index_;  // file → its line
-  std::string index_dir_;                      // the folder index_ belongs to
+  std::string index_dir_;  // the folder index_ belongs to
 };
 
 }  // namespace apex_nodes

@@ -69,8 +69,7 @@ double overlap(const cv::Rect& a, const cv::Rect& b) {
 
 }  // namespace
 
-std::vector<std::pair<int, int>> matchSigns(const std::vector<TruthSign>& signs, const std::vector<Region>& regions,
-                                            double iou) {
+std::vector<std::pair<int, int>> matchSigns(const std::vector<TruthSign>& signs, const std::vector<Region>& regions, double iou) {
   std::vector<std::tuple<double, int, int>> pairs;  // (overlap, sign, region)
   for (std::size_t s = 0; s < signs.size(); ++s)
     for (std::size_t r = 0; r < regions.size(); ++r)

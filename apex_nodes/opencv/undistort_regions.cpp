@@ -28,8 +28,8 @@ class UndistortRegions : public apex::Node {
     std::vector<cv::Point2d> raw;  // per region: the centroid and the box's four corners
     for (const auto& r : in->regions) {
       const cv::Rect b = r.box;
-      raw.insert(raw.end(), {r.centroid, cv::Point2d(b.x, b.y), cv::Point2d(b.x + b.width, b.y),
-                             cv::Point2d(b.x, b.y + b.height), cv::Point2d(b.x + b.width, b.y + b.height)});
+      raw.insert(raw.end(), {r.centroid, cv::Point2d(b.x, b.y), cv::Point2d(b.x + b.width, b.y), cv::Point2d(b.x, b.y + b.height),
+                             cv::Point2d(b.x + b.width, b.y + b.height)});
     }
     std::vector<cv::Point2d> moved;
     if (!raw.empty()) cv::undistortPoints(raw, moved, K, cv::Mat(info.D), R, P);
@@ -40,7 +40,8 @@ class UndistortRegions : public apex::Node {
       double x0 = p[1].x, y0 = p[1].y, x1 = x0, y1 = y0;
       for (int k = 2; k < 5; ++k)
         x0 = std::min(x0, p[k].x), y0 = std::min(y0, p[k].y), x1 = std::max(x1, p[k].x), y1 = std::max(y1, p[k].y);
-      out->regions[i].box = cv::Rect(cv::Point(int(std::floor(x0)), int(std::floor(y0))), cv::Point(int(std::ceil(x1)), int(std::ceil(y1))));
+      out->regions[i].box =
+          cv::Rect(cv::Point(int(std::floor(x0)), int(std::floor(y0))), cv::Point(int(std::ceil(x1)), int(std::ceil(y1))));
     }
     rectified_.publish(std::move(out));
   }

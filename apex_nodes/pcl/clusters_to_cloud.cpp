@@ -47,7 +47,9 @@ class ClustersToCloud : public apex::Node {
   static inline const apex::InputPort<Clusters> kClusters{"clusters"};
   static inline const apex::OutputPort<Cloud> kCloud{"cloud", "every cluster's points, with a uint32 field 'label'"};
   static apex::Manifest manifest() {
-    return apex::Manifest("Joins clusters into one cloud whose 'label' field says each point's cluster").input(kClusters).output(kCloud);
+    return apex::Manifest("Joins clusters into one cloud whose 'label' field says each point's cluster")
+        .input(kClusters)
+        .output(kCloud);
   }
   void process() override {
     const auto in = clusters_.get();

@@ -54,8 +54,8 @@ Intrinsics intrinsicsOf(const sensor_msgs::CameraInfo& info, const std::string& 
 /** Throws naming both sizes unless `image` is the camera's size. */
 void requireSize(const Intrinsics& k, const sensor_msgs::CameraInfo& info, const cv::Mat& image, const std::string& what) {
   if (image.cols != k.width || image.rows != k.height)
-    throw std::invalid_argument(cameraName(info) + " is for images of " + sizeText(k.width, k.height) + ", " + what +
-                                " is " + sizeText(image.cols, image.rows));
+    throw std::invalid_argument(cameraName(info) + " is for images of " + sizeText(k.width, k.height) + ", " + what + " is " +
+                                sizeText(image.cols, image.rows));
 }
 
 /** depth_image_proc's DepthTraits: the unit and which values are missing. */
@@ -214,7 +214,7 @@ class CloudToDepth : public apex::Node {
       const double u = k.fx * p.x / p.z + k.cx, v = k.fy * p.y / p.z + k.cy;
       if (!(u >= -0.5 && u < k.width - 0.5 && v >= -0.5 && v < k.height - 0.5)) continue;  // off the image
       float& d = out->mat.at<float>(int(std::floor(v + 0.5)), int(std::floor(u + 0.5)));  // the nearest pixel
-      if (std::isnan(d) || p.z < d) d = p.z;                                                  // the nearest point
+      if (std::isnan(d) || p.z < d) d = p.z;  // the nearest point
     }
     depth_.publish(out);
   }

@@ -15,8 +15,11 @@ class Ndt : public RegistrationNode<pcl::NormalDistributionsTransform<pcl::Point
   static inline const apex::ParamDecl<double> kStepSize =
       param::number("step_size").range(0.001, 10.0).step(0.001).init(0.1).describe("metres: the line search's longest step");
   static inline const apex::ParamDecl<double> kTransformationEpsilon =
-      param::number("transformation_epsilon").range(0.0, 1.0).step(1e-6).init(0.01).describe(
-          "stop when an iteration moves less (squared translation, m^2); 0: run max_iterations");
+      param::number("transformation_epsilon")
+          .range(0.0, 1.0)
+          .step(1e-6)
+          .init(0.01)
+          .describe("stop when an iteration moves less (squared translation, m^2); 0: run max_iterations");
   static inline const apex::ParamDecl<int> kMaxIterations = param::integer("max_iterations").range(1, 10000).step(1).init(35);
   static apex::Manifest manifest() {
     return registrationManifest("Aligns a cloud to another by the normal distributions transform (PCL's NDT)")

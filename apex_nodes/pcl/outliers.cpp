@@ -14,7 +14,9 @@ class StatisticalOutlierRemoval : public CloudFilter<pcl::StatisticalOutlierRemo
   static inline const apex::ParamDecl<double> kStddev =
       param::number("stddev").range(0.0, 10.0).step(0.1).init(1.0).describe("allowed standard deviations");
   static apex::Manifest manifest() {
-    return filterManifest("Removes points whose mean distance to their k neighbours is unusually large").param(kMeanK).param(kStddev);
+    return filterManifest("Removes points whose mean distance to their k neighbours is unusually large")
+        .param(kMeanK)
+        .param(kStddev);
   }
 
  private:
@@ -33,7 +35,9 @@ class RadiusOutlierRemoval : public CloudFilter<pcl::RadiusOutlierRemoval<pcl::P
   static inline const apex::ParamDecl<int> kMinNeighbours =
       param::integer("min_neighbours").range(0, 1000).step(1).init(5).describe("within the radius, to be kept");
   static apex::Manifest manifest() {
-    return filterManifest("Removes points with fewer than min_neighbours others within radius").param(kRadius).param(kMinNeighbours);
+    return filterManifest("Removes points with fewer than min_neighbours others within radius")
+        .param(kRadius)
+        .param(kMinNeighbours);
   }
 
  private:

@@ -26,7 +26,7 @@ struct Model {
   const char* name;
   pcl::SacModel type;
   std::size_t coefficients;  // how many PCL gives and takes
-  bool normals;              // weighs each point's normal (SACSegmentationFromNormals)
+  bool normals;  // weighs each point's normal (SACSegmentationFromNormals)
 };
 const Model kModels[] = {
     {"plane", pcl::SACMODEL_PLANE, 4, false},
@@ -43,10 +43,9 @@ const Model kModels[] = {
     {"normal_sphere", pcl::SACMODEL_NORMAL_SPHERE, 4, true},
 };
 const char* const kShapes[] = {"plane", "line", "circle2d", "circle3d", "sphere", "cylinder"};  // ProjectInliers'
-const std::pair<const char*, int> kMethods[] = {{"ransac", pcl::SAC_RANSAC}, {"lmeds", pcl::SAC_LMEDS},
-                                                {"msac", pcl::SAC_MSAC},     {"rransac", pcl::SAC_RRANSAC},
-                                                {"rmsac", pcl::SAC_RMSAC},   {"mlesac", pcl::SAC_MLESAC},
-                                                {"prosac", pcl::SAC_PROSAC}};
+const std::pair<const char*, int> kMethods[] = {
+    {"ransac", pcl::SAC_RANSAC}, {"lmeds", pcl::SAC_LMEDS},   {"msac", pcl::SAC_MSAC},    {"rransac", pcl::SAC_RRANSAC},
+    {"rmsac", pcl::SAC_RMSAC},   {"mlesac", pcl::SAC_MLESAC}, {"prosac", pcl::SAC_PROSAC}};
 
 std::vector<std::string> modelNames() {
   std::vector<std::string> out;
@@ -114,14 +113,25 @@ class SACSegmentation : public apex::Node {
   static inline const apex::ParamDecl<int> kMaxIterations = param::integer("max_iterations").range(1, 100000).step(1).init(200);
   static inline const apex::ParamDecl<bool> kOptimize =
       param::flag("optimize_coefficients").init(true).describe("refit the model to its inliers");
-  static inline const apex::ParamDecl<apex::Interval> kRadius = param::interval("radius").range(0.0, 100.0).step(0.001).init(
-      {0.0, 10.0}).describe("metres: a circle's, sphere's or cylinder's radius");
+  static inline const apex::ParamDecl<apex::Interval> kRadius =
+      param::interval("radius")
+          .range(0.0, 100.0)
+          .step(0.001)
+          .init({0.0, 10.0})
+          .describe("metres: a circle's, sphere's or cylinder's radius");
   static inline const apex::ParamDecl<std::vector<double>> kAxis =
       param::list("axis").init({0, 0, 1}).describe("x, y, z: the direction parallel/perpendicular models and cylinders keep to");
-  static inline const apex::ParamDecl<double> kEpsAngle = param::angle("eps_angle").range(0.0, 1.5707963267948966).init(0.0).describe(
-      "how far from `axis` the model's axis or normal may turn; 0: any direction (PCL's default)");
-  static inline const apex::ParamDecl<double> kNormalDistanceWeight = param::number("normal_distance_weight").range(0.0, 1.0).step(
-      0.01).init(0.1).describe("cylinder and normal_ models: weight of the normals' angle against the distance");
+  static inline const apex::ParamDecl<double> kEpsAngle =
+      param::angle("eps_angle")
+          .range(0.0, 1.5707963267948966)
+          .init(0.0)
+          .describe("how far from `axis` the model's axis or normal may turn; 0: any direction (PCL's default)");
+  static inline const apex::ParamDecl<double> kNormalDistanceWeight =
+      param::number("normal_distance_weight")
+          .range(0.0, 1.0)
+          .step(0.01)
+          .init(0.1)
+          .describe("cylinder and normal_ models: weight of the normals' angle against the distance");
   static apex::Manifest manifest() {
     return apex::Manifest("Fits a model (plane, line, circle, sphere, cylinder...) by sample consensus")
         .input(kCloud)
@@ -239,7 +249,8 @@ class ProjectInliers : public apex::Node {
       project.filter(projected);
     }
     if (projected.size() != xyz->size())
-      throw std::invalid_argument("PCL could not project onto the " + std::string(model.name) + " (its coefficients are invalid)");
+      throw std::invalid_argument("PCL could not project onto the " + std::string(model.name) +
+                                  " (its coefficients are invalid)");
     cloud_out_.publish(cloudResult(*in, withXyz(*in->points, projected)));
   }
 

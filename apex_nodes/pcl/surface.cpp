@@ -42,7 +42,8 @@ std::pair<double, double> areaAndVolume(const XyzCloud& hull, const std::vector<
   double area = 0, volume = 0;
   for (const auto& triangle : polygons) {
     if (triangle.vertices.size() != 3) continue;
-    const Eigen::Vector3d a = at(hull, triangle.vertices[0]), b = at(hull, triangle.vertices[1]), c = at(hull, triangle.vertices[2]);
+    const Eigen::Vector3d a = at(hull, triangle.vertices[0]), b = at(hull, triangle.vertices[1]),
+                          c = at(hull, triangle.vertices[2]);
     const Eigen::Vector3d normal = (b - a).cross(c - a);
     area += normal.norm() / 2;
     volume += std::abs(normal.dot(a - centre)) / 6;
@@ -58,8 +59,9 @@ class ConvexHull : public apex::Node {
   static inline const apex::OutputPort<Cloud> kHull{"hull", "the hull's points, whole; in 2D in order round the polygon"};
   static inline const apex::OutputPort<double> kArea{"area", "square metres: the polygon's (2D) or the surface's (3D)"};
   static inline const apex::OutputPort<double> kVolume{"volume", "cubic metres (3D; 0 for a polygon)"};
-  static inline const apex::ParamDecl<std::string> kDimension = param::choice("dimension", {"auto", "2", "3"}).describe(
-      "2: a polygon round points on a plane, 3: a polyhedron; auto: by how flat the points lie (PCL's test)");
+  static inline const apex::ParamDecl<std::string> kDimension =
+      param::choice("dimension", {"auto", "2", "3"})
+          .describe("2: a polygon round points on a plane, 3: a polyhedron; auto: by how flat the points lie (PCL's test)");
   static apex::Manifest manifest() {
     return apex::Manifest("The points on a cloud's convex hull: a polygon or a polyhedron")
         .input(kCloud)
@@ -103,8 +105,12 @@ class ExtractPolygonalPrism : public apex::Node {
   static inline const apex::InputPort<Cloud> kCloud{"cloud"};
   static inline const apex::InputPort<Cloud> kHull{"hull", "a polygon on a plane, its points in order (ConvexHull's, 2D)"};
   static inline const apex::OutputPort<Cloud> kCloudOut{"cloud", "the points within the prism, whole"};
-  static inline const apex::ParamDecl<apex::Interval> kHeight = param::interval("height").range(-10.0, 10.0).step(0.001).init(
-      {0.01, 0.5}).describe("metres from the polygon's plane, positive on the viewpoint's side");
+  static inline const apex::ParamDecl<apex::Interval> kHeight =
+      param::interval("height")
+          .range(-10.0, 10.0)
+          .step(0.001)
+          .init({0.01, 0.5})
+          .describe("metres from the polygon's plane, positive on the viewpoint's side");
   static inline const apex::ParamDecl<std::vector<double>> kViewpoint =
       param::list("viewpoint").init({0, 0, 0}).describe("x, y, z on the side heights count up to (the sensor's origin)");
   static inline const apex::ParamDecl<bool> kNegative = param::flag("negative").describe("keep the points outside instead");

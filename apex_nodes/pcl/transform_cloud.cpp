@@ -22,8 +22,8 @@ class TransformCloud : public apex::Node {
     const auto& t = *transform_.get();
     requirePoints(*in);
     if (!t.child_frame_id.empty() && t.child_frame_id != in->header.frame_id)
-      throw std::invalid_argument("the transform maps frame '" + t.child_frame_id + "', the cloud is in '" +
-                                  in->header.frame_id + "'");
+      throw std::invalid_argument("the transform maps frame '" + t.child_frame_id + "', the cloud is in '" + in->header.frame_id +
+                                  "'");
     auto out = cloudResult(*in, transformPoints(*in->points, toEigen(t.transform)));
     out->header.frame_id = t.header.frame_id;
     cloud_out_.publish(out);

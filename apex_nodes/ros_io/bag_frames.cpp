@@ -31,8 +31,8 @@ std::unique_ptr<rosbag::Bag> openIn(const std::string& file, rosbag::bagmode::Ba
 std::unique_ptr<rosbag::Bag> openBag(const std::string& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
-    throw std::invalid_argument("cannot open bag '" + file + "': " +
-                                (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
+    throw std::invalid_argument("cannot open bag '" + file +
+                                "': " + (std::filesystem::exists(file, ec) ? "not a regular file" : "no such file"));
   return openIn(file, rosbag::bagmode::Read, "open");
 }
 

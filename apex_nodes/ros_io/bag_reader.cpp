@@ -25,8 +25,7 @@ constexpr const char* kCameraInfoType = "sensor_msgs/CameraInfo";
 /** The topics a node plays and their outputs: `topics`, one output each; or, when that is
  *  empty, as graphs made before it: `image_topic` on output image, `cloud_topic` on cloud. */
 std::vector<std::pair<std::string, std::string>> playedTopics(const std::vector<std::string>& topics,
-                                                              const std::string& image_topic,
-                                                              const std::string& cloud_topic) {
+                                                              const std::string& image_topic, const std::string& cloud_topic) {
   std::vector<std::pair<std::string, std::string>> out;  // (output, topic)
   for (const auto& topic : topics) out.emplace_back(portForTopic(topic), topic);
   if (!out.empty()) return out;
@@ -46,7 +45,8 @@ apex::Message convert(const rosbag::MessageInstance& m) {
   if (auto image = m.instantiate<sensor_msgs::Image>()) return apex::Message::share<Image>(fromRos(image));
   if (auto cloud = m.instantiate<Cloud>()) return apex::Message::share<Cloud>(fromRos(boost::shared_ptr<const Cloud>(cloud)));
   if (auto info = m.instantiate<sensor_msgs::CameraInfo>())  // shared: the pointer holds the message
-    return apex::Message::share<sensor_msgs::CameraInfo>(std::shared_ptr<const sensor_msgs::CameraInfo>(info.get(), [info](const void*) {}));
+    return apex::Message::share<sensor_msgs::CameraInfo>(
+        std::shared_ptr<const sensor_msgs::CameraInfo>(info.get(), [info](const void*) {}));
   return {};
 }
 
@@ -79,8 +79,8 @@ apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
     } else if (auto it = types.find(topic); it != types.end()) {
       type = typeFor(it->second);
       if (!type)
-        return apex::Status::error("topic '" + topic + "' holds " + it->second + "; BagReader plays " + kImageType +
-                                   ", " + kCloudType + " and " + kCameraInfoType);
+        return apex::Status::error("topic '" + topic + "' holds " + it->second + "; BagReader plays " + kImageType + ", " +
+                                   kCloudType + " and " + kCameraInfoType);
       desc += " (" + it->second + ")";
     }
     outputs.push_back({port, type, false, desc});
@@ -105,8 +105,9 @@ class BagReader : public apex::Node {
   static inline const apex::ParamDecl<std::string> kFile = param::path("file").describe("the bag").shapesInterface();
   static inline const apex::ParamDecl<std::vector<std::string>> kTopics =
       param::textList("topics")
-          .describe("topics to play, one output each (/camera/image_raw: output camera_image_raw); "
-                    "empty: image_topic and cloud_topic, on outputs image and cloud")
+          .describe(
+              "topics to play, one output each (/camera/image_raw: output camera_image_raw); "
+              "empty: image_topic and cloud_topic, on outputs image and cloud")
           .shapesInterface();
   static inline const apex::ParamDecl<std::string> kImageTopic =
       param::text("image_topic").init("/camera/image_raw").describe("used when topics is empty").shapesInterface();
@@ -131,8 +132,9 @@ class BagReader : public apex::Node {
       param::integer("frame")
           .range(0, 10000000)
           .step(1)
-          .describe("the current frame (its output sends each frame's index); setting it seeks there "
-                    "and sends that frame")
+          .describe(
+              "the current frame (its output sends each frame's index); setting it seeks there "
+              "and sends that frame")
           .interactive()
           .everySet();
   static inline const apex::ParamDecl<double> kTime =
@@ -258,7 +260,8 @@ class BagReader : public apex::Node {
     frames_ = indexFrames(*bag_, played_topics_, sync_window_.get());
     std::string missing;
     const auto types = topicTypes(*bag_);
-    for (const auto& t : played_topics_) if (!types.count(t)) missing += (missing.empty() ? "" : ", ") + t;
+    for (const auto& t : played_topics_)
+      if (!types.count(t)) missing += (missing.empty() ? "" : ", ") + t;
     if (!missing.empty()) log(apex::LogLevel::Warn, "bag '" + file + "' has no topic " + missing);
     playRange();
     const int asked = frame_.get();
@@ -291,7 +294,8 @@ class BagReader : public apex::Node {
   /** The first frame at or after `seconds` into the bag (binary search), the last if none. */
   int frameAt(double seconds) const {
     const ros::Time t = frames_.front().start + ros::Duration(std::max(0.0, seconds));
-    auto it = std::lower_bound(frames_.begin(), frames_.end(), t, [](const BagFrame& f, const ros::Time& at) { return f.start < at; });
+    auto it =
+        std::lower_bound(frames_.begin(), frames_.end(), t, [](const BagFrame& f, const ros::Time& at) { return f.start < at; });
     return static_cast<int>(std::min<std::ptrdiff_t>(it - frames_.begin(), frames_.size() - 1));
   }
   void request(int k) {
@@ -350,9 +354,9 @@ class BagReader : public apex::Node {
   std::map<std::string, std::string> ports_;  // topic → output
   std::vector<BagFrame> frames_;
   int first_ = 0, last_ = -1;  // the play range
-  int current_ = -1;           // the frame sent last (held while paused)
-  int next_ = 0;               // the frame playing sends next
-  int request_ = -1;           // a frame asked for by a seek, a slot or a change downstream
+  int current_ = -1;  // the frame sent last (held while paused)
+  int next_ = 0;  // the frame playing sends next
+  int request_ = -1;  // a frame asked for by a seek, a slot or a change downstream
   bool opened_ = false;
   std::string open_error_;  // why the file did not open ("" if it did, or there is none)
   bool seek_on_open_ = false;

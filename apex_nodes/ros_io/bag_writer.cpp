@@ -50,11 +50,10 @@ ros::Time clockNow() {
 
 class BagWriter : public apex::Node {
  public:
-  static inline const apex::ParamDecl<std::string> kFile =
-      param::path("file")
-          .init("/tmp/apex_record.bag")
-          .describe("the bag; written as <file>.active until it is closed")
-          .mode(apex::PathMode::Write);
+  static inline const apex::ParamDecl<std::string> kFile = param::path("file")
+                                                               .init("/tmp/apex_record.bag")
+                                                               .describe("the bag; written as <file>.active until it is closed")
+                                                               .mode(apex::PathMode::Write);
   static inline const apex::ParamDecl<std::vector<std::string>> kTopics =
       param::textList("topics")
           .init({"/camera/image_raw"})
@@ -64,16 +63,19 @@ class BagWriter : public apex::Node {
       param::number("split_size")
           .range(0.0, 1e6)
           .step(1.0)
-          .describe("MB (of 1,048,576 bytes, as rosbag record): when a file grows past this, the next "
-                    "one starts; files are <stem>_0.bag, <stem>_1.bag, ...; 0: one file");
+          .describe(
+              "MB (of 1,048,576 bytes, as rosbag record): when a file grows past this, the next "
+              "one starts; files are <stem>_0.bag, <stem>_1.bag, ...; 0: one file");
   static inline const apex::ParamDecl<bool> kRecording =
       param::flag("recording").init(true).describe("the start and stop slots set it; off closes the file");
-  static inline const apex::ParamDecl<bool> kOverwrite = param::flag("overwrite").describe("replace a bag this node did not record");
+  static inline const apex::ParamDecl<bool> kOverwrite =
+      param::flag("overwrite").describe("replace a bag this node did not record");
   static inline const apex::ParamDecl<bool> kStopAtEnd =
       param::flag("stop_at_end")
           .init(true)
-          .describe("the end of a pass (e.g. a BagReader's last frame) stops recording, so the file is "
-                    "complete when the bag has played once");
+          .describe(
+              "the end of a pass (e.g. a BagReader's last frame) stops recording, so the file is "
+              "complete when the bag has played once");
   static apex::Manifest manifest() {
     return apex::Manifest("Records its inputs into a bag: one input per topic, each message at its own stamp")
         .slot("start", &BagWriter::start, "start recording (a new file: an old one of that name is replaced)")
@@ -116,9 +118,10 @@ class BagWriter : public apex::Node {
       newest = std::max(newest, messages.back().second.stamp);
     }
     // A held frame sent again (a paused player, after an edit downstream) is recorded once.
-    messages.erase(std::remove_if(messages.begin(), messages.end(),
-                                  [&](const auto& tm) { return !tm.second.stamp.isZero() && last_stamp_[tm.first] == tm.second.stamp; }),
-                   messages.end());
+    messages.erase(
+        std::remove_if(messages.begin(), messages.end(),
+                       [&](const auto& tm) { return !tm.second.stamp.isZero() && last_stamp_[tm.first] == tm.second.stamp; }),
+        messages.end());
     if (messages.empty()) return;
     if (newest.isZero()) newest = clockNow();
     if (!bag_) open();
@@ -201,11 +204,11 @@ class BagWriter : public apex::Node {
   apex::Param<bool> overwrite_{this, kOverwrite};
 
   std::unique_ptr<rosbag::Bag> bag_;
-  std::string path_;         // the file bag_ becomes when closed
-  bool part_open_ = false;   // bag_ is one of split_size's parts
-  int part_ = 0;             // with split_size: the part written next
+  std::string path_;  // the file bag_ becomes when closed
+  bool part_open_ = false;  // bag_ is one of split_size's parts
+  int part_ = 0;  // with split_size: the part written next
   std::map<std::string, ros::Time> last_stamp_;  // topic → the stamp recorded last
-  std::set<std::string> created_;                // files this node recorded: `start` records them anew
+  std::set<std::string> created_;  // files this node recorded: `start` records them anew
 };
 
 }  // namespace apex_nodes

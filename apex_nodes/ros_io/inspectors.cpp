@@ -31,7 +31,8 @@ const bool kRegistered = [] {
   });
   apex::addInspector<sensor_msgs::LaserScan, sensor_msgs::LaserScan>([](const sensor_msgs::LaserScan& s) { return s; });
   apex::addInspector<sensor_msgs::CameraInfo, sensor_msgs::CameraInfo>([](const sensor_msgs::CameraInfo& c) { return c; });
-  apex::addInspector<geometry_msgs::PoseStamped, geometry_msgs::PoseStamped>([](const geometry_msgs::PoseStamped& p) { return p; });
+  apex::addInspector<geometry_msgs::PoseStamped, geometry_msgs::PoseStamped>(
+      [](const geometry_msgs::PoseStamped& p) { return p; });
   apex::addInspector<geometry_msgs::PoseArray, geometry_msgs::PoseArray>([](const geometry_msgs::PoseArray& p) { return p; });
   return true;
 }();

@@ -43,8 +43,8 @@ geometry_msgs::Quaternion quaternion(const Eigen::Quaterniond& q) {
 float unit(int channel) { return static_cast<float>(std::clamp(channel, 0, 255)) / 255.f; }
 
 /** A marker of `ns` and `id` with the array's header, lifetime and a valid (identity) orientation. */
-visualization_msgs::Marker marker(const ClusterFeatures& features, const MarkerOptions& options, const std::string& ns,
-                                  int id, int action) {
+visualization_msgs::Marker marker(const ClusterFeatures& features, const MarkerOptions& options, const std::string& ns, int id,
+                                  int action) {
   visualization_msgs::Marker m;
   m.header = features.header;
   m.ns = ns;
@@ -150,7 +150,8 @@ const bool kInspectorRegistered = [] {
 class MarkerPublisher : public apex::Node {
  public:
   static inline const apex::InputPort<ClusterFeatures> kFeatures{"features", "the clusters to draw"};
-  static inline const apex::InputPort<Cloud> kHull{"hull", "if connected: a plane's hull (ConvexHull), drawn as its outline", true};
+  static inline const apex::InputPort<Cloud> kHull{"hull", "if connected: a plane's hull (ConvexHull), drawn as its outline",
+                                                   true};
   static inline const apex::ParamDecl<std::string> kTopic =
       apex::param::text("topic").init("markers").describe("resolved in the runtime's namespace");
   static inline const apex::ParamDecl<std::string> kNamespace =
@@ -164,8 +165,12 @@ class MarkerPublisher : public apex::Node {
       apex::param::number("alpha").range(0.0, 1.0).step(0.05).init(0.5).describe("the boxes' opacity");
   static inline const apex::ParamDecl<double> kTextHeight =
       apex::param::number("text_height").range(0.005, 2.0).step(0.005).init(0.15).describe("the labels' letter height, metres");
-  static inline const apex::ParamDecl<double> kLifetime = apex::param::number("lifetime").range(0.0, 3600.0).step(0.1).init(0.0)
-      .describe("seconds a box stays without an update; 0: until the next message replaces it");
+  static inline const apex::ParamDecl<double> kLifetime =
+      apex::param::number("lifetime")
+          .range(0.0, 3600.0)
+          .step(0.1)
+          .init(0.0)
+          .describe("seconds a box stays without an update; 0: until the next message replaces it");
   static apex::Manifest manifest() {
     return apex::Manifest("Publishes clusters' boxes as visualization_msgs/MarkerArray, for rviz")
         .input(kFeatures)

@@ -18,8 +18,8 @@ class MergeClouds : public apex::Node {
   static inline const apex::InputPort<Cloud> kCloud0{"cloud_0", "a cloud; the inputs are cloud_0, cloud_1, ..."};
   static inline const apex::InputPort<Cloud> kCloud1{"cloud_1"};
   static inline const apex::OutputPort<Cloud> kCloud{"cloud", "every input's points in `frame`, stamped as the newest input"};
-  static inline const apex::ParamDecl<int> kInputs = param::integer("inputs").range(2, 8).step(1).init(2).describe(
-      "how many clouds: cloud_0, cloud_1, ...").shapesInterface();
+  static inline const apex::ParamDecl<int> kInputs =
+      param::integer("inputs").range(2, 8).step(1).init(2).describe("how many clouds: cloud_0, cloud_1, ...").shapesInterface();
   static inline const apex::ParamDecl<std::string> kFrame =
       param::text("frame").describe("the merged cloud's frame; empty: the inputs' own, which must be one");
   static inline const apex::ParamDecl<double> kTimeout =
@@ -50,11 +50,12 @@ class MergeClouds : public apex::Node {
     std::vector<std::shared_ptr<const Cloud>> clouds;
     for (const auto& port : interface().inputs) clouds.push_back(input<Cloud>(port.name));
     const double timeout = timeout_.get();
-    cloud_.publish(mergeClouds(clouds, frame_.get(), [&](const std::string& target, const std::string& source,
-                                                          const ros::Time& stamp) -> Eigen::Affine3f {
-      if (!buffer_) throw std::runtime_error("no tf2 listener: ROS is not initialised");
-      return toEigen(buffer_->lookupTransform(target, source, stamp, ros::Duration(timeout)).transform);
-    }));
+    cloud_.publish(
+        mergeClouds(clouds, frame_.get(),
+                    [&](const std::string& target, const std::string& source, const ros::Time& stamp) -> Eigen::Affine3f {
+                      if (!buffer_) throw std::runtime_error("no tf2 listener: ROS is not initialised");
+                      return toEigen(buffer_->lookupTransform(target, source, stamp, ros::Duration(timeout)).transform);
+                    }));
   }
 
  private:

@@ -105,9 +105,8 @@ std::shared_ptr<const Cloud> scanToCloud(const sensor_msgs::LaserScan& scan) {
     throw std::invalid_argument("scan on frame '" + scan.header.frame_id + "' has a non-finite angle_min or angle_increment");
   if (scan.intensities.empty())
     return scanPoints<pcl::PointXYZ>(scan, [](float x, float y, std::size_t) { return pcl::PointXYZ(x, y, 0.f); });
-  return scanPoints<pcl::PointXYZI>(scan, [&](float x, float y, std::size_t i) {
-    return pcl::PointXYZI(x, y, 0.f, scan.intensities[i]);
-  });
+  return scanPoints<pcl::PointXYZI>(
+      scan, [&](float x, float y, std::size_t i) { return pcl::PointXYZI(x, y, 0.f, scan.intensities[i]); });
 }
 
 }  // namespace apex_nodes

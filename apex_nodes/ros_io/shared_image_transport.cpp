@@ -27,12 +27,10 @@ image_transport::Publisher advertiseImage(const ros::NodeHandle& nh, const std::
 }
 
 image_transport::Subscriber subscribeImage(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size,
-                                           const ImageCallback& callback,
-                                           const std::string& transport_name) {
+                                           const ImageCallback& callback, const std::string& transport_name) {
   const std::string resolved = nh.resolveName(topic);
   std::lock_guard<std::mutex> lock(pluginLoaderMutex());
-  return transport().subscribe(resolved, queue_size, callback, ros::VoidPtr(),
-                               image_transport::TransportHints(transport_name));
+  return transport().subscribe(resolved, queue_size, callback, ros::VoidPtr(), image_transport::TransportHints(transport_name));
 }
 
 image_transport::CameraPublisher advertiseCamera(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size) {

@@ -23,9 +23,7 @@ std::mutex& pluginLoaderMutex();
 
 /** @brief The transport parameter of every image subscriber (a function: static members of the
  *  nodes may be initialised after the registration lines that read them). */
-inline apex::ParamDecl<std::string> transportParam() {
-  return apex::param::choice("transport", {"raw", "compressed", "theora"});
-}
+inline apex::ParamDecl<std::string> transportParam() { return apex::param::choice("transport", {"raw", "compressed", "theora"}); }
 
 using ImageCallback = boost::function<void(const sensor_msgs::ImageConstPtr&)>;
 using CameraCallback = boost::function<void(const sensor_msgs::ImageConstPtr&, const sensor_msgs::CameraInfoConstPtr&)>;
@@ -34,8 +32,7 @@ using CameraCallback = boost::function<void(const sensor_msgs::ImageConstPtr&, c
 image_transport::Publisher advertiseImage(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size);
 
 image_transport::Subscriber subscribeImage(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size,
-                                           const ImageCallback& callback,
-                                           const std::string& transport);
+                                           const ImageCallback& callback, const std::string& transport);
 
 /** A camera: the image topic and its sibling camera_info (image_transport's pairing by stamp). */
 image_transport::CameraPublisher advertiseCamera(const ros::NodeHandle& nh, const std::string& topic, uint32_t queue_size);

@@ -40,8 +40,7 @@ class TfLookup : public apex::Node {
     if (!header) throw std::invalid_argument("a " + stamped_.message().typeName() + " has no header to look up");
     const std::string source = source_frame_.get().empty() ? header->frame_id : source_frame_.get();
     try {
-      transform_.publish(
-          buffer_->lookupTransform(target_frame_.get(), source, header->stamp, ros::Duration(timeout_.get())));
+      transform_.publish(buffer_->lookupTransform(target_frame_.get(), source, header->stamp, ros::Duration(timeout_.get())));
     } catch (const tf2::TransformException& e) {
       throw std::runtime_error("no transform " + source + " -> " + target_frame_.get() + " at " +
                                std::to_string(header->stamp.toSec()) + ": " + e.what());

@@ -25,11 +25,17 @@ class TfBroadcaster : public apex::Node {
   static inline const apex::ParamDecl<double> kRoll = param::angle("roll"), kPitch = param::angle("pitch"),
                                               kYaw = param::angle("yaw");
   static apex::Manifest manifest() {
-    return apex::Manifest("Broadcasts a fixed transform parent_frame -> child_frame on /tf_static (roll, pitch, yaw about "
-                          "the parent's fixed x, y, z axes, as static_transform_publisher)")
-        .param(kParent).param(kChild)
-        .param(kX).param(kY).param(kZ)
-        .param(kRoll).param(kPitch).param(kYaw);
+    return apex::Manifest(
+               "Broadcasts a fixed transform parent_frame -> child_frame on /tf_static (roll, pitch, yaw about "
+               "the parent's fixed x, y, z axes, as static_transform_publisher)")
+        .param(kParent)
+        .param(kChild)
+        .param(kX)
+        .param(kY)
+        .param(kZ)
+        .param(kRoll)
+        .param(kPitch)
+        .param(kYaw);
   }
   void setup() override {
     if (!ros::isInitialized()) throw std::runtime_error("needs ROS: run it in the ROS runtime");
@@ -52,7 +58,8 @@ class TfBroadcaster : public apex::Node {
     t->transform.translation.x = x_.get(), t->transform.translation.y = y_.get(), t->transform.translation.z = z_.get();
     tf2::Quaternion q;
     q.setRPY(roll_.get(), pitch_.get(), yaw_.get());
-    t->transform.rotation.x = q.x(), t->transform.rotation.y = q.y(), t->transform.rotation.z = q.z(), t->transform.rotation.w = q.w();
+    t->transform.rotation.x = q.x(), t->transform.rotation.y = q.y(), t->transform.rotation.z = q.z(),
+    t->transform.rotation.w = q.w();
     broadcaster_->sendTransform(*t);
   }
   apex::Param<std::string> parent_{this, kParent};

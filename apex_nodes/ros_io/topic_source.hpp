@@ -71,10 +71,10 @@ class TopicSource : public apex::Node {
  private:
   apex::Param<bool> hold_{this, holdParam()};  // declared by every subclass: holdParam()
   std::mutex m_;
-  MsgPtr latest_;                      // m_: the newest from the callback
-  MsgPtr sent_;                        // process() only: the last one sent (held)
-  bool resend_ = false;                // process() only
-  std::atomic<bool> holding_{false};   // read by the callback
+  MsgPtr latest_;  // m_: the newest from the callback
+  MsgPtr sent_;  // process() only: the last one sent (held)
+  bool resend_ = false;  // process() only
+  std::atomic<bool> holding_{false};  // read by the callback
 };
 
 }  // namespace apex_nodes

@@ -29,8 +29,8 @@ class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
 
  private:
   void subscribe() override {
-    sub_ = subscribeImage(apex::nodeHandle(*this), topic_.get(), 1, [this](const MsgPtr& msg) { received(msg); },
-                          transport_.get());
+    sub_ = subscribeImage(
+        apex::nodeHandle(*this), topic_.get(), 1, [this](const MsgPtr& msg) { received(msg); }, transport_.get());
   }
   void send(const MsgPtr& msg) override { image_.publish(fromRos(msg)); }
   apex::Output<Image> image_{this, kImage};
@@ -82,9 +82,7 @@ class PointCloudPublisher : public TopicSink<Cloud, ros::Publisher> {
   PointCloudPublisher() : TopicSink(kCloud) {}
 
  private:
-  ros::Publisher advertise(ros::NodeHandle nh, const std::string& topic) override {
-    return nh.advertise<Cloud>(topic, 1);
-  }
+  ros::Publisher advertise(ros::NodeHandle nh, const std::string& topic) override { return nh.advertise<Cloud>(topic, 1); }
 };
 
 }  // namespace apex_nodes

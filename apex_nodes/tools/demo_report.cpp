@@ -31,9 +31,10 @@ bool call(const std::string& name, Srv& srv) {
 int main(int argc, char** argv) {
   ros::init(argc, argv, "apex_demo_report");
   if (argc < 2) {
-    std::fprintf(stderr, "usage: apex_demo_report TRUTH.yaml [bag|topic] [BLOB_NODE]\n"
-                         "  BLOB_NODE: the BlobDetection node whose count is compared (default blobs;\n"
-                         "             in the grouped demo graph camera_detector/blobs)\n");
+    std::fprintf(stderr,
+                 "usage: apex_demo_report TRUTH.yaml [bag|topic] [BLOB_NODE]\n"
+                 "  BLOB_NODE: the BlobDetection node whose count is compared (default blobs;\n"
+                 "             in the grouped demo graph camera_detector/blobs)\n");
     return 2;
   }
   const std::string source = argc > 2 ? argv[2] : "bag";
@@ -93,8 +94,8 @@ int main(int argc, char** argv) {
   }
   std::printf("\n=== APEX demo: the paper's camera pipeline (Fig. 2) on %zu synthetic frames\n", truth.size());
   std::printf("frames processed:   %zu of %zu%s\n", found.size(), truth.size(), all ? "" : " (timed out)");
-  std::printf("regions found:      %d, ground truth %d; frames with the right count: %d of %zu\n", seen, expected,
-              matching, truth.size());
+  std::printf("regions found:      %d, ground truth %d; frames with the right count: %d of %zu\n", seen, expected, matching,
+              truth.size());
   int width = 14;  // inner nodes of subgraphs have longer names: camera_detector/threshold
   for (const auto& n : status.nodes) width = std::max(width, static_cast<int>(n.name.size()));
   std::printf("%-*s %9s %10s %10s %10s\n", width, "node", "firings", "mean ms", "max ms", "state");

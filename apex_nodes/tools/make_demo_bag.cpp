@@ -30,7 +30,7 @@
 namespace {
 
 constexpr int kWidth = 640, kHeight = 480;  // the scene upright; the camera sees it turned
-constexpr int kCameraRotation = 90;         // degrees clockwise: the recorded image is the scene turned
+constexpr int kCameraRotation = 90;  // degrees clockwise: the recorded image is the scene turned
 
 struct Options {
   std::string bag, truth;
@@ -54,7 +54,8 @@ Options parse(int argc, char** argv) {
     std::string value;
     const auto eq = arg.find('=');  // --seed=7 as well as --seed 7
     if (eq != std::string::npos) value = arg.substr(eq + 1), arg.resize(eq);
-    if (arg != "--seed" && arg != "--frames" && arg != "--difficulty") throw std::invalid_argument("unknown option '" + arg + "'");
+    if (arg != "--seed" && arg != "--frames" && arg != "--difficulty")
+      throw std::invalid_argument("unknown option '" + arg + "'");
     if (eq == std::string::npos) {
       if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
       value = argv[++i];
@@ -66,7 +67,8 @@ Options parse(int argc, char** argv) {
       o.hard = value == "hard";
     }
   }
-  if (plain.size() < 2 || plain.size() > 3) throw std::invalid_argument("needs OUT.bag and TRUTH.yaml, and at most a frame count");
+  if (plain.size() < 2 || plain.size() > 3)
+    throw std::invalid_argument("needs OUT.bag and TRUTH.yaml, and at most a frame count");
   o.bag = plain[0];
   o.truth = plain[1];
   if (plain.size() == 3) o.frames = static_cast<int>(number("the frame count", plain[2], 1, 100000));
@@ -107,9 +109,9 @@ std::vector<cv::Rect> placeSigns(cv::RNG& rng, int count) {
 struct GlyphStyle {
   int font;
   double height;  // of the sign's
-  int stroke;     // pixels at a sign 80 pixels high
-  double shear;   // slant: x moves by shear * (centre - y)
-  double angle;   // degrees
+  int stroke;  // pixels at a sign 80 pixels high
+  double shear;  // slant: x moves by shear * (centre - y)
+  double angle;  // degrees
 };
 
 GlyphStyle randomStyle(cv::RNG& style) {
@@ -133,7 +135,8 @@ cv::Mat glyph(const cv::Size& box, int number, const GlyphStyle& s) {
   const double scale = cv::getFontScaleFromHeight(s.font, cvRound(box.height * s.height), stroke);
   int baseline = 0;
   const cv::Size size = cv::getTextSize(text, s.font, scale, stroke, &baseline);
-  cv::putText(mask, text, {(box.width - size.width) / 2, (box.height + size.height) / 2}, s.font, scale, 255, stroke, cv::LINE_AA);
+  cv::putText(mask, text, {(box.width - size.width) / 2, (box.height + size.height) / 2}, s.font, scale, 255, stroke,
+              cv::LINE_AA);
   const cv::Point2f centre(box.width / 2.f, box.height / 2.f);
   cv::Mat turn = cv::getRotationMatrix2D(centre, s.angle, 1.0);
   turn.at<double>(0, 1) += s.shear;
@@ -182,10 +185,18 @@ void occlude(cv::Mat& img, const cv::Rect& box, cv::RNG& rng) {
   const int past = rng.uniform(10, 40);  // beyond the sign's edge
   cv::Rect hide;
   switch (side) {
-    case 0: hide = {box.x - past, box.y - 8, past + across, box.height + 16}; break;
-    case 1: hide = {box.br().x - across, box.y - 8, across + past, box.height + 16}; break;
-    case 2: hide = {box.x - 8, box.y - past, box.width + 16, past + across}; break;
-    default: hide = {box.x - 8, box.br().y - across, box.width + 16, across + past}; break;
+    case 0:
+      hide = {box.x - past, box.y - 8, past + across, box.height + 16};
+      break;
+    case 1:
+      hide = {box.br().x - across, box.y - 8, across + past, box.height + 16};
+      break;
+    case 2:
+      hide = {box.x - 8, box.y - past, box.width + 16, past + across};
+      break;
+    default:
+      hide = {box.x - 8, box.br().y - across, box.width + 16, across + past};
+      break;
   }
   cv::rectangle(img, hide, cv::Scalar::all(rng.uniform(170, 230)), cv::FILLED);
 }
@@ -206,7 +217,8 @@ void placeApart(cv::Mat& mask, cv::Mat& taken, int gap, const Shape& shape) {
 void drawDistractors(cv::Mat& img, const std::vector<cv::Rect>& boxes, cv::RNG& rng) {
   constexpr int kGap = 12;  // any two dark things stay twice this apart
   cv::Mat mask(img.size(), CV_8U, cv::Scalar(0)), taken = mask.clone();
-  for (const auto& b : boxes) cv::rectangle(taken, cv::Rect(b.x - kGap, b.y - kGap, b.width + 2 * kGap, b.height + 2 * kGap), 255, cv::FILLED);
+  for (const auto& b : boxes)
+    cv::rectangle(taken, cv::Rect(b.x - kGap, b.y - kGap, b.width + 2 * kGap, b.height + 2 * kGap), 255, cv::FILLED);
   const int strokes = rng.uniform(2, 6);
   for (int i = 0; i < strokes; ++i) {
     const cv::Point a(rng.uniform(0, kWidth), rng.uniform(0, kHeight));
@@ -233,7 +245,8 @@ cv::Mat lighting(cv::RNG& rng) {
   const double hi = std::max(0.0, dx * kWidth) + std::max(0.0, dy * kHeight);
   cv::Mat light(kHeight, kWidth, CV_32F);
   for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) light.at<float>(y, x) = static_cast<float>(dim + (bright - dim) * ((dx * x + dy * y - lo) / (hi - lo)));
+    for (int x = 0; x < kWidth; ++x)
+      light.at<float>(y, x) = static_cast<float>(dim + (bright - dim) * ((dx * x + dy * y - lo) / (hi - lo)));
   cv::Mat shade(light.size(), CV_32F, cv::Scalar(1.0));
   const int shadows = rng.uniform(1, 4);
   for (int i = 0; i < shadows; ++i) {
@@ -275,7 +288,8 @@ sensor_msgs::PointCloud2 cloud(cv::RNG& rng, const std_msgs::Header& header) {
     c.push_back(pcl::PointXYZ(rng.uniform(-2.f, 2.f), 0.8f + rng.gaussian(0.005), rng.uniform(0.3f, 5.f)));
   for (int b = 0; b < 2; ++b)
     for (int i = 0; i < 3000; ++i)
-      c.push_back(pcl::PointXYZ(-0.8f + 1.2f * b + rng.uniform(0.f, 0.4f), rng.uniform(0.4f, 0.8f), 1.5f + rng.uniform(0.f, 0.4f)));
+      c.push_back(
+          pcl::PointXYZ(-0.8f + 1.2f * b + rng.uniform(0.f, 0.4f), rng.uniform(0.4f, 0.8f), 1.5f + rng.uniform(0.f, 0.4f)));
   sensor_msgs::PointCloud2 msg;
   pcl::toROSMsg(c, msg);
   msg.header = header;

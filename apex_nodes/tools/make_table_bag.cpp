@@ -62,15 +62,16 @@ double hit(const Box& b, const Eigen::Vector3d& from, const Eigen::Vector3d& dir
 /** The scene of frame `f`: the table (a thin slab), the floor, and three boxes sliding in x. */
 std::vector<Box> scene(int f) {
   std::vector<Box> s;
-  s.push_back({{-0.6, -0.4, -0.03}, {0.6, 0.4, 0.0}, {60, 90, 140}});     // the table's top (wood)
-  s.push_back({{-3, -3, -0.78}, {3, 3, -0.75}, {120, 120, 120}});         // the floor
+  s.push_back({{-0.6, -0.4, -0.03}, {0.6, 0.4, 0.0}, {60, 90, 140}});  // the table's top (wood)
+  s.push_back({{-3, -3, -0.78}, {3, 3, -0.75}, {120, 120, 120}});  // the floor
   const double sizes[3][3] = {{0.12, 0.10, 0.15}, {0.08, 0.16, 0.10}, {0.10, 0.10, 0.22}};
   const double y[3] = {-0.15, 0.05, 0.2}, x0[3] = {-0.3, 0.05, 0.35};
   const cv::Vec3b colours[3] = {{40, 40, 200}, {40, 170, 40}, {190, 90, 30}};
   for (int i = 0; i < 3; ++i) {
     const double x = x0[i] + 0.08 * std::sin(0.15 * f + 2.0 * i);
     s.push_back({{x - sizes[i][0] / 2, y[i] - sizes[i][1] / 2, 0.0},
-                 {x + sizes[i][0] / 2, y[i] + sizes[i][1] / 2, sizes[i][2]}, colours[i]});
+                 {x + sizes[i][0] / 2, y[i] + sizes[i][1] / 2, sizes[i][2]},
+                 colours[i]});
   }
   return s;
 }
@@ -91,7 +92,8 @@ int main(int argc, char** argv) {
     }
     if (paths.size() != 2) throw std::invalid_argument("needs OUT.bag and TRUTH.yaml");
   } catch (const std::invalid_argument& e) {
-    std::cerr << "apex_make_table_bag: " << e.what() << "\nusage: apex_make_table_bag OUT.bag TRUTH.yaml [--frames N] [--seed N]\n";
+    std::cerr << "apex_make_table_bag: " << e.what()
+              << "\nusage: apex_make_table_bag OUT.bag TRUTH.yaml [--frames N] [--seed N]\n";
     return 2;
   }
   rosbag::Bag bag;
@@ -137,8 +139,8 @@ int main(int argc, char** argv) {
     truth << "  - boxes:\n";
     for (std::size_t i = 2; i < boxes.size(); ++i) {
       const Eigen::Vector3d c = camera.toCamera((boxes[i].min + boxes[i].max) / 2), size = boxes[i].max - boxes[i].min;
-      truth << "      - {centre: [" << c.x() << ", " << c.y() << ", " << c.z() << "], size: [" << size.x() << ", "
-            << size.y() << ", " << size.z() << "]}\n";
+      truth << "      - {centre: [" << c.x() << ", " << c.y() << ", " << c.z() << "], size: [" << size.x() << ", " << size.y()
+            << ", " << size.z() << "]}\n";
     }
   }
   bag.close();

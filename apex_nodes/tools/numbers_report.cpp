@@ -47,8 +47,9 @@ class Results {
   /** Waits until every watched output has sent. */
   bool wait(double seconds) {
     std::unique_lock<std::mutex> l(m_);
-    return cv_.wait_for(l, std::chrono::duration<double>(seconds), [&] { return values_.size() == subs_.size() || !ros::ok(); }) &&
-           ros::ok();
+    return cv_.wait_for(l, std::chrono::duration<double>(seconds), [&] {
+      return values_.size() == subs_.size() || !ros::ok();
+    }) && ros::ok();
   }
   /** Waits until every inspect topic is connected. */
   void connect() {
@@ -104,11 +105,12 @@ int reportClassify(Results& r) {
   const int matched = static_cast<int>(r.number("digits/matched")), regions = static_cast<int>(r.number("digits/regions"));
   std::printf("detection:      F1 %.3f (mean over the frames)\n", r.number("f1/mean"));
   std::printf("digits:         accuracy %.3f over the %d signs found (%d regions)\n", accuracy, matched, regions);
-  std::printf("confusion matrix (a row per true digit, a column per label; ?: rejected):\n%s\n", r.text("digits/confusion").c_str());
+  std::printf("confusion matrix (a row per true digit, a column per label; ?: rejected):\n%s\n",
+              r.text("digits/confusion").c_str());
   const auto status = r.status();
   if (const auto* c = statusOf(status, "classify"); c && regions > 0)
-    std::printf("classification: %.3f ms per frame, %.1f us per region (the classify node, mean over %lu frames)\n",
-                c->mean_ms, 1000.0 * c->mean_ms * c->firings / regions, static_cast<unsigned long>(c->firings));
+    std::printf("classification: %.3f ms per frame, %.1f us per region (the classify node, mean over %lu frames)\n", c->mean_ms,
+                1000.0 * c->mean_ms * c->firings / regions, static_cast<unsigned long>(c->firings));
   const std::string failed = errors();
   const bool ok = failed.empty() && matched > 0 && accuracy >= kRequiredAccuracy;
   if (ok) std::printf("numbers: OK\n");

@@ -116,7 +116,8 @@ std::pair<double, std::string> finalBest() {
     const std::string state = YAML::Load(valueOf(g, "optimizer", "state")).as<std::string>();
     if (state.rfind("finished", 0) == 0) {
       const auto at = state.find("; best "), in = state.find(" at {");
-      const double fitness = at != std::string::npos && in != std::string::npos ? std::stod(state.substr(at + 7, in - at - 7)) : 0;
+      const double fitness =
+          at != std::string::npos && in != std::string::npos ? std::stod(state.substr(at + 7, in - at - 7)) : 0;
       return {fitness, YAML::Load(valueOf(g, "optimizer", "best_values")).as<std::string>()};
     }
     if (Clock::now() > until) throw std::runtime_error("the optimiser did not finish: " + state);
@@ -186,7 +187,8 @@ int main(int argc, char** argv) {
     set("score", "truth", test_truth);
     set("bag", "file", test_bag);
     const double test_tuned = watch.nextMean(120);
-    for (const auto& [target, value] : shipped) set(target.substr(0, target.find('/')), target.substr(target.find('/') + 1), value);
+    for (const auto& [target, value] : shipped)
+      set(target.substr(0, target.find('/')), target.substr(target.find('/') + 1), value);
     fire("mean", "reset");
     fire("bag", "restart");
     const double test_shipped = watch.nextMean(120);

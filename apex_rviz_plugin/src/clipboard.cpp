@@ -81,7 +81,8 @@ Pasted GraphModel::paste(const std::string& text, const std::string& level, doub
   auto free = [&](const std::string& name) {
     const std::string path = join(level, name);
     if (node(path)) return false;
-    for (const auto& [from, to] : renamed) if (to == path) return false;
+    for (const auto& [from, to] : renamed)
+      if (to == path) return false;
     return true;
   };
   Edit e{"", {}, {}};
@@ -128,7 +129,7 @@ Pasted GraphModel::duplicate(const std::vector<std::string>& nodes, double dx, d
   if (!left_out.empty()) p.error = left_out + " is an inline subgraph: save it to a file to copy it";
   if (p.edit) {
     p.edit->label = p.names.size() == 1 && nodes.size() == 1 ? "Duplicate " + nodes.front() + " as " + p.names.front()
-                                                              : "Duplicate " + std::to_string(p.names.size()) + " nodes";
+                                                             : "Duplicate " + std::to_string(p.names.size()) + " nodes";
   }
   return p;
 }

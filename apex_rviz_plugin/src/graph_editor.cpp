@@ -143,8 +143,9 @@ QWidget* GraphEditor::buildToolBar() {
   connect(fit, &QToolButton::clicked, this, &GraphEditor::fitGraph);
   auto* tidy = button("tidy", "Tidy", "lay the nodes out in layers, sources left, sinks right (one undo step)");
   connect(tidy, &QToolButton::clicked, this, &GraphEditor::tidyRequested);
-  auto* previews = button("previews", "Previews", "thumbnails of images and sparklines of numbers on the nodes in view "
-                                                  "(at most 5 a second; nodes out of view cost nothing)");
+  auto* previews = button("previews", "Previews",
+                          "thumbnails of images and sparklines of numbers on the nodes in view "
+                          "(at most 5 a second; nodes out of view cost nothing)");
   previews->setCheckable(true);
   connect(previews, &QToolButton::toggled, this, &GraphEditor::previewsToggled);
   auto* presets = button("presets", "Presets", "named snapshots of parameter values: save, compare with now, restore");
@@ -157,8 +158,9 @@ QWidget* GraphEditor::buildToolBar() {
   presets->setMenu(preset_menu);
   auto* fresh = button("new", "New", "remove every node: start from an empty graph (asks first; starts a fresh history)");
   connect(fresh, &QToolButton::clicked, this, [this] {
-    const auto answer = QMessageBox::question(this, "New graph", "Remove every node of the running graph?\n"
-                                                                  "Save it first if you want to keep it.");
+    const auto answer = QMessageBox::question(this, "New graph",
+                                              "Remove every node of the running graph?\n"
+                                              "Save it first if you want to keep it.");
     if (answer == QMessageBox::Yes) emit newRequested();
   });
   auto* save = button("save", "Save...", "save the graph to a file (written by the runtime)");
@@ -214,7 +216,8 @@ void GraphEditor::showTypes(const std::vector<apex::NodeTypeInfo>& types) {
   for (const auto& t : types) {
     auto* item = new QListWidgetItem(QString::fromStdString(t.id), palette_);
     QString tip = QString::fromStdString(t.description);
-    for (const auto& p : t.ports) tip += QString::fromStdString("\n  " + p.kind + " " + p.name + (p.type.empty() ? "" : ": " + p.type));
+    for (const auto& p : t.ports)
+      tip += QString::fromStdString("\n  " + p.kind + " " + p.name + (p.type.empty() ? "" : ": " + p.type));
     item->setToolTip(tip);
     item->setData(Qt::UserRole, QString::fromStdString(t.description));
   }
@@ -368,7 +371,6 @@ QStringList GraphEditor::selectedNodes() const {
 }
 
 void GraphEditor::selectWhenShown(const QStringList& nodes) { select_when_shown_ = nodes; }
-
 
 QString GraphEditor::defaultGraphFolder() {
   const QByteArray ros_home = qgetenv("ROS_HOME");

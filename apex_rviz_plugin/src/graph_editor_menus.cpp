@@ -20,7 +20,8 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
   const apex::NodeInfo& info = item->info();
   QStringList selected = selectedNodes();  // the node and the others selected with it
   if (!selected.contains(node)) selected = QStringList{node};
-  menu.addAction(info.enabled ? "Disable" : "Enable", this, [this, node, on = !info.enabled] { emit enabledRequested(node, on); });
+  menu.addAction(info.enabled ? "Disable" : "Enable", this,
+                 [this, node, on = !info.enabled] { emit enabledRequested(node, on); });
   menu.addAction("Rename...", this, [this, node] { askNewName(node); });
   menu.addAction("Copy", this, [this, selected] { emit copyRequested(selected); });
   menu.addAction("Save parameters as preset...", this, [this, selected] { askPresetName(selected); });
@@ -36,7 +37,8 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
   }
   QMenu* groups = menu.addMenu("Thread group");
   for (const auto& g : model_->graph().thread_groups) {
-    QAction* a = groups->addAction(QString::fromStdString(g), this, [this, node, g] { emit groupRequested(node, QString::fromStdString(g)); });
+    QAction* a = groups->addAction(QString::fromStdString(g), this,
+                                   [this, node, g] { emit groupRequested(node, QString::fromStdString(g)); });
     a->setCheckable(true);
     a->setChecked(g == info.thread_group);
   }

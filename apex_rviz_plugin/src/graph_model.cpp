@@ -16,9 +16,7 @@ using namespace calls;
 
 /** What add_node takes to make this node again: its type, or a file-backed subgraph's file
  *  (an inline subgraph cannot be made again from the panel: add_node says so). */
-std::string typeToAdd(const apex::NodeInfo& n) {
-  return n.subgraph.empty() || n.subgraph == "inline" ? n.type : n.subgraph;
-}
+std::string typeToAdd(const apex::NodeInfo& n) { return n.subgraph.empty() || n.subgraph == "inline" ? n.type : n.subgraph; }
 
 std::string parametersText(const apex::NodeInfo& n) {
   std::string params;
@@ -63,13 +61,15 @@ class StateView : public apex::ConnectionView {
 
  private:
   const apex::NodeInfo* find(const std::string& name) const {
-    for (const auto& n : graph_.nodes) if (n.name == name) return &n;
+    for (const auto& n : graph_.nodes)
+      if (n.name == name) return &n;
     return nullptr;
   }
   bool hasPort(const std::string& node, const std::string& port, const std::string& kind) const {
     const apex::NodeInfo* n = find(node);
     if (!n) return false;
-    for (const auto& p : n->ports) if (p.name == port && p.kind == kind) return true;
+    for (const auto& p : n->ports)
+      if (p.name == port && p.kind == kind) return true;
     return false;
   }
   bool isSlot(const std::string& node, const std::string& port) const { return hasPort(node, port, "slot"); }
@@ -90,14 +90,16 @@ bool GraphModel::update(const apex::GraphState& graph) {
 }
 
 const apex::NodeInfo* GraphModel::node(const std::string& name) const {
-  for (const auto& n : graph_.nodes) if (n.name == name) return &n;
+  for (const auto& n : graph_.nodes)
+    if (n.name == name) return &n;
   return nullptr;
 }
 
 const apex::ParamInfo* GraphModel::parameter(const std::string& node_name, const std::string& name) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return nullptr;
-  for (const auto& p : n->parameters) if (p.name == name) return &p;
+  for (const auto& p : n->parameters)
+    if (p.name == name) return &p;
   return nullptr;
 }
 
@@ -105,12 +107,12 @@ const apex::PortInfo* GraphModel::port(const std::string& node_name, const std::
                                        const std::string& kind) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return nullptr;
-  for (const auto& p : n->ports) if (p.name == port_name && (kind.empty() || p.kind == kind)) return &p;
+  for (const auto& p : n->ports)
+    if (p.name == port_name && (kind.empty() || p.kind == kind)) return &p;
   return nullptr;
 }
 
-std::string GraphModel::whyNot(const std::string& fn, const std::string& fp, const std::string& tn,
-                               const std::string& tp) const {
+std::string GraphModel::whyNot(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) const {
   auto checked = apex::checkConnection(StateView(graph_), {fn, fp, tn, tp, 0});
   return checked ? "" : checked.message();
 }
@@ -204,12 +206,15 @@ std::optional<Edit> GraphModel::insert(const std::string& name, const apex::Conn
   in.to_node = out.from_node = name;
   in.to_port = out.from_port = "";
   for (const auto& p : n->ports) {
-    if (in.to_port.empty() && p.kind == "input" && without.whyNot(c.from_node, c.from_port, name, p.name).empty()) in.to_port = p.name;
-    if (out.from_port.empty() && p.kind == "output" && without.whyNot(name, p.name, c.to_node, c.to_port).empty()) out.from_port = p.name;
+    if (in.to_port.empty() && p.kind == "input" && without.whyNot(c.from_node, c.from_port, name, p.name).empty())
+      in.to_port = p.name;
+    if (out.from_port.empty() && p.kind == "output" && without.whyNot(name, p.name, c.to_node, c.to_port).empty())
+      out.from_port = p.name;
   }
   if (in.to_port.empty() || out.from_port.empty()) return std::nullopt;
   Edit e("Insert " + name + " into " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port, {}, {});
-  e.apply = {setUi(name, ui(x, y)), calls::connect("disconnect", c), calls::connect("connect", in), calls::connect("connect", out)};
+  e.apply = {setUi(name, ui(x, y)), calls::connect("disconnect", c), calls::connect("connect", in),
+             calls::connect("connect", out)};
   e.revert = {calls::connect("disconnect", out), calls::connect("disconnect", in), calls::connect("connect", c),
               setUi(name, n->ui.empty() ? ui(0, 0) : n->ui)};
   return e;
@@ -217,11 +222,12 @@ std::optional<Edit> GraphModel::insert(const std::string& name, const apex::Conn
 
 Edit GraphModel::disconnect(const apex::Connection& c) const {
   return {"Disconnect " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port,
-          {calls::connect("disconnect", c)}, {calls::connect("connect", c)}};
+          {calls::connect("disconnect", c)},
+          {calls::connect("connect", c)}};
 }
 
-std::optional<Edit> GraphModel::setParameter(const std::string& node_name, const std::string& param,
-                                             const std::string& value, bool dragging) const {
+std::optional<Edit> GraphModel::setParameter(const std::string& node_name, const std::string& param, const std::string& value,
+                                             bool dragging) const {
   const apex::ParamInfo* p = parameter(node_name, param);
   if (!p) return std::nullopt;
   apex::SetParameter::Request set, back;
@@ -331,7 +337,6 @@ std::optional<Edit> GraphModel::ungroup(const std::string& path) const {
   return Edit{"Ungroup " + g.name, {{"ungroup", u}}, {{"group", g}}};
 }
 
-
 std::optional<Edit> GraphModel::setEnabled(const std::string& name, bool enabled) const {
   const apex::NodeInfo* n = node(name);
   if (!n) return std::nullopt;
@@ -350,15 +355,15 @@ std::optional<Edit> GraphModel::setThreadGroup(const std::string& name, const st
   return Edit{"Move " + name + " to group " + group, {{"set_thread_group", set}}, {{"set_thread_group", back}}};
 }
 
-std::optional<Edit> GraphModel::setInteractive(const std::string& name, const std::string& param,
-                                               bool interactive) const {
+std::optional<Edit> GraphModel::setInteractive(const std::string& name, const std::string& param, bool interactive) const {
   const apex::ParamInfo* p = parameter(name, param);
   if (!p) return std::nullopt;
   apex::SetInteractive::Request set, back;
   set.node = back.node = name;
   set.parameter = back.parameter = param;
   set.interactive = interactive, back.interactive = p->interactive;
-  Edit e{(interactive ? "Show ports of " : "Hide ports of ") + name + "/" + param, {{"set_interactive", set}},
+  Edit e{(interactive ? "Show ports of " : "Hide ports of ") + name + "/" + param,
+         {{"set_interactive", set}},
          {{"set_interactive", back}}};
   if (!interactive)  // hiding the ports drops their connections: undo restores them
     for (const auto& c : graph_.connections)

@@ -38,9 +38,8 @@ std::vector<std::string> GraphModel::optimizers() const {
   return out;
 }
 
-std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std::string& param,
-                                         const std::string& optimizer, double x, double y,
-                                         const apex::NodeTypeInfo* optimizer_type) const {
+std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std::string& param, const std::string& optimizer,
+                                         double x, double y, const apex::NodeTypeInfo* optimizer_type) const {
   const apex::ParamInfo* p = parameter(node_name, param);
   if (!p || (p->type != "int" && p->type != "double") || p->shapes_ports) return std::nullopt;
   for (const auto& c : graph_.connections)  // a parameter input has one source

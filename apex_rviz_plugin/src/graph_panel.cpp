@@ -19,8 +19,8 @@ GraphPanel::GraphPanel(QWidget* parent) : rviz::Panel(parent), widget_(new Panel
   connect(widget_, &PanelWidget::namespaceChanged, this, &rviz::Panel::configChanged);
   connect(widget_, &PanelWidget::displayRequested, this, &GraphPanel::addDisplay);
   connect(widget_, &PanelWidget::graphShown, this, [this](quint64 revision) {
-    ROS_INFO_STREAM_ONCE_NAMED("apex_panel", "GraphPanel: showing the graph of " << widget_->ns().toStdString()
-                                                 << " (revision " << revision << ", "
+    ROS_INFO_STREAM_ONCE_NAMED("apex_panel", "GraphPanel: showing the graph of "
+                                                 << widget_->ns().toStdString() << " (revision " << revision << ", "
                                                  << widget_->model().graph().nodes.size() << " nodes)");
   });
   connect(widget_, &PanelWidget::statusShown, this,

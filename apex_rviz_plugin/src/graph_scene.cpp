@@ -24,7 +24,9 @@ QPainterPath curve(QPointF a, QPointF b) {
 // ------------------------------------------------------------ ConnectionItem
 
 ConnectionItem::ConnectionItem(const apex::Connection& c, PortItem* from, PortItem* to) : c_(c), from_(from), to_(to) {
-  QPen pen(c.kind == "event" ? QColor(230, 160, 40) : c.kind == "parameter" ? QColor(150, 110, 200) : QColor(140, 190, 230),
+  QPen pen(c.kind == "event"       ? QColor(230, 160, 40)
+           : c.kind == "parameter" ? QColor(150, 110, 200)
+                                   : QColor(140, 190, 230),
            c.kind == "data" ? 2.5 : 1.8);
   if (c.kind == "event") pen.setStyle(Qt::DashLine);
   setPen(pen);
@@ -81,7 +83,10 @@ void GraphScene::show(const GraphModel& model) {
     if (mouseGrabberItem() != item) item->setPos(x, y);
   }
   for (auto it = nodes_.begin(); it != nodes_.end();) {
-    if (seen.count(it->first)) { ++it; continue; }
+    if (seen.count(it->first)) {
+      ++it;
+      continue;
+    }
     delete it->second;
     it = nodes_.erase(it);
   }
@@ -238,7 +243,8 @@ void GraphScene::contextMenuEvent(QGraphicsSceneContextMenuEvent* e) {
   if (e->isAccepted()) return;
   for (QGraphicsItem* i : items(e->scenePos())) {
     if (auto* p = dynamic_cast<PortItem*>(i)) {
-      emit portMenuRequested(QString::fromStdString(p->node()->info().name), QString::fromStdString(p->port().name), e->screenPos());
+      emit portMenuRequested(QString::fromStdString(p->node()->info().name), QString::fromStdString(p->port().name),
+                             e->screenPos());
       return e->accept();
     }
     if (auto* c = dynamic_cast<ConnectionItem*>(i)) {

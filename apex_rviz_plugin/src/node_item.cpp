@@ -72,8 +72,9 @@ QRectF PortItem::boundingRect() const {
 
 void PortItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   p->setRenderHint(QPainter::Antialiasing);
-  QColor fill = eventKind(port_.kind) ? QColor(230, 160, 40) : paramKind(port_.kind) ? QColor(150, 110, 200)
-                                                                                      : QColor(80, 160, 220);
+  QColor fill = eventKind(port_.kind)   ? QColor(230, 160, 40)
+                : paramKind(port_.kind) ? QColor(150, 110, 200)
+                                        : QColor(80, 160, 220);
   if (mark_ == Mark::Accepts) fill = QColor(60, 200, 60);
   if (mark_ == Mark::Refuses) fill = QColor(210, 50, 50);
   p->setBrush(fill);
@@ -229,7 +230,8 @@ double NodeItem::textWidth() const {
   const QFontMetricsF b(bold), s(small), l(label);
   double wide = std::max(b.horizontalAdvance(shortName() + "  (disabled)"), s.horizontalAdvance(kindLine()));  // either way
   std::vector<double> in, out;  // label widths per row, each side
-  for (const auto& p : info_.ports) (sourceKind(p.kind) ? out : in).push_back(l.horizontalAdvance(QString::fromStdString(p.name)));
+  for (const auto& p : info_.ports)
+    (sourceKind(p.kind) ? out : in).push_back(l.horizontalAdvance(QString::fromStdString(p.name)));
   for (std::size_t row = 0; row < std::max(in.size(), out.size()); ++row)
     wide = std::max(wide, (row < in.size() ? in[row] : 0) + (row < out.size() ? out[row] : 0) + 30);
   return wide + 2 * kPad;
@@ -280,9 +282,9 @@ void NodeItem::showImage(const QString& port, const QImage& image) {
 }
 
 QString NodeItem::portTip(const apex::PortInfo& p) const {
-  QString tip = QString::fromStdString(p.name + " (" + p.kind + (p.type.empty() ? "" : ", " + p.type) +
-                                       (p.optional ? ", optional" : "") + ")" +
-                                       (p.description.empty() ? "" : "\n" + p.description));
+  QString tip =
+      QString::fromStdString(p.name + " (" + p.kind + (p.type.empty() ? "" : ", " + p.type) + (p.optional ? ", optional" : "") +
+                             ")" + (p.description.empty() ? "" : "\n" + p.description));
   if (p.kind == "output") {
     auto image = images_.find(p.name);
     auto value = scalar_values_.find(QString::fromStdString(p.name));
@@ -292,10 +294,8 @@ QString NodeItem::portTip(const apex::PortInfo& p) const {
                  .arg(about == abouts_.end() ? QString("an") : about->second)
                  .arg(image->second.width())
                  .arg(image->second.height());
-    else if (value != scalar_values_.end())
-      tip += "\nlast: " + value->second;
-    else
-      tip += "\nlast: not watched (turn on Previews, or double-click to inspect)";
+    else if (value != scalar_values_.end()) tip += "\nlast: " + value->second;
+    else tip += "\nlast: not watched (turn on Previews, or double-click to inspect)";
     tip += QString("\nnode: %1 Hz").arg(rate_hz_, 0, 'f', 1);
     tip += "\n(drag to an input to connect; double-click to inspect)";
   }
@@ -325,7 +325,8 @@ void NodeItem::showValue(const QString& port, const QString& text) {
 }
 
 PortItem* NodeItem::port(const std::string& name, bool source) const {
-  for (auto* p : ports_) if (p->port().name == name && p->isSource() == source) return p;
+  for (auto* p : ports_)
+    if (p->port().name == name && p->isSource() == source) return p;
   return nullptr;
 }
 
@@ -377,8 +378,9 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
               values_.isEmpty() ? timing_ : values_);
   if (error) {
     p->setPen(QColor(255, 90, 90));
-    p->drawText(QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
-                p->fontMetrics().elidedText(QString::fromStdString(info_.error), Qt::ElideRight, static_cast<int>(width_ - 2 * kPad)));
+    p->drawText(
+        QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
+        p->fontMetrics().elidedText(QString::fromStdString(info_.error), Qt::ElideRight, static_cast<int>(width_ - 2 * kPad)));
   } else if (!waiting_.isEmpty()) {  // stalled: what it waits for, from the runtime
     p->setPen(QColor(255, 190, 60));
     p->drawText(QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,

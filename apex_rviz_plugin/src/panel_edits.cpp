@@ -84,7 +84,8 @@ void PanelWidget::onCopyRequested(const QStringList& nodes) {
   if (nodes.isEmpty()) return;
   std::string left_out;
   QGuiApplication::clipboard()->setText(QString::fromStdString(model_.copy(stdNames(nodes), &left_out, shownPositions())));
-  if (!left_out.empty()) return editor_->showMessage(QString::fromStdString(left_out + " is an inline subgraph: save it to a file to copy it"), true);
+  if (!left_out.empty())
+    return editor_->showMessage(QString::fromStdString(left_out + " is an inline subgraph: save it to a file to copy it"), true);
   editor_->showMessage(nodes.size() == 1 ? "copied " + nodes.front() : QString("copied %1 nodes").arg(nodes.size()), false);
 }
 

@@ -64,8 +64,8 @@ void PanelWidget::reservePlaces(const std::vector<Call>& calls) {
       if (placing_.count(ui->node)) continue;  // placed with its type's size already (addRequested)
       const auto [x, y] = GraphModel::positionIn(ui->ui);
       const auto box = shown.find(ui->node);
-      placing_[ui->node] = Box{x, y, box == shown.end() ? NodeItem::kMinWidth : box->second.width,
-                               box == shown.end() ? 150 : box->second.height};
+      placing_[ui->node] =
+          Box{x, y, box == shown.end() ? NodeItem::kMinWidth : box->second.width, box == shown.end() ? 150 : box->second.height};
     }
 }
 
@@ -82,9 +82,7 @@ void PanelWidget::arrangeShown() {
   else rememberSizes();  // boxes being placed: pushed down from where they go, next time
 }
 
-void PanelWidget::rememberSizes() {
-  sizes_ = editor_->scene()->boxes();
-}
+void PanelWidget::rememberSizes() { sizes_ = editor_->scene()->boxes(); }
 
 void PanelWidget::pushDownUnderGrown() {
   const auto boxes = editor_->scene()->boxes();
@@ -122,7 +120,8 @@ Box PanelWidget::typeBox(const std::string& type) const {
   apex::NodeInfo info;  // as a new node of the type is shown: its ports, its parameters at their defaults
   info.type = type;
   auto interactive = [&](const std::string& name) {
-    for (const auto& p : t->second.parameters) if (p.name == name) return bool(p.interactive);
+    for (const auto& p : t->second.parameters)
+      if (p.name == name) return bool(p.interactive);
     return false;
   };
   for (const auto& p : t->second.ports)  // parameter ports only where the parameter is interactive by default

@@ -141,8 +141,10 @@ void PanelWidget::onPresetRestoreRequested(const QString& name) {
   if (text.empty()) return;
   std::string error;
   auto edit = model_.restore(text, name.toStdString(), &error);
-  if (!edit) return editor_->showMessage(error.empty() ? "the parameters are as preset " + name + " has them already"
-                                                       : QString::fromStdString(error), !error.empty());
+  if (!edit)
+    return editor_->showMessage(
+        error.empty() ? "the parameters are as preset " + name + " has them already" : QString::fromStdString(error),
+        !error.empty());
   perform(edit);
 }
 
@@ -154,7 +156,8 @@ void PanelWidget::onPresetCompareRequested(const QString& name) {
   if (!error.empty()) return editor_->showMessage(QString::fromStdString(error), true);
   QString out = changes.empty() ? "Every parameter is as the preset has it." : "now -> preset " + name + ":\n";
   for (const auto& c : changes)
-    out += QString::fromStdString("\n" + c.node + "/" + c.param + ": " + (c.now.empty() ? "(not in the graph)" : c.now) + " -> " + c.then);
+    out += QString::fromStdString("\n" + c.node + "/" + c.param + ": " + (c.now.empty() ? "(not in the graph)" : c.now) + " -> " +
+                                  c.then);
   editor_->showPresetDiff(name, out);
 }
 
@@ -171,7 +174,8 @@ void PanelWidget::replay(std::vector<Call> calls, const QString& what) {
 
 void PanelWidget::listPresets() {
   QStringList names;
-  for (const QFileInfo& f : QDir(presetFolder()).entryInfoList({"*.yaml"}, QDir::Files, QDir::Name)) names << f.completeBaseName();
+  for (const QFileInfo& f : QDir(presetFolder()).entryInfoList({"*.yaml"}, QDir::Files, QDir::Name))
+    names << f.completeBaseName();
   editor_->showPresets(names);
 }
 
@@ -212,7 +216,10 @@ void PanelWidget::updatePreviews() {
     for (const auto& port : item->previewPorts()) wanted.insert(name + "/" + port);
   }
   for (auto it = previewing_.begin(); it != previewing_.end();) {  // no longer wanted: unsubscribed
-    if (wanted.count(*it)) { ++it; continue; }
+    if (wanted.count(*it)) {
+      ++it;
+      continue;
+    }
     const auto slash = it->rfind('/');
     link_.unwatchPreview(it->substr(0, slash), it->substr(slash + 1));
     it = previewing_.erase(it);
@@ -221,10 +228,13 @@ void PanelWidget::updatePreviews() {
     if (!previewing_.insert(key).second) continue;
     const auto slash = key.rfind('/');
     const std::string node = key.substr(0, slash), port = key.substr(slash + 1);
-    link_.inspect(node, port, [this, node, port, key](bool ok, const std::string&, const std::string& topic, const std::string& type) {
-      if (!ok || !previewing_.count(key) || !previews_) return previewing_.erase(key), void();
-      link_.watchPreview(node, port, topic, type);
-    }, true);
+    link_.inspect(
+        node, port,
+        [this, node, port, key](bool ok, const std::string&, const std::string& topic, const std::string& type) {
+          if (!ok || !previewing_.count(key) || !previews_) return previewing_.erase(key), void();
+          link_.watchPreview(node, port, topic, type);
+        },
+        true);
   }
 }
 
@@ -283,10 +293,11 @@ void PanelWidget::watchOptimizers() {
   for (const auto& name : model_.optimizers()) {
     if (!watched_.insert(name).second) continue;
     for (const char* port : {"evaluations", "best_fitness"})  // the node's box draws its progress from them
-      link_.inspect(name, port, [this, name, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
-        if (!ok) return report(false, m, QString::fromStdString("watch " + name + "/" + port));
-        link_.watchScalar(name, port, topic, type);
-      });
+      link_.inspect(name, port,
+                    [this, name, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
+                      if (!ok) return report(false, m, QString::fromStdString("watch " + name + "/" + port));
+                      link_.watchScalar(name, port, topic, type);
+                    });
   }
 }
 
@@ -303,18 +314,20 @@ void PanelWidget::refreshTypes() {
 
 void PanelWidget::onInspect(const QString& node, const QString& port) {
   inspected_.insert({node.toStdString(), port.toStdString()});
-  link_.inspect(node.toStdString(), port.toStdString(),
-                [this, node, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
-                  if (!ok) return report(false, m, "inspect " + node + "/" + port);
-                  const QString t = QString::fromStdString(topic), name = node + "/" + port;
-                  if (type == "sensor_msgs/Image") emit displayRequested("rviz/Image", name, t);
-                  else if (type == "sensor_msgs/PointCloud2") emit displayRequested("rviz/PointCloud2", name, t);
-                  else if (type.empty())  // a port of any type: its first message decides
-                    return report(true, "", node + "/" + port + " is published on " + t +
-                                                " from its first message on; inspect it again then to see it here");
-                  else link_.watchScalar(node.toStdString(), port.toStdString(), topic, type);
-                  report(true, "", "inspecting " + name + " on " + t + (type.empty() ? "" : " (" + QString::fromStdString(type) + ")"));
-                });
+  link_.inspect(
+      node.toStdString(), port.toStdString(),
+      [this, node, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
+        if (!ok) return report(false, m, "inspect " + node + "/" + port);
+        const QString t = QString::fromStdString(topic), name = node + "/" + port;
+        if (type == "sensor_msgs/Image") emit displayRequested("rviz/Image", name, t);
+        else if (type == "sensor_msgs/PointCloud2") emit displayRequested("rviz/PointCloud2", name, t);
+        else if (type.empty())  // a port of any type: its first message decides
+          return report(
+              true, "",
+              node + "/" + port + " is published on " + t + " from its first message on; inspect it again then to see it here");
+        else link_.watchScalar(node.toStdString(), port.toStdString(), topic, type);
+        report(true, "", "inspecting " + name + " on " + t + (type.empty() ? "" : " (" + QString::fromStdString(type) + ")"));
+      });
 }
 
 }  // namespace apex_rviz_plugin

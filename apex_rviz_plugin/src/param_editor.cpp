@@ -93,9 +93,7 @@ QString quoted(const QString& s) { return "'" + QString(s).replace("'", "''") + 
 struct SliderScale {
   double min, max, step;
   bool log() const { return min > 0 && max / min > 100; }
-  int steps() const {
-    return log() ? 1000 : std::max(1, std::min(1000, static_cast<int>(std::lround((max - min) / step))));
-  }
+  int steps() const { return log() ? 1000 : std::max(1, std::min(1000, static_cast<int>(std::lround((max - min) / step)))); }
   int toSlider(double v) const {
     const double f = log() ? std::log(std::max(v, min) / min) / std::log(max / min) : (v - min) / (max - min);
     return static_cast<int>(std::lround(f * steps()));
@@ -329,7 +327,8 @@ void ParamEditor::buildAngle() {
   auto* spin = new QDoubleSpinBox;
   spin->setObjectName("spin");
   spin->setSuffix(QString::fromUtf8("\u00b0"));
-  spin->setRange(param_.max > param_.min ? param_.min * 180 / M_PI : -360, param_.max > param_.min ? param_.max * 180 / M_PI : 360);
+  spin->setRange(param_.max > param_.min ? param_.min * 180 / M_PI : -360,
+                 param_.max > param_.min ? param_.max * 180 / M_PI : 360);
   spin->setKeyboardTracking(false);
   row_->addWidget(dial), row_->addWidget(spin);
   auto radians = [](double deg) { return number(deg * M_PI / 180); };

@@ -20,7 +20,8 @@ std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::strin
     throw std::runtime_error("not an APEX preset (it needs 'apex_preset: 1' and 'parameters')");
   std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::string>>>> out;
   for (const auto& node : root["parameters"]) {
-    if (!node.second.IsMap()) throw std::runtime_error("the parameters of '" + node.first.as<std::string>() + "' are not a mapping");
+    if (!node.second.IsMap())
+      throw std::runtime_error("the parameters of '" + node.first.as<std::string>() + "' are not a mapping");
     std::vector<std::pair<std::string, std::string>> values;
     for (const auto& p : node.second) {
       YAML::Emitter value;

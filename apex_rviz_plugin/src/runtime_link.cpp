@@ -21,18 +21,52 @@
 namespace apex_rviz_plugin {
 namespace {
 
-template <class Req> struct ServiceOf;
-template <> struct ServiceOf<apex::AddNode::Request> { using type = apex::AddNode; };
-template <> struct ServiceOf<apex::RemoveNode::Request> { using type = apex::RemoveNode; };
-template <> struct ServiceOf<apex::Connect::Request> { using type = apex::Connect; };
-template <> struct ServiceOf<apex::SetParameter::Request> { using type = apex::SetParameter; };
-template <> struct ServiceOf<apex::SetEnabled::Request> { using type = apex::SetEnabled; };
-template <> struct ServiceOf<apex::SetInteractive::Request> { using type = apex::SetInteractive; };
-template <> struct ServiceOf<apex::SetThreadGroup::Request> { using type = apex::SetThreadGroup; };
-template <> struct ServiceOf<apex::SetUi::Request> { using type = apex::SetUi; };
-template <> struct ServiceOf<apex::Group::Request> { using type = apex::Group; };
-template <> struct ServiceOf<apex::Ungroup::Request> { using type = apex::Ungroup; };
-template <> struct ServiceOf<apex::RenameNode::Request> { using type = apex::RenameNode; };
+template <class Req>
+struct ServiceOf;
+template <>
+struct ServiceOf<apex::AddNode::Request> {
+  using type = apex::AddNode;
+};
+template <>
+struct ServiceOf<apex::RemoveNode::Request> {
+  using type = apex::RemoveNode;
+};
+template <>
+struct ServiceOf<apex::Connect::Request> {
+  using type = apex::Connect;
+};
+template <>
+struct ServiceOf<apex::SetParameter::Request> {
+  using type = apex::SetParameter;
+};
+template <>
+struct ServiceOf<apex::SetEnabled::Request> {
+  using type = apex::SetEnabled;
+};
+template <>
+struct ServiceOf<apex::SetInteractive::Request> {
+  using type = apex::SetInteractive;
+};
+template <>
+struct ServiceOf<apex::SetThreadGroup::Request> {
+  using type = apex::SetThreadGroup;
+};
+template <>
+struct ServiceOf<apex::SetUi::Request> {
+  using type = apex::SetUi;
+};
+template <>
+struct ServiceOf<apex::Group::Request> {
+  using type = apex::Group;
+};
+template <>
+struct ServiceOf<apex::Ungroup::Request> {
+  using type = apex::Ungroup;
+};
+template <>
+struct ServiceOf<apex::RenameNode::Request> {
+  using type = apex::RenameNode;
+};
 
 /** Calls a service; the response, and in `message` why it failed if it did. */
 template <class Srv>
@@ -91,8 +125,7 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
   graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear(), preview_subs_.clear();
   if (nh_) {  // calls to the runtime left go on on a thread of their own: one that hangs holds up no other
     jobs_->retire();
-    retired_.erase(std::remove_if(retired_.begin(), retired_.end(), [](const auto& j) { return j->finished(); }),
-                   retired_.end());
+    retired_.erase(std::remove_if(retired_.begin(), retired_.end(), [](const auto& j) { return j->finished(); }), retired_.end());
     retired_.push_back(std::move(jobs_));
     jobs_ = std::make_unique<JobThread>();
   }
@@ -129,8 +162,8 @@ void RuntimeLink::checkConnection() {
   }
   if (up == connected_) return;
   connected_ = up;
-  emit connectionChanged(up, up ? QString("connected to %1").arg(ns)
-                                : QString("the runtime at %1 is gone; reconnecting when it is back").arg(ns));
+  emit connectionChanged(
+      up, up ? QString("connected to %1").arg(ns) : QString("the runtime at %1 is gone; reconnecting when it is back").arg(ns));
 }
 
 void RuntimeLink::run(std::vector<Call> calls, Done done) {
@@ -190,8 +223,7 @@ void RuntimeLink::saveGraph(const std::string& path, Done done) {
   callOne<apex::SaveGraph>("save_graph", req, std::move(done));
 }
 
-void RuntimeLink::loadGraph(const std::string& path,
-                            std::function<void(bool, const std::string&, std::uint64_t revision)> done) {
+void RuntimeLink::loadGraph(const std::string& path, std::function<void(bool, const std::string&, std::uint64_t revision)> done) {
   apex::LoadGraph::Request req;
   req.path = path;
   const std::string name = service("load_graph");
@@ -285,15 +317,17 @@ ros::Subscriber RuntimeLink::subscribeScalar(const std::string& topic, const std
                                              std::function<void(const QString&)> show) {
   ros::Subscriber sub;
   if (type == "std_msgs/Int32")
-    sub = nh_->subscribe<std_msgs::Int32>(topic, 1, [show](const std_msgs::Int32::ConstPtr& m) { show(QString::number(m->data)); });
+    sub =
+        nh_->subscribe<std_msgs::Int32>(topic, 1, [show](const std_msgs::Int32::ConstPtr& m) { show(QString::number(m->data)); });
   else if (type == "std_msgs/Float64")
-    sub = nh_->subscribe<std_msgs::Float64>(topic, 1, [show](const std_msgs::Float64::ConstPtr& m) { show(QString::number(m->data, 'g', 6)); });
+    sub = nh_->subscribe<std_msgs::Float64>(
+        topic, 1, [show](const std_msgs::Float64::ConstPtr& m) { show(QString::number(m->data, 'g', 6)); });
   else if (type == "std_msgs/Bool")
-    sub = nh_->subscribe<std_msgs::Bool>(topic, 1, [show](const std_msgs::Bool::ConstPtr& m) { show(m->data ? "true" : "false"); });
+    sub =
+        nh_->subscribe<std_msgs::Bool>(topic, 1, [show](const std_msgs::Bool::ConstPtr& m) { show(m->data ? "true" : "false"); });
   else  // strings, and everything the runtime publishes as its YAML text
-    sub = nh_->subscribe<std_msgs::String>(topic, 1, [show](const std_msgs::String::ConstPtr& m) {
-      show(QString::fromStdString(m->data).left(200));
-    });
+    sub = nh_->subscribe<std_msgs::String>(
+        topic, 1, [show](const std_msgs::String::ConstPtr& m) { show(QString::fromStdString(m->data).left(200)); });
   return sub;
 }
 

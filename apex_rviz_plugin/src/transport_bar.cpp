@@ -12,7 +12,8 @@ namespace apex_rviz_plugin {
 namespace {
 
 const apex::ParamInfo* param(const apex::NodeInfo& n, const std::string& name) {
-  for (const auto& p : n.parameters) if (p.name == name) return &p;
+  for (const auto& p : n.parameters)
+    if (p.name == name) return &p;
   return nullptr;
 }
 

@@ -100,7 +100,7 @@ TEST_F(Connect, ParameterPortsOnlyWhenInteractive) {
   ASSERT_TRUE(g.setInteractive("gain2", "gain", true));
   EXPECT_TRUE(g.connect("gain", "gain", "gain2", "gain"));
   EXPECT_TRUE(g.connect("gain2", "gain", "gain", "gain"));  // linked both ways: no data cycle
-  ASSERT_TRUE(g.setInteractive("gain", "gain", false));     // drops its parameter connections
+  ASSERT_TRUE(g.setInteractive("gain", "gain", false));  // drops its parameter connections
   EXPECT_TRUE(g.describe().connections.empty());
 }
 

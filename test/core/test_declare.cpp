@@ -112,16 +112,17 @@ TEST(Declare, ALibraryWithATypeThatFailedToRegisterIsRefusedNamingIt) {
 bool compiles(const std::string& handle, const std::string& name) {
   const std::string dir = ::testing::TempDir();
   const std::string source = dir + "/apex_declare_" + name + ".cpp";
-  std::ofstream(source) << "#include \"apex/core/registry.hpp\"\n"
-                           "struct N : apex::Node {\n"
-                           "  static inline const apex::InputPort<int> kIn{\"in\"};\n"
-                           "  static inline const apex::OutputPort<int> kOut{\"out\"};\n"
-                           "  static inline const apex::ParamDecl<int> kGain = apex::param::integer(\"gain\");\n"
-                           "  static apex::Manifest manifest() { return apex::Manifest().input(kIn).output(kOut).param(kGain); }\n"
-                           "  void process() override {}\n  "
-                        << handle << ";\n};\n";
-  const std::string command = std::string(APEX_TEST_CXX) + " -std=c++17 -fsyntax-only -I" + APEX_TEST_INCLUDE + " " +
-                              source + " > " + source + ".log 2>&1";
+  std::ofstream(source)
+      << "#include \"apex/core/registry.hpp\"\n"
+         "struct N : apex::Node {\n"
+         "  static inline const apex::InputPort<int> kIn{\"in\"};\n"
+         "  static inline const apex::OutputPort<int> kOut{\"out\"};\n"
+         "  static inline const apex::ParamDecl<int> kGain = apex::param::integer(\"gain\");\n"
+         "  static apex::Manifest manifest() { return apex::Manifest().input(kIn).output(kOut).param(kGain); }\n"
+         "  void process() override {}\n  "
+      << handle << ";\n};\n";
+  const std::string command = std::string(APEX_TEST_CXX) + " -std=c++17 -fsyntax-only -I" + APEX_TEST_INCLUDE + " " + source +
+                              " > " + source + ".log 2>&1";
   const int rc = std::system(command.c_str());
   std::remove(source.c_str());
   return rc == 0;

@@ -89,9 +89,10 @@ TEST_F(Roots, AReadOnlyRootIsReadAndNeverWrittenEvenInsideAWritableOne) {
   auto save = roots.resolve(shipped + "/g.yaml", FileRoots::Access::Write);
   ASSERT_FALSE(save);
   const std::string canonical = fs::weakly_canonical(root).string();
-  EXPECT_TRUE(Contains(save.message(), {"path '" + shipped + "/g.yaml'", "lies in '" + canonical +
-                                "/graphs', whose files may be read, not written: write it in " + canonical +
-                                " (a path without a folder, such as 'g.yaml', goes to " + canonical + ")"}))
+  EXPECT_TRUE(
+      Contains(save.message(), {"path '" + shipped + "/g.yaml'",
+                                "lies in '" + canonical + "/graphs', whose files may be read, not written: write it in " +
+                                    canonical + " (a path without a folder, such as 'g.yaml', goes to " + canonical + ")"}))
       << save.message();
   EXPECT_FALSE(roots.check(shipped + "/new", PathMode::Directory)) << "a node's export folder writes too";
   EXPECT_TRUE(roots.check(root + "/new.yaml", PathMode::Write));
@@ -99,7 +100,8 @@ TEST_F(Roots, AReadOnlyRootIsReadAndNeverWrittenEvenInsideAWritableOne) {
 
   FileRoots only_read = FileRoots().readOnly({shipped});
   EXPECT_TRUE(only_read.resolve(shipped + "/g.yaml"));
-  EXPECT_TRUE(Contains(only_read.resolve(dir.file("x.yaml")).message(), {"outside the folders files may be read from (read only: "}));
+  EXPECT_TRUE(
+      Contains(only_read.resolve(dir.file("x.yaml")).message(), {"outside the folders files may be read from (read only: "}));
   EXPECT_TRUE(Contains(only_read.resolve(dir.file("x.yaml"), FileRoots::Access::Write).message(),
                        {"outside the folders files may be written in (none)"}));
 }
@@ -126,7 +128,8 @@ TEST_F(Roots, AWritableRootInsideAReadOnlyOneIsReadOnly) {
 TEST_F(Roots, TrustedPathsAreTakenFromTheCurrentFolder) {
   // what the operator's launch names (the start-up graph, ~overrides): a relative path is the
   // process's, as the shell that gave it meant; only service paths go to the first root
-  EXPECT_EQ(FileRoots::anywhere({}).resolve("graphs/demo.yaml").value(), fs::weakly_canonical(fs::absolute("graphs/demo.yaml")).string());
+  EXPECT_EQ(FileRoots::anywhere({}).resolve("graphs/demo.yaml").value(),
+            fs::weakly_canonical(fs::absolute("graphs/demo.yaml")).string());
   EXPECT_EQ(roots.resolve("g.yaml").value(), fs::weakly_canonical(root).string() + "/g.yaml");
 }
 

@@ -64,7 +64,7 @@ TEST(Firing, FanOutSharesOneObjectWithoutCopies) {
 TEST(Firing, NothingOnAMandatoryInputSkipsProcessAndPassesNothingOn) {
   Graph g(testRegistry());
   add(g, "test/Feeder", "src");  // sends Nothing when fired with an empty queue
-  add(g, "test/Thrower", "t");   // would throw on -1 if it processed
+  add(g, "test/Thrower", "t");  // would throw on -1 if it processed
   add(g, "test/Collector", "sink");
   link(g, "src", "out", "t", "in");
   link(g, "t", "out", "sink", "in");
@@ -169,7 +169,7 @@ TEST(Firing, ADrivenSourceDropsFramesInsteadOfQueueing) {
   g.start();
   object<Latest>(g, "cam")->set(1);
   ASSERT_TRUE(object<Gate>(g, "slow")->waitEntered(1));  // slow holds frame 1
-  object<Latest>(g, "cam")->set(2);                      // cam fires: slow's input takes 2
+  object<Latest>(g, "cam")->set(2);  // cam fires: slow's input takes 2
   for (int v = 3; v <= 50; ++v) object<Latest>(g, "cam")->set(v);  // cam cannot fire: only the newest is kept
   object<Gate>(g, "slow")->release();
   ASSERT_TRUE(g.waitIdle(kWait));

@@ -32,10 +32,9 @@ TEST(GraphFileRoundTrip, FormatParseLoadFormatGivesTheSameText) {
   Graph g(testRegistry());
   buildRichGraph(g);
   const std::string text = formatGraphText(g.describe());
-  EXPECT_TRUE(Contains(text, {"apex_graph: 2", "thread_groups: [vision]", "thread_group: vision", "enabled: false",
-                              "gain: 7", "every: 2", "interactive: [gain]", "ui: {x: 10, y: 20}",
-                              "{from: g1/gain, to: g2/gain}", "{from: c1/every_n, to: c2/reset}",
-                              "{from: feeder/out, to: g1/in}"}))
+  EXPECT_TRUE(Contains(text, {"apex_graph: 2", "thread_groups: [vision]", "thread_group: vision", "enabled: false", "gain: 7",
+                              "every: 2", "interactive: [gain]", "ui: {x: 10, y: 20}", "{from: g1/gain, to: g2/gain}",
+                              "{from: c1/every_n, to: c2/reset}", "{from: feeder/out, to: g1/in}"}))
       << text;
 
   auto parsed = parseGraphText(text);
@@ -123,8 +122,7 @@ std::vector<std::string> connectionsOf(const std::string& text) {
   auto d = parseGraphText(text);
   EXPECT_TRUE(d) << d.message();
   if (!d) return out;
-  for (const auto& c : d->connections)
-    out.push_back(c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port);
+  for (const auto& c : d->connections) out.push_back(c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port);
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -159,9 +157,8 @@ TEST(GraphFilePlaceholder, SaveWritesItBackUnchanged) {
 
   const std::string entry = nodeEntry(canonical, "mystery");
   ASSERT_FALSE(entry.empty()) << canonical;
-  EXPECT_TRUE(Contains(entry, {"other_pkg/Mystery", "size: [3, 4]", "fast mode", "nested: {a: 1, b: [x, y]}",
-                               "ratio: 0.5", "interactive: [size, ratio]", "ui: {x: 5, y: 6}", "enabled: false",
-                               "thread_group: vision"}))
+  EXPECT_TRUE(Contains(entry, {"other_pkg/Mystery", "size: [3, 4]", "fast mode", "nested: {a: 1, b: [x, y]}", "ratio: 0.5",
+                               "interactive: [size, ratio]", "ui: {x: 5, y: 6}", "enabled: false", "thread_group: vision"}))
       << entry;
   EXPECT_EQ(nodeEntry(saved, "mystery"), entry) << saved;
   EXPECT_EQ(connectionsOf(saved), connectionsOf(canonical)) << saved;

@@ -118,8 +118,8 @@ TEST(GraphFileDisk, TemporariesOfASaveThatDiedAreRemovedByTheNextSave) {
   writeFile(live, "busy");
   writeFile(dir.file("g.yaml.tmp.notes"), "a user's file");  // not named by a save: kept
   ASSERT_TRUE(writeFileAtomically(path, "new"));
-  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"g.yaml", "g.yaml.tmp." + std::to_string(::getppid()) + ".0",
-                                                     "g.yaml.tmp.notes"}));
+  EXPECT_EQ(dir.entries(),
+            (std::vector<std::string>{"g.yaml", "g.yaml.tmp." + std::to_string(::getppid()) + ".0", "g.yaml.tmp.notes"}));
 }
 
 }  // namespace

@@ -46,8 +46,7 @@ class GraphFileErrors : public ::testing::Test {
 TEST_F(GraphFileErrors, MalformedYamlNamesTheLine) {
   const std::string indent = loadFails("apex_graph: 1\nnodes:\n  - name: g\n     type: test/Gain\n");
   EXPECT_TRUE(Contains(indent, {"line 4"})) << indent;
-  const std::string flow = loadFails(
-      "apex_graph: 1\nnodes:\n  - name: g\n    type: test/Gain\n    parameters: {gain: [1, 2}\n");
+  const std::string flow = loadFails("apex_graph: 1\nnodes:\n  - name: g\n    type: test/Gain\n    parameters: {gain: [1, 2}\n");
   EXPECT_TRUE(Contains(flow, {"line 5"})) << flow;
   const std::string open = loadFails("apex_graph: 1\nnodes: [\n  {name: a, type: test/Gain},\n  {name: b\n");
   EXPECT_TRUE(Contains(open, {"line "})) << open;
@@ -88,8 +87,7 @@ TEST_F(GraphFileErrors, ConnectionToAnUnknownPortListsThePorts) {
   EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: f, type: test/Feeder}\n"
                                  "connections:\n  - {from: f/out, to: nobody/in}\n"),
                        {"line 5", "no node named 'nobody'"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nconnections:\n  - {from: f, to: g/in}\n"),
-                       {"line 3", "node/port"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nconnections:\n  - {from: f, to: g/in}\n"), {"line 3", "node/port"}));
 }
 
 TEST_F(GraphFileErrors, CycleInTheFile) {
@@ -108,11 +106,11 @@ TEST_F(GraphFileErrors, BadNodeSettingsNameTheNodeLine) {
   EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain}\n"
                                  "  - {name: g, type: test/Gain}\n"),
                        {"line 4", "already exists"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, enabled: perhaps}\n"),
-                       {"line 3", "'enabled'"}));
+  EXPECT_TRUE(
+      Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, enabled: perhaps}\n"), {"line 3", "'enabled'"}));
   EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g}\n"), {"line 3", "'type' is missing"}));
-  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, interactive: [nope]}\n"),
-                       {"line 3", "'nope'"}));
+  EXPECT_TRUE(
+      Contains(loadFails("apex_graph: 1\nnodes:\n  - {name: g, type: test/Gain, interactive: [nope]}\n"), {"line 3", "'nope'"}));
 }
 
 /** A node type with a pair parameter, for map-valued parameters in files. */
@@ -137,8 +135,7 @@ TEST_F(GraphFileErrors, WhatTheFormatDoesNotUseIsRefused) {
 
 TEST_F(GraphFileErrors, MalformedTextThatHungTheYamlParserIsRefusedAtOnce) {
   // Found by fuzz_graph_file: YAML::LoadAll (yaml-cpp 0.7) never returned on a lone comma.
-  for (const std::string text : {",", ",,,,ap", "apex_graph: 1\n,", "[,]", "{:"})
-    EXPECT_FALSE(loadFails(text).empty()) << text;
+  for (const std::string text : {",", ",,,,ap", "apex_graph: 1\n,", "[,]", "{:"}) EXPECT_FALSE(loadFails(text).empty()) << text;
 }
 
 TEST_F(GraphFileErrors, SizesBeyondTheLimitsAreRefusedNotRunOutOfMemory) {

@@ -23,8 +23,7 @@ class Fan : public Node {
         .param(param::options("kind", {"int", "text"}, "int").shapesInterface())
         .param(param::range("gain", 1, 10, 1, 1))
         .shapedBy([](const ParamValues& p, Manifest& m) {
-          if (p.get<std::string>("kind") == "text" && p.get<int>("outputs") > 8)
-            return Status::error("at most 8 text outputs");
+          if (p.get<std::string>("kind") == "text" && p.get<int>("outputs") > 8) return Status::error("at most 8 text outputs");
           for (int i = 0; i < p.get<int>("outputs"); ++i) {
             if (p.get<std::string>("kind") == "text") m.output<std::string>(indexed("out", i));
             else m.output<int>(indexed("out", i));
@@ -93,7 +92,8 @@ std::vector<std::string> outputs(const Graph& g, const std::string& node) {
 
 std::vector<std::string> connections(const Graph& g) {
   std::vector<std::string> out;
-  for (const auto& c : g.describe().connections) out.push_back(c.from_node + "/" + c.from_port + ">" + c.to_node + "/" + c.to_port);
+  for (const auto& c : g.describe().connections)
+    out.push_back(c.from_node + "/" + c.from_port + ">" + c.to_node + "/" + c.to_port);
   return out;
 }
 
@@ -145,8 +145,8 @@ TEST(Interfaces, VanishedPortsLoseTheirConnectionsWhileTheRestFlows) {
 TEST(Interfaces, ARetypedPortKeepsTheConnectionsItsNewTypeFits) {
   Graph g(registry());
   add(g, "test/Fan", "fan");
-  add(g, "test/Relay", "any");    // takes anything
-  add(g, "test/Gain", "ints");    // takes int
+  add(g, "test/Relay", "any");  // takes anything
+  add(g, "test/Gain", "ints");  // takes int
   link(g, "fan", "out_0", "any", "in");
   link(g, "fan", "out_1", "ints", "in");
   set(g, "fan", "kind", "text");
@@ -207,7 +207,8 @@ TEST(Interfaces, AParameterThatDecidesThePortsCannotHavePorts) {
   add(g, "test/Fan", "fan");
   auto st = g.setInteractive("fan", "outputs", true);
   ASSERT_FALSE(st);
-  EXPECT_EQ(st.message(), "parameter 'outputs' of node 'fan' decides the node's ports: it is set by edits only and cannot have ports");
+  EXPECT_EQ(st.message(),
+            "parameter 'outputs' of node 'fan' decides the node's ports: it is set by edits only and cannot have ports");
   EXPECT_TRUE(g.setInteractive("fan", "gain", true));
 }
 

@@ -41,8 +41,9 @@ TEST(Limits, ThreadGroupsStopAtTheLimitAndSuchAGraphLoadsBack) {
     ASSERT_TRUE(g.addNode("test/Relay", "r" + std::to_string(i), "g" + std::to_string(i)));
   auto over = g.addNode("test/Relay", "one_more", "g_new");
   ASSERT_FALSE(over);
-  EXPECT_EQ(over.message(), "cannot add node 'one_more': thread group 'g_new': the graph has 256 thread groups, the "
-                            "limit (each is a thread of the process)");
+  EXPECT_EQ(over.message(),
+            "cannot add node 'one_more': thread group 'g_new': the graph has 256 thread groups, the "
+            "limit (each is a thread of the process)");
   EXPECT_TRUE(g.addNode("test/Relay", "in_an_old_group", "g7")) << "groups that exist take more nodes";
   EXPECT_THAT(g.setThreadGroup("r1", "g_new").message(), HasSubstr("256 thread groups, the limit"));
   auto back = roundTrip(g, dir);
@@ -103,8 +104,7 @@ TEST(Limits, NamesValuesAndUiTextStayWithinWhatAFileHolds) {
   const std::string longest(kMaxNameLength, 'n');
   ASSERT_TRUE(g.addNode("test/Labelled", longest));
   EXPECT_THAT(g.addNode("test/Labelled", longest + "n").message(), HasSubstr("at most 200 of them"));
-  EXPECT_THAT(g.addNode("test/Labelled", "x", std::string(kMaxNameLength + 1, 'g')).message(),
-              HasSubstr("thread group name"));
+  EXPECT_THAT(g.addNode("test/Labelled", "x", std::string(kMaxNameLength + 1, 'g')).message(), HasSubstr("thread group name"));
 
   ASSERT_TRUE(g.setParameter(longest, "label", std::string(kMaxYamlString, 'v')));
   EXPECT_EQ(g.setParameter(longest, "label", std::string(kMaxYamlString + 1, 'v')).message(),

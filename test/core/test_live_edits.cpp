@@ -163,7 +163,7 @@ TEST(LiveEdits, ACutOffParameterOutputNeitherFiresItsReceiverNorUnbalancesIt) {
   object<Feeder>(g, "src")->feed(1);
   ASSERT_TRUE(object<Collector>(g, "values")->waitFor(1));
   ASSERT_TRUE(g.disconnect("src", "out", "gain", "in"));  // gain and values are cut off
-  ASSERT_TRUE(g.setParameter("gain", "gain", "5"));        // published to a receiver that cannot fire
+  ASSERT_TRUE(g.setParameter("gain", "gain", "5"));  // published to a receiver that cannot fire
   ASSERT_TRUE(g.waitIdle(kWait));
   EXPECT_EQ(object<Collector>(g, "values")->size(), 1u) << "a cut-off node fired";
   link(g, "src", "out", "gain", "in");

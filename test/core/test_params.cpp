@@ -79,8 +79,7 @@ TEST(ParamParse, StringAndPath) {
   EXPECT_EQ(parseOk(s, "mean"), ParamValue(std::string("mean")));
   EXPECT_EQ(parseOk(s, "'hello world'"), ParamValue(std::string("hello world")));
   EXPECT_EQ(toText(ParamValue(std::string("mean"))), "mean");
-  for (std::string v : {"hello", "hello world", "a: b", "x, y", "[not a list]", "#hash", "12", "true", "", "~",
-                        "null", "it's"})
+  for (std::string v : {"hello", "hello world", "a: b", "x, y", "[not a list]", "#hash", "12", "true", "", "~", "null", "it's"})
     expectRoundTrip(s, v);
 
   const auto p = param::path("file", "/tmp/in.png", PathMode::Write);
@@ -164,14 +163,20 @@ TEST(ParamParse, ListOfStrings) {
 }
 
 TEST(ParamParse, EveryDefaultIsValidAndRoundTrips) {
-  const std::vector<ParamSpec> specs = {
-      param::boolean("b", true),          param::integer("i", 4),
-      param::real("d", 0.5),              param::text("s", "hi there"),
-      param::range("ir", 1, 9, 2, 5),     param::range("dr", 0.0, 1.0, 0.1, 0.3),
-      param::interval("iv", 0, 10, 2, 3), param::options("o", {"a", "b"}, "b"),
-      param::angle("an", 0.5),            param::path("p", "/tmp/x"),
-      param::color("c", 1, 2, 3),         param::pair("pr", 1, 2),
-      param::list("l", {1, 2, 3}),        param::textList("tl", {"a", "b c"})};
+  const std::vector<ParamSpec> specs = {param::boolean("b", true),
+                                        param::integer("i", 4),
+                                        param::real("d", 0.5),
+                                        param::text("s", "hi there"),
+                                        param::range("ir", 1, 9, 2, 5),
+                                        param::range("dr", 0.0, 1.0, 0.1, 0.3),
+                                        param::interval("iv", 0, 10, 2, 3),
+                                        param::options("o", {"a", "b"}, "b"),
+                                        param::angle("an", 0.5),
+                                        param::path("p", "/tmp/x"),
+                                        param::color("c", 1, 2, 3),
+                                        param::pair("pr", 1, 2),
+                                        param::list("l", {1, 2, 3}),
+                                        param::textList("tl", {"a", "b c"})};
   for (const auto& s : specs) {
     SCOPED_TRACE(s.name + " (" + s.kindName() + ")");
     EXPECT_TRUE(s.validate(s.default_value)) << s.validate(s.default_value).message();
@@ -242,14 +247,16 @@ TEST(ParamRefuse, NonFiniteDoubles) {
   EXPECT_TRUE(Contains(parseFails(param::real("alpha", 0), ".nan"), {"'alpha'", "finite"}));
   EXPECT_TRUE(Contains(parseFails(param::range("sigma", 0.0, 1.0, 0.0, 0.0), ".inf"), {"'sigma'"}));
   // Found by fuzz_param_text: a list or pair took NaN, printed it as "nan", and read that back as text.
-  EXPECT_TRUE(Contains(parseFails(param::list("weights", {1}), "[2, .NAN, 23]"), {"'weights'", "element 2", "not a finite number"}));
+  EXPECT_TRUE(
+      Contains(parseFails(param::list("weights", {1}), "[2, .NAN, 23]"), {"'weights'", "element 2", "not a finite number"}));
   EXPECT_TRUE(Contains(parseFails(param::pair("size", 1, 2), "[1, -.inf]"), {"'size'", "element 2"}));
   EXPECT_TRUE(Contains(parseFails(param::interval("band", 0, 255, 10, 200), "[19, .NaN]"), {"'band'", "element 2"}));
 }
 
 TEST(ParamRefuse, TextThatYamlCannotGiveBackIsRefused) {
   // Found by fuzz_param_text: a NUL came back from YAML as other bytes, printed as another string.
-  EXPECT_TRUE(Contains(parseFails(param::text("label", "x"), std::string("\x01\0\0.", 4)), {"'label'", "a control character at byte 1"}));
+  EXPECT_TRUE(
+      Contains(parseFails(param::text("label", "x"), std::string("\x01\0\0.", 4)), {"'label'", "a control character at byte 1"}));
   EXPECT_TRUE(Contains(parseFails(param::text("label", "x"), "\"a\\x00b\""), {"a control character at byte 2"}));
   EXPECT_TRUE(Contains(parseFails(param::path("file", ""), "\xff.bag"), {"'file'", "not UTF-8 at byte 1"}));
   EXPECT_TRUE(Contains(parseFails(param::textList("topics", {}), "[ok, \"\\x07\"]"), {"'topics'", "control character"}));
@@ -312,15 +319,14 @@ TEST(ParamMessage, WrongTypesAndBadValuesAreRefused) {
 }
 
 TEST(ParamMessage, ToMessageThenFromMessageRoundTrips) {
-  const std::vector<std::pair<ParamSpec, ParamValue>> cases = {
-      {param::boolean("b", false), true},
-      {param::range("ir", 0, 10, 1, 0), 7},
-      {param::real("d", 0), 2.5},
-      {param::options("o", {"a", "b"}, "a"), std::string("b")},
-      {param::interval("iv", 0, 10, 0, 1), Interval{2, 3}},
-      {param::color("c", 0, 0, 0), Color{9, 8, 7}},
-      {param::pair("p", 0, 0), Pair{1, -1}},
-      {param::list("l", {}), std::vector<double>{4, 5}}};
+  const std::vector<std::pair<ParamSpec, ParamValue>> cases = {{param::boolean("b", false), true},
+                                                               {param::range("ir", 0, 10, 1, 0), 7},
+                                                               {param::real("d", 0), 2.5},
+                                                               {param::options("o", {"a", "b"}, "a"), std::string("b")},
+                                                               {param::interval("iv", 0, 10, 0, 1), Interval{2, 3}},
+                                                               {param::color("c", 0, 0, 0), Color{9, 8, 7}},
+                                                               {param::pair("p", 0, 0), Pair{1, -1}},
+                                                               {param::list("l", {}), std::vector<double>{4, 5}}};
   for (const auto& [spec, value] : cases) {
     SCOPED_TRACE(spec.name);
     const Message m = toMessage(value);

@@ -74,11 +74,26 @@ class OneHandle : public Node {  // a node whose one handle is written wrongly
   void process() override {}
   H h_{this, H::kName};
 };
-struct MisnamedInput : Input<int> { static constexpr const char* kName = "inn"; using Input<int>::Input; };
-struct MistypedInput : Input<double> { static constexpr const char* kName = "in"; using Input<double>::Input; };
-struct MistypedOutput : Output<std::string> { static constexpr const char* kName = "out"; using Output<std::string>::Output; };
-struct MistypedParam : Param<double> { static constexpr const char* kName = "gain"; using Param<double>::Param; };
-struct MisnamedTrigger : Trigger { static constexpr const char* kName = "done"; using Trigger::Trigger; };
+struct MisnamedInput : Input<int> {
+  static constexpr const char* kName = "inn";
+  using Input<int>::Input;
+};
+struct MistypedInput : Input<double> {
+  static constexpr const char* kName = "in";
+  using Input<double>::Input;
+};
+struct MistypedOutput : Output<std::string> {
+  static constexpr const char* kName = "out";
+  using Output<std::string>::Output;
+};
+struct MistypedParam : Param<double> {
+  static constexpr const char* kName = "gain";
+  using Param<double>::Param;
+};
+struct MisnamedTrigger : Trigger {
+  static constexpr const char* kName = "done";
+  using Trigger::Trigger;
+};
 
 TEST(Ports, AHandleReadsAndWritesByIndexWhileRunning) {
   NodeRegistry r = testRegistry();

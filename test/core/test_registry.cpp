@@ -16,9 +16,7 @@ int plus(int a, int b) { return a + b; }
 
 class Doubler : public apex::Node {
  public:
-  static apex::Manifest manifest() {
-    return apex::Manifest("Doubles an int").input<int>("in").output<int>("out");
-  }
+  static apex::Manifest manifest() { return apex::Manifest("Doubles an int").input<int>("in").output<int>("out"); }
   void process() override { publish("out", *input<int>("in") * 2); }
 };
 
@@ -82,9 +80,8 @@ TEST(Registry, RefusesADuplicateId) {
 TEST(Registry, RefusesABadIdOrClashingNames) {
   NodeRegistry r;
   EXPECT_THAT(r.add<Relay>("Relay").message(), HasSubstr("must look like 'package/Name'"));
-  auto clash = r.add("test/Clash", Manifest().input<int>("x").param(param::integer("x", 0)), [] {
-    return std::unique_ptr<Node>(new Relay());
-  });
+  auto clash = r.add("test/Clash", Manifest().input<int>("x").param(param::integer("x", 0)),
+                     [] { return std::unique_ptr<Node>(new Relay()); });
   EXPECT_THAT(clash.message(), HasSubstr("parameter 'x' has the name of another port"));
   auto builtin = r.add("test/Builtin", Manifest().trigger("processed"), [] { return std::unique_ptr<Node>(new Relay()); });
   EXPECT_THAT(builtin.message(), HasSubstr("'processed'"));
@@ -114,8 +111,8 @@ TEST(Registry, GeneratesNamesAndRefusesBadOnes) {
 TEST(FunctionNode, DeducesPortsFromTheSignature) {
   NodeRegistry r = testRegistry();
   ASSERT_TRUE(registerFunction(r, "fn/Add", &plus, "adds", {"a", "b"}, {"sum"}));
-  ASSERT_TRUE(registerFunction(
-      r, "fn/DivMod", [](int a, int b) { return std::make_tuple(a / b, a % b); }, "divides", {}, {"q", "r"}));
+  ASSERT_TRUE(
+      registerFunction(r, "fn/DivMod", [](int a, int b) { return std::make_tuple(a / b, a % b); }, "divides", {}, {"q", "r"}));
   auto m = r.find("fn/DivMod")->manifest;
   ASSERT_EQ(m->inputs.size(), 2u);
   EXPECT_EQ(m->inputs[0].name, "in0");
@@ -140,7 +137,7 @@ TEST(FunctionNode, DeducesPortsFromTheSignature) {
   object<Feeder>(g, "fb")->feed(3);
   ASSERT_TRUE(object<Collector>(g, "rem")->waitFor(1));
   ASSERT_TRUE(object<Collector>(g, "q")->waitFor(1));
-  EXPECT_EQ(object<Collector>(g, "q")->ints(), std::vector<int>{4});    // (11 + 3) / 3
+  EXPECT_EQ(object<Collector>(g, "q")->ints(), std::vector<int>{4});  // (11 + 3) / 3
   EXPECT_EQ(object<Collector>(g, "rem")->ints(), std::vector<int>{2});  // (11 + 3) % 3
 }
 
@@ -158,8 +155,7 @@ TEST(Registry, AUserNamesATypeWithoutItsPackageAndAMisspeltOneGetsTheClosest) {
   ASSERT_TRUE(g.addNode(d));
   EXPECT_EQ(findNode(g.describe(), "c")->type, "test/Counter");
 
-  EXPECT_EQ(g.addNode("Relay", "r").message(),
-            "node type 'Relay' is ambiguous: other/Relay or test/Relay; give the whole id");
+  EXPECT_EQ(g.addNode("Relay", "r").message(), "node type 'Relay' is ambiguous: other/Relay or test/Relay; give the whole id");
   EXPECT_TRUE(g.addNode("test/Relay", "r"));
   auto typo = g.addNode("Countr", "x");
   ASSERT_FALSE(typo);

@@ -33,7 +33,7 @@ struct Board {
   std::mutex m;
   std::condition_variable arrived;
   std::map<std::string, long> received;  // sink name -> frames received (not Nothing)
-  std::set<long> removed;                // ids of node objects that were removed
+  std::set<long> removed;  // ids of node objects that were removed
   long violations = 0;
   std::string first_violation;
 
@@ -172,25 +172,25 @@ struct Link {
 // s2 -> q1 -> j2.a, s2 -> q2 -> q3 -> j2.b, j2 -> k2       (the second source, in group b)
 // s2.n -> p1.offset (data into a parameter), s1.gain -> p3.offset (parameter to parameter)
 // s1.processed -> k1.poke, j2.processed -> p2.poke       (events)
-const std::vector<Spec> kNodes = {
-    {"s1", "soak/Source", "a"}, {"p1", "soak/Pass", "a"}, {"p2", "soak/Pass", "a"}, {"p3", "soak/Pass", "b"},
-    {"j1", "soak/Join", "b"},   {"k1", "soak/Sink", "b"}, {"j3", "soak/Join", "a"}, {"k3", "soak/Sink", "a"},
-    {"s2", "soak/Timed", "b"},  {"q1", "soak/Pass", "b"}, {"q2", "soak/Pass", "a"}, {"q3", "soak/Pass", "b"},
-    {"j2", "soak/Join", "b"},   {"k2", "soak/Sink", "b"}};
+const std::vector<Spec> kNodes = {{"s1", "soak/Source", "a"}, {"p1", "soak/Pass", "a"}, {"p2", "soak/Pass", "a"},
+                                  {"p3", "soak/Pass", "b"},   {"j1", "soak/Join", "b"}, {"k1", "soak/Sink", "b"},
+                                  {"j3", "soak/Join", "a"},   {"k3", "soak/Sink", "a"}, {"s2", "soak/Timed", "b"},
+                                  {"q1", "soak/Pass", "b"},   {"q2", "soak/Pass", "a"}, {"q3", "soak/Pass", "b"},
+                                  {"j2", "soak/Join", "b"},   {"k2", "soak/Sink", "b"}};
 const std::vector<Link> kLinks = {
-    {"s1", "out", "p1", "in"},          {"p1", "out", "p2", "in"},        {"p2", "out", "p3", "in"},
-    {"p3", "out", "j1", "a"},           {"s1", "out", "j1", "b"},         {"j1", "out", "k1", "in"},
-    {"j1", "out", "j3", "a"},           {"p1", "out", "j3", "b"},         {"j3", "out", "k3", "in"},
-    {"s2", "out", "q1", "in"},          {"q1", "out", "j2", "a"},         {"s2", "out", "q2", "in"},
-    {"q2", "out", "q3", "in"},          {"q3", "out", "j2", "b"},         {"j2", "out", "k2", "in"},
-    {"s2", "n", "p1", "offset"},        {"s1", "gain", "p3", "offset"},   {"s1", "processed", "k1", "poke"},
+    {"s1", "out", "p1", "in"},        {"p1", "out", "p2", "in"},      {"p2", "out", "p3", "in"},
+    {"p3", "out", "j1", "a"},         {"s1", "out", "j1", "b"},       {"j1", "out", "k1", "in"},
+    {"j1", "out", "j3", "a"},         {"p1", "out", "j3", "b"},       {"j3", "out", "k3", "in"},
+    {"s2", "out", "q1", "in"},        {"q1", "out", "j2", "a"},       {"s2", "out", "q2", "in"},
+    {"q2", "out", "q3", "in"},        {"q3", "out", "j2", "b"},       {"j2", "out", "k2", "in"},
+    {"s2", "n", "p1", "offset"},      {"s1", "gain", "p3", "offset"}, {"s1", "processed", "k1", "poke"},
     {"j2", "processed", "p2", "poke"}};
 // The data links each sink needs (its upstream), for "the rest keeps running".
 const std::map<std::string, std::vector<int>> kSinkPaths = {
     {"k1", {0, 1, 2, 3, 4, 5}}, {"k3", {0, 1, 2, 3, 4, 6, 7, 8}}, {"k2", {9, 10, 11, 12, 13, 14}}};
 // Connections a careless user might make: another source into a join, a cycle.
 // p2 -> j1.c and q2 -> j2.c exist only while the join has `extra` (its interface changes).
-const std::vector<Link> kStray = {{"s2", "out", "j1", "a"}, {"q3", "out", "p1", "in"}, {"j1", "out", "p1", "in"},
+const std::vector<Link> kStray = {{"s2", "out", "j1", "a"},  {"q3", "out", "p1", "in"}, {"j1", "out", "p1", "in"},
                                   {"s1", "out", "q2", "in"}, {"j3", "out", "q1", "in"}, {"p2", "out", "j1", "c"},
                                   {"q2", "out", "j2", "c"}};
 const std::vector<std::string> kGroups = {"default", "a", "b", "c"};
@@ -237,18 +237,24 @@ class Soak {
     const std::string name = kNodes[pick(kNodes.size())].name;
     const std::string node = path(name);
     switch (pick(subgraphs_ ? 14 : 13)) {
-      case 0: case 1: {
+      case 0:
+      case 1: {
         const Link& l = kLinks[pick(kLinks.size())];
         (void)g_.disconnect(path(l.from), l.from_port, path(l.to), l.to_port);
         break;
       }
-      case 2: case 3: {
+      case 2:
+      case 3: {
         const Link& l = kLinks[pick(kLinks.size())];
         (void)g_.connect(path(l.from), l.from_port, path(l.to), l.to_port);
         break;
       }
-      case 4: remove(node); break;
-      case 5: if (!exists(node)) addNode(spec(name)); break;
+      case 4:
+        remove(node);
+        break;
+      case 5:
+        if (!exists(node)) addNode(spec(name));
+        break;
       case 6:
         if (pick(3) != 0) {
           (void)g_.setThreadGroup(node, kGroups[pick(kGroups.size())]);
@@ -257,13 +263,17 @@ class Soak {
           EXPECT_TRUE(g_.rename(renamed, name)) << renamed;
         }
         break;
-      case 7: (void)g_.setEnabled(node, pick(3) != 0); break;
+      case 7:
+        (void)g_.setEnabled(node, pick(3) != 0);
+        break;
       case 8: {
         (void)g_.setParameter(node, paramOf(node), std::to_string(pick(100)));
         if (pick(4) == 0) (void)g_.setInteractive(node, paramOf(node), pick(2) == 0);
         break;
       }
-      case 9: (void)g_.fireSlot(node, pick(2) ? "poke" : "enable"); break;
+      case 9:
+        (void)g_.fireSlot(node, pick(2) ? "poke" : "enable");
+        break;
       case 10: {
         const Link& l = kStray[pick(kStray.size())];
         (void)g_.connect(path(l.from), l.from_port, path(l.to), l.to_port);
@@ -272,7 +282,9 @@ class Soak {
       case 12:
         if (name[0] == 'j') (void)g_.setParameter(node, "extra", pick(2) ? "true" : "false");
         break;
-      case 13: toggleSubgraph(std::next(kSubgraphs.begin(), static_cast<long>(pick(kSubgraphs.size())))->first); break;
+      case 13:
+        toggleSubgraph(std::next(kSubgraphs.begin(), static_cast<long>(pick(kSubgraphs.size())))->first);
+        break;
       case 11:
         if (!g_.paused()) {
           if (pick(4) == 0) g_.pause();
@@ -304,7 +316,8 @@ class Soak {
       bool whole = enabled.count(path(sink)) > 0;
       for (int i : links)
         whole = whole && has(kLinks[i]) && enabled.count(path(kLinks[i].from)) && enabled.count(path(kLinks[i].to));
-      for (const auto& source : dataPart(connections, path(sink))) whole = whole && (base(source)[0] != 's' || enabled.count(source));
+      for (const auto& source : dataPart(connections, path(sink)))
+        whole = whole && (base(source)[0] != 's' || enabled.count(source));
       if (whole) out.push_back(sink);
     }
     return out;
@@ -317,7 +330,8 @@ class Soak {
       grew = false;
       for (const auto& c : connections) {
         if (c.from_port == "processed" || (!paramOf(c.to_node).empty() && c.to_port == paramOf(c.to_node))) continue;
-        if (part.count(c.from_node) != part.count(c.to_node)) grew = part.insert(c.from_node).second | part.insert(c.to_node).second;
+        if (part.count(c.from_node) != part.count(c.to_node))
+          grew = part.insert(c.from_node).second | part.insert(c.to_node).second;
       }
     }
     return part;
@@ -350,7 +364,8 @@ class Soak {
     for (const auto& s : sinks) start[s] = board.received[s];
     auto late = [&] {
       std::string out;
-      for (const auto& s : sinks) if (board.received[s] < start[s] + 2) out += (out.empty() ? "" : ", ") + s;
+      for (const auto& s : sinks)
+        if (board.received[s] < start[s] + 2) out += (out.empty() ? "" : ", ") + s;
       return out;
     };
     if (board.arrived.wait_for(l, std::chrono::duration<double>(seconds), [&] { return late().empty(); })) return "";
@@ -363,8 +378,8 @@ class Soak {
   std::string dump() {
     std::ostringstream s;
     for (const auto& n : g_.nodeStats(0))
-      s << "\n  " << n.name << ": " << n.firings << " firings, idle " << n.idle_s << " s"
-        << (n.enabled ? "" : ", disabled") << (n.waiting_for.empty() ? "" : ", " + n.waiting_for);
+      s << "\n  " << n.name << ": " << n.firings << " firings, idle " << n.idle_s << " s" << (n.enabled ? "" : ", disabled")
+        << (n.waiting_for.empty() ? "" : ", " + n.waiting_for);
     return s.str();
   }
 
@@ -385,14 +400,16 @@ class Soak {
       return;
     }
     std::vector<std::string> present;
-    for (const auto& m : kSubgraphs.at(sub)) if (exists(m)) present.push_back(m);
+    for (const auto& m : kSubgraphs.at(sub))
+      if (exists(m)) present.push_back(m);
     if (present.size() != kSubgraphs.at(sub).size()) return;  // grouped whole, so that paths stay simple
     auto st = g_.group(present, sub);
     ASSERT_TRUE(st) << st.message();
     grouped_.insert(sub);
   }
   static const Spec& spec(const std::string& name) {
-    for (const auto& n : kNodes) if (n.name == name) return n;
+    for (const auto& n : kNodes)
+      if (n.name == name) return n;
     throw std::logic_error("no spec " + name);
   }
   void addNode(const Spec& n) {
@@ -419,7 +436,8 @@ class Soak {
 
 void soakTest(bool subgraphs) {
   const long edits = envOr("APEX_SOAK_EDITS", 100000) / (subgraphs ? 2 : 1);
-  const std::uint64_t seed = static_cast<std::uint64_t>(envOr("APEX_SOAK_SEED", static_cast<long>(std::random_device{}() & 0x7fffffff)));
+  const std::uint64_t seed =
+      static_cast<std::uint64_t>(envOr("APEX_SOAK_SEED", static_cast<long>(std::random_device{}() & 0x7fffffff)));
   SCOPED_TRACE("replay with APEX_SOAK_SEED=" + std::to_string(seed) + " APEX_SOAK_EDITS=" + std::to_string(edits));
   std::printf("soak: %ld edits, seed %llu\n", edits, static_cast<unsigned long long>(seed));
   Soak soak(seed, subgraphs);
@@ -436,16 +454,18 @@ void soakTest(bool subgraphs) {
     // The rest keeps running: sinks whose path is whole get data while others are cut off.
     if (!soak.graph().paused()) {
       const auto whole = soak.wholeSinks();
-      ASSERT_EQ(soak.flowing(whole, 1.0), "") << "after " << done << " edits (batch " << batches << "), the graph cut elsewhere" << soak.dump();
+      ASSERT_EQ(soak.flowing(whole, 1.0), "")
+          << "after " << done << " edits (batch " << batches << "), the graph cut elsewhere" << soak.dump();
     }
     soak.restore();
-    ASSERT_EQ(soak.flowing({"k1", "k2", "k3"}, 1.0), "") << "after " << done << " edits (batch " << batches << "), put back" << soak.dump();
+    ASSERT_EQ(soak.flowing({"k1", "k2", "k3"}, 1.0), "")
+        << "after " << done << " edits (batch " << batches << "), put back" << soak.dump();
     std::lock_guard<std::mutex> l(board.m);
     ASSERT_EQ(board.violations, 0) << board.first_violation << " (after " << done << " edits)";
   }
   soak.graph().stop();
-  std::printf("soak: %ld batches; frames at the sinks: k1 %ld, k2 %ld, k3 %ld\n", batches, board.count("k1"),
-              board.count("k2"), board.count("k3"));
+  std::printf("soak: %ld batches; frames at the sinks: k1 %ld, k2 %ld, k3 %ld\n", batches, board.count("k1"), board.count("k2"),
+              board.count("k3"));
 }
 
 TEST(Soak, RandomEditsWhileDataFlowsNeverStallOrMixFrames) { soakTest(false); }

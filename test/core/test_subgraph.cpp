@@ -40,8 +40,12 @@ std::string twoInstances(const std::string& ref) {
   return "apex_graph: 2\n"
          "nodes:\n"
          "  - {name: feeder, type: test/Feeder}\n"
-         "  - {name: a, subgraph: " + ref + ", parameters: {factor: 5}}\n"
-         "  - {name: b, subgraph: " + ref + "}\n"
+         "  - {name: a, subgraph: " +
+         ref +
+         ", parameters: {factor: 5}}\n"
+         "  - {name: b, subgraph: " +
+         ref +
+         "}\n"
          "  - {name: sink_a, type: test/Collector}\n"
          "  - {name: sink_b, type: test/Collector}\n"
          "connections:\n"
@@ -351,7 +355,8 @@ TEST(Subgraph, DisablingASubgraphDisablesItsNodesAndKeepsTheirOwnSetting) {
   ASSERT_TRUE(g.setEnabled("b/first", false));
   ASSERT_TRUE(g.setEnabled("b", false));
   auto enabled = [&](const std::string& name) {
-    for (const auto& s : g.nodeStats()) if (s.name == name) return s.enabled;
+    for (const auto& s : g.nodeStats())
+      if (s.name == name) return s.enabled;
     return true;
   };
   EXPECT_FALSE(enabled("b/second"));
@@ -387,7 +392,8 @@ TEST(Subgraph, GroupingWithRestoreUndoesAnUngroupExactly) {
   const std::string before = formatGraphText(g.describe());  // a file reference, factor 5, disabled
   ASSERT_TRUE(g.ungroup("a"));
   auto enabled = [&](const std::string& name) {
-    for (const auto& st : g.nodeStats()) if (st.name == name) return st.enabled;
+    for (const auto& st : g.nodeStats())
+      if (st.name == name) return st.enabled;
     return false;
   };
   EXPECT_TRUE(enabled("first"));  // no longer inside a disabled subgraph
@@ -433,10 +439,10 @@ TEST(Subgraph, GroupAndUngroupWhileRunningKeepTheOutputsAndGiveTheFlatGraphBack)
   ASSERT_TRUE(sink->waitFor(2));
   const std::string text = formatGraphText(g.describe());
   // exports named after the inner ports, the node's name added where two share one
-  EXPECT_TRUE(Contains(text, {"name: scale", "{input: in, to: first/in}", "{output: out, from: first/out}",
-                              "{output: second_out, from: second/out}", "{from: feeder/out, to: scale/in}",
-                              "{from: scale/second_out, to: sink/in}", "{from: scale/out, to: tap/in}",
-                              "{from: first/out, to: second/in}"}))
+  EXPECT_TRUE(Contains(
+      text, {"name: scale", "{input: in, to: first/in}", "{output: out, from: first/out}",
+             "{output: second_out, from: second/out}", "{from: feeder/out, to: scale/in}",
+             "{from: scale/second_out, to: sink/in}", "{from: scale/out, to: tap/in}", "{from: first/out, to: second/in}"}))
       << text;
   EXPECT_TRUE(g.setParameter("scale/first", "gain", "3"));
   EXPECT_TRUE(g.nodeInterface("scale")->findInput("in"));

@@ -25,7 +25,7 @@ class Gain : public apex::Node {
     if (out > 1000) overflow_.fire();
     out_.publish(out);
   }
-  void reset() { /* runs on the node's thread group, never during process() */ }
+  void reset() {}  // runs on the node's thread group, never during process()
 
  private:
   // Typed handles, found by index at every use: `apex::Input<double> in_{this, kIn}` does not

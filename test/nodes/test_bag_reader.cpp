@@ -183,8 +183,7 @@ TEST(BagReader, GraphsWithTheOlderParametersStillLoad) {
   Graph g(pluginRegistry());
   NodeDescription d;
   d.name = "bag", d.type = "apex_nodes/BagReader";
-  d.parameters = {{"file", writeBag(5)}, {"image_topic", "/camera/image_raw"}, {"cloud_topic", "/camera/points"},
-                  {"rate", "0"}};
+  d.parameters = {{"file", writeBag(5)}, {"image_topic", "/camera/image_raw"}, {"cloud_topic", "/camera/points"}, {"rate", "0"}};
   ASSERT_TRUE(g.addNode(d));
   add(g, "test/Collector", "images");
   add(g, "test/Collector", "clouds");

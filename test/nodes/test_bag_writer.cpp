@@ -54,14 +54,16 @@ template <class M>
 std::vector<std::pair<ros::Time, boost::shared_ptr<M>>> readTopic(const std::string& file, const std::string& topic) {
   rosbag::Bag bag(file, rosbag::bagmode::Read);
   std::vector<std::pair<ros::Time, boost::shared_ptr<M>>> out;
-  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topic))) out.emplace_back(m.getTime(), m.instantiate<M>());
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery(topic)))
+    out.emplace_back(m.getTime(), m.instantiate<M>());
   return out;
 }
 
 /** A player of `source` (as fast as taken, one pass) into a recorder of both camera topics. */
 class Recording {
  public:
-  Recording(const std::string& source, const std::string& file, const std::vector<std::pair<std::string, std::string>>& params = {})
+  Recording(const std::string& source, const std::string& file,
+            const std::vector<std::pair<std::string, std::string>>& params = {})
       : g_(pluginRegistry()) {
     add(g_, "apex_nodes/BagReader", "bag");
     set(g_, "bag", "topics", kTopics);
@@ -201,7 +203,8 @@ TEST(BagWriter, ABagItDidNotRecordIsLeftAsItIsUnlessOverwriteSaysSo) {
   auto* feeder = object<MessageFeeder>(g, "feed");
   feeder->feed(Message::make<int>(1));
   ASSERT_TRUE(g.waitIdle(kWait));
-  EXPECT_THAT(errorOf(g, "rec"), HasSubstr("'" + out + "' exists (not recorded by this node): left as it is; set "
+  EXPECT_THAT(errorOf(g, "rec"), HasSubstr("'" + out +
+                                           "' exists (not recorded by this node): left as it is; set "
                                            "'overwrite' to replace it, or choose another file"));
   set(g, "rec", "file", unfinished);
   feeder->feed(Message::make<int>(2));

@@ -118,9 +118,9 @@ TEST(CloudNodes, VoxelGridMatchesPclColoursIncluded) {
 TEST(CloudNodes, StatisticalOutlierRemovalMatchesPcl) {
   NodeHarness h("apex_nodes/StatisticalOutlierRemoval", {"cloud"}, "cloud");
   expectSame(colours(h.run(cloud())), pclResult<pcl::StatisticalOutlierRemoval>([](auto& f) {
-    f.setMeanK(20);
-    f.setStddevMulThresh(1.0);
-  }));
+               f.setMeanK(20);
+               f.setStddevMulThresh(1.0);
+             }));
 }
 
 TEST(CloudNodes, RadiusOutlierRemovalMatchesPcl) {

@@ -79,7 +79,8 @@ Xyz finitePoints(const Xyz& c) {
 }
 
 void expectNear(const Eigen::Vector3d& got, const Eigen::Vector3d& want, double tolerance, const std::string& what) {
-  EXPECT_LT((got - want).cwiseAbs().maxCoeff(), tolerance) << what << ": got " << got.transpose() << ", want " << want.transpose();
+  EXPECT_LT((got - want).cwiseAbs().maxCoeff(), tolerance)
+      << what << ": got " << got.transpose() << ", want " << want.transpose();
 }
 
 const ClusterFeatures& features(const Message& m) {
@@ -174,7 +175,8 @@ TEST(Markers, AHullIsAClosedOutlineInItsFrame) {
   EXPECT_EQ(m.points[2].x, 1.0);
   Xyz two;
   two.push_back(square[0]), two.push_back(square[1]);
-  EXPECT_THROW(apex_nodes::hullMarker(*apex_nodes::makeCloud(lidarHeader(), two), apex_nodes::MarkerOptions()), std::invalid_argument);
+  EXPECT_THROW(apex_nodes::hullMarker(*apex_nodes::makeCloud(lidarHeader(), two), apex_nodes::MarkerOptions()),
+               std::invalid_argument);
 }
 
 TEST(ClusterFeatures, CountsClustersAndMeasuresEmptyOnesAsNothing) {

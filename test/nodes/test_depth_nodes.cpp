@@ -192,7 +192,8 @@ TEST(DepthNodes, DepthToCloudErrorsNameTheProblem) {
 cv::Mat colours() {
   cv::Mat m(kH, kW, CV_8UC3);
   for (int v = 0; v < kH; ++v)
-    for (int u = 0; u < kW; ++u) m.at<cv::Vec3b>(v, u) = cv::Vec3b(std::uint8_t(4 * u), std::uint8_t(5 * v), std::uint8_t(2 * (u + v)));
+    for (int u = 0; u < kW; ++u)
+      m.at<cv::Vec3b>(v, u) = cv::Vec3b(std::uint8_t(4 * u), std::uint8_t(5 * v), std::uint8_t(2 * (u + v)));
   return m;
 }
 
@@ -217,9 +218,9 @@ TEST(DepthNodes, DepthColorToCloudColoursEveryPixel) {
         ASSERT_EQ(int(p.a), 255);
       }
   }
-  EXPECT_TRUE(h.run({share(image(metres(), "32FC1")), share(image(colours()(cv::Rect(0, 0, 32, 24)).clone(), "bgr8")),
-                     share(camera())})
-                  .isNothing());
+  EXPECT_TRUE(
+      h.run({share(image(metres(), "32FC1")), share(image(colours()(cv::Rect(0, 0, 32, 24)).clone(), "bgr8")), share(camera())})
+          .isNothing());
   EXPECT_THAT(h.error(), HasSubstr("the colour image is 32x24, the depth image 64x48"));
   EXPECT_TRUE(h.run({share(image(metres(), "32FC1")), share(image(metres(), "32FC1")), share(camera())}).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("colour image encoding '32FC1' (1 channels) is not bgr8, rgb8"));
@@ -259,10 +260,10 @@ TEST(DepthNodes, CloudToDepthKeepsTheNearestPointOnTheImage) {
   };
   points.push_back(at(10, 20, 2.f));
   points.push_back(at(10.3, 19.8, 1.5f));  // the same pixel, nearer
-  points.push_back(at(10, 20, 3.f));       // the same pixel, farther
+  points.push_back(at(10, 20, 3.f));  // the same pixel, farther
   points.push_back(at(40, 5, 1.f));
   points.push_back(pcl::PointXYZ(0.1f, 0.1f, -1.f));  // behind the camera
-  points.push_back(at(-3, 5, 1.f));                  // off the image
+  points.push_back(at(-3, 5, 1.f));  // off the image
   points.push_back(at(kW + 2, 5, 1.f));
   points.push_back(pcl::PointXYZ(kNan, 0, 1));
   const auto out = h.run({share(apex_nodes::makeCloud(cameraHeader(), points)), share(camera())}).as<Image>();

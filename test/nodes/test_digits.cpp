@@ -34,7 +34,8 @@ cv::Mat sign(int digit, const Style& s, cv::Size size = {80, 90}) {
   const double scale = cv::getFontScaleFromHeight(s.font, cvRound(size.height * s.scale), s.thickness);
   int base = 0;
   const cv::Size t = cv::getTextSize(text, s.font, scale, s.thickness, &base);
-  cv::putText(glyph, text, {(size.width - t.width) / 2, (size.height + t.height) / 2}, s.font, scale, 255, s.thickness, cv::LINE_AA);
+  cv::putText(glyph, text, {(size.width - t.width) / 2, (size.height + t.height) / 2}, s.font, scale, 255, s.thickness,
+              cv::LINE_AA);
   const cv::Mat shear = (cv::Mat_<double>(2, 3) << 1, s.shear, -s.shear * size.height / 2, 0, 1, 0);
   cv::warpAffine(glyph, glyph, shear, size);
   cv::Mat out(size, CV_8U, cv::Scalar(30));
@@ -109,7 +110,8 @@ struct Frame {
     const Style s{cv::FONT_HERSHEY_SIMPLEX, 0.7, 3, 0.0};
     sign(3, s).copyTo(mat(boxes[0]));
     sign(7, s).copyTo(mat(boxes[1]));
-    std::ofstream(truth) << "frames:\n  - {stamp: 1000000000, signs: 2, boxes: [[20, 30, 80, 90], [200, 100, 80, 90]], digits: [3, 7]}\n";
+    std::ofstream(truth)
+        << "frames:\n  - {stamp: 1000000000, signs: 2, boxes: [[20, 30, 80, 90], [200, 100, 80, 90]], digits: [3, 7]}\n";
   }
 };
 
@@ -171,7 +173,8 @@ TEST(SampleExport, AFileAtASamplesNameThatTheIndexDoesNotListIsLeftAsItIsUnlessO
   h.set("truth", f.truth);
   h.set("directory", dir);
   EXPECT_TRUE(h.run(feed(h, image(f.mat), regions(f.mat.size(), f.boxes))).isNothing());
-  EXPECT_THAT(h.error(), HasSubstr("'" + dir + "/3/1000000000_0.png' exists and is not a sample of index.csv: left as "
+  EXPECT_THAT(h.error(), HasSubstr("'" + dir +
+                                   "/3/1000000000_0.png' exists and is not a sample of index.csv: left as "
                                    "it is; set 'overwrite' to replace it, or choose another directory"));
   EXPECT_EQ(read(dir + "/3/1000000000_0.png"), "the user's file");
   h.set("overwrite", "true");
@@ -221,14 +224,16 @@ TEST(DigitModel, ReportsProgressPerBatchAndRoundTripsThroughItsFile) {
   apex_nodes::TrainSettings settings;
   settings.epochs = 30, settings.batch = 10, settings.hidden = {16};
   std::vector<int> reported;
-  const DigitModel model = DigitModel::train(x, y, {}, settings, [&](const apex_nodes::TrainProgress& p) { reported.push_back(p.epochs); });
+  const DigitModel model =
+      DigitModel::train(x, y, {}, settings, [&](const apex_nodes::TrainProgress& p) { reported.push_back(p.epochs); });
   EXPECT_EQ(reported, (std::vector<int>{10, 20, 30}));
   const std::string path = tempPath("model.yaml");
   model.save(path);
   const DigitModel loaded = DigitModel::load(path);
   EXPECT_EQ(loaded.classes(), model.classes());
   EXPECT_EQ(loaded.accuracy(x, y), model.accuracy(x, y));
-  EXPECT_THROW(DigitModel::train({x.begin(), x.begin() + 8}, std::vector<int>(8, 1), {}, settings), std::invalid_argument);  // one class
+  EXPECT_THROW(DigitModel::train({x.begin(), x.begin() + 8}, std::vector<int>(8, 1), {}, settings),
+               std::invalid_argument);  // one class
 }
 
 // ---------------------------------------------------------------- DigitClassifier

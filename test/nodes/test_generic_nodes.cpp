@@ -34,7 +34,8 @@ TEST(GenericNodes, TimeSyncPairsByStamp) {
   h.set("tolerance", "0.05");
   const auto b = stamped(10.03);
   EXPECT_EQ(h.run({Message::share<apex_nodes::Cloud>(stamped(10.0)), Message::share<apex_nodes::Cloud>(b)}).raw(), b.get());
-  EXPECT_TRUE(h.run({Message::share<apex_nodes::Cloud>(stamped(10.0)), Message::share<apex_nodes::Cloud>(stamped(10.2))}).isNothing());
+  EXPECT_TRUE(
+      h.run({Message::share<apex_nodes::Cloud>(stamped(10.0)), Message::share<apex_nodes::Cloud>(stamped(10.2))}).isNothing());
   EXPECT_TRUE(h.run({Message::make(1), Message::share<apex_nodes::Cloud>(b)}).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("cannot read a stamp from a int"));
 }

@@ -44,10 +44,12 @@ void play(const std::string& graph_file, const std::string& count_node, const st
     }
   }));
   g.start();
-  EXPECT_TRUE(waitUntil([&] {
-    std::lock_guard<std::mutex> l(out.m);
-    return out.counts.size() >= 40 && out.points.size() >= 40;
-  }, 60));
+  EXPECT_TRUE(waitUntil(
+      [&] {
+        std::lock_guard<std::mutex> l(out.m);
+        return out.counts.size() >= 40 && out.points.size() >= 40;
+      },
+      60));
   EXPECT_TRUE(g.waitIdle(kWait));
   g.stop();
 }

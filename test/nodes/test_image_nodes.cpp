@@ -193,8 +193,8 @@ TEST(ImageNodes, MorphologyMatchesOpenCV) {
   h.set("kernel_size", "5");
   h.set("iterations", "2");
   cv::Mat want;
-  cv::morphologyEx(gray(), want, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)),
-                   cv::Point(-1, -1), 2);
+  cv::morphologyEx(gray(), want, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)), cv::Point(-1, -1),
+                   2);
   expectSame(out(h.run(image(gray(), "mono8"))).mat, want);
 }
 
@@ -236,9 +236,9 @@ TEST(ImageNodes, SmallFiltersMatchOpenCV) {
 
 TEST(ImageNodes, BlobDetectionFindsRegionsWithAreaFilter) {
   cv::Mat binary = cv::Mat::zeros(100, 200, CV_8UC1);
-  cv::rectangle(binary, cv::Rect(10, 10, 20, 10), cv::Scalar(255), cv::FILLED);   // 200 px
-  cv::rectangle(binary, cv::Rect(50, 40, 30, 30), cv::Scalar(255), cv::FILLED);   // 900 px
-  cv::rectangle(binary, cv::Rect(150, 80, 2, 2), cv::Scalar(255), cv::FILLED);    // 4 px: noise
+  cv::rectangle(binary, cv::Rect(10, 10, 20, 10), cv::Scalar(255), cv::FILLED);  // 200 px
+  cv::rectangle(binary, cv::Rect(50, 40, 30, 30), cv::Scalar(255), cv::FILLED);  // 900 px
+  cv::rectangle(binary, cv::Rect(150, 80, 2, 2), cv::Scalar(255), cv::FILLED);  // 4 px: noise
   NodeHarness h("apex_nodes/BlobDetection", {"image"}, "regions");
   h.set("min_area", "50");
   auto regions = h.run(image(binary, "mono8")).as<Regions>();
@@ -282,7 +282,8 @@ TEST(ImageNodes, ImageExportWritesFramesOrCrops) {
   again.set("directory", std::string("'") + dir + "'");
   const cv::Mat other(4, 4, CV_8UC3, cv::Scalar(1, 2, 3));
   EXPECT_TRUE(again.run(image(other, "bgr8")).isNothing());
-  EXPECT_THAT(again.error(), HasSubstr("'" + path + "' exists (not written by this node): left as it is; set "
+  EXPECT_THAT(again.error(), HasSubstr("'" + path +
+                                       "' exists (not written by this node): left as it is; set "
                                        "'overwrite' to replace such files, or choose another prefix or directory"));
   expectSame(cv::imread(path), scene());
   again.set("overwrite", "true");

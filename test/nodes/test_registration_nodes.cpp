@@ -42,9 +42,9 @@ Rgb corner() {
     const float a = 2.f * u(rng);
     const float b = (plane == 0 ? 2.f : 1.5f) * u(rng);
     pcl::PointXYZRGB p(std::uint8_t(i % 256), std::uint8_t(80 * plane), std::uint8_t((i / 256) % 256));
-    if (plane == 0) p.x = a, p.y = b, p.z = 0.f;       // floor
+    if (plane == 0) p.x = a, p.y = b, p.z = 0.f;  // floor
     else if (plane == 1) p.x = 0.f, p.y = a, p.z = b;  // wall x = 0
-    else p.x = a, p.y = 0.f, p.z = b;                  // wall y = 0
+    else p.x = a, p.y = 0.f, p.z = b;  // wall y = 0
     points.push_back(p);
   }
   return points;
@@ -153,8 +153,10 @@ std::pair<double, double> errorOf(const Eigen::Matrix4f& m) {
   return {(d.topRightCorner<3, 1>() - t.topRightCorner<3, 1>()).norm(), Eigen::AngleAxisd(r).angle()};
 }
 
-const Params kIcpParams = {{"max_iterations", "100"}, {"max_correspondence_distance", "0.3"},
-                           {"transformation_epsilon", "1e-12"}, {"euclidean_fitness_epsilon", "0"}};
+const Params kIcpParams = {{"max_iterations", "100"},
+                           {"max_correspondence_distance", "0.3"},
+                           {"transformation_epsilon", "1e-12"},
+                           {"euclidean_fitness_epsilon", "0"}};
 using Icp = pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>;
 /** kIcpParams, for the PCL call. */
 void configure(Icp& icp) {
@@ -205,9 +207,10 @@ TEST(RegistrationNodes, NdtMatchesPclAndFindsTheMotion) {
   const auto [translation, rotation] = errorOf(want.transform);  // from 0.054 m and 0.02 rad
   EXPECT_LT(translation, 0.02);
   EXPECT_LT(rotation, 0.01);
-  expectSameAsPcl(runNode("apex_nodes/NDT", {{"resolution", "0.5"}, {"step_size", "0.1"},
-                                             {"transformation_epsilon", "1e-6"}, {"max_iterations", "50"}}),
-                  want);
+  expectSameAsPcl(
+      runNode("apex_nodes/NDT",
+              {{"resolution", "0.5"}, {"step_size", "0.1"}, {"transformation_epsilon", "1e-6"}, {"max_iterations", "50"}}),
+      want);
 }
 
 // MergeClouds
@@ -328,16 +331,25 @@ TEST(MergeClouds, FramesAndEmptyClouds) {
   EXPECT_EQ(same->header.frame_id, "lidar");
   EXPECT_EQ(same->header.stamp, ros::Time(9));
   EXPECT_EQ(apex_nodes::pointCount(*same), 8u);
-  EXPECT_THAT([&] { apex_nodes::mergeClouds({a, camera}, "", lookup); },
-              testing::ThrowsMessage<std::invalid_argument>(
-                  HasSubstr("cloud_1 is in frame 'camera', cloud_0 in 'lidar': set `frame` to merge clouds of different frames")));
-  EXPECT_THAT([&] { apex_nodes::mergeClouds({empty, empty}, "", lookup); },
-              testing::ThrowsMessage<std::invalid_argument>(HasSubstr("all 2 clouds are empty")));
+  EXPECT_THAT(
+      [&] {
+        apex_nodes::mergeClouds({a, camera}, "", lookup);
+      },
+      testing::ThrowsMessage<std::invalid_argument>(
+          HasSubstr("cloud_1 is in frame 'camera', cloud_0 in 'lidar': set `frame` to merge clouds of different frames")));
+  EXPECT_THAT(
+      [&] {
+        apex_nodes::mergeClouds({empty, empty}, "", lookup);
+      },
+      testing::ThrowsMessage<std::invalid_argument>(HasSubstr("all 2 clouds are empty")));
   // a frame tf2 does not know: both frames and the stamp
   const auto radar = apex_nodes::makeCloud(header("radar", ros::Time(7, 250000000)), some<pcl::PointXYZ>(4, 1.f));
-  EXPECT_THAT([&] { apex_nodes::mergeClouds({a, radar}, "base_link", lookup); },
-              testing::ThrowsMessage<std::runtime_error>(HasSubstr(
-                  "no transform radar -> base_link at 7.250000 for cloud_1: \"radar\" passed to lookupTransform")));
+  EXPECT_THAT(
+      [&] {
+        apex_nodes::mergeClouds({a, radar}, "base_link", lookup);
+      },
+      testing::ThrowsMessage<std::runtime_error>(
+          HasSubstr("no transform radar -> base_link at 7.250000 for cloud_1: \"radar\" passed to lookupTransform")));
 }
 
 TEST(MergeClouds, TheNodeHasAnInputPerCloud) {

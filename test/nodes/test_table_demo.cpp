@@ -33,10 +33,13 @@ TEST(TableDemo, EveryFrameFindsTheThreeBoxesWhereTheTruthPutsThem) {
     if (auto f = msg.as<ClusterFeatures>()) frames.push_back(f);
   }));
   g.start();
-  EXPECT_TRUE(waitUntil([&] {
-    std::lock_guard<std::mutex> l(m);
-    return frames.size() >= truth.size();
-  }, 120)) << "features of " << frames.size() << " frames";
+  EXPECT_TRUE(waitUntil(
+      [&] {
+        std::lock_guard<std::mutex> l(m);
+        return frames.size() >= truth.size();
+      },
+      120))
+      << "features of " << frames.size() << " frames";
   EXPECT_TRUE(g.waitIdle(kWait));
   g.stop();
   for (const auto& s : g.nodeStats(0)) EXPECT_EQ(s.error, "") << s.name;

@@ -126,7 +126,7 @@ TEST(TableNodes, NormalEstimationAddsPclsNormalsAndKeepsEveryField) {
   h.set("radius", "0.05"), h.set("viewpoint", "[0, 0, 2]");
   const auto want = pclNormals(*scene(), [](auto& e) { e.setRadiusSearch(0.05), e.setViewPoint(0, 0, 2); });
   EXPECT_TRUE(std::isnan(want.back().normal_x));  // the points below: too far apart for 5 cm
-  EXPECT_NEAR(want[0].normal_z, 1.0, 0.05);       // the table's: up, to the viewpoint
+  EXPECT_NEAR(want[0].normal_z, 1.0, 0.05);  // the table's: up, to the viewpoint
   const CloudPtr with_normals = cloudOf(h.run(scene()));
   expectSceneWithNormals(*with_normals, want);
 
@@ -172,7 +172,8 @@ void expectFit(const CloudPtr& c, const std::vector<std::pair<std::string, std::
     if (o == "outliers")
       expectSelected(*cloudOf(got), *c, apex_nodes::complement(want.inliers.indices, apex_nodes::pointCount(*c)));
     if (o == "coefficients") {
-      EXPECT_EQ(*got.as<std::vector<double>>(), std::vector<double>(want.coefficients.values.begin(), want.coefficients.values.end()));
+      EXPECT_EQ(*got.as<std::vector<double>>(),
+                std::vector<double>(want.coefficients.values.begin(), want.coefficients.values.end()));
     }
     if (o == "count") {
       EXPECT_EQ(*got.as<int>(), int(want.inliers.indices.size()));
@@ -249,7 +250,8 @@ TEST(TableNodes, NormalPlaneOnNormalEstimationsNormalsIsPcls) {
   normals.set("radius", "0.05");
   const CloudPtr with_normals = cloudOf(normals.run(scene()));
   pcl::SACSegmentationFromNormals<pcl::PointXYZ, pcl::Normal> seg;
-  seg.setInputNormals(std::make_shared<pcl::PointCloud<pcl::Normal>>(pclNormals(*scene(), [](auto& e) { e.setRadiusSearch(0.05); })));
+  seg.setInputNormals(
+      std::make_shared<pcl::PointCloud<pcl::Normal>>(pclNormals(*scene(), [](auto& e) { e.setRadiusSearch(0.05); })));
   seg.setNormalDistanceWeight(0.1);
   const Fit want = pclFit(seg, *scene(), pcl::SACMODEL_NORMAL_PLANE, 0.01);
   EXPECT_GE(want.inliers.indices.size(), kTablePoints * 9 / 10);

@@ -71,7 +71,7 @@ struct Loop {
     add(g, "test/Probe", "probe", "two");
     add(g, "apex_nodes/SequenceMean", "mean");
     add(g, "apex_nodes/Optimizer", "opt");
-    add(g, "test/Collector", "seen");        // what the probe reports, per frame
+    add(g, "test/Collector", "seen");  // what the probe reports, per frame
     add(g, "test/Collector", "candidates");  // what the optimiser sends
     EXPECT_TRUE(g.setParameter("seq", "frames", std::to_string(frames)));
     EXPECT_TRUE(g.setParameter("opt", "dimensions", dims));
@@ -106,8 +106,7 @@ TEST(Optimizer, EachCandidateIsInEffectForEveryFrameOfItsEvaluationAndNoneOfTheP
   const auto seen = doubles(loop.seen());
   ASSERT_EQ(seen.size(), 15u * 20u);
   for (std::size_t k = 0; k < 15; ++k)
-    for (std::size_t f = 0; f < 20; ++f)
-      ASSERT_EQ(seen[k * 20 + f], candidates[k]) << "evaluation " << k << ", frame " << f;
+    for (std::size_t f = 0; f < 20; ++f) ASSERT_EQ(seen[k * 20 + f], candidates[k]) << "evaluation " << k << ", frame " << f;
   const double best = *std::max_element(candidates.begin(), candidates.end() - 1);
   EXPECT_THAT(param(g, "opt", "state"), HasSubstr("finished after 15 evaluations; best "));
   EXPECT_THAT(param(g, "opt", "state"), HasSubstr("at {gain: " + toText(best) + "}"));

@@ -76,13 +76,20 @@ inline std::vector<std::string> services(const std::vector<apex_rviz_plugin::Cal
 inline apex::NodeTypeInfo optimizerType() {
   apex::NodeTypeInfo t;
   t.id = apex_rviz_plugin::kOptimizerType;
-  t.ports = {port("fitness", "input", "double"), port("best_fitness", "output", "double"),
-             port("evaluations", "output", "int"), port("best", "output", "string"),
-             port("enable", "slot", ""), port("disable", "slot", ""), port("start", "slot", ""),
-             port("stop", "slot", ""), port("apply_best", "slot", ""), port("processed", "trigger", ""),
-             port("evaluate", "trigger", ""), port("finished", "trigger", "")};
-  for (const char* name : {"dimensions", "algorithm", "budget", "seed", "population", "F", "CR", "minimize", "state",
-                           "best_values"})
+  t.ports = {port("fitness", "input", "double"),
+             port("best_fitness", "output", "double"),
+             port("evaluations", "output", "int"),
+             port("best", "output", "string"),
+             port("enable", "slot", ""),
+             port("disable", "slot", ""),
+             port("start", "slot", ""),
+             port("stop", "slot", ""),
+             port("apply_best", "slot", ""),
+             port("processed", "trigger", ""),
+             port("evaluate", "trigger", ""),
+             port("finished", "trigger", "")};
+  for (const char* name :
+       {"dimensions", "algorithm", "budget", "seed", "population", "F", "CR", "minimize", "state", "best_values"})
     t.parameters.push_back(param(name, ""));
   return t;
 }

@@ -92,13 +92,15 @@ inline apex::GraphState runtimeGraph(const std::string& ns = "/apex") {
 }
 
 inline const apex::NodeInfo* find(const apex::GraphState& g, const std::string& name) {
-  for (const auto& n : g.nodes) if (n.name == name) return &n;
+  for (const auto& n : g.nodes)
+    if (n.name == name) return &n;
   return nullptr;
 }
 
 inline std::string param(const apex::GraphState& g, const std::string& node, const std::string& name) {
   if (const auto* n = find(g, node))
-    for (const auto& p : n->parameters) if (p.name == name) return p.value;
+    for (const auto& p : n->parameters)
+      if (p.name == name) return p.value;
   return "";
 }
 
@@ -108,7 +110,7 @@ inline double number(const apex::GraphState& g, const std::string& node, const s
 }
 
 inline bool connected(const apex::GraphState& g, const std::string& a, const std::string& ap, const std::string& b,
-               const std::string& bp) {
+                      const std::string& bp) {
   for (const auto& c : g.connections)
     if (c.from_node == a && c.from_port == ap && c.to_node == b && c.to_port == bp) return true;
   return false;
@@ -125,15 +127,16 @@ inline std::string overlapping(const GraphScene& scene) {
   std::string out;
   for (auto a = boxes.begin(); a != boxes.end(); ++a)
     for (auto b = std::next(a); b != boxes.end(); ++b)
-      if (a->second.overlaps(b->second)) out += a->first + " on " + b->first + " " + boxText(a->second) + " " + boxText(b->second) + "; ";
+      if (a->second.overlaps(b->second))
+        out += a->first + " on " + b->first + " " + boxText(a->second) + " " + boxText(b->second) + "; ";
   return out;
 }
 
 /** A mouse event as the window system would deliver it to the view. */
 inline void mouse(QGraphicsView* view, QEvent::Type type, QPointF scene_pos, Qt::MouseButtons held) {
   const QPoint at = view->mapFromScene(scene_pos);
-  QMouseEvent e(type, at, view->viewport()->mapToGlobal(at), type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton,
-                held, Qt::NoModifier);
+  QMouseEvent e(type, at, view->viewport()->mapToGlobal(at), type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton, held,
+                Qt::NoModifier);
   QApplication::sendEvent(view->viewport(), &e);
 }
 
@@ -182,7 +185,8 @@ class PanelWidgetTest : public ::testing::Test {
 
 /** The action of a menu whose text starts with `text`, or nullptr. */
 inline QAction* action(const QMenu& menu, const QString& text) {
-  for (QAction* a : menu.actions()) if (a->text().startsWith(text)) return a;
+  for (QAction* a : menu.actions())
+    if (a->text().startsWith(text)) return a;
   return nullptr;
 }
 

@@ -31,7 +31,7 @@ TEST(GraphModel, SaysWhyAConnectionCannotBeMadeWithTheRuntimesRules) {
   EXPECT_THAT(m.whyNot("clock", "processed", "count", "reset"), HasSubstr("they are already connected"));
   auto g = graph(2);
   g.connections.erase(g.connections.begin() + 1);  // relay -> count
-  g.connections.pop_back();                        // clock/processed -> count/reset
+  g.connections.pop_back();  // clock/processed -> count/reset
   m.update(g);
   EXPECT_EQ(m.whyNot("clock", "time", "count", "in"), "");  // any input takes a double
   EXPECT_EQ(m.whyNot("clock", "processed", "count", "reset"), "");
@@ -92,7 +92,7 @@ TEST(GraphModel, FreshNamesFollowTheTypeAndAreUnused) {
   m.update(g);
   EXPECT_EQ(m.freshName("apex_nodes/Clock"), "clock_2");
   EXPECT_EQ(m.freshName("apex_nodes/Clock", "", {"clock_2"}), "clock_3");  // sent a moment ago, not shown yet
-  EXPECT_EQ(m.freshName("apex_nodes/Clock", "sub"), "clock_1");             // inside a subgraph: its own names
+  EXPECT_EQ(m.freshName("apex_nodes/Clock", "sub"), "clock_1");  // inside a subgraph: its own names
   EXPECT_EQ(m.freshName("apex_nodes/Clock", "sub", {"sub/clock_1"}), "clock_2");
 }
 
@@ -124,7 +124,8 @@ TEST(GraphModel, DuplicateCopiesNodesWithTheirSettingsAndTheConnectionsAmongThem
   EXPECT_EQ(links, (std::vector<std::string>{"clock_1/processed count_1/reset"}));
   bool rate_ports = false;  // the copy's parameter keeps its ports
   for (const auto& c : two.edit->apply)
-    rate_ports = rate_ports || (c.service == "set_interactive" && std::get<apex::SetInteractive::Request>(c.request).node == "clock_1");
+    rate_ports =
+        rate_ports || (c.service == "set_interactive" && std::get<apex::SetInteractive::Request>(c.request).node == "clock_1");
   EXPECT_TRUE(rate_ports);
   EXPECT_EQ(std::get<apex::SetUi::Request>(two.edit->apply[2].request).ui, "{x: 50, y: 60}");
   EXPECT_FALSE(m.duplicate({"nobody"}, 0, 0).edit);
@@ -228,7 +229,10 @@ TEST(GraphModel, ANodeDroppedOntoALinkIsPutInItInOneEdit) {
   ASSERT_TRUE(e);
   std::vector<std::string> calls;
   for (const auto& k : e->apply) {
-    if (k.service == "set_ui") { calls.push_back("set_ui"); continue; }
+    if (k.service == "set_ui") {
+      calls.push_back("set_ui");
+      continue;
+    }
     const auto& r = std::get<apex::Connect::Request>(k.request);
     calls.push_back(k.service + " " + r.from_node + "/" + r.from_port + " " + r.to_node + "/" + r.to_port);
   }
@@ -236,7 +240,7 @@ TEST(GraphModel, ANodeDroppedOntoALinkIsPutInItInOneEdit) {
                                              "connect scale/out count/in"}));
   EXPECT_EQ(std::get<apex::SetUi::Request>(e->revert.back().request).ui, "{x: 1, y: 2}");
   EXPECT_FALSE(m.insert("relay", g.connections[0], 0, 0));  // connected already: it stays as it is
-  EXPECT_FALSE(m.insert("clock", c, 0, 0));                 // no input
+  EXPECT_FALSE(m.insert("clock", c, 0, 0));  // no input
 }
 
 TEST(GraphModel, APresetIsComparedWithTheGraphAndRestoredInOneEdit) {
@@ -257,7 +261,8 @@ TEST(GraphModel, APresetIsComparedWithTheGraphAndRestoredInOneEdit) {
   m.update(g);
   auto changes = m.compare(all);
   ASSERT_EQ(changes.size(), 2u);
-  EXPECT_EQ(changes[0].node + "/" + changes[0].param + ": " + changes[0].now + " -> " + changes[0].then, "clock/rate: 35.5 -> 20.0");
+  EXPECT_EQ(changes[0].node + "/" + changes[0].param + ": " + changes[0].now + " -> " + changes[0].then,
+            "clock/rate: 35.5 -> 20.0");
   EXPECT_EQ(changes[1].then, "[1, 2]");
   auto e = m.restore(all, "tuned");
   ASSERT_TRUE(e);

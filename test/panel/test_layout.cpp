@@ -27,12 +27,20 @@ TEST(Layout, TheDemoGraphInLayersLeftToRightWithNoBoxOnAnother) {
   // graphs/paper_pipeline.yaml's shape, with box heights as the panel draws them
   std::map<std::string, Box> boxes;
   const std::vector<std::pair<std::string, double>> sizes = {
-      {"bag", 260}, {"gray", 120}, {"blur", 150}, {"threshold", 150}, {"morphology", 150}, {"blobs", 180},
+      {"bag", 260},  {"gray", 120},        {"blur", 150},  {"threshold", 150},   {"morphology", 150}, {"blobs", 180},
       {"draw", 120}, {"overlay_out", 100}, {"voxel", 120}, {"passthrough", 150}, {"cloud_out", 100}};
   for (const auto& [name, h] : sizes) boxes[name] = Box{0, 0, 230, h};
-  const Edges edges = {{"bag", "gray"}, {"gray", "blur"}, {"blur", "threshold"}, {"threshold", "morphology"},
-                       {"morphology", "blobs"}, {"blobs", "draw"}, {"bag", "draw"}, {"draw", "overlay_out"},
-                       {"bag", "voxel"}, {"voxel", "passthrough"}, {"passthrough", "cloud_out"}};
+  const Edges edges = {{"bag", "gray"},
+                       {"gray", "blur"},
+                       {"blur", "threshold"},
+                       {"threshold", "morphology"},
+                       {"morphology", "blobs"},
+                       {"blobs", "draw"},
+                       {"bag", "draw"},
+                       {"draw", "overlay_out"},
+                       {"bag", "voxel"},
+                       {"voxel", "passthrough"},
+                       {"passthrough", "cloud_out"}};
   const auto at = layeredLayout(boxes, edges);
   ASSERT_EQ(at.size(), boxes.size());
   EXPECT_EQ(overlaps(boxes, at), "");
@@ -72,8 +80,10 @@ TEST(Layout, AFreePlaceIsBelowWhatItWouldCoverOrInTheNextColumn) {
 }
 
 TEST(Layout, BoxesThatGrewPushThoseBelowDownAndKeepTheirColumn) {
-  std::map<std::string, Box> boxes = {{"a", {0, 0, 100, 300}},   // grew from 100 to 300
-                                      {"b", {0, 120, 100, 100}}, {"c", {0, 240, 100, 100}}, {"d", {300, 0, 100, 100}}};
+  std::map<std::string, Box> boxes = {{"a", {0, 0, 100, 300}},  // grew from 100 to 300
+                                      {"b", {0, 120, 100, 100}},
+                                      {"c", {0, 240, 100, 100}},
+                                      {"d", {300, 0, 100, 100}}};
   const auto moved = pushDown(boxes, 20);
   ASSERT_EQ(moved.size(), 2u);  // d, beside, stays
   EXPECT_EQ(moved.at("b"), std::make_pair(0.0, 320.0));

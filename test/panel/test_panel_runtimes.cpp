@@ -78,11 +78,11 @@ class FakeRuntime {
     graph_.publish(g);
     types_ = nh_.advertiseService<apex::ListNodeTypes::Request, apex::ListNodeTypes::Response>(
         "list_node_types", [](auto&, auto& res) { return res.success = true; });
-    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>(
-        "set_parameter", [answer](auto&, auto& res) {
-          answer();
-          return res.success = true;
-        });
+    set_ = nh_.advertiseService<apex::SetParameter::Request, apex::SetParameter::Response>("set_parameter",
+                                                                                           [answer](auto&, auto& res) {
+                                                                                             answer();
+                                                                                             return res.success = true;
+                                                                                           });
     spinner_.start();
   }
 
@@ -137,7 +137,8 @@ TEST(PanelWidgetSlowRuntime, TheGuiThreadNeverWaitsAndSaysTheRuntimeIsSlow) {
   EXPECT_EQ(panel.editsPending(), 0);
   ASSERT_TRUE(QTest::qWaitFor([&] { return slow.calls == 4 && !panel.link().callsLeftBehind(); }, kWaitMs));
   QCoreApplication::processEvents();  // the old answer, if it were delivered, is in by now
-  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph() && panel.nodeTypeCount() > 0; }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph() && panel.nodeTypeCount() > 0; },
+                              kWaitMs));
   EXPECT_EQ(panel.editsPending(), 0);
   EXPECT_FALSE(panel.model().node("n")) << "a graph of /slow shown in /apex's panel";
 }
@@ -169,7 +170,8 @@ TEST(PanelWidgetTwoRuntimes, CopyInOnePasteInAnotherAndEachStartsItsOwnHistory) 
   EXPECT_FALSE(undo->isEnabled()) << "the history of /apex goes on in /apex_c: " << undo->toolTip().toStdString();
   view->setFocus();
   QTest::keyClick(view, Qt::Key_V, Qt::ControlModifier);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && find(runtimeGraph("/apex_c"), "xfer_sink") != nullptr; }, kWaitMs))
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && find(runtimeGraph("/apex_c"), "xfer_sink") != nullptr; },
+                              kWaitMs))
       << panel.editor()->message().toStdString();  // the whole paste answered: nodes, then the connection
   const apex::GraphState there = runtimeGraph("/apex_c");
   EXPECT_TRUE(connected(there, "xfer_src", "count", "xfer_sink", "in")) << panel.editor()->message().toStdString();

@@ -55,14 +55,17 @@ TEST_F(PanelWidgetTest, APresetIsSavedComparedWithNowAndRestoredInOneUndoStep) {
   QAction* whole = action(later, "whole_graph");
   ASSERT_TRUE(whole && whole->menu());
   action(*whole->menu(), "Restore")->trigger();
-  ASSERT_TRUE(QTest::qWaitFor([&] {
-    return number(runtimeGraph(), "preset_clock", "rate") == 40 && number(runtimeGraph(), "preset_other", "rate") == 7;
-  }, kWaitMs)) << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return number(runtimeGraph(), "preset_clock", "rate") == 40 && number(runtimeGraph(), "preset_other", "rate") == 7; },
+      kWaitMs))
+      << panel.editor()->message().toStdString();
   ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Restore preset whole_graph"); }, kWaitMs));
   QTest::mouseClick(undo, Qt::LeftButton);
-  ASSERT_TRUE(QTest::qWaitFor([&] {
-    return number(runtimeGraph(), "preset_clock", "rate") == 30 && number(runtimeGraph(), "preset_other", "rate") == 31;
-  }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {
+        return number(runtimeGraph(), "preset_clock", "rate") == 30 && number(runtimeGraph(), "preset_other", "rate") == 31;
+      },
+      kWaitMs));
 
   // the node's menu: every parameter of one node back to its default, one step
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "preset_other", "rate") == 31; }, kWaitMs));
@@ -101,10 +104,12 @@ TEST_F(PanelWidgetTest, PreviewsDrawThumbnailsAndSparklinesOfNodesInViewOnly) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("thumbs_bag")->samples("stamp") >= 2; }, kWaitMs))
       << "no sparkline of the stamp";
   const apex::PortInfo* image_port = nullptr;
-  for (const auto& p : bag->info().ports) if (p.name == "camera_image_raw") image_port = &p;
+  for (const auto& p : bag->info().ports)
+    if (p.name == "camera_image_raw") image_port = &p;
   ASSERT_TRUE(image_port);
   // what hovering the port shows: its type, the last image's real size (the bag's 480×640), the rate
-  ASSERT_TRUE(QTest::qWaitFor([&] { return bag->portTip(*image_port).contains("last: 480×640 bgr8 image (preview 160×"); }, kWaitMs))
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return bag->portTip(*image_port).contains("last: 480×640 bgr8 image (preview 160×"); }, kWaitMs))
       << bag->portTip(*image_port).toStdString();
   const QString tip = bag->portTip(*image_port);
   EXPECT_TRUE(tip.contains("apex_nodes/Image") && tip.contains(" Hz")) << tip.toStdString();
@@ -154,7 +159,8 @@ std::string writeBigGraph() {
   for (int i = 1; i < 200; ++i) out << "  - {name: r" << i << ", type: apex_nodes/Relay}\n";
   out << "connections:\n";
   for (int i = 1; i < 200; ++i)
-    out << "  - {from: " << (i < 4 ? std::string("clock/count") : "r" + std::to_string(i / 4) + "/out") << ", to: r" << i << "/in}\n";
+    out << "  - {from: " << (i < 4 ? std::string("clock/count") : "r" + std::to_string(i / 4) + "/out") << ", to: r" << i
+        << "/in}\n";
   return path;
 }
 
@@ -197,8 +203,8 @@ TEST_F(PanelWidgetTest, LoadedGraphsAreLaidOutWithNoBoxOnAnotherAndTidyIsOneUndo
   }
   EXPECT_TRUE(scene->node("r1")->detailed());
   const QPointF still = view->mapFromScene(under);  // what was under the cursor is still there, to a few pixels
-  EXPECT_LT(QLineF(still, at).length(), 6.0) << "(" << at.x() << ", " << at.y() << ") moved to (" << still.x() << ", "
-                                              << still.y() << ")";
+  EXPECT_LT(QLineF(still, at).length(), 6.0)
+      << "(" << at.x() << ", " << at.y() << ") moved to (" << still.x() << ", " << still.y() << ")";
 
   // Tidy after a node was dragged onto another: laid out again, one undo step
   scene->node("r5")->setPos(scene->node("r6")->pos());
@@ -230,7 +236,8 @@ TEST_F(PanelWidgetTest, FitsANarrowDock) {
 TEST_F(PanelWidgetTest, ATextEditIsOneUndoStepAndLeavingAFieldUntouchedIsNone) {
   ASSERT_TRUE(addNode("apex_nodes/ImagePublisher", "text_pub", "{topic: apex_test/first}"));  // not an undo step
   NodeItem* box = nullptr;
-  ASSERT_TRUE(QTest::qWaitFor([&] { return (box = panel.editor()->scene()->node("text_pub")) && box->editor("topic"); }, kWaitMs));
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return (box = panel.editor()->scene()->node("text_pub")) && box->editor("topic"); }, kWaitMs));
   auto* undo = panel.editor()->findChild<QToolButton*>("undo");
   ASSERT_FALSE(undo->isEnabled()) << "the load before should have started a fresh history";
   auto* line = box->editor("topic")->findChild<QLineEdit*>();
@@ -240,11 +247,13 @@ TEST_F(PanelWidgetTest, ATextEditIsOneUndoStepAndLeavingAFieldUntouchedIsNone) {
   QTest::keyClicks(line, "apex_test/second");
   QTest::keyClick(line, Qt::Key_Return);
   emit line->editingFinished();  // and the focus leaves after Return
-  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "text_pub", "topic") == "apex_test/second" && panel.editsPending() == 0; }, kWaitMs))
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return param(runtimeGraph(), "text_pub", "topic") == "apex_test/second" && panel.editsPending() == 0; }, kWaitMs))
       << param(runtimeGraph(), "text_pub", "topic");
   ASSERT_TRUE(QTest::qWaitFor([&] { return undo->isEnabled(); }, kWaitMs));
   QTest::mouseClick(undo, Qt::LeftButton);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "text_pub", "topic") == "apex_test/first" && panel.editsPending() == 0; }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return param(runtimeGraph(), "text_pub", "topic") == "apex_test/first" && panel.editsPending() == 0; }, kWaitMs));
   EXPECT_FALSE(undo->isEnabled()) << "more than one undo step for one text edit: " << undo->toolTip().toStdString();
   ASSERT_TRUE(QTest::qWaitFor([&] { return line->text() == "apex_test/first"; }, kWaitMs));
 }
@@ -271,7 +280,8 @@ TEST_F(PanelWidgetTest, ABoxIsAsWideAsItsNameAndValuesNeed) {
     ASSERT_TRUE(label) << p.name;
     EXPECT_GE(label->width(), label->fontMetrics().horizontalAdvance(label->text())) << p.name << " is cut";
   }
-  EXPECT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && overlapping(*panel.editor()->scene()).empty(); }, kWaitMs))
+  EXPECT_TRUE(
+      QTest::qWaitFor([&] { return panel.editsPending() == 0 && overlapping(*panel.editor()->scene()).empty(); }, kWaitMs))
       << overlapping(*panel.editor()->scene());  // placed beside the others, wide as it is
   // zoomed out, the box is its name alone: a rebuild then (previews on) does not bring its editors back
   box->setDetail(false);
@@ -297,7 +307,8 @@ TEST_F(PanelWidgetTest, TwoQuickAddsOfOneTypeGetTwoNames) {
   QTest::keyClick(search, Qt::Key_Return);
   QTest::keyClick(search, Qt::Key_Return);
   ASSERT_TRUE(QTest::qWaitFor([&] { return adds() == before + 2; }, kWaitMs)) << panel.editor()->message().toStdString();
-  EXPECT_EQ(panel.editor()->message().toStdString().find("already"), std::string::npos) << panel.editor()->message().toStdString();
+  EXPECT_EQ(panel.editor()->message().toStdString().find("already"), std::string::npos)
+      << panel.editor()->message().toStdString();
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.model().graph().nodes.size() == runtimeGraph().nodes.size(); }, kWaitMs));
   EXPECT_TRUE(QTest::qWaitFor([&] { return overlapping(*panel.editor()->scene()).empty(); }, kWaitMs))
       << overlapping(*panel.editor()->scene());
@@ -358,14 +369,17 @@ TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestU
   ASSERT_TRUE(link("mean", "mean", "optimizer_1", "fitness"));
   ASSERT_TRUE(link("optimizer_1", "evaluate", "player", "restart") && link("optimizer_1", "evaluate", "mean", "reset"));
   ASSERT_TRUE(fireSlot("optimizer_1", "start"));
-  ASSERT_TRUE(QTest::qWaitFor([&] { return find(runtimeGraph(), "optimizer_1")->error.find("has no range") != std::string::npos; }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return find(runtimeGraph(), "optimizer_1")->error.find("has no range") != std::string::npos; }, kWaitMs));
   ASSERT_TRUE(setParameter("optimizer_1", "dimensions", "[factor 0 2]"));
   ASSERT_TRUE(setParameter("optimizer_1", "budget", "6"));
   // the box's progress comes from the runtime's inspection of the Optimizer: once it flows
   for (const char* port : {"evaluations", "best_fitness"})
-    ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().receiving(std::string("/apex/inspect/optimizer_1/") + port); }, kWaitMs));
+    ASSERT_TRUE(
+        QTest::qWaitFor([&] { return panel.link().receiving(std::string("/apex/inspect/optimizer_1/") + port); }, kWaitMs));
   ASSERT_TRUE(fireSlot("optimizer_1", "start"));
-  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "optimizer_1", "state").find("finished") != std::string::npos; }, kWaitMs))
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "optimizer_1", "state").find("finished") != std::string::npos; },
+                              kWaitMs))
       << param(runtimeGraph(), "optimizer_1", "state");
   NodeItem* box = panel.editor()->scene()->node("optimizer_1");
   // every evaluation counted; the curve has its points (the newest value of each topic is shown, so a
@@ -377,13 +391,17 @@ TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestU
   EXPECT_EQ(number(runtimeGraph(), "scale", "factor"), 1.0) << "the run gives the factor its value back";
 
   // Apply the best values: one edit; Undo puts the factor back.
-  const double best = YAML::Load(YAML::Load(param(runtimeGraph(), "optimizer_1", "best_values")).as<std::string>())["factor"].as<double>();
+  const double best =
+      YAML::Load(YAML::Load(param(runtimeGraph(), "optimizer_1", "best_values")).as<std::string>())["factor"].as<double>();
   EXPECT_GT(best, 1.0);  // larger stamps score higher
   const std::string best_text = param(runtimeGraph(), "optimizer_1", "best_values");
-  ASSERT_TRUE(QTest::qWaitFor([&] {
-    const auto* shown = panel.model().parameter("optimizer_1", "best_values");
-    return shown && shown->value == best_text;
-  }, kWaitMs)) << "the panel's graph never showed the final best values";
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {
+        const auto* shown = panel.model().parameter("optimizer_1", "best_values");
+        return shown && shown->value == best_text;
+      },
+      kWaitMs))
+      << "the panel's graph never showed the final best values";
   emit panel.editor()->applyBestRequested("optimizer_1");
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "scale", "factor") == best; }, kWaitMs))
       << panel.editor()->message().toStdString() << "; factor " << param(runtimeGraph(), "scale", "factor") << ", best "
@@ -401,12 +419,16 @@ TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestU
   emit panel.editor()->saveRequested(QString::fromStdString(file));
   ASSERT_TRUE(QTest::qWaitFor([&] { return std::filesystem::exists(file) && panel.editsPending() == 0; }, kWaitMs));
   emit panel.editor()->loadRequested(QString::fromStdString(file));
-  ASSERT_TRUE(QTest::qWaitFor([&] {  // the load answered, and the loaded graph shown
-    return panel.editor()->message().startsWith("loaded ") && panel.editor()->scene()->node("optimizer_1") != nullptr;
-  }, kWaitMs)) << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {  // the load answered, and the loaded graph shown
+        return panel.editor()->message().startsWith("loaded ") && panel.editor()->scene()->node("optimizer_1") != nullptr;
+      },
+      kWaitMs))
+      << panel.editor()->message().toStdString();
   // an edit after the load: answered once the calls before it are (the link keeps their order)
   emit panel.editor()->scene()->node("optimizer_1")->parameterEdited("optimizer_1", "budget", "7");
-  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "optimizer_1", "budget") == "7" && panel.editsPending() == 0; }, kWaitMs))
+  ASSERT_TRUE(QTest::qWaitFor([&] { return param(runtimeGraph(), "optimizer_1", "budget") == "7" && panel.editsPending() == 0; },
+                              kWaitMs))
       << panel.editor()->message().toStdString();
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().receiving("/apex/inspect/optimizer_1/evaluations"); }, kWaitMs));
   EXPECT_EQ(panel.link().scalarWatches(), watches) << "the watches of the graph before are still there, or watched twice";

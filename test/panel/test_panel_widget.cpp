@@ -61,7 +61,8 @@ TEST_F(PanelWidgetTest, AddMoveConnectTuneAndUndoByMouseAndKeyboard) {
   auto* undo = panel.editor()->findChild<QToolButton*>("undo");
   auto* redo = panel.editor()->findChild<QToolButton*>("redo");
   // the edit is in the history once the runtime's answer is in (the new ~graph may come first)
-  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Set clock_1/rate"); }, kWaitMs)) << undo->toolTip().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Set clock_1/rate"); }, kWaitMs))
+      << undo->toolTip().toStdString();
   QTest::mouseClick(undo, Qt::LeftButton);
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "clock_1", "rate") == 10; }, kWaitMs));
   EXPECT_EQ(number(runtimeGraph(), "clock_1", "rate"), 10);
@@ -198,16 +199,19 @@ TEST_F(PanelWidgetTest, APlayerHasATransportBar) {
   // A bag: the frame slider spans its 40 frames; next and previous step through them.
   ASSERT_TRUE(setParameter("bag_reader_1", "file", g_bag));
   ASSERT_TRUE(setParameter("bag_reader_1", "topics", "[/camera/image_raw, /camera/points]"));
-  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport() && player->transport()->text() == "▶ held · frame 0 / 40 · 0.00 s"; }, kWaitMs))
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return player->transport() && player->transport()->text() == "▶ held · frame 0 / 40 · 0.00 s"; }, kWaitMs))
       << (player->transport() ? player->transport()->text().toStdString() : "no transport bar");
   auto* bar = player->transport();
   for (const char* button : {"next", "next", "next", "previous"}) {
     QToolButton* b = nullptr;
-    for (auto* t : bar->findChildren<QToolButton*>()) if (t->toolTip().startsWith(button)) b = t;
+    for (auto* t : bar->findChildren<QToolButton*>())
+      if (t->toolTip().startsWith(button)) b = t;
     ASSERT_TRUE(b) << button;
     QTest::mouseClick(b, Qt::LeftButton);
   }
-  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 1 / 40 · 0.10 s"; }, kWaitMs))  // 0, 1, 2, 1
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 1 / 40 · 0.10 s"; }, kWaitMs))  // 0, 1, 2, 1
       << player->transport()->text().toStdString();
   // The node's parameter box with its transport bar (docs/panel_transport.png).
   player->transport()->parentWidget()->grab().save(QString::fromStdString(g_shot).replace(".png", "_transport.png"));
@@ -234,16 +238,18 @@ TEST_F(PanelWidgetTest, ASliderDragIsOneUndoStepAndResetToDefaultAnother) {
   slider->setSliderDown(false);
   const double dragged = spin->value();
   ASSERT_GT(dragged, 20);
-  ASSERT_TRUE(QTest::qWaitFor([&] {
-    return panel.editsPending() == 0 && std::abs(number(runtimeGraph(), "drag_clock", "rate") - dragged) < 1e-3;
-  }, kWaitMs)) << number(runtimeGraph(), "drag_clock", "rate") << " vs " << dragged;
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return panel.editsPending() == 0 && std::abs(number(runtimeGraph(), "drag_clock", "rate") - dragged) < 1e-3; },
+      kWaitMs))
+      << number(runtimeGraph(), "drag_clock", "rate") << " vs " << dragged;
   auto* undo = panel.editor()->findChild<QToolButton*>("undo");
   auto* redo = panel.editor()->findChild<QToolButton*>("redo");
   QTest::mouseClick(undo, Qt::LeftButton);  // the whole drag, in one step
   ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "drag_clock", "rate") == 10; }, kWaitMs));
   EXPECT_FALSE(undo->isEnabled()) << "more than one undo step for one drag: " << undo->toolTip().toStdString();
   QTest::mouseClick(redo, Qt::LeftButton);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return std::abs(number(panel.model().graph(), "drag_clock", "rate") - dragged) < 1e-3; }, kWaitMs));
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return std::abs(number(panel.model().graph(), "drag_clock", "rate") - dragged) < 1e-3; }, kWaitMs));
 
   // the parameter's menu: back to the default, one more step
   QMenu menu;
@@ -251,7 +257,8 @@ TEST_F(PanelWidgetTest, ASliderDragIsOneUndoStepAndResetToDefaultAnother) {
   QAction* reset = action(menu, "Reset to default");
   ASSERT_TRUE(reset && reset->isEnabled());
   reset->trigger();
-  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "drag_clock", "rate") == 10 && panel.editsPending() == 0; }, kWaitMs));
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return number(runtimeGraph(), "drag_clock", "rate") == 10 && panel.editsPending() == 0; }, kWaitMs));
   ASSERT_TRUE(QTest::qWaitFor([&] { return spin->value() == 10.0; }, kWaitMs));
   QTest::mouseClick(undo, Qt::LeftButton);
   ASSERT_TRUE(QTest::qWaitFor([&] { return std::abs(number(runtimeGraph(), "drag_clock", "rate") - dragged) < 1e-3; }, kWaitMs));
@@ -326,11 +333,13 @@ TEST_F(PanelWidgetTest, DropANodeOntoALinkToPutItInAndDragALinkOntoAnInputInUseT
       if (c->connection().from_node == "ins_clock" && c->connection().to_node == "ins_count") return c;
     return nullptr;
   };
-  ASSERT_TRUE(QTest::qWaitFor([&] {  // placed by the panel (added by a script, with no position)
-    for (const char* n : {"ins_clock", "ins_count", "ins_mid"})
-      if (!scene->node(n) || !panel.model().hasPosition(n)) return false;
-    return link_item() && panel.editsPending() == 0;
-  }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {  // placed by the panel (added by a script, with no position)
+        for (const char* n : {"ins_clock", "ins_count", "ins_mid"})
+          if (!scene->node(n) || !panel.model().hasPosition(n)) return false;
+        return link_item() && panel.editsPending() == 0;
+      },
+      kWaitMs));
   const auto boxes = scene->boxes();  // three nodes added at once by a script: side by side
   EXPECT_FALSE(boxes.at("ins_mid").overlaps(boxes.at("ins_count")) || boxes.at("ins_mid").overlaps(boxes.at("ins_clock")) ||
                boxes.at("ins_clock").overlaps(boxes.at("ins_count")));
@@ -345,7 +354,8 @@ TEST_F(PanelWidgetTest, DropANodeOntoALinkToPutItInAndDragALinkOntoAnInputInUseT
   EXPECT_TRUE(connected(runtimeGraph(), "ins_clock", "count", "ins_mid", "in"));
   EXPECT_FALSE(connected(runtimeGraph(), "ins_clock", "count", "ins_count", "in"));
   auto* undo = panel.editor()->findChild<QToolButton*>("undo");
-  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Insert ins_mid"); }, kWaitMs)) << undo->toolTip().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return undo->toolTip().contains("Insert ins_mid"); }, kWaitMs))
+      << undo->toolTip().toStdString();
   QTest::mouseClick(undo, Qt::LeftButton);  // one step: the link as it was
   ASSERT_TRUE(QTest::qWaitFor([&] { return connected(runtimeGraph(), "ins_clock", "count", "ins_count", "in"); }, kWaitMs));
   EXPECT_FALSE(connected(runtimeGraph(), "ins_mid", "out", "ins_count", "in"));

@@ -40,13 +40,14 @@ using ::testing::Not;
 
 namespace services_test {
 
-
-inline std::string tempPath(const std::string& name) { return "/tmp/apex_test_services_" + std::to_string(getpid()) + "_" + name; }
+inline std::string tempPath(const std::string& name) {
+  return "/tmp/apex_test_services_" + std::to_string(getpid()) + "_" + name;
+}
 
 inline void writeFile(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 inline apex::AddNode::Response addNode(const std::string& type, const std::string& name, const std::string& params = "",
-                               const std::string& group = "") {
+                                       const std::string& group = "") {
   apex::AddNode::Request req;
   req.type = type;
   req.name = name;
@@ -56,7 +57,7 @@ inline apex::AddNode::Response addNode(const std::string& type, const std::strin
 }
 
 inline apex::Connect::Response connectPorts(const std::string& service, const std::string& a, const std::string& ap,
-                                     const std::string& b, const std::string& bp) {
+                                            const std::string& b, const std::string& bp) {
   apex::Connect::Request req;
   req.from_node = a, req.from_port = ap, req.to_node = b, req.to_port = bp;
   return call<apex::Connect>(service, req);

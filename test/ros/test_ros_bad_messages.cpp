@@ -109,8 +109,7 @@ TEST(BadMessages, AMalformedFrameIsANamedErrorAndTheNextFrameFlows) {
   auto far = cloud(100);
   far.fields[1].offset = 1u << 30;
   clouds.publish(far);
-  EXPECT_NE(errorOf(nh, "lidar").find("field 'y' (offset 1073741824) does not fit"), std::string::npos)
-      << errorOf(nh, "lidar");
+  EXPECT_NE(errorOf(nh, "lidar").find("field 'y' (offset 1073741824) does not fit"), std::string::npos) << errorOf(nh, "lidar");
 
   EXPECT_TRUE(valid()) << "the overlay or the clouds stopped after the malformed frames";
 }

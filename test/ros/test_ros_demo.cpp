@@ -90,11 +90,14 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
     std::lock_guard<std::mutex> l(m);
     counts.push_back(c->data);
   });
-  ASSERT_TRUE(apex_test::waitUntil([&] {  // every connection stands: no frame may pass before
-    for (const ros::Subscriber* s : {&sub, &count_sub, &preview_sub, &about_sub})
-      if (s->getNumPublishers() == 0) return false;
-    return true;
-  }, 30)) << "not connected to every inspected topic";
+  ASSERT_TRUE(apex_test::waitUntil(
+      [&] {  // every connection stands: no frame may pass before
+        for (const ros::Subscriber* s : {&sub, &count_sub, &preview_sub, &about_sub})
+          if (s->getNumPublishers() == 0) return false;
+        return true;
+      },
+      30))
+      << "not connected to every inspected topic";
   if (g_source == "bag") {  // BagReader inside the graph: start it
     apex::SetParameter::Request play;
     play.node = "bag", play.parameter = "playing", play.value = "true";

@@ -173,7 +173,7 @@ TEST(HeldFrame, AStepIsOneFrameThroughBothThreadGroups) {
   apex::Control::Request pause, step;
   pause.command = "pause", step.command = "step";
   ASSERT_TRUE(call<apex::Control>("control", pause).success);
-  set("bag", "frame", "20");      // asked for; the paused graph holds it
+  set("bag", "frame", "20");  // asked for; the paused graph holds it
   set("bag", "playing", "true");  // and then the frames after it
   for (int k : {20, 21, 22}) {
     apex::RuntimeStatus before, after;

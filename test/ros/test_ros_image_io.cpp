@@ -16,11 +16,10 @@ using namespace apex_test;
 namespace {
 
 constexpr int kPairs = 6;  // as in test/data/image_io.yaml
-std::string g_graph;       // that file
+std::string g_graph;  // that file
 
 std::string topic(int round, int i) {
-  return round == 0 ? "/image_io/img" + std::to_string(i)
-                    : "/image_io/r" + std::to_string(round) + "/img" + std::to_string(i);
+  return round == 0 ? "/image_io/img" + std::to_string(i) : "/image_io/r" + std::to_string(round) + "/img" + std::to_string(i);
 }
 
 /** Topics that /apex publishes, and those it subscribes, as the master sees them. */

@@ -38,7 +38,8 @@ void expectOk(bool success, const std::string& message, const std::string& what)
 std::string waitingFor(ros::NodeHandle& nh, const std::string& node) {
   apex::RuntimeStatus status;
   EXPECT_TRUE(receive(nh, "/apex/status", status)) << "no ~status";
-  for (const auto& n : status.nodes) if (n.name == node) return n.waiting_for;
+  for (const auto& n : status.nodes)
+    if (n.name == node) return n.waiting_for;
   return "(not listed)";
 }
 

@@ -136,7 +136,8 @@ TEST(ManyClients, TwentyClientsTwoHundredCallsEachWhileTheDemoLoops) {
   auto graph = call<apex::GetGraph>("get_graph").graph;  // whole afterwards
   std::set<std::string> names;
   for (const auto& n : graph.nodes) names.insert(n.name);
-  for (const char* main : {"bag", "rotate", "gray", "threshold", "overlay", "overlay_out"}) EXPECT_TRUE(names.count(main)) << main;
+  for (const char* main : {"bag", "rotate", "gray", "threshold", "overlay", "overlay_out"})
+    EXPECT_TRUE(names.count(main)) << main;
   EXPECT_TRUE(overlays.waitBeyond(overlays.count(), 10)) << "the overlay stopped after the calls";
 }
 

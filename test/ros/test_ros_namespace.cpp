@@ -47,13 +47,14 @@ TEST(Namespace, TheGraphsTopicsMoveUnderTheNamespaceWithTheNodeletsRemapping) {
   const auto published = topicsOf(publishers, manager);
   const auto subscribed = topicsOf(subscribers, manager);
   EXPECT_THAT(subscribed, testing::IsSupersetOf({"/robot1/front_camera/image", "/robot1/camera/points"}));
-  EXPECT_THAT(published, testing::IsSupersetOf({"/robot1/apex_demo/overlay", "/robot1/apex_demo/points",
-                                                "/robot1/apex/graph"}));
+  EXPECT_THAT(published, testing::IsSupersetOf({"/robot1/apex_demo/overlay", "/robot1/apex_demo/points", "/robot1/apex/graph"}));
   // /rosout and /diagnostics are global by ROS's convention (the aggregators listen there)
   for (const auto& topic : published)
-    if (topic != "/rosout" && topic != "/diagnostics" && topic.rfind("/manager/", 0) != 0) EXPECT_EQ(topic.rfind("/robot1/", 0), 0u) << manager << " publishes " << topic;
+    if (topic != "/rosout" && topic != "/diagnostics" && topic.rfind("/manager/", 0) != 0)
+      EXPECT_EQ(topic.rfind("/robot1/", 0), 0u) << manager << " publishes " << topic;
   for (const auto& topic : subscribed)
-    if (topic != "/clock" && topic.rfind("/manager/", 0) != 0) EXPECT_EQ(topic.rfind("/robot1/", 0), 0u) << manager << " subscribes " << topic;
+    if (topic != "/clock" && topic.rfind("/manager/", 0) != 0)
+      EXPECT_EQ(topic.rfind("/robot1/", 0), 0u) << manager << " subscribes " << topic;
   EXPECT_EQ(subscribed.count("/robot1/camera/image_raw"), 0u) << "the remapping was ignored";
 }
 

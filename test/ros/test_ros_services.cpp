@@ -10,7 +10,8 @@ TEST_F(Services, ListNodeTypesDescribesEveryTypeAndNamesLoadErrors) {
   auto res = call<apex::ListNodeTypes>("list_node_types");
   ASSERT_TRUE(res.success);
   const apex::NodeTypeInfo* clock = nullptr;
-  for (const auto& t : res.types) if (t.id == "apex_nodes/Clock") clock = &t;
+  for (const auto& t : res.types)
+    if (t.id == "apex_nodes/Clock") clock = &t;
   ASSERT_NE(clock, nullptr);
   EXPECT_FALSE(clock->description.empty());
   ASSERT_EQ(clock->parameters.size(), 1u);
@@ -153,7 +154,13 @@ TEST_F(Services, EveryServiceNamesANodeThatIsNotThere) {
   ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
   const std::string before = graphText();
   const std::string ghost = "no node named 'ghost'";
-  refused(call<apex::RemoveNode>("remove_node", [] { apex::RemoveNode::Request r; r.name = "ghost"; return r; }()), before, ghost);
+  refused(call<apex::RemoveNode>("remove_node",
+                                 [] {
+                                   apex::RemoveNode::Request r;
+                                   r.name = "ghost";
+                                   return r;
+                                 }()),
+          before, ghost);
   for (const char* service : {"connect", "disconnect"}) {
     apex::Connect::Request r;
     r.from_node = "ghost", r.from_port = "out", r.to_node = "clock", r.to_port = "rate";

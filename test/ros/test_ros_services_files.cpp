@@ -42,7 +42,8 @@ TEST_F(Services, SaveAndLoadAreSafe) {
   load.path = tempPath("malformed.yaml");
   writeFile(load.path, "apex_graph: 1\nnodes:\n  - name: a\n    type: [oops\n");
   refused(call<apex::LoadGraph>("load_graph", load), before, "line 5");
-  writeFile(load.path, "apex_graph: 1\nnodes:\n  - {name: a, type: apex_nodes/Relay}\nconnections:\n  - {from: a/out, to: a/in}\n");
+  writeFile(load.path,
+            "apex_graph: 1\nnodes:\n  - {name: a, type: apex_nodes/Relay}\nconnections:\n  - {from: a/out, to: a/in}\n");
   refused(call<apex::LoadGraph>("load_graph", load), before, "line 5: cannot connect a/out -> a/in");
 
   load.path = tempPath("unknown.yaml");
@@ -97,7 +98,9 @@ TEST_F(Services, PathsFromServicesStayInTheRoots) {  // services.test: ~file_roo
     EXPECT_THAT(res.message, HasSubstr("is outside the folders files may be written in (/tmp, ")) << path;
     const std::string folder = path.find("/root") == 0 ? "/root" : "/etc";  // what the user is told to allow
     EXPECT_THAT(res.message, HasSubstr("; to allow it, add its folder to the parameter /apex/file_roots "
-                                       "(roslaunch apex runtime.launch file_roots:=" + folder + ")")) << path;
+                                       "(roslaunch apex runtime.launch file_roots:=" +
+                                       folder + ")"))
+        << path;
   }
   const std::string link = tempPath("etc_link");
   ASSERT_EQ(::symlink("/etc", link.c_str()), 0);

@@ -44,11 +44,11 @@ struct Link {
 
 /** The `connections:` of graphs/paper_pipeline.yaml. */
 const std::vector<Link> kLinks = {
-    {"bag", "camera_image_raw", "rotate", "image"},      {"rotate", "image", "gray", "image"},
-    {"gray", "image", "threshold", "image"},      {"threshold", "image", "morphology", "image"},
-    {"morphology", "image", "blobs", "image"},    {"rotate", "image", "overlay", "image"},
-    {"blobs", "regions", "overlay", "regions"},   {"overlay", "image", "overlay_out", "image"},
-    {"bag", "camera_points", "passthrough", "cloud"},     {"passthrough", "cloud", "voxels", "cloud"},
+    {"bag", "camera_image_raw", "rotate", "image"},   {"rotate", "image", "gray", "image"},
+    {"gray", "image", "threshold", "image"},          {"threshold", "image", "morphology", "image"},
+    {"morphology", "image", "blobs", "image"},        {"rotate", "image", "overlay", "image"},
+    {"blobs", "regions", "overlay", "regions"},       {"overlay", "image", "overlay_out", "image"},
+    {"bag", "camera_points", "passthrough", "cloud"}, {"passthrough", "cloud", "voxels", "cloud"},
     {"voxels", "cloud", "cloud_out", "cloud"},
 };
 
@@ -105,8 +105,12 @@ void randomEdit(std::mt19937& rng, std::set<std::size_t>& removed) {
   const std::size_t k = pick(kNodes.size());
   const NodeSpec& node = kNodes[k];
   switch (pick(7)) {
-    case 0: call<apex::Connect>("disconnect", request(kLinks[pick(kLinks.size())])); break;
-    case 1: call<apex::Connect>("connect", request(kLinks[pick(kLinks.size())])); break;
+    case 0:
+      call<apex::Connect>("disconnect", request(kLinks[pick(kLinks.size())]));
+      break;
+    case 1:
+      call<apex::Connect>("connect", request(kLinks[pick(kLinks.size())]));
+      break;
     case 2: {
       apex::RemoveNode::Request rm;
       rm.name = node.name;
@@ -163,8 +167,7 @@ void restore(std::set<std::size_t>& removed) {
   for (const auto& l : kLinks) {
     auto on = call<apex::Connect>("connect", request(l));
     EXPECT_TRUE(on.success || on.message.find("already connected") != std::string::npos)
-        << "connecting " << l.from_node << "/" << l.from_port << " -> " << l.to_node << "/" << l.to_port << ": "
-        << on.message;
+        << "connecting " << l.from_node << "/" << l.from_port << " -> " << l.to_node << "/" << l.to_port << ": " << on.message;
   }
 }
 

@@ -2,7 +2,6 @@
 // counter's firings grow), whether the runtime is a node or a nodelet.
 #include <gmock/gmock.h>
 
-
 #include "apex_test/ros_client.hpp"
 
 using namespace apex_test;

@@ -59,7 +59,8 @@ void client(int id, std::atomic<int>& answered_calls, std::atomic<int>& unanswer
     switch (rng() % 8) {
       case 0: {
         apex::AddNode::Request r;
-        r.type = "apex_nodes/Counter", r.name = mine + "_" + std::to_string(++made), r.thread_group = "g" + std::to_string(rng() % 3);
+        r.type = "apex_nodes/Counter", r.name = mine + "_" + std::to_string(++made),
+        r.thread_group = "g" + std::to_string(rng() % 3);
         got = clients.answered<apex::AddNode>("add_node", r, ok);
         break;
       }

@@ -8,8 +8,8 @@
 //     static inline const apex::ParamDecl<double> kMax = apex::param::number("max").range(0, 100).init(3);
 //     static apex::Manifest manifest() { return filterManifest("Keeps the near points").param(kMax); }
 //    private:
-//     void configure(pcl::PassThrough<pcl::PointXYZ>& f) override { f.setFilterFieldName("z"); f.setFilterLimits(0, max_.get()); }
-//     apex::Param<double> max_{this, kMax};
+//     void configure(pcl::PassThrough<pcl::PointXYZ>& f) override { f.setFilterFieldName("z"); f.setFilterLimits(0, max_.get());
+//     } apex::Param<double> max_{this, kMax};
 //   };
 #pragma once
 

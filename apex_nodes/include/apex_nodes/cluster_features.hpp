@@ -25,8 +25,8 @@ struct OrientedBox {
 /** @brief One cluster's features, from its finite points (x, y, z all finite). A cluster with no
  *  finite point has `points` 0 and every vector zero (MarkerPublisher draws nothing for it). */
 struct ClusterFeature {
-  int label = -1;              ///< the cluster's index in its Clusters (0: the first, the largest from EuclideanClustering)
-  std::size_t points = 0;      ///< finite points
+  int label = -1;  ///< the cluster's index in its Clusters (0: the first, the largest from EuclideanClustering)
+  std::size_t points = 0;  ///< finite points
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< the axis-aligned box's lowest corner
   Eigen::Vector3d max = Eigen::Vector3d::Zero();  ///< ... and highest

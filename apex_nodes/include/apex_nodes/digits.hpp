@@ -32,11 +32,11 @@ struct DigitPrediction {
 
 struct TrainSettings {
   std::vector<int> hidden{64};  ///< neurons per hidden layer
-  int epochs = 300;             ///< RPROP iterations in all
-  int batch = 50;               ///< epochs between progress reports
-  double validation = 0.2;      ///< share of the samples held out
-  int augment = 3;              ///< varied copies of each training crop (slant, turn, size): 0 for none
-  unsigned seed = 1;            ///< the same seed, the same split and weights
+  int epochs = 300;  ///< RPROP iterations in all
+  int batch = 50;  ///< epochs between progress reports
+  double validation = 0.2;  ///< share of the samples held out
+  int augment = 3;  ///< varied copies of each training crop (slant, turn, size): 0 for none
+  unsigned seed = 1;  ///< the same seed, the same split and weights
 };
 
 struct TrainProgress {

@@ -17,12 +17,12 @@ namespace apex_nodes {
 /** @brief How clusterMarkers draws. */
 struct MarkerOptions {
   std::string ns = "clusters";  ///< the boxes' marker namespace; labels go in "<ns>/labels"
-  bool oriented = false;        ///< the oriented boxes (PCA) instead of the axis-aligned ones
-  bool labels = true;           ///< above each box, its label and point count
-  apex::Color color{0, 255, 0}; ///< the boxes', 0..255
-  double alpha = 0.5;           ///< the boxes' opacity, 0..1
-  double lifetime = 0;          ///< seconds a marker stays without an update; 0: until replaced
-  double text_height = 0.15;    ///< the labels' letter height, metres
+  bool oriented = false;  ///< the oriented boxes (PCA) instead of the axis-aligned ones
+  bool labels = true;  ///< above each box, its label and point count
+  apex::Color color{0, 255, 0};  ///< the boxes', 0..255
+  double alpha = 0.5;  ///< the boxes' opacity, 0..1
+  double lifetime = 0;  ///< seconds a marker stays without an update; 0: until replaced
+  double text_height = 0.15;  ///< the labels' letter height, metres
 };
 
 /** @brief For `last_count`: what the previous array drew is not known (the first one, or the

@@ -48,8 +48,8 @@ Registered registerClouds(Registration& reg, const Cloud& source, const Cloud& t
       throw std::invalid_argument("the initial transform maps frame '" + initial->child_frame_id + "', the source is in '" +
                                   source.header.frame_id + "'");
     if (!initial->header.frame_id.empty() && initial->header.frame_id != target.header.frame_id)
-      throw std::invalid_argument("the initial transform maps into frame '" + initial->header.frame_id +
-                                  "', the target is in '" + target.header.frame_id + "'");
+      throw std::invalid_argument("the initial transform maps into frame '" + initial->header.frame_id + "', the target is in '" +
+                                  target.header.frame_id + "'");
     reg.align(moved, toEigen(initial->transform).matrix());
   } else {
     reg.align(moved);

@@ -21,11 +21,11 @@ struct Dimension {
 };
 
 struct Settings {
-  int budget = 100;        ///< evaluations in all
-  unsigned seed = 1;       ///< the same seed gives the same candidates
-  int population = 0;      ///< differential evolution; 0: 15 per dimension (at least 5)
-  double F = 0.8;          ///< differential weight
-  double CR = 0.9;         ///< crossover probability
+  int budget = 100;  ///< evaluations in all
+  unsigned seed = 1;  ///< the same seed gives the same candidates
+  int population = 0;  ///< differential evolution; 0: 15 per dimension (at least 5)
+  double F = 0.8;  ///< differential weight
+  double CR = 0.9;  ///< crossover probability
 };
 
 /** @brief A search in ask/tell form. */

@@ -22,9 +22,9 @@ struct TruthSign {
 
 struct Truth {
   std::map<std::uint64_t, std::vector<TruthSign>> frames;  ///< by stamp, nanoseconds
-  cv::Size scene;                                          ///< empty: boxes are in the image's frame
-  int rotation = 0;                                        ///< degrees clockwise: the image is the scene turned
-  bool has_digits = false;                                 ///< every frame lists its signs' digits
+  cv::Size scene;  ///< empty: boxes are in the image's frame
+  int rotation = 0;  ///< degrees clockwise: the image is the scene turned
+  bool has_digits = false;  ///< every frame lists its signs' digits
 
   /** @brief The frame within a millisecond of `ns`, or nullptr. */
   const std::vector<TruthSign>* frameAt(std::uint64_t ns) const;
@@ -42,8 +42,7 @@ cv::Rect toImage(const Truth& t, const cv::Rect& box, const cv::Size& size);
 
 /** @brief Matches truth signs to regions one-to-one, best overlap (intersection over union)
  *  first, each pair overlapping at least `iou`: (sign index, region index) pairs. */
-std::vector<std::pair<int, int>> matchSigns(const std::vector<TruthSign>& signs, const std::vector<Region>& regions,
-                                            double iou);
+std::vector<std::pair<int, int>> matchSigns(const std::vector<TruthSign>& signs, const std::vector<Region>& regions, double iou);
 
 /** @brief Loads a truth file when first needed, again after its path changes. */
 class TruthFile {

@@ -49,7 +49,7 @@ struct Region {
   cv::Rect box;
   double area = 0;
   cv::Point2d centroid;
-  int label = -1;         ///< a classifier's class (e.g. DigitClassifier's digit); -1: none
+  int label = -1;  ///< a classifier's class (e.g. DigitClassifier's digit); -1: none
   double confidence = 0;  ///< the classifier's confidence in `label`, 0..1; > 0 with label -1: rejected
 };
 

@@ -37,19 +37,17 @@ Result<PortView> connectionEnd(const std::string& name, const NodeView& n, const
   for (const auto& p : n.ports)
     if (p.name == port && isSource(p.kind) == source) return p;
   if (std::find(n.params.begin(), n.params.end(), port) != n.params.end())
-    return Status::error(portLabel("parameter", port, name) +
-                         " is not interactive: make it interactive to give it ports");
+    return Status::error(portLabel("parameter", port, name) + " is not interactive: make it interactive to give it ports");
   for (const auto& p : n.ports)
     if (p.name == port)
       return Status::error("'" + port + "' is " + (source ? "an input" : "an output") + " of " + where(name, n) +
                            ": a connection goes from an output, parameter or trigger to an input, parameter or slot");
   if (source)
-    return Status::error(where(name, n) + " has no output, trigger or parameter '" + port + "' (outputs: " +
-                         list(n, PortKind::Output) + "; triggers: " + list(n, PortKind::Trigger) +
+    return Status::error(where(name, n) + " has no output, trigger or parameter '" + port +
+                         "' (outputs: " + list(n, PortKind::Output) + "; triggers: " + list(n, PortKind::Trigger) +
                          "; parameters: " + listParams(n) + ")");
-  return Status::error(where(name, n) + " has no input, slot or parameter '" + port + "' (inputs: " +
-                       list(n, PortKind::Input) + "; slots: " + list(n, PortKind::Slot) + "; parameters: " +
-                       listParams(n) + ")");
+  return Status::error(where(name, n) + " has no input, slot or parameter '" + port + "' (inputs: " + list(n, PortKind::Input) +
+                       "; slots: " + list(n, PortKind::Slot) + "; parameters: " + listParams(n) + ")");
 }
 
 namespace {
@@ -74,19 +72,25 @@ bool fits(const std::string& from, const std::string& to) { return from == to ||
 
 const char* portKindName(PortKind k) {
   switch (k) {
-    case PortKind::Output: return "output";
-    case PortKind::ParamOut: case PortKind::ParamIn: return "parameter";
-    case PortKind::Trigger: return "trigger";
-    case PortKind::Input: return "input";
-    case PortKind::Slot: return "slot";
+    case PortKind::Output:
+      return "output";
+    case PortKind::ParamOut:
+    case PortKind::ParamIn:
+      return "parameter";
+    case PortKind::Trigger:
+      return "trigger";
+    case PortKind::Input:
+      return "input";
+    case PortKind::Slot:
+      return "slot";
   }
   return "port";
 }
 
 bool portKindFromName(const std::string& name, PortKind* kind) {
-  static const std::pair<const char*, PortKind> kNames[] = {
-      {"output", PortKind::Output}, {"param_out", PortKind::ParamOut}, {"trigger", PortKind::Trigger},
-      {"input", PortKind::Input},   {"param_in", PortKind::ParamIn},   {"slot", PortKind::Slot}};
+  static const std::pair<const char*, PortKind> kNames[] = {{"output", PortKind::Output},    {"param_out", PortKind::ParamOut},
+                                                            {"trigger", PortKind::Trigger},  {"input", PortKind::Input},
+                                                            {"param_in", PortKind::ParamIn}, {"slot", PortKind::Slot}};
   for (const auto& [n, k] : kNames)
     if (name == n) return *kind = k, true;
   return false;
@@ -120,15 +124,14 @@ Result<ConnectionEnds> checkConnection(const ConnectionView& view, const Connect
     return ConnectionEnds{s, d};
   }
   if (!fits(s.type, d.type))
-    return fail(std::string("type mismatch: ") + portKindName(s.kind) + " '" + c.from_port + "' carries " + s.type +
-                ", " + portKindName(d.kind) + " '" + c.to_port + "' takes " + d.type);
+    return fail(std::string("type mismatch: ") + portKindName(s.kind) + " '" + c.from_port + "' carries " + s.type + ", " +
+                portKindName(d.kind) + " '" + c.to_port + "' takes " + d.type);
   const std::string feeder = view.feeding(c.to_node, c.to_port);
   if (!feeder.empty())
-    return fail(portLabel(portKindName(d.kind), c.to_port, c.to_node) +
-                " is already connected (from " + feeder + "); an input has one source: disconnect it first");
+    return fail(portLabel(portKindName(d.kind), c.to_port, c.to_node) + " is already connected (from " + feeder +
+                "); an input has one source: disconnect it first");
   if (d.kind == PortKind::Input && reaches(view, c.to_node, c.from_node))
-    return fail("it would close a cycle (" + c.to_node + " already feeds " + c.from_node +
-                "); a data cycle can never fire");
+    return fail("it would close a cycle (" + c.to_node + " already feeds " + c.from_node + "); a data cycle can never fire");
   return ConnectionEnds{s, d};
 }
 

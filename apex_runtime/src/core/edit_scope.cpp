@@ -9,14 +9,18 @@ void EditScope::pause(ThreadGroup* group) {
 
 std::vector<NodeState*> EditScope::neighbours(NodeState* n) {
   std::vector<NodeState*> out;
-  for (auto& in : n->inputs) if (in->edge) out.push_back(in->edge->from);
-  for (auto& o : n->outputs) for (auto& e : o.edges) out.push_back(e->to);
+  for (auto& in : n->inputs)
+    if (in->edge) out.push_back(in->edge->from);
+  for (auto& o : n->outputs)
+    for (auto& e : o.edges) out.push_back(e->to);
   for (auto& p : n->params) {
     if (p.in_edge) out.push_back(p.in_edge->from);
     for (auto& e : p.out_edges) out.push_back(e->to);
   }
-  for (auto& t : n->trigger_edges) for (auto& e : t) out.push_back(e->to);
-  for (auto& s : n->slot_edges) for (auto& e : s) out.push_back(e->from);
+  for (auto& t : n->trigger_edges)
+    for (auto& e : t) out.push_back(e->to);
+  for (auto& s : n->slot_edges)
+    for (auto& e : s) out.push_back(e->from);
   return out;
 }
 

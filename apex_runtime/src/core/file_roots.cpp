@@ -129,7 +129,8 @@ Result<std::string> FileRoots::resolve(const std::string& path, Access access) c
   for (const auto& root : roots_)
     if (inside(root, p)) return p.string();
   const std::string folder = access == Access::Read || !fs::is_directory(p) ? p.parent_path().string() : p.string();
-  const std::string allowed = access == Access::Read ? "read from (" + list() : "written in (" + (roots_.empty() ? "none" : joined(roots_));
+  const std::string allowed =
+      access == Access::Read ? "read from (" + list() : "written in (" + (roots_.empty() ? "none" : joined(roots_));
   return Status::error(named + " is outside the folders files may be " + allowed + ")" +
                        (hint_ ? hint_(folder) : "; a launch file can widen them with ~file_roots"));
 }

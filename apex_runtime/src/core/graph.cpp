@@ -17,8 +17,8 @@
 namespace apex {
 
 using detail::EditScope;
-using detail::Restructure;
 using detail::NodeState;
+using detail::Restructure;
 using detail::ThreadGroup;
 
 namespace {
@@ -74,8 +74,8 @@ Status Graph::Impl::roomFor(const std::string& group_name, std::size_t extra_nod
     return Status::error("thread group '" + group_name + "': the graph has " + std::to_string(groups_.size()) +
                          " thread groups, the limit (each is a thread of the process)");
   if (nodes_.size() + extra_nodes > kMaxGraphNodes)
-    return Status::error("the graph has " + std::to_string(nodes_.size()) + " nodes; " +
-                         std::to_string(extra_nodes) + " more would pass the limit of " + std::to_string(kMaxGraphNodes));
+    return Status::error("the graph has " + std::to_string(nodes_.size()) + " nodes; " + std::to_string(extra_nodes) +
+                         " more would pass the limit of " + std::to_string(kMaxGraphNodes));
   return Status::ok();
 }
 
@@ -156,19 +156,26 @@ Result<std::string> Graph::Impl::addNode(const NodeDescription& d) {
 void Graph::Impl::detachAll(NodeState* n) {
   for (std::size_t i = 0; i < n->inputs.size(); ++i)
     if (n->inputs[i]->edge) removeEdge(n->inputs[i]->edge);
-  for (auto& o : n->outputs) while (!o.edges.empty()) removeEdge(o.edges.back());
+  for (auto& o : n->outputs)
+    while (!o.edges.empty()) removeEdge(o.edges.back());
   for (auto& p : n->params) {
     if (p.in_edge) removeEdge(p.in_edge);
     while (!p.out_edges.empty()) removeEdge(p.out_edges.back());
   }
-  for (auto& t : n->trigger_edges) while (!t.empty()) removeEvent(t.back());
-  for (auto& s : n->slot_edges) while (!s.empty()) removeEvent(s.back());
+  for (auto& t : n->trigger_edges)
+    while (!t.empty()) removeEvent(t.back());
+  for (auto& s : n->slot_edges)
+    while (!s.empty()) removeEvent(s.back());
 }
 
 std::vector<NodeState*> Graph::Impl::dataReceivers(NodeState* n) {
   std::vector<NodeState*> out;
-  for (auto& o : n->outputs) for (auto& e : o.edges) if (!e->to_param) out.push_back(e->to);
-  for (auto& p : n->params) for (auto& e : p.out_edges) if (!e->to_param) out.push_back(e->to);
+  for (auto& o : n->outputs)
+    for (auto& e : o.edges)
+      if (!e->to_param) out.push_back(e->to);
+  for (auto& p : n->params)
+    for (auto& e : p.out_edges)
+      if (!e->to_param) out.push_back(e->to);
   return out;
 }
 
@@ -198,9 +205,9 @@ Status Graph::Impl::removeNode(const std::string& name) {
   }
   subgraphs_.dropExportsOf(name);
   bump();
-  dormant_.erase(std::remove_if(dormant_.begin(), dormant_.end(),
-                                [&](const auto& c) { return c.from_node == name || c.to_node == name; }),
-                 dormant_.end());
+  dormant_.erase(
+      std::remove_if(dormant_.begin(), dormant_.end(), [&](const auto& c) { return c.from_node == name || c.to_node == name; }),
+      dormant_.end());
   return Status::ok();
 }
 
@@ -223,9 +230,12 @@ Result<std::string> Graph::Impl::setParameter(const std::string& outer, const st
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
-  if (!s.type) return Status::error(nodeLabel(node) + " has the unknown type '" + s.typeId() + "': its parameters are kept unchanged");
+  if (!s.type)
+    return Status::error(nodeLabel(node) + " has the unknown type '" + s.typeId() + "': its parameters are kept unchanged");
   const int i = s.findParam(param);
-  if (i < 0) return Status::error(nodeLabel(node, s.typeId()) + " has no parameter '" + param + "' (parameters: " + s.manifest().listParams() + ")");
+  if (i < 0)
+    return Status::error(nodeLabel(node, s.typeId()) + " has no parameter '" + param +
+                         "' (parameters: " + s.manifest().listParams() + ")");
   const ParamSpec& spec = s.manifest().params[i];
   if (text.size() > kMaxYamlString)  // a graph file could not hold it
     return Status::error(nodeLabel(node) + ": parameter '" + param + "': a value of " + std::to_string(text.size()) +
@@ -267,14 +277,17 @@ Status Graph::Impl::setInteractive(const std::string& outer, const std::string& 
   if (!n) return n.status();
   NodeState* s = n.value().get();
   const int i = s->findParam(param);
-  if (i < 0) return Status::error(nodeLabel(node, s->typeId()) + " has no parameter '" + param + "' (parameters: " + s->manifest().listParams() + ")");
+  if (i < 0)
+    return Status::error(nodeLabel(node, s->typeId()) + " has no parameter '" + param +
+                         "' (parameters: " + s->manifest().listParams() + ")");
   if (on && s->manifest().params[i].shapes_interface)
     return Status::error(portLabel("parameter", param, node) +
                          " decides the node's ports: it is set by edits only and cannot have ports");
   auto& p = s->params[i];
   if (!on && (p.in_edge || !p.out_edges.empty())) {
     std::vector<NodeState*> receivers;
-    for (auto& e : p.out_edges) if (!e->to_param) receivers.push_back(e->to);
+    for (auto& e : p.out_edges)
+      if (!e->to_param) receivers.push_back(e->to);
     std::vector<NodeState*> others = EditScope::neighbours(s);
     others.push_back(s);
     detail::Restructure change(receivers, others, ran_);

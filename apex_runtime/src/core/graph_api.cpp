@@ -39,9 +39,7 @@ Status Graph::setInteractive(const std::string& node, const std::string& param, 
   return impl_->setInteractive(node, param, interactive);
 }
 Status Graph::setEnabled(const std::string& node, bool enabled) { return impl_->setEnabled(node, enabled); }
-Status Graph::setThreadGroup(const std::string& node, const std::string& group) {
-  return impl_->setThreadGroup(node, group);
-}
+Status Graph::setThreadGroup(const std::string& node, const std::string& group) { return impl_->setThreadGroup(node, group); }
 Status Graph::fireSlot(const std::string& node, const std::string& slot) { return impl_->fireSlot(node, slot); }
 Status Graph::setUi(const std::string& node, const std::string& ui_yaml) { return impl_->setUi(node, ui_yaml); }
 Status Graph::setTap(const std::string& node, const std::string& port, PortTap tap) {
@@ -67,9 +65,7 @@ Result<LoadReport> Graph::load(const GraphDescription& description) { return imp
 std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const { return impl_->nodeStats(stall_after_s); }
 std::vector<GroupStats> Graph::groupStats() const { return impl_->groupStats(); }
 std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const { return impl_->nodeType(node); }
-std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const {
-  return impl_->nodeInterface(node);
-}
+std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const { return impl_->nodeInterface(node); }
 Node* Graph::nodeObject(const std::string& node) const { return impl_->nodeObject(node); }
 std::size_t Graph::size() const { return impl_->size(); }
 Result<ParamValue> Graph::parameterValue(const std::string& node, const std::string& param) const {

@@ -76,9 +76,13 @@ class LiveView : public ConnectionView {
     std::vector<std::string> out;
     const NodeState* n = find(node);
     if (!n) return out;
-    auto add = [&](const std::shared_ptr<Edge>& e) { if (!e->to_param) out.push_back(e->to->name); };
-    for (const auto& o : n->outputs) for (const auto& e : o.edges) add(e);
-    for (const auto& p : n->params) for (const auto& e : p.out_edges) add(e);
+    auto add = [&](const std::shared_ptr<Edge>& e) {
+      if (!e->to_param) out.push_back(e->to->name);
+    };
+    for (const auto& o : n->outputs)
+      for (const auto& e : o.edges) add(e);
+    for (const auto& p : n->params)
+      for (const auto& e : p.out_edges) add(e);
     return out;
   }
 
@@ -94,11 +98,20 @@ class LiveView : public ConnectionView {
 Endpoint locate(const NodeState& n, const PortView& p) {
   const Manifest& m = n.manifest();
   switch (p.kind) {
-    case PortKind::Input: { const int i = indexOf(m.inputs, p.name); return {p.kind, i, m.inputs[i].type}; }
-    case PortKind::Output: { const int i = indexOf(m.outputs, p.name); return {p.kind, i, m.outputs[i].type}; }
-    case PortKind::Slot: return {p.kind, indexOf(m.slots, p.name), nullptr};
-    case PortKind::Trigger: return {p.kind, indexOf(m.triggers, p.name), nullptr};
-    case PortKind::ParamIn: case PortKind::ParamOut: {
+    case PortKind::Input: {
+      const int i = indexOf(m.inputs, p.name);
+      return {p.kind, i, m.inputs[i].type};
+    }
+    case PortKind::Output: {
+      const int i = indexOf(m.outputs, p.name);
+      return {p.kind, i, m.outputs[i].type};
+    }
+    case PortKind::Slot:
+      return {p.kind, indexOf(m.slots, p.name), nullptr};
+    case PortKind::Trigger:
+      return {p.kind, indexOf(m.triggers, p.name), nullptr};
+    case PortKind::ParamIn:
+    case PortKind::ParamOut: {
       const int i = indexOf(m.params, p.name);
       return {p.kind, i, m.params[i].portType()};
     }

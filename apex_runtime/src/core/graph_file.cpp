@@ -82,7 +82,8 @@ NodeDescription parseNode(const YAML::Node& n, int version, int depth) {
       d.source = sub.as<std::string>();
       if (d.source.empty()) fail(sub, what + ": 'subgraph' names no file");
     } else if (sub.IsMap()) {
-      if (depth >= kMaxSubgraphDepth) fail(sub, what + ": subgraphs nested deeper than " + std::to_string(kMaxSubgraphDepth) + " levels");
+      if (depth >= kMaxSubgraphDepth)
+        fail(sub, what + ": subgraphs nested deeper than " + std::to_string(kMaxSubgraphDepth) + " levels");
       d.subgraph = std::make_shared<GraphDescription>(parseBody(sub, version, depth + 1));
     } else {
       fail(sub, what + ": 'subgraph' must be a graph file's name or a graph (a mapping with 'nodes')");
@@ -236,8 +237,8 @@ GraphDescription parseBody(const YAML::Node& root, int version, int depth) {
 GraphDescription parseRoot(const YAML::Node& root) {
   checkTree(root);
   if (!root.IsMap() || !root["apex_graph"])
-    fail(root, "not an APEX graph: the file must be a mapping with the key 'apex_graph: " +
-                   std::to_string(kGraphFormatVersion) + "'");
+    fail(root,
+         "not an APEX graph: the file must be a mapping with the key 'apex_graph: " + std::to_string(kGraphFormatVersion) + "'");
   onlyKeys(root, {"apex_graph", "thread_groups", "nodes", "connections", "exports"}, "graph");
   int version = 0;
   if (!YAML::convert<int>::decode(root["apex_graph"], version)) fail(root["apex_graph"], "'apex_graph' must be a version number");
@@ -296,7 +297,8 @@ bool finiteIfNumber(const std::string& text) {
 namespace detail {
 Status checkYamlText(const std::string& text) {
   if (text.size() > kMaxYamlString)
-    return Status::error("has " + std::to_string(text.size()) + " characters, over the limit of " + std::to_string(kMaxYamlString));
+    return Status::error("has " + std::to_string(text.size()) + " characters, over the limit of " +
+                         std::to_string(kMaxYamlString));
   try {
     const YAML::Node root = YAML::Load(text);
     checkTree(root);  // what a graph file may hold, so that the graph saved with it loads
@@ -339,8 +341,8 @@ Result<GraphDescription> parseGraphText(const std::string& text) {
   } catch (const ParseError& e) {
     return Status::error(e.message);
   } catch (const YAML::Exception& e) {  // syntax errors carry their position
-    return Status::error("line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1) +
-                         ": " + e.msg);
+    return Status::error("line " + std::to_string(e.mark.line + 1) + ", column " + std::to_string(e.mark.column + 1) + ": " +
+                         e.msg);
   }
 }
 
@@ -380,9 +382,10 @@ void emitNode(YAML::Emitter& out, const NodeDescription& n) {
 void emitExport(YAML::Emitter& out, const ExportDescription& e) {
   const bool inward = e.kind != ExportDescription::Kind::Output && e.kind != ExportDescription::Kind::Trigger;
   std::string key;
-  for (const auto& [k, kind] : exportKinds()) if (kind == e.kind) key = k;
-  out << YAML::Flow << YAML::BeginMap << YAML::Key << key << YAML::Value << e.name << YAML::Key
-      << (inward ? "to" : "from") << YAML::Value;
+  for (const auto& [k, kind] : exportKinds())
+    if (kind == e.kind) key = k;
+  out << YAML::Flow << YAML::BeginMap << YAML::Key << key << YAML::Value << e.name << YAML::Key << (inward ? "to" : "from")
+      << YAML::Value;
   if (e.inner.size() == 1) {
     out << e.inner.front();
   } else {
@@ -407,8 +410,8 @@ void emitBody(YAML::Emitter& out, const GraphDescription& d) {
   if (d.connections.empty()) out << YAML::Flow;  // "connections: []"
   out << YAML::BeginSeq;
   for (const auto& c : d.connections) {
-    out << YAML::Flow << YAML::BeginMap << YAML::Key << "from" << YAML::Value << c.from_node + "/" + c.from_port
-        << YAML::Key << "to" << YAML::Value << c.to_node + "/" + c.to_port << YAML::EndMap;
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "from" << YAML::Value << c.from_node + "/" + c.from_port << YAML::Key
+        << "to" << YAML::Value << c.to_node + "/" + c.to_port << YAML::EndMap;
   }
   out << YAML::EndSeq;
 }
@@ -451,8 +454,8 @@ Result<std::string> readGraphFile(const std::string& path) {
 }
 
 std::string joinReference(const std::string& ref, const std::string& from) {
-  const bool as_is = ref.empty() || ref[0] == '/' || ref[0] == '~' || ref.rfind("package://", 0) == 0 ||
-                     ref.rfind("$(find ", 0) == 0;
+  const bool as_is =
+      ref.empty() || ref[0] == '/' || ref[0] == '~' || ref.rfind("package://", 0) == 0 || ref.rfind("$(find ", 0) == 0;
   if (as_is) return ref;
   const auto slash = from.rfind('/');
   return slash == std::string::npos ? ref : from.substr(0, slash + 1) + ref;
@@ -469,8 +472,7 @@ Status expandFile(NodeDescription& node, const std::string& file, const GraphFil
 
 /** Fills in the file-backed subgraphs of `d` (read from `file`) and checks its nodes; `chain`
  *  holds the files being read, outermost first, to refuse a file that includes itself. */
-Status expand(GraphDescription& d, const std::string& file, const GraphFileOptions& options,
-              std::vector<std::string>& chain) {
+Status expand(GraphDescription& d, const std::string& file, const GraphFileOptions& options, std::vector<std::string>& chain) {
   for (auto& node : d.nodes) {
     if (node.type != kSubgraphType) {
       if (options.check)
@@ -492,7 +494,7 @@ Status expand(GraphDescription& d, const std::string& file, const GraphFileOptio
 }
 
 Status expandFile(NodeDescription& node, const std::string& file, const GraphFileOptions& options,
-                std::vector<std::string>& chain) {
+                  std::vector<std::string>& chain) {
   const std::string where = at(file, node.line) + subgraphLabel(node.name);
   std::string path = joinReference(node.source, file);
   if (options.open) {

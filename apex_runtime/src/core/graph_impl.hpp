@@ -88,9 +88,7 @@ struct Graph::Impl {
   Result<std::string> addPlaceholder(const NodeDescription& d);
   // --- subgraphs (graph_subgraph.cpp; the records alone: subgraphs_) ---
   /** "" if `path` may name a new node or subgraph: free, each part a name, its parent a subgraph. */
-  std::string checkNewPath(const std::string& path) const {
-    return subgraphs_.checkNewPath(path, nodes_.count(path) > 0);
-  }
+  std::string checkNewPath(const std::string& path) const { return subgraphs_.checkNewPath(path, nodes_.count(path) > 0); }
   Result<std::string> addSubgraph(const NodeDescription& d);
   Status checkExports(const detail::Subgraph& sg) const;
   std::vector<std::string> nodesUnder(const std::string& path) const;  // every node inside, nested too
@@ -123,8 +121,7 @@ struct Graph::Impl {
   Result<std::shared_ptr<const Manifest>> interfaceFor(const detail::NodeState& node, const std::string& param,
                                                        const ParamValue* value) const;
   /** Gives the node `next` as one edit (graph_interface.cpp); `also` runs inside it. */
-  void applyInterface(detail::NodeState* node, std::shared_ptr<const Manifest> next,
-                      const std::function<void()>& also = {});
+  void applyInterface(detail::NodeState* node, std::shared_ptr<const Manifest> next, const std::function<void()>& also = {});
   void removeEvent(std::shared_ptr<detail::EventEdge> edge);
 
   NodeRegistry registry_;

@@ -87,8 +87,7 @@ Dropped dropped(NodeState& n, const Manifest& next) {
     if (indexOf(next.triggers, m.triggers[i].name) < 0)
       d.events.insert(d.events.end(), n.trigger_edges[i].begin(), n.trigger_edges[i].end());
   for (std::size_t i = 0; i < m.slots.size(); ++i)
-    if (indexOf(next.slots, m.slots[i].name) < 0)
-      d.events.insert(d.events.end(), n.slot_edges[i].begin(), n.slot_edges[i].end());
+    if (indexOf(next.slots, m.slots[i].name) < 0) d.events.insert(d.events.end(), n.slot_edges[i].begin(), n.slot_edges[i].end());
   return d;
 }
 
@@ -148,11 +147,10 @@ void NodeState::setInterface(std::shared_ptr<const Manifest> next_ptr) {
   if (n.node) (void)resolveHandles(*n.node, n.manifest());  // a handle whose port went throws when used
 }
 
-
 }  // namespace detail
 
 Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeState& n, const std::string& param,
-                                                            const ParamValue* value) const {
+                                                                  const ParamValue* value) const {
   const Manifest& type = *n.type->manifest;
   if (!type.shape) return n.iface;
   ParamValues values;

@@ -93,8 +93,10 @@ std::vector<NodeState*> componentOf(const std::vector<NodeState*>& roots) {
   };
   for (std::size_t i = 0; i < out.size(); ++i) {
     NodeState* n = out[i];
-    for (auto& in : n->inputs) if (in->edge) visit(in->edge->from);
-    for (auto& o : n->outputs) for (auto& e : o.edges) visit(e->to);
+    for (auto& in : n->inputs)
+      if (in->edge) visit(in->edge->from);
+    for (auto& o : n->outputs)
+      for (auto& e : o.edges) visit(e->to);
     for (auto& p : n->params) {
       if (p.in_edge) visit(p.in_edge->from);
       for (auto& e : p.out_edges) visit(e->to);
@@ -103,8 +105,7 @@ std::vector<NodeState*> componentOf(const std::vector<NodeState*>& roots) {
   return out;
 }
 
-Restructure::Restructure(const std::vector<NodeState*>& targets, const std::vector<NodeState*>& others,
-                         bool flush_allowed)
+Restructure::Restructure(const std::vector<NodeState*>& targets, const std::vector<NodeState*>& others, bool flush_allowed)
     : region_(downstreamOf(targets)) {
   for (NodeState* n : region_) scope_.involve(n);
   for (NodeState* n : others) scope_.involve(n);

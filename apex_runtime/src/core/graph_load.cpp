@@ -79,7 +79,8 @@ std::vector<ConnectionDescription> Graph::Impl::connections() const {
 
 GraphDescription Graph::Impl::describeLocked() const {
   GraphDescription flat;
-  for (auto& [name, g] : groups_) if (name != "default") flat.thread_groups.push_back(name);
+  for (auto& [name, g] : groups_)
+    if (name != "default") flat.thread_groups.push_back(name);
   // insertion order, subgraphs among the nodes (a grouped one where its first node was); a
   // subgraph grouped inside another from its first node has the same place: outer first, by path
   std::map<std::tuple<std::uint64_t, int, std::string>, NodeDescription> nodes;
@@ -220,10 +221,11 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   // node before any node may fire (a group runs mail before firing), so a node
   // disabled in the file never fires enabled.
   for (auto& [seq, n] : order_)
-    if (n->type) n->post([](NodeState& x) {
-      x.applyEnabled();
-      x.runSetup();  // applies the parameters first
-    });
+    if (n->type)
+      n->post([](NodeState& x) {
+        x.applyEnabled();
+        x.runSetup();  // applies the parameters first
+      });
   for (auto& [seq, n] : order_)
     if (n->readiness.ready()) n->group->push(n);
   bump();

@@ -78,8 +78,8 @@ bool Graph::Impl::waitIdle(double timeout_s) const {
 }
 
 bool Graph::Impl::allIdle(const std::vector<std::shared_ptr<ThreadGroup>>& groups, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                                std::chrono::duration<double>(timeout_s));
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(timeout_s));
   // A group found idle may be given work by one checked later: idle means two
   // passes in a row found every group idle with no work pushed or posted between.
   std::vector<std::uint64_t> last;

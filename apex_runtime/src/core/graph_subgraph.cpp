@@ -64,8 +64,8 @@ Status Graph::Impl::checkExports(const Subgraph& sg) const {
       const std::string path = join(sg.path, rel);
       const std::string says = what + " stands for '" + inner + "', but ";
       if (auto nested = subgraphs_.find(path)) {
-        auto found = detail::sendingExport(e.kind) ? subgraphs_.sender(path, port).status()
-                                                   : subgraphs_.receivers(path, port).status();
+        auto found =
+            detail::sendingExport(e.kind) ? subgraphs_.sender(path, port).status() : subgraphs_.receivers(path, port).status();
         if (!found) return Status::error(says + found.message());
         continue;
       }
@@ -75,17 +75,20 @@ Status Graph::Impl::checkExports(const Subgraph& sg) const {
       const Manifest& m = n->manifest();
       const bool has = [&] {
         switch (e.kind) {
-          case Kind::Input: return m.findInput(port) || m.findParam(port);
-          case Kind::Output: return m.findOutput(port) || m.findParam(port);
-          case Kind::Parameter: return m.findParam(port) != nullptr;
-          case Kind::Slot: return m.findSlot(port) != nullptr;
-          case Kind::Trigger: return m.findTrigger(port) != nullptr;
+          case Kind::Input:
+            return m.findInput(port) || m.findParam(port);
+          case Kind::Output:
+            return m.findOutput(port) || m.findParam(port);
+          case Kind::Parameter:
+            return m.findParam(port) != nullptr;
+          case Kind::Slot:
+            return m.findSlot(port) != nullptr;
+          case Kind::Trigger:
+            return m.findTrigger(port) != nullptr;
         }
         return false;
       }();
-      if (!has)
-        return Status::error(says + nodeLabel(path, n->typeId()) + " has no " + kindName(e.kind) + " '" +
-                             port + "'");
+      if (!has) return Status::error(says + nodeLabel(path, n->typeId()) + " has no " + kindName(e.kind) + " '" + port + "'");
     }
   }
   return Status::ok();
@@ -234,8 +237,8 @@ Status Graph::Impl::group(const std::vector<std::string>& members, const std::st
   auto sg = std::make_shared<Subgraph>();
   std::set<std::string> sending, receiving;
   std::map<std::string, std::size_t> by_sender;  // "node/port" → index in exports
-  auto cross = [&](const std::string& from, const std::string& from_port, const std::string& to,
-                   const std::string& to_port, bool event) {
+  auto cross = [&](const std::string& from, const std::string& from_port, const std::string& to, const std::string& to_port,
+                   bool event) {
     if (inside(from) == inside(to)) return;
     const std::string key = from + "/" + from_port;
     auto it = by_sender.find(key);
@@ -298,10 +301,13 @@ Status Graph::Impl::group(const std::vector<std::string>& members, const std::st
 Status Graph::Impl::ungroup(const std::string& path) {
   auto lock = lockEdits();
   auto sg = subgraphs_.find(path);
-  if (!sg) return Status::error("cannot ungroup '" + path + "': " + (find(path) ? "it is not a subgraph" : "no node named '" + path + "'"));
+  if (!sg)
+    return Status::error("cannot ungroup '" + path +
+                         "': " + (find(path) ? "it is not a subgraph" : "no node named '" + path + "'"));
   const std::string parent = parentOf(path);
   std::vector<std::string> children;
-  for (const auto& [name, n] : nodes_) if (parentOf(name) == path) children.push_back(name);
+  for (const auto& [name, n] : nodes_)
+    if (parentOf(name) == path) children.push_back(name);
   for (const auto& name : subgraphs_.inside(path)) children.push_back(name);
   for (const auto& c : children) {
     const std::string to = join(parent, c.substr(path.size() + 1));
@@ -356,7 +362,10 @@ void Graph::Impl::moveLocked(const std::string& from, const std::string& to) {
 
 std::shared_ptr<const Manifest> Graph::Impl::facade(const Subgraph& sg) const {
   auto m = std::make_shared<Manifest>("subgraph" + (sg.source.empty() ? std::string() : " '" + sg.source + "'"));
-  auto real = [&](const std::string& node) { auto n = find(node); return n && n->type ? n : nullptr; };
+  auto real = [&](const std::string& node) {
+    auto n = find(node);
+    return n && n->type ? n : nullptr;
+  };
   for (const auto& e : sg.exports) {
     if (e.kind == Kind::Slot || e.kind == Kind::Trigger) {
       (e.kind == Kind::Slot ? m->slots : m->triggers).push_back({e.name, e.description, nullptr});

@@ -9,7 +9,8 @@ namespace {
 
 template <class T>
 const T* find(const std::vector<T>& items, const std::string& name) {
-  for (const auto& i : items) if (i.name == name) return &i;
+  for (const auto& i : items)
+    if (i.name == name) return &i;
   return nullptr;
 }
 

@@ -9,10 +9,9 @@
 namespace apex {
 namespace {
 
-[[noreturn]] void unknown(const detail::NodeState& s, const std::string& what, std::string_view name,
-                          const std::string& list) {
-  throw std::invalid_argument(nodeLabel(s.name, s.typeId()) + " has no " + what + " '" + std::string(name) + "' (" +
-                              what + "s: " + list + ")");
+[[noreturn]] void unknown(const detail::NodeState& s, const std::string& what, std::string_view name, const std::string& list) {
+  throw std::invalid_argument(nodeLabel(s.name, s.typeId()) + " has no " + what + " '" + std::string(name) + "' (" + what +
+                              "s: " + list + ")");
 }
 
 detail::NodeState& stateOf(detail::NodeState* s) {

@@ -49,8 +49,8 @@ bool NodeState::sendFromSlot(const std::string& slot) {
       counted += e->counted() && reaches(*e) ? 1 : 0;
     }
     if (busy) {
-      setError(nodeLabel(name, type->id) + " slot '" + slot + "' published on output '" +
-               manifest().outputs[i].name + "' while '" + busy->to->name + "' had not read its last message: not sent");
+      setError(nodeLabel(name, type->id) + " slot '" + slot + "' published on output '" + manifest().outputs[i].name +
+               "' while '" + busy->to->name + "' had not read its last message: not sent");
       all = false;
       continue;
     }

@@ -69,7 +69,7 @@ bool NodeState::isSource() const {
 int NodeState::gates() const {
   if (!type || !live) return 1;  // a placeholder, or a node cut off from every source, never fires
   if (readiness.liveInputs() > 0) return 0;
-  if (!active_enabled_) return 1;                    // a disabled source stays quiet
+  if (!active_enabled_) return 1;  // a disabled source stays quiet
   if (!driven() && readiness.countedReceivers() == 0) return 1;  // a free-running source with no receiver
   return 0;
 }
@@ -361,8 +361,7 @@ void NodeState::applyParams() {
     try {
       node->parameterChanged(manifest().params[i].name);
     } catch (const std::exception& ex) {
-      setError(nodeLabel(name, type->id) + " failed to apply parameter '" + manifest().params[i].name +
-               "': " + ex.what());
+      setError(nodeLabel(name, type->id) + " failed to apply parameter '" + manifest().params[i].name + "': " + ex.what());
     }
     publishParam(i);  // a parameter output carries every change
   }

@@ -43,7 +43,7 @@ class NodeState;
 
 /** Where the registry puts the built-in events (registry.cpp): first in every manifest(). */
 constexpr int kEnableIndex = 0, kDisableIndex = 1;  // slots
-constexpr int kProcessedIndex = 0;                  // trigger
+constexpr int kProcessedIndex = 0;  // trigger
 
 /** A data or parameter connection. `from_param`: from a parameter output;
  *  `to_param`: into a parameter input. */
@@ -55,8 +55,8 @@ struct Edge {
   bool to_param = false;
   int to_index = 0;
   std::atomic<bool> unread{false};  // counted edges: the receiver has not taken the last message
-  bool dead = false;                // removed; pending mail on it is ignored
-  bool live = false;                // its sender can fire (edits only): a dead input is treated as Nothing
+  bool dead = false;  // removed; pending mail on it is ignored
+  bool live = false;  // its sender can fire (edits only): a dead input is treated as Nothing
   /** Data outputs wait for their receivers; parameter outputs never hold a node back. */
   bool counted() const { return !from_param; }
 };
@@ -70,7 +70,7 @@ struct EventEdge {
 
 struct InputState {
   std::mutex m;  // on the data path only for edges that are not counted; edits take it too
-  Message msg;   // delivered, not yet taken
+  Message msg;  // delivered, not yet taken
   std::atomic<bool> full{false};
   std::shared_ptr<Edge> edge;
   Message current;  // taken for this firing
@@ -87,9 +87,9 @@ struct OutputState {
 
 struct ParamState {
   ParamValue requested;  // state_mutex
-  ParamValue active;     // group thread
+  ParamValue active;  // group thread
   bool interactive = false;
-  bool resend = false;   // state_mutex: set again (ParamSpec::every_set), apply even if unchanged
+  bool resend = false;  // state_mutex: set again (ParamSpec::every_set), apply even if unchanged
   std::shared_ptr<Edge> in_edge;
   std::vector<std::shared_ptr<Edge>> out_edges;
   Tap tap;
@@ -123,7 +123,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::vector<OutputState> outputs;
   std::vector<ParamState> params;
   std::vector<std::vector<std::shared_ptr<EventEdge>>> trigger_edges;  // per trigger
-  std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;     // per slot, incoming
+  std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;  // per slot, incoming
   /** Can fire at all (edits only): a source, or fed by a live input. A node cut
    *  off from every source never fires and holds no other path hostage. */
   bool live = false;
@@ -132,7 +132,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 
   // scheduling
   Readiness readiness;  // the firing rule's counters (readiness.hpp)
-  bool queued = false;               // group mutex
+  bool queued = false;  // group mutex
   bool queued_from_outside = false;  // group mutex: by push(), not by this group's own firing
   std::atomic<bool> has_data{false};
   ThreadGroup* group = nullptr;
@@ -222,15 +222,15 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
    *  false if something was refused (the node reports it). */
   bool sendFromSlot(const std::string& slot);
   void releaseTriggers();
-  bool in_handler_ = false;          // group thread: process() or a slot handler runs
-  bool reported_ = false;            // group thread: reportError() in this firing
-  std::vector<int> held_triggers_;   // group thread: fired there, sent after its messages
+  bool in_handler_ = false;  // group thread: process() or a slot handler runs
+  bool reported_ = false;  // group thread: reportError() in this firing
+  std::vector<int> held_triggers_;  // group thread: fired there, sent after its messages
 
   const bool driven_;  // the type's source mode: an interface keeps it
   bool active_enabled_ = true;
   std::atomic<bool> params_dirty_{false};
   bool apply_posted_ = false;  // state_mutex
-  bool resend_due_ = false;    // state_mutex: a downstreamChanged() is set on a timer
+  bool resend_due_ = false;  // state_mutex: a downstreamChanged() is set on a timer
   std::chrono::steady_clock::time_point last_resend_;  // state_mutex
   std::atomic<bool> has_error_{false};
   std::string error_;  // state_mutex
@@ -244,7 +244,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // fireIfReady's steps, in order
   struct Firing {
     bool skip = false;  // disabled, or a mandatory input holds Nothing: process() is not run
-    bool end = false;   // an input holds the end of a sequence
+    bool end = false;  // an input holds the end of a sequence
   };
   inline void reserve();
   inline Firing takeInputs();

@@ -9,7 +9,9 @@ namespace apex {
 namespace {
 
 template <class T>
-bool holds(const ParamValue& v) { return std::holds_alternative<T>(v); }
+bool holds(const ParamValue& v) {
+  return std::holds_alternative<T>(v);
+}
 
 std::string num(double v) {
   std::ostringstream s;
@@ -36,14 +38,15 @@ Status checkIntRange(const ParamSpec& s, int v) {
   if (auto st = checkNumber(s, v); !st) return st;
   const int step = static_cast<int>(s.step);
   if (step > 1 && (v - static_cast<int>(s.min)) % step != 0) {
-    return Status::error("parameter '" + s.name + "': " + std::to_string(v) + " is not on the step: allowed are " +
-                         num(s.min) + ", " + num(s.min + s.step) + ", ... up to " + num(s.max));
+    return Status::error("parameter '" + s.name + "': " + std::to_string(v) + " is not on the step: allowed are " + num(s.min) +
+                         ", " + num(s.min + s.step) + ", ... up to " + num(s.max));
   }
   return Status::ok();
 }
 
 Status checkSet(const ParamSpec& s, const std::string& v) {
-  for (const auto& o : s.options) if (o == v) return Status::ok();
+  for (const auto& o : s.options)
+    if (o == v) return Status::ok();
   std::string list;
   for (const auto& o : s.options) list += (list.empty() ? "" : ", ") + o;
   return Status::error("parameter '" + s.name + "': '" + v + "' is not one of: " + list);
@@ -68,7 +71,8 @@ Status checkInterval(const ParamSpec& s, const Interval& v) {
 
 Status checkColor(const ParamSpec& s, const Color& c) {
   for (int ch : {c.r, c.g, c.b}) {
-    if (ch < 0 || ch > 255) return Status::error("parameter '" + s.name + "': colour channel " + std::to_string(ch) + " is outside 0..255");
+    if (ch < 0 || ch > 255)
+      return Status::error("parameter '" + s.name + "': colour channel " + std::to_string(ch) + " is outside 0..255");
   }
   return Status::ok();
 }
@@ -112,27 +116,35 @@ Status checkFileName(const ParamSpec& s, const std::string& v) {
 
 Status ParamSpec::validate(const ParamValue& v) const {
   switch (kind) {
-    case ParamKind::Bool: return holds<bool>(v) ? Status::ok() : wrongType(*this, v);
-    case ParamKind::Int: return holds<int>(v) ? Status::ok() : wrongType(*this, v);
+    case ParamKind::Bool:
+      return holds<bool>(v) ? Status::ok() : wrongType(*this, v);
+    case ParamKind::Int:
+      return holds<int>(v) ? Status::ok() : wrongType(*this, v);
     case ParamKind::Double:
       if (!holds<double>(v)) return wrongType(*this, v);
-      return std::isfinite(std::get<double>(v)) ? Status::ok()
-                                                 : Status::error("parameter '" + name + "' is not a finite number");
+      return std::isfinite(std::get<double>(v)) ? Status::ok() : Status::error("parameter '" + name + "' is not a finite number");
     case ParamKind::String:
       if (!holds<std::string>(v)) return wrongType(*this, v);
       if (auto st = checkText(*this, std::get<std::string>(v)); !st) return st;
       return file_name ? checkFileName(*this, std::get<std::string>(v)) : Status::ok();
-    case ParamKind::Path: return holds<std::string>(v) ? checkText(*this, std::get<std::string>(v)) : wrongType(*this, v);
-    case ParamKind::IntRange: return holds<int>(v) ? checkIntRange(*this, std::get<int>(v)) : wrongType(*this, v);
+    case ParamKind::Path:
+      return holds<std::string>(v) ? checkText(*this, std::get<std::string>(v)) : wrongType(*this, v);
+    case ParamKind::IntRange:
+      return holds<int>(v) ? checkIntRange(*this, std::get<int>(v)) : wrongType(*this, v);
     case ParamKind::DoubleRange:
-    case ParamKind::Angle: return holds<double>(v) ? checkNumber(*this, std::get<double>(v)) : wrongType(*this, v);
-    case ParamKind::Interval: return holds<Interval>(v) ? checkInterval(*this, std::get<Interval>(v)) : wrongType(*this, v);
-    case ParamKind::Set: return holds<std::string>(v) ? checkSet(*this, std::get<std::string>(v)) : wrongType(*this, v);
-    case ParamKind::Color: return holds<Color>(v) ? checkColor(*this, std::get<Color>(v)) : wrongType(*this, v);
+    case ParamKind::Angle:
+      return holds<double>(v) ? checkNumber(*this, std::get<double>(v)) : wrongType(*this, v);
+    case ParamKind::Interval:
+      return holds<Interval>(v) ? checkInterval(*this, std::get<Interval>(v)) : wrongType(*this, v);
+    case ParamKind::Set:
+      return holds<std::string>(v) ? checkSet(*this, std::get<std::string>(v)) : wrongType(*this, v);
+    case ParamKind::Color:
+      return holds<Color>(v) ? checkColor(*this, std::get<Color>(v)) : wrongType(*this, v);
     case ParamKind::Pair:
       if (!holds<Pair>(v)) return wrongType(*this, v);
       return checkFinite(*this, {std::get<Pair>(v).first, std::get<Pair>(v).second});
-    case ParamKind::List: return holds<std::vector<double>>(v) ? checkFinite(*this, std::get<std::vector<double>>(v)) : wrongType(*this, v);
+    case ParamKind::List:
+      return holds<std::vector<double>>(v) ? checkFinite(*this, std::get<std::vector<double>>(v)) : wrongType(*this, v);
     case ParamKind::TextList:
       if (!holds<std::vector<std::string>>(v)) return wrongType(*this, v);
       for (const auto& text : std::get<std::vector<std::string>>(v))
@@ -144,40 +156,63 @@ Status ParamSpec::validate(const ParamValue& v) const {
 
 const TypeInfo* ParamSpec::portType() const {
   switch (kind) {
-    case ParamKind::Bool: return typeOf<bool>();
+    case ParamKind::Bool:
+      return typeOf<bool>();
     case ParamKind::Int:
-    case ParamKind::IntRange: return typeOf<int>();
+    case ParamKind::IntRange:
+      return typeOf<int>();
     case ParamKind::Double:
     case ParamKind::DoubleRange:
-    case ParamKind::Angle: return typeOf<double>();
+    case ParamKind::Angle:
+      return typeOf<double>();
     case ParamKind::String:
     case ParamKind::Set:
-    case ParamKind::Path: return typeOf<std::string>();
-    case ParamKind::Interval: return typeOf<Interval>();
-    case ParamKind::Pair: return typeOf<Pair>();
-    case ParamKind::Color: return typeOf<Color>();
-    case ParamKind::List: return typeOf<std::vector<double>>();
-    case ParamKind::TextList: return typeOf<std::vector<std::string>>();
+    case ParamKind::Path:
+      return typeOf<std::string>();
+    case ParamKind::Interval:
+      return typeOf<Interval>();
+    case ParamKind::Pair:
+      return typeOf<Pair>();
+    case ParamKind::Color:
+      return typeOf<Color>();
+    case ParamKind::List:
+      return typeOf<std::vector<double>>();
+    case ParamKind::TextList:
+      return typeOf<std::vector<std::string>>();
   }
   return typeOf<Any>();
 }
 
 std::string ParamSpec::kindName() const {
   switch (kind) {
-    case ParamKind::Bool: return "bool";
-    case ParamKind::Int: return "int";
-    case ParamKind::Double: return "double";
-    case ParamKind::String: return "string";
-    case ParamKind::IntRange: return "int range";
-    case ParamKind::DoubleRange: return "double range";
-    case ParamKind::Interval: return "interval";
-    case ParamKind::Set: return "set";
-    case ParamKind::Angle: return "angle";
-    case ParamKind::Path: return "path";
-    case ParamKind::Color: return "color";
-    case ParamKind::Pair: return "pair";
-    case ParamKind::List: return "list";
-    case ParamKind::TextList: return "text list";
+    case ParamKind::Bool:
+      return "bool";
+    case ParamKind::Int:
+      return "int";
+    case ParamKind::Double:
+      return "double";
+    case ParamKind::String:
+      return "string";
+    case ParamKind::IntRange:
+      return "int range";
+    case ParamKind::DoubleRange:
+      return "double range";
+    case ParamKind::Interval:
+      return "interval";
+    case ParamKind::Set:
+      return "set";
+    case ParamKind::Angle:
+      return "angle";
+    case ParamKind::Path:
+      return "path";
+    case ParamKind::Color:
+      return "color";
+    case ParamKind::Pair:
+      return "pair";
+    case ParamKind::List:
+      return "list";
+    case ParamKind::TextList:
+      return "text list";
   }
   return "unknown";
 }
@@ -197,7 +232,8 @@ Result<ParamValue> fromMessage(const ParamSpec& spec, const Message& m) {
   else if (auto p = m.as<Color>()) v = *p;
   else if (auto p = m.as<std::vector<double>>()) v = *p;
   else if (auto p = m.as<std::vector<std::string>>()) v = *p;
-  else return Status::error("parameter '" + spec.name + "' (" + spec.kindName() + ") cannot take a message of type " + m.typeName());
+  else
+    return Status::error("parameter '" + spec.name + "' (" + spec.kindName() + ") cannot take a message of type " + m.typeName());
   if (auto st = spec.validate(v); !st) return st;
   return v;
 }
@@ -240,9 +276,7 @@ ParamSpec path(std::string n, std::string d, PathMode mode) {
 ParamSpec color(std::string n, int r, int g, int b) { return make(std::move(n), ParamKind::Color, Color{r, g, b}); }
 ParamSpec pair(std::string n, double a, double b) { return make(std::move(n), ParamKind::Pair, Pair{a, b}); }
 ParamSpec list(std::string n, std::vector<double> d) { return make(std::move(n), ParamKind::List, std::move(d)); }
-ParamSpec textList(std::string n, std::vector<std::string> d) {
-  return make(std::move(n), ParamKind::TextList, std::move(d));
-}
+ParamSpec textList(std::string n, std::vector<std::string> d) { return make(std::move(n), ParamKind::TextList, std::move(d)); }
 }  // namespace param
 
 }  // namespace apex

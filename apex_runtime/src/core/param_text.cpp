@@ -26,8 +26,7 @@ std::string quoted(const std::string& s) {
   const YAML::Node back = YAML::Load(plain);
   bool b;
   double d;
-  if (back.IsScalar() && back.Tag() != "!" &&
-      (YAML::convert<bool>::decode(back, b) || YAML::convert<double>::decode(back, d))) {
+  if (back.IsScalar() && back.Tag() != "!" && (YAML::convert<bool>::decode(back, b) || YAML::convert<double>::decode(back, d))) {
     YAML::Emitter q;
     q << YAML::DoubleQuoted << s;
     return q.c_str();
@@ -42,8 +41,7 @@ struct Parser {
   Status fail(const std::string& what) const {
     YAML::Emitter e;
     e << YAML::Flow << node;
-    return Status::error("parameter '" + spec.name + "' (" + spec.kindName() + ") expects " + what + ", got '" +
-                         e.c_str() + "'");
+    return Status::error("parameter '" + spec.name + "' (" + spec.kindName() + ") expects " + what + ", got '" + e.c_str() + "'");
   }
   template <class T>
   bool scalar(const YAML::Node& n, T& out) const {
@@ -63,18 +61,37 @@ struct Parser {
 
   Result<ParamValue> parse() const {
     switch (spec.kind) {
-      case ParamKind::Bool: { bool b; if (scalar(node, b)) return ParamValue(b); return fail("true or false"); }
+      case ParamKind::Bool: {
+        bool b;
+        if (scalar(node, b)) return ParamValue(b);
+        return fail("true or false");
+      }
       case ParamKind::Int:
-      case ParamKind::IntRange: { int i; if (scalar(node, i)) return ParamValue(i); return fail("an integer"); }
+      case ParamKind::IntRange: {
+        int i;
+        if (scalar(node, i)) return ParamValue(i);
+        return fail("an integer");
+      }
       case ParamKind::Double:
       case ParamKind::DoubleRange:
-      case ParamKind::Angle: { double d; if (scalar(node, d)) return ParamValue(d); return fail("a number"); }
+      case ParamKind::Angle: {
+        double d;
+        if (scalar(node, d)) return ParamValue(d);
+        return fail("a number");
+      }
       case ParamKind::String:
       case ParamKind::Path:
-      case ParamKind::Set: { std::string s; if (scalar(node, s)) return ParamValue(s); return fail("a string"); }
-      case ParamKind::Interval: return pairLike<Interval>("low", "high");
-      case ParamKind::Pair: return pairLike<Pair>("first", "second");
-      case ParamKind::Color: return color();
+      case ParamKind::Set: {
+        std::string s;
+        if (scalar(node, s)) return ParamValue(s);
+        return fail("a string");
+      }
+      case ParamKind::Interval:
+        return pairLike<Interval>("low", "high");
+      case ParamKind::Pair:
+        return pairLike<Pair>("first", "second");
+      case ParamKind::Color:
+        return color();
       case ParamKind::List: {
         auto v = numbers(0);
         if (!v) return fail("a list of numbers, e.g. [1, 2.5]");

@@ -10,8 +10,7 @@
 #include "names.hpp"
 
 namespace apex {
-Handle::Handle(Node* node, Of of, std::string name, const TypeInfo* type, bool (*holds)(const ParamValue&),
-               std::string cpp)
+Handle::Handle(Node* node, Of of, std::string name, const TypeInfo* type, bool (*holds)(const ParamValue&), std::string cpp)
     : node_(node), of_(of), name_(std::move(name)), type_(type), holds_(holds), cpp_(std::move(cpp)) {
   node_->handles_.push_back(this);
 }
@@ -24,8 +23,8 @@ Handle::~Handle() {
 Status Handle::resolve(const Manifest& m) {
   index_ = -1;
   auto missing = [&](const char* what, const std::string& list) {
-    return Status::error(cpp_ + " '" + name_ + "': manifest() declares no " + what + " '" + name_ + "' (" + what +
-                         "s: " + list + "): name one of those, or declare it in manifest()");
+    return Status::error(cpp_ + " '" + name_ + "': manifest() declares no " + what + " '" + name_ + "' (" + what + "s: " + list +
+                         "): name one of those, or declare it in manifest()");
   };
   int i = -1;
   switch (of_) {
@@ -44,8 +43,8 @@ Status Handle::resolve(const Manifest& m) {
     case Of::Param:
       if ((i = indexOf(m.params, name_)) < 0) return missing("parameter", m.listParams());
       if (!holds_(m.params[i].default_value))
-        return Status::error(cpp_ + " '" + name_ + "': parameter '" + name_ + "' is a " + m.params[i].kindName() +
-                             " of " + m.params[i].portType()->name + ": write Param<" + m.params[i].portType()->name + ">");
+        return Status::error(cpp_ + " '" + name_ + "': parameter '" + name_ + "' is a " + m.params[i].kindName() + " of " +
+                             m.params[i].portType()->name + ": write Param<" + m.params[i].portType()->name + ">");
       break;
     case Of::Trigger:
       if ((i = indexOf(m.triggers, name_)) < 0) return missing("trigger", m.listTriggers());
@@ -61,8 +60,8 @@ void Handle::throwGone() const {
 }
 
 void Handle::throwWrongType(const Message& m) const {
-  throw std::invalid_argument(nodeLabel(node_->name()) + ": input '" + name_ + "' holds a " + m.typeName() +
-                              ", not a " + type_->name);
+  throw std::invalid_argument(nodeLabel(node_->name()) + ": input '" + name_ + "' holds a " + m.typeName() + ", not a " +
+                              type_->name);
 }
 
 namespace detail {

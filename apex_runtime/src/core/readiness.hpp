@@ -58,8 +58,8 @@ class Readiness {
  private:
   std::atomic<int> blockers_{0};
   int connected_inputs_ = 0;  // data inputs with an edge
-  int live_inputs_ = 0;       // ... whose edge is live
-  int counted_out_ = 0;       // counted edges leaving its data outputs
+  int live_inputs_ = 0;  // ... whose edge is live
+  int counted_out_ = 0;  // counted edges leaving its data outputs
 };
 
 }  // namespace detail

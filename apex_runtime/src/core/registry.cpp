@@ -50,9 +50,10 @@ Status NodeRegistry::add(const std::string& id, Manifest manifest, std::function
   if (!validTypeId(id)) return Status::error("node type id '" + id + "' " + kTypeIdRule);
   if (!create) return Status::error("node type '" + id + "' has no factory");
   if (auto st = withBuiltins(manifest).check(); !st) return Status::error("node type '" + id + "': " + st.message());
-  if (auto st = checkHandles(withBuiltins(manifest), create); !st) return Status::error("node type '" + id + "': " + st.message());
-  auto type = std::make_shared<NodeType>(NodeType{id, std::make_shared<const Manifest>(withBuiltins(std::move(manifest))),
-                                                  std::move(create)});
+  if (auto st = checkHandles(withBuiltins(manifest), create); !st)
+    return Status::error("node type '" + id + "': " + st.message());
+  auto type = std::make_shared<NodeType>(
+      NodeType{id, std::make_shared<const Manifest>(withBuiltins(std::move(manifest))), std::move(create)});
   std::lock_guard<std::mutex> lock(mutex_);
   if (!types_.emplace(id, std::move(type)).second) return Status::error("node type '" + id + "' is already registered");
   return Status::ok();
@@ -123,7 +124,8 @@ Result<std::shared_ptr<const NodeType>> NodeRegistry::lookup(const std::string& 
     message += "?";
   }
   const std::size_t known = ids().size();
-  return Status::error(message + " (" + (known ? "list_node_types lists all " + std::to_string(known) : "no type is registered") + ")");
+  return Status::error(message + " (" + (known ? "list_node_types lists all " + std::to_string(known) : "no type is registered") +
+                       ")");
 }
 
 std::vector<std::string> NodeRegistry::closest(const std::string& name, std::size_t count) const {

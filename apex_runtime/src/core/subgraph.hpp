@@ -21,7 +21,7 @@ namespace apex {
 namespace detail {
 
 struct Subgraph {
-  std::string path;    // "detector", "detector/stage"
+  std::string path;  // "detector", "detector/stage"
   std::string source;  // the file reference as written; "" inline
   std::uint64_t seq = 0;  // its place among the nodes (insertion order)
   std::vector<std::string> thread_groups;
@@ -122,12 +122,10 @@ inline std::string movedPath(const std::string& path, const std::string& from, c
 }
 
 inline bool sendingExport(ExportDescription::Kind k) {
-  return k == ExportDescription::Kind::Output || k == ExportDescription::Kind::Trigger ||
-         k == ExportDescription::Kind::Parameter;
+  return k == ExportDescription::Kind::Output || k == ExportDescription::Kind::Trigger || k == ExportDescription::Kind::Parameter;
 }
 inline bool receivingExport(ExportDescription::Kind k) {
-  return k == ExportDescription::Kind::Input || k == ExportDescription::Kind::Slot ||
-         k == ExportDescription::Kind::Parameter;
+  return k == ExportDescription::Kind::Input || k == ExportDescription::Kind::Slot || k == ExportDescription::Kind::Parameter;
 }
 
 }  // namespace detail

@@ -46,7 +46,8 @@ void mask(GraphDescription& g, const std::string& endpoint) {
   auto [node, param] = splitEnd(endpoint);
   NodeDescription* n = findIn(g, node);
   if (!n) return;
-  for (auto& [name, text] : n->parameters) if (name == param) text = "~";
+  for (auto& [name, text] : n->parameters)
+    if (name == param) text = "~";
   n->interactive.erase(std::remove(n->interactive.begin(), n->interactive.end(), param), n->interactive.end());
   if (!n->subgraph) return;
   auto inner = std::make_shared<GraphDescription>(*n->subgraph);
@@ -74,11 +75,16 @@ void markEdited(GraphDescription& g, const Subgraphs::Records& subgraphs, const 
 
 const char* kindName(Kind k) {
   switch (k) {
-    case Kind::Input: return "input";
-    case Kind::Output: return "output";
-    case Kind::Parameter: return "parameter";
-    case Kind::Slot: return "slot";
-    case Kind::Trigger: return "trigger";
+    case Kind::Input:
+      return "input";
+    case Kind::Output:
+      return "output";
+    case Kind::Parameter:
+      return "parameter";
+    case Kind::Slot:
+      return "slot";
+    case Kind::Trigger:
+      return "trigger";
   }
   return "";
 }
@@ -99,7 +105,8 @@ std::shared_ptr<Subgraph> Subgraphs::find(const std::string& path) const {
 
 std::vector<std::string> Subgraphs::inside(const std::string& path) const {
   std::vector<std::string> out;
-  for (const auto& [name, s] : records_) if (parentOf(name) == path) out.push_back(name);
+  for (const auto& [name, s] : records_)
+    if (parentOf(name) == path) out.push_back(name);
   return out;
 }
 
@@ -108,7 +115,8 @@ std::string Subgraphs::checkNewPath(const std::string& path, bool node_there) co
   while (true) {
     const auto slash = path.find('/', start);
     if (!validName(path.substr(start, slash - start)))
-      return "node name '" + path + "' " + kNameRule + (path.find('/') == std::string::npos ? "" : " (in each part of a path a/b)");
+      return "node name '" + path + "' " + kNameRule +
+             (path.find('/') == std::string::npos ? "" : " (in each part of a path a/b)");
     if (slash == std::string::npos) break;
     start = slash + 1;
   }
@@ -156,7 +164,7 @@ Result<std::pair<std::string, std::string>> Subgraphs::sender(const std::string&
 }
 
 Result<std::vector<std::pair<std::string, std::string>>> Subgraphs::receivers(const std::string& node,
-                                                                             const std::string& port) const {
+                                                                              const std::string& port) const {
   std::vector<std::pair<std::string, std::string>> out;
   auto sg = find(node);
   if (!sg) {
@@ -177,8 +185,7 @@ Result<std::vector<std::pair<std::string, std::string>>> Subgraphs::receivers(co
                        "' (it exports: " + listExports(*sg, receivingExport) + ")");
 }
 
-Result<std::pair<std::string, std::string>> Subgraphs::exportedParam(const std::string& node,
-                                                                     const std::string& param) const {
+Result<std::pair<std::string, std::string>> Subgraphs::exportedParam(const std::string& node, const std::string& param) const {
   auto sg = find(node);
   if (!sg) return std::make_pair(node, param);
   for (const auto& e : sg->exports) {
@@ -187,9 +194,10 @@ Result<std::pair<std::string, std::string>> Subgraphs::exportedParam(const std::
     return exportedParam(join(node, n), p);
   }
   std::string list;
-  for (const auto& e : sg->exports) if (e.kind == Kind::Parameter) list += (list.empty() ? "" : ", ") + e.name;
-  return Status::error(subgraphLabel(node) + " exports no parameter '" + param + "' (parameters: " +
-                       (list.empty() ? "none" : list) + ")");
+  for (const auto& e : sg->exports)
+    if (e.kind == Kind::Parameter) list += (list.empty() ? "" : ", ") + e.name;
+  return Status::error(subgraphLabel(node) + " exports no parameter '" + param +
+                       "' (parameters: " + (list.empty() ? "none" : list) + ")");
 }
 
 // ------------------------------------------------------------------ edits
@@ -223,9 +231,9 @@ void Subgraphs::dropExportsOf(const std::string& node) {
     auto sg = find(parent);
     if (!sg) continue;
     for (auto& e : sg->exports)
-      e.inner.erase(std::remove_if(e.inner.begin(), e.inner.end(),
-                                   [&](const std::string& i) { return splitEnd(i).first == rel; }),
-                    e.inner.end());
+      e.inner.erase(
+          std::remove_if(e.inner.begin(), e.inner.end(), [&](const std::string& i) { return splitEnd(i).first == rel; }),
+          e.inner.end());
     sg->exports.erase(std::remove_if(sg->exports.begin(), sg->exports.end(), [](const auto& e) { return e.inner.empty(); }),
                       sg->exports.end());
   }

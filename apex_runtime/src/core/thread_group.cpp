@@ -181,8 +181,7 @@ GroupStats ThreadGroup::stats() const {
   s.firings = firings_.load(std::memory_order_relaxed);
   s.wakeups = wakeups_.load(std::memory_order_relaxed);
   std::lock_guard<std::mutex> lock(m_);
-  if (running_)
-    s.wall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started_).count();
+  if (running_) s.wall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - started_).count();
   return s;
 }
 
@@ -253,7 +252,7 @@ void ThreadGroup::run() {
       busy_ = true;  // an edit's pause() waits for it, as for any mail (found by ThreadSanitizer)
       lock.unlock();
       runMail(batch);  // like mail: not for a removed node, and on the node's group if it moved since
-      batch.clear();   // drops the node reference outside the lock
+      batch.clear();  // drops the node reference outside the lock
       lock.lock();
       busy_ = false;
       continue;

@@ -103,13 +103,13 @@ class ThreadGroup {
   const std::string name_;
   const void* const owner_;
   mutable std::mutex m_;
-  std::condition_variable cv_;        // wakes the thread
+  std::condition_variable cv_;  // wakes the thread
   std::condition_variable state_cv_;  // the thread parked, stepped or went idle
   std::deque<NodeState*> ready_;
   std::vector<Mail> mail_;
   std::multimap<std::chrono::steady_clock::time_point, Mail> timers_;
-  bool waiting_ = false;   // the thread waits on cv_ (at a firing boundary)
-  bool busy_ = false;      // the thread runs a firing or mail
+  bool waiting_ = false;  // the thread waits on cv_ (at a firing boundary)
+  bool busy_ = false;  // the thread runs a firing or mail
   bool stop_ = false;
   bool running_ = false;  // the thread runs (false again once joined)
   int pause_requests_ = 0;
@@ -120,8 +120,8 @@ class ThreadGroup {
   std::uint64_t activity_ = 0;
   std::thread thread_;
   std::atomic<bool> attention_{false};
-  NodeState* inline_next_ = nullptr;    // made ready by that firing, runs next (thread only)
-  int queued_from_outside_ = 0;         // nodes in ready_ that push() put there (m_)
+  NodeState* inline_next_ = nullptr;  // made ready by that firing, runs next (thread only)
+  int queued_from_outside_ = 0;  // nodes in ready_ that push() put there (m_)
   static constexpr int kInlineRun = 256;  // then the queue gets a turn
 
   std::atomic<std::uint64_t> firings_{0}, wakeups_{0};

@@ -18,8 +18,7 @@ inline std::int64_t ticks() {
 #if defined(__x86_64__) || defined(__i386__)
   return static_cast<std::int64_t>(__rdtsc());
 #else
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
 #endif
 }
 

@@ -7,8 +7,7 @@ namespace apex {
 namespace ros_host {
 namespace {
 
-PortInfo port(const std::string& name, const char* kind, const TypeInfo* type, bool optional,
-              const std::string& description) {
+PortInfo port(const std::string& name, const char* kind, const TypeInfo* type, bool optional, const std::string& description) {
   PortInfo p;
   p.name = name;
   p.kind = kind;
@@ -20,9 +19,12 @@ PortInfo port(const std::string& name, const char* kind, const TypeInfo* type, b
 
 const char* pathMode(PathMode m) {
   switch (m) {
-    case PathMode::Read: return "read";
-    case PathMode::Write: return "write";
-    case PathMode::Directory: return "directory";
+    case PathMode::Read:
+      return "read";
+    case PathMode::Write:
+      return "write";
+    case PathMode::Directory:
+      return "directory";
   }
   return "";
 }
@@ -102,7 +104,8 @@ NodeInfo toNodeInfo(const NodeDescription& n) {
   info.ports = ports(*n.interface);
   for (const auto& s : n.interface->params) {
     std::string value = toText(s.default_value);
-    for (const auto& [name, text] : n.parameters) if (name == s.name) value = text;
+    for (const auto& [name, text] : n.parameters)
+      if (name == s.name) value = text;
     const bool interactive = has(n.interactive, s.name);
     info.parameters.push_back(param(s, value, interactive));
     if (!interactive) continue;
@@ -116,8 +119,8 @@ namespace {
 
 /** Every level of subgraphs into one list: nodes by their paths, each level's connections
  *  with paths, and each subgraph's exports as connections of kind "export". */
-void flatten(const GraphDescription& d, const std::string& prefix, GraphState& g,
-             std::map<std::string, const Manifest*>& ifaces, std::vector<ConnectionDescription>& connections) {
+void flatten(const GraphDescription& d, const std::string& prefix, GraphState& g, std::map<std::string, const Manifest*>& ifaces,
+             std::vector<ConnectionDescription>& connections) {
   auto path = [&](const std::string& name) { return prefix.empty() ? name : prefix + "/" + name; };
   for (const auto& n : d.nodes) {
     NodeInfo info = toNodeInfo(n);

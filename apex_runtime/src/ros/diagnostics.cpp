@@ -96,8 +96,8 @@ void Diagnostics::nodeStatus(const std::string& node, diagnostic_updater::Diagno
     out.add("type", info->second.type);
     out.add("thread group", info->second.thread_group.empty() ? "default" : info->second.thread_group);
     if (info->second.state == "placeholder") {
-      out.summary(DiagnosticStatus::STALE, info->second.error.empty() ? "placeholder: its type is not loaded"
-                                                                     : info->second.error);
+      out.summary(DiagnosticStatus::STALE,
+                  info->second.error.empty() ? "placeholder: its type is not loaded" : info->second.error);
       return;
     }
   }
@@ -118,8 +118,7 @@ void Diagnostics::nodeStatus(const std::string& node, diagnostic_updater::Diagno
   if (n.state == "disabled") return out.summary(DiagnosticStatus::OK, "disabled");
   if (!n.waiting_for.empty()) return out.summary(DiagnosticStatus::WARN, "stalled: " + n.waiting_for);
   if (expected != expected_.end() && rate < 0.9 * expected->second)
-    return out.summary(DiagnosticStatus::WARN, "slow: " + fixed(rate, 1) + " Hz, expected " +
-                                                   fixed(expected->second, 1) + " Hz");
+    return out.summary(DiagnosticStatus::WARN, "slow: " + fixed(rate, 1) + " Hz, expected " + fixed(expected->second, 1) + " Hz");
   out.summary(DiagnosticStatus::OK, "ok, " + fixed(rate, 1) + " Hz");
 }
 

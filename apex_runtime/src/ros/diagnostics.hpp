@@ -41,13 +41,13 @@ class Diagnostics {
   diagnostic_updater::Updater updater_;
   std::map<std::string, double> expected_;  // node -> Hz
   std::mutex mutex_;
-  std::map<std::string, NodeInfo> nodes_;   // from ~graph, parameters left out
+  std::map<std::string, NodeInfo> nodes_;  // from ~graph, parameters left out
   std::map<std::string, NodeStatus> stats_;  // this tick's
   std::map<std::string, GroupStatus> groups_;
-  std::map<std::string, double> rates_;     // frames per second over the last tick
+  std::map<std::string, double> rates_;  // frames per second over the last tick
   std::map<std::string, std::uint64_t> last_firings_;
   ros::WallTime last_tick_;
-  std::set<std::string> tasks_;             // the updater's task names
+  std::set<std::string> tasks_;  // the updater's task names
   ros::WallTimer timer_;
 };
 

@@ -31,10 +31,26 @@ std_msgs::String text(const T& v) {
 }
 
 const bool kBuiltins = [] {
-  addInspector<int, std_msgs::Int32>([](int v) { std_msgs::Int32 m; m.data = v; return m; });
-  addInspector<double, std_msgs::Float64>([](double v) { std_msgs::Float64 m; m.data = v; return m; });
-  addInspector<bool, std_msgs::Bool>([](bool v) { std_msgs::Bool m; m.data = v; return m; });
-  addInspector<std::string, std_msgs::String>([](const std::string& v) { std_msgs::String m; m.data = v; return m; });
+  addInspector<int, std_msgs::Int32>([](int v) {
+    std_msgs::Int32 m;
+    m.data = v;
+    return m;
+  });
+  addInspector<double, std_msgs::Float64>([](double v) {
+    std_msgs::Float64 m;
+    m.data = v;
+    return m;
+  });
+  addInspector<bool, std_msgs::Bool>([](bool v) {
+    std_msgs::Bool m;
+    m.data = v;
+    return m;
+  });
+  addInspector<std::string, std_msgs::String>([](const std::string& v) {
+    std_msgs::String m;
+    m.data = v;
+    return m;
+  });
   addInspector<Interval, std_msgs::String>([](const Interval& v) { return text(v); });
   addInspector<Pair, std_msgs::String>([](const Pair& v) { return text(v); });
   addInspector<Color, std_msgs::String>([](const Color& v) { return text(v); });
@@ -85,7 +101,9 @@ Inspector findInspector(const TypeInfo* type) {
                      s.data = "<" + m.typeName() + ">";
                      pub.publish(s);
                    },
-                   nullptr, nullptr, nullptr};
+                   nullptr,
+                   nullptr,
+                   nullptr};
 }
 
 }  // namespace apex

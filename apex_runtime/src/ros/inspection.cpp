@@ -51,8 +51,8 @@ struct Inspection::Tap {
   }
 };
 
-Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const std::string& node,
-                                                             const std::string& port, bool enable, bool preview) {
+Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const std::string& node, const std::string& port,
+                                                            bool enable, bool preview) {
   const std::string key = node + "/" + port;
   std::lock_guard<std::mutex> lock(mutex_);
   auto it = taps_.find(key);

@@ -25,8 +25,8 @@ class Inspection {
   static constexpr int kPreviewWidth = 160;
   /** @brief Enables or disables a port's inspection (or its preview); returns (topic, ROS
    *  message type), empty when disabled. */
-  Result<std::pair<std::string, std::string>> set(Graph& graph, const std::string& node, const std::string& port,
-                                                  bool enable, bool preview = false);
+  Result<std::pair<std::string, std::string>> set(Graph& graph, const std::string& node, const std::string& port, bool enable,
+                                                  bool preview = false);
   void forgetNode(const std::string& node);
   void clear();
 

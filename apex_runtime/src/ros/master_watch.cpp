@@ -32,8 +32,8 @@ bool callSelf(const char* method, XmlRpcValue& request, XmlRpcValue& response) {
   uint32_t port = 0;
   if (!ros::network::splitURI(ros::XMLRPCManager::instance()->getServerURI(), host, port)) return false;
   XmlRpc::XmlRpcClient self(host.c_str(), static_cast<int>(port), "/");
-  return self.execute(method, request, response) && response.getType() == XmlRpcValue::TypeArray &&
-         response.size() >= 3 && static_cast<int>(response[0]) == 1;
+  return self.execute(method, request, response) && response.getType() == XmlRpcValue::TypeArray && response.size() >= 3 &&
+         static_cast<int>(response[0]) == 1;
 }
 
 /** [topic, type] pairs this process publishes or subscribes (roscpp keeps its lists private;

@@ -37,8 +37,8 @@ class MasterWatch {
 
   std::function<void()> registered_again_;
   double period_;
-  std::string service_api_;         // where this process's services answer (rosrpc://host:port)
-  std::string run_id_;              // of the master last seen; "" if it had none yet
+  std::string service_api_;  // where this process's services answer (rosrpc://host:port)
+  std::string run_id_;  // of the master last seen; "" if it had none yet
   std::set<std::string> services_;  // this node's, as masters listed them, while still offered
   std::mutex mutex_;
   std::condition_variable wake_;

@@ -21,10 +21,14 @@ namespace {
 
 ros::console::Level rosLevel(LogLevel level) {
   switch (level) {
-    case LogLevel::Debug: return ros::console::levels::Debug;
-    case LogLevel::Info: return ros::console::levels::Info;
-    case LogLevel::Warn: return ros::console::levels::Warn;
-    case LogLevel::Error: break;
+    case LogLevel::Debug:
+      return ros::console::levels::Debug;
+    case LogLevel::Info:
+      return ros::console::levels::Info;
+    case LogLevel::Warn:
+      return ros::console::levels::Warn;
+    case LogLevel::Error:
+      break;
   }
   return ros::console::levels::Error;
 }

@@ -35,8 +35,7 @@ std::vector<std::string> configuredRoots(const ros::NodeHandle& pnh) {
 std::string ownFolder() {
   const char* ros_home = std::getenv("ROS_HOME");
   const char* home = std::getenv("HOME");
-  const std::string folder =
-      (ros_home && *ros_home ? std::string(ros_home) : std::string(home ? home : "") + "/.ros") + "/apex";
+  const std::string folder = (ros_home && *ros_home ? std::string(ros_home) : std::string(home ? home : "") + "/.ros") + "/apex";
   std::error_code ec;
   std::filesystem::create_directories(folder, ec);
   return folder;
@@ -60,8 +59,8 @@ FileRoots launchRoots(const ros::NodeHandle& pnh, const LaunchFolders& launch) {
   if (const std::string package = packagePath("apex"); !package.empty()) read_only.push_back(package + "/graphs");
   const std::string param = pnh.resolveName("file_roots");
   return FileRoots(writable, packagePath).readOnly(read_only).hint([param](const std::string& folder) {
-    return "; to allow it, add its folder to the parameter " + param + " (roslaunch apex runtime.launch file_roots:=" +
-           folder + ")";
+    return "; to allow it, add its folder to the parameter " + param + " (roslaunch apex runtime.launch file_roots:=" + folder +
+           ")";
   });
 }
 
@@ -86,8 +85,8 @@ std::shared_ptr<const Manifest> specOf(const NodeRegistry& types, const NodeDesc
   return nullptr;
 }
 
-Result<std::string> pathValue(const std::shared_ptr<const Manifest>& iface, const std::string& node,
-                              const std::string& param, const std::string& text, const FileRoots& roots, bool confined) {
+Result<std::string> pathValue(const std::shared_ptr<const Manifest>& iface, const std::string& node, const std::string& param,
+                              const std::string& text, const FileRoots& roots, bool confined) {
   const ParamSpec* spec = iface ? iface->findParam(param) : nullptr;
   if (!spec || spec->kind != ParamKind::Path) return text;  // the graph names the unknown node, type or parameter
   auto value = spec->parse(text);
@@ -117,7 +116,8 @@ void pathFolders(const NodeRegistry& types, const GraphDescription& g, LaunchFol
       auto value = spec->parse(text);
       const std::string path = value ? std::get<std::string>(value.value()) : "";
       if (path.empty()) continue;
-      const std::string folder = spec->path_mode == PathMode::Directory ? path : std::filesystem::path(path).parent_path().string();
+      const std::string folder =
+          spec->path_mode == PathMode::Directory ? path : std::filesystem::path(path).parent_path().string();
       (spec->path_mode == PathMode::Read ? folders.read_only : folders.writable).push_back(folder);
     }
   }

@@ -39,8 +39,8 @@ std::shared_ptr<const Manifest> specOf(const NodeRegistry& types, const NodeDesc
  *  `confined` (from a service): inside `roots` and what its mode needs (a bag to read must exist),
  *  else an error naming node and parameter. Trusted (the launch's): `~`, package:// and $(find)
  *  expanded wherever the file is. Other parameters, and values the node will refuse, as given. */
-Result<std::string> pathValue(const std::shared_ptr<const Manifest>& iface, const std::string& node,
-                              const std::string& param, const std::string& text, const FileRoots& roots, bool confined);
+Result<std::string> pathValue(const std::shared_ptr<const Manifest>& iface, const std::string& node, const std::string& param,
+                              const std::string& text, const FileRoots& roots, bool confined);
 
 /** @brief pathValue() for every parameter of a description. */
 Status resolvePaths(const NodeRegistry& types, NodeDescription& d, const FileRoots& roots, bool confined);

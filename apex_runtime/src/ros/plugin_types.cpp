@@ -6,11 +6,9 @@ namespace ros_host {
 PluginTypes::PluginTypes(std::vector<std::string> extra_xml) {
   try {
     loaders_.push_back(std::make_unique<Loader>("apex", "apex::NodeLibrary"));
-    if (!extra_xml.empty())
-      loaders_.push_back(std::make_unique<Loader>("apex", "apex::NodeLibrary", "plugin", extra_xml));
+    if (!extra_xml.empty()) loaders_.push_back(std::make_unique<Loader>("apex", "apex::NodeLibrary", "plugin", extra_xml));
   } catch (const pluginlib::PluginlibException& e) {
-    errors_.push_back(std::string("cannot search for APEX node libraries: ") + e.what() +
-                      " (is the devel space sourced?)");
+    errors_.push_back(std::string("cannot search for APEX node libraries: ") + e.what() + " (is the devel space sourced?)");
   }
 }
 

@@ -26,22 +26,30 @@ enum class Field { Bool, Int, Double, Str };
 
 Field fieldOf(const ParamSpec& p) {
   switch (p.kind) {
-    case ParamKind::Bool: return Field::Bool;
+    case ParamKind::Bool:
+      return Field::Bool;
     case ParamKind::Int:
-    case ParamKind::IntRange: return Field::Int;
+    case ParamKind::IntRange:
+      return Field::Int;
     case ParamKind::Double:
     case ParamKind::DoubleRange:
-    case ParamKind::Angle: return Field::Double;
-    default: return Field::Str;
+    case ParamKind::Angle:
+      return Field::Double;
+    default:
+      return Field::Str;
   }
 }
 
 const char* typeName(Field f) {
   switch (f) {
-    case Field::Bool: return "bool";
-    case Field::Int: return "int";
-    case Field::Double: return "double";
-    default: return "str";
+    case Field::Bool:
+      return "bool";
+    case Field::Int:
+      return "int";
+    case Field::Double:
+      return "double";
+    default:
+      return "str";
   }
 }
 
@@ -84,13 +92,14 @@ void put(Config& c, const ParamSpec& p, const ParamValue& value) {
 ParamValue bound(const ParamSpec& p, bool upper) {
   const double limit = upper ? p.max : p.min;
   switch (fieldOf(p)) {
-    case Field::Bool: return upper;
+    case Field::Bool:
+      return upper;
     case Field::Int:
-      return bounded(p) ? static_cast<int>(limit)
-                        : (upper ? std::numeric_limits<int>::max() : std::numeric_limits<int>::min());
+      return bounded(p) ? static_cast<int>(limit) : (upper ? std::numeric_limits<int>::max() : std::numeric_limits<int>::min());
     case Field::Double:
       return bounded(p) ? limit : (upper ? 1.0 : -1.0) * std::numeric_limits<double>::infinity();
-    default: return std::string();
+    default:
+      return std::string();
   }
 }
 
@@ -108,8 +117,8 @@ std::string pythonString(const std::string& s) {
 std::string enumOf(const ParamSpec& p) {
   std::string items;
   for (const auto& o : p.options) {
-    items += std::string(items.empty() ? "" : ", ") + "{'name': " + pythonString(o) + ", 'type': 'str', 'value': " +
-             pythonString(o) + ", 'description': " + pythonString(o) +
+    items += std::string(items.empty() ? "" : ", ") + "{'name': " + pythonString(o) +
+             ", 'type': 'str', 'value': " + pythonString(o) + ", 'description': " + pythonString(o) +
              ", 'srcline': 0, 'srcfile': '', 'cconsttype': 'const char * const', 'ctype': 'std::string'}";
   }
   return "{'enum': [" + items + "], 'enum_description': " + pythonString(p.description) + "}";
@@ -177,8 +186,7 @@ struct Reconfigure::Server {
   std::string described, valued;  // what was last published
 };
 
-Reconfigure::Reconfigure(ros::NodeHandle pnh, Graph& graph, Setter set)
-    : pnh_(pnh), graph_(graph), set_(std::move(set)) {}
+Reconfigure::Reconfigure(ros::NodeHandle pnh, Graph& graph, Setter set) : pnh_(pnh), graph_(graph), set_(std::move(set)) {}
 
 Reconfigure::~Reconfigure() = default;
 
@@ -199,12 +207,12 @@ void Reconfigure::update(const GraphState& state) {
         server->descriptions = nh.advertise<ConfigDescription>("parameter_descriptions", 1, true);
         server->updates = nh.advertise<Config>("parameter_updates", 1, true);
         const std::string name = node.name;
-        server->service = nh.advertiseService<dynamic_reconfigure::Reconfigure::Request,
-                                              dynamic_reconfigure::Reconfigure::Response>(
-            "set_parameters", [this, name](dynamic_reconfigure::Reconfigure::Request& req,
-                                           dynamic_reconfigure::Reconfigure::Response& res) {
-              return setParameters(name, req.config, res.config);
-            });
+        server->service =
+            nh.advertiseService<dynamic_reconfigure::Reconfigure::Request, dynamic_reconfigure::Reconfigure::Response>(
+                "set_parameters",
+                [this, name](dynamic_reconfigure::Reconfigure::Request& req, dynamic_reconfigure::Reconfigure::Response& res) {
+                  return setParameters(name, req.config, res.config);
+                });
       } catch (const ros::InvalidNameException& e) {
         ROS_WARN_STREAM_NAMED("apex", nodeLabel(node.name) << ": no dynamic_reconfigure server: " << e.what());
         continue;
@@ -240,8 +248,7 @@ bool Reconfigure::setParameters(const std::string& node, const Config& request, 
     auto old = graph_.parameterValue(node, param);
     auto done = set_(node, param, text);
     if (!done) {
-      for (auto it = before.rbegin(); it != before.rend(); ++it)
-        (void)graph_.setParameter(node, it->first, toText(it->second));
+      for (auto it = before.rbegin(); it != before.rend(); ++it) (void)graph_.setParameter(node, it->first, toText(it->second));
       ROS_WARN_STREAM_NAMED("apex", "dynamic_reconfigure of '" << node << "' refused: " << done.message());
       throw std::invalid_argument(done.message());  // roscpp answers with this text as the error
     }

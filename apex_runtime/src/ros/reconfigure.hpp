@@ -27,8 +27,8 @@ class Reconfigure {
  public:
   /** Sets one parameter from YAML text as the `set_parameter` service does (paths confined,
    *  the change published); the applied value's text, or why not. */
-  using Setter = std::function<Result<std::string>(const std::string& node, const std::string& param,
-                                                   const std::string& yaml_text)>;
+  using Setter =
+      std::function<Result<std::string>(const std::string& node, const std::string& param, const std::string& yaml_text)>;
 
   Reconfigure(ros::NodeHandle pnh, Graph& graph, Setter set);
   ~Reconfigure();
@@ -44,8 +44,7 @@ class Reconfigure {
   struct Server;
   /** A `set_parameters` call: every value or none (a refused one puts back those set before it and
    *  is thrown, so roscpp answers with its message); `applied` gets all the node's values. */
-  bool setParameters(const std::string& node, const dynamic_reconfigure::Config& request,
-                     dynamic_reconfigure::Config& applied);
+  bool setParameters(const std::string& node, const dynamic_reconfigure::Config& request, dynamic_reconfigure::Config& applied);
 
   ros::NodeHandle pnh_;
   Graph& graph_;

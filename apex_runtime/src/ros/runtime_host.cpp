@@ -23,7 +23,6 @@
 #include <apex/SetUi.h>
 #include <apex/Ungroup.h>
 
-
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -73,8 +72,7 @@ struct RuntimeHost::Impl {
   std::mutex publish_mutex;
   std::uint64_t published_revision = ~0ull;
 
-  Impl(ros::NodeHandle n, ros::NodeHandle p)
-      : nh(n), pnh(p), graph(NodeRegistry()), inspection(pnh), mirror(pnh) {
+  Impl(ros::NodeHandle n, ros::NodeHandle p) : nh(n), pnh(p), graph(NodeRegistry()), inspection(pnh), mirror(pnh) {
     graph.setHost(std::make_shared<RosHost>(nh, pnh));  // nodes' topics: in our namespace, with our remappings
   }
 
@@ -156,7 +154,8 @@ struct RuntimeHost::Impl {
       auto type = graph.registry().lookup(d.type);
       if (!type) return answered(res, type.status());
       d.type = type.value()->id;
-      for (const auto& p : type.value()->manifest->params) if (p.interactive) d.interactive.push_back(p.name);
+      for (const auto& p : type.value()->manifest->params)
+        if (p.interactive) d.interactive.push_back(p.name);
     }
     if (auto st = confine(d); !st) return answered(res, st);
     auto added = graph.addNode(d);
@@ -230,9 +229,7 @@ struct RuntimeHost::Impl {
     }
     return answered(res, st);
   }
-  bool fireSlot(FireSlot::Request& req, FireSlot::Response& res) {
-    return answered(res, graph.fireSlot(req.node, req.slot));
-  }
+  bool fireSlot(FireSlot::Request& req, FireSlot::Response& res) { return answered(res, graph.fireSlot(req.node, req.slot)); }
 
   bool getGraph(GetGraph::Request&, GetGraph::Response& res) {
     res.graph = toGraphState(graph, graph.revision());
@@ -360,12 +357,12 @@ struct RuntimeHost::Impl {
     pnh.param("dynamic_reconfigure", reconfigurable, true);
     pnh.param("diagnostics", diagnosed, true);
     if (reconfigurable)
-      reconfigure = std::make_unique<Reconfigure>(pnh, graph, [this](const std::string& node, const std::string& param,
-                                                                     const std::string& text) {
-        auto applied = setFromOutside(node, param, text);
-        publishIfChanged();  // parameter_updates, ~graph
-        return applied;
-      });
+      reconfigure = std::make_unique<Reconfigure>(
+          pnh, graph, [this](const std::string& node, const std::string& param, const std::string& text) {
+            auto applied = setFromOutside(node, param, text);
+            publishIfChanged();  // parameter_updates, ~graph
+            return applied;
+          });
     if (diagnosed) diagnostics = std::make_unique<Diagnostics>(nh, pnh, graph);
     change_timer = pnh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) { publishIfChanged(); });
     status_timer = pnh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
@@ -421,16 +418,21 @@ struct RuntimeHost::Impl {
   /** A parameter-server value as YAML text. */
   static std::string yamlText(XmlRpc::XmlRpcValue& v) {
     switch (v.getType()) {
-      case XmlRpc::XmlRpcValue::TypeBoolean: return bool(v) ? "true" : "false";
-      case XmlRpc::XmlRpcValue::TypeInt: return std::to_string(int(v));
-      case XmlRpc::XmlRpcValue::TypeDouble: return toText(double(v));
-      case XmlRpc::XmlRpcValue::TypeString: return yamlQuoted(std::string(v));
+      case XmlRpc::XmlRpcValue::TypeBoolean:
+        return bool(v) ? "true" : "false";
+      case XmlRpc::XmlRpcValue::TypeInt:
+        return std::to_string(int(v));
+      case XmlRpc::XmlRpcValue::TypeDouble:
+        return toText(double(v));
+      case XmlRpc::XmlRpcValue::TypeString:
+        return yamlQuoted(std::string(v));
       case XmlRpc::XmlRpcValue::TypeArray: {
         std::string out = "[";
         for (int i = 0; i < v.size(); ++i) out += (i ? ", " : "") + yamlText(v[i]);
         return out + "]";
       }
-      default: return "~";
+      default:
+        return "~";
     }
   }
 };
@@ -440,7 +442,7 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
   for (auto& s : serveLoggerServices(impl_->pnh)) impl_->services.push_back(std::move(s));
   impl_->loadTypes();
   impl_->loadStartupGraph();  // trusted, like ~overrides: the operator's own launch file
-  impl_->loadRoots();         // its folders among them
+  impl_->loadRoots();  // its folders among them
   impl_->graph.start();
   impl_->advertise();
   impl_->publishIfChanged();

@@ -133,7 +133,7 @@ class GraphEditor : public QWidget {
   QLineEdit* namespace_;
   QLineEdit* search_;
   QLineEdit* find_ = nullptr;  ///< finds nodes on the canvas by name or type
-  int found_ = -1;             ///< the match shown last
+  int found_ = -1;  ///< the match shown last
   QListWidget* palette_;
   QLabel* message_;
   QLabel* connection_;

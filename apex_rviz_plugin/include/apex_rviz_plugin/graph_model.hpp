@@ -34,8 +34,8 @@ inline constexpr const char* kOptimizerType = "apex_nodes/Optimizer";
 struct Call {
   std::string service;  ///< e.g. "add_node", "connect", "disconnect"
   std::variant<apex::AddNode::Request, apex::RemoveNode::Request, apex::Connect::Request, apex::SetParameter::Request,
-               apex::SetEnabled::Request, apex::SetInteractive::Request, apex::SetThreadGroup::Request,
-               apex::SetUi::Request, apex::Group::Request, apex::Ungroup::Request, apex::RenameNode::Request>
+               apex::SetEnabled::Request, apex::SetInteractive::Request, apex::SetThreadGroup::Request, apex::SetUi::Request,
+               apex::Group::Request, apex::Ungroup::Request, apex::RenameNode::Request>
       request;
   /** connect only: restoring a connection that may still be there (undo of an edit that may
    *  have dropped it); "already connected" is then success. */
@@ -47,9 +47,9 @@ struct Edit {
   Edit() = default;
   Edit(std::string label, std::vector<Call> apply, std::vector<Call> revert)
       : label(std::move(label)), apply(std::move(apply)), revert(std::move(revert)) {}
-  std::string label;           ///< for a menu: "Add gaussian_blur_1"
-  std::vector<Call> apply;     ///< redo: the calls in order
-  std::vector<Call> revert;    ///< undo: the calls in order
+  std::string label;  ///< for a menu: "Add gaussian_blur_1"
+  std::vector<Call> apply;  ///< redo: the calls in order
+  std::vector<Call> revert;  ///< undo: the calls in order
   /** Edits of one gesture share a key ("node/param" for a slider): an open edit (a drag going
    *  on) takes the next one of its key into the same undo step. */
   std::string merge_key;
@@ -59,7 +59,7 @@ struct Edit {
 /** @brief A parameter whose value differs from a preset's. */
 struct PresetChange {
   std::string node, param;
-  std::string now;   ///< "" if the node or parameter is no longer there
+  std::string now;  ///< "" if the node or parameter is no longer there
   std::string then;  ///< as the preset has it
 };
 
@@ -75,7 +75,10 @@ class GraphModel {
   /** @brief Takes a ~graph message; false (and no change) if its revision is not newer. */
   bool update(const apex::GraphState& graph);
   /** @brief Forgets the graph: the next update is taken whatever its revision (a restarted runtime). */
-  void reset() { has_graph_ = false; graph_ = apex::GraphState(); }
+  void reset() {
+    has_graph_ = false;
+    graph_ = apex::GraphState();
+  }
   bool hasGraph() const { return has_graph_; }
   const apex::GraphState& graph() const { return graph_; }
 
@@ -125,8 +128,7 @@ class GraphModel {
   std::optional<Edit> rename(const std::string& node, const std::string& new_name) const;
   std::optional<Edit> move(const std::string& node, double x, double y) const;
   /** @brief Nodes moved to new positions (name -> x, y) as one edit, e.g. "Tidy". */
-  std::optional<Edit> arrange(const std::map<std::string, std::pair<double, double>>& positions,
-                              const std::string& label) const;
+  std::optional<Edit> arrange(const std::map<std::string, std::pair<double, double>>& positions, const std::string& label) const;
   /** @brief `nodes` (of one level) as graph file text, for the clipboard: types, parameters,
    *  ports shown, enabled, groups, positions (from `shown_at` where it has them: where the panel
    *  shows the boxes) and the connections among them. An inline
@@ -163,8 +165,8 @@ class GraphModel {
    *  and those the Optimizer node in the graph has. Nothing for a parameter that is not an int
    *  or a double, shapes the node's ports or is linked already, an Optimizer that is not there,
    *  or a new Optimizer while its type is not known (its names are not guessed). */
-  std::optional<Edit> optimise(const std::string& node, const std::string& param, const std::string& optimizer,
-                               double x, double y, const apex::NodeTypeInfo* optimizer_type) const;
+  std::optional<Edit> optimise(const std::string& node, const std::string& param, const std::string& optimizer, double x,
+                               double y, const apex::NodeTypeInfo* optimizer_type) const;
   /** @brief The Optimizer's best values (its `best_values`) set on the parameters it tunes, as
    *  one edit; undone to the values they hold now. Nothing before it has best values, or while it runs. */
   std::optional<Edit> applyBest(const std::string& optimizer) const;

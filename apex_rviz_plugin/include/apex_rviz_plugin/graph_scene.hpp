@@ -42,7 +42,7 @@ class PortItem : public QGraphicsItem {
  protected:
   void mousePressEvent(QGraphicsSceneMouseEvent* e) override;
   void mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) override;  ///< on an output: inspect it
-  void hoverEnterEvent(QGraphicsSceneHoverEvent* e) override;         ///< the tooltip, with what it carried last
+  void hoverEnterEvent(QGraphicsSceneHoverEvent* e) override;  ///< the tooltip, with what it carried last
 
  private:
   apex::PortInfo port_;
@@ -73,8 +73,14 @@ class NodeItem : public QGraphicsObject {
   /** @brief What the output's last previewed message was (e.g. an image's real size). */
   void showAbout(const QString& port, const QString& text) { abouts_[port.toStdString()] = text; }
   /** @brief The last preview image of an output, and the last values of a numeric one. */
-  QImage image(const std::string& port) const { auto it = images_.find(port); return it == images_.end() ? QImage() : it->second; }
-  std::size_t samples(const std::string& port) const { auto it = series_.find(port); return it == series_.end() ? 0 : it->second.size(); }
+  QImage image(const std::string& port) const {
+    auto it = images_.find(port);
+    return it == images_.end() ? QImage() : it->second;
+  }
+  std::size_t samples(const std::string& port) const {
+    auto it = series_.find(port);
+    return it == series_.end() ? 0 : it->second.size();
+  }
   /** @brief Full detail (port labels, widgets, timing), or, zoomed out, the name large alone. */
   void setDetail(bool full);
   bool detailed() const { return detail_; }
@@ -141,9 +147,9 @@ class NodeItem : public QGraphicsObject {
   int evaluations_ = 0;
   bool previews_ = false;
   bool detail_ = true;
-  double preview_top_ = 0;                          // where the previews start in the box
-  std::map<std::string, QImage> images_;            // previews: the last thumbnail per output
-  std::map<std::string, QString> abouts_;           // previews: what the last message was per output
+  double preview_top_ = 0;  // where the previews start in the box
+  std::map<std::string, QImage> images_;  // previews: the last thumbnail per output
+  std::map<std::string, QString> abouts_;  // previews: what the last message was per output
   std::map<std::string, std::vector<double>> series_;  // previews: the last values per output
   double rate_hz_ = 0;
   double width_ = kMinWidth, height_ = 60;

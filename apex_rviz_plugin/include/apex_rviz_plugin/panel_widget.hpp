@@ -152,7 +152,7 @@ class PanelWidget : public QWidget {
   std::set<std::pair<std::string, std::string>> inspected_;  // (node, port) asked for by the person
   std::map<std::string, Box> sizes_;  // the boxes when the graph was shown last
   std::uint64_t untangle_from_ = 0;  // a loaded graph's revision: lay it out when it is shown
-  int placements_sent_ = 0;          // counts place() calls
+  int placements_sent_ = 0;  // counts place() calls
   std::map<std::string, Box> placing_;  // where nodes were sent, until the graph shows them there
   bool previews_ = false;
   QTimer* preview_timer_ = nullptr;

@@ -48,7 +48,7 @@ class ParamEditor : public QWidget {
 
   apex::ParamInfo param_;
   std::function<void(const std::string&)> show_;  ///< puts a YAML value into the widgets
-  bool updating_ = false;                         ///< true while show_ runs: no signals out
+  bool updating_ = false;  ///< true while show_ runs: no signals out
   QTimer throttle_;
   QString pending_;
   bool drag_sent_ = false;  ///< values went out during the drag: its release must end it

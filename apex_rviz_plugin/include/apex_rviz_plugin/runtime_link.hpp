@@ -55,8 +55,7 @@ class RuntimeLink : public QObject {
   void fireSlot(const std::string& node, const std::string& slot, Done done);
   /** @brief Asks the runtime to publish a port; `done` gets the topic and its message type. */
   void inspect(const std::string& node, const std::string& port,
-               std::function<void(bool, const std::string& message, const std::string& topic,
-                                  const std::string& type)> done,
+               std::function<void(bool, const std::string& message, const std::string& topic, const std::string& type)> done,
                bool preview = false);
   /** @brief Shows a port's previews (inspect with preview) as they come: images as
    *  imageReceived (with what each was, e.g. its real size, as aboutReceived), numbers as
@@ -68,14 +67,14 @@ class RuntimeLink : public QObject {
   }
   /** @brief Shows the values of a scalar inspection topic (std_msgs) as scalarReceived; one
    *  subscription per port (watched again, e.g. after a Load: the old one is replaced). */
-  void watchScalar(const std::string& node, const std::string& port, const std::string& topic,
-                   const std::string& type);
+  void watchScalar(const std::string& node, const std::string& port, const std::string& topic, const std::string& type);
   /** @brief Whether a scalar watched on `topic` is connected to its publisher (messages come). */
   bool receiving(const std::string& topic) const;
   std::size_t scalarWatches() const { return scalar_subs_.size(); }
   /** @brief Whether calls to runtimes left behind are still running or waiting (their answers are dropped). */
   bool callsLeftBehind() const {
-    for (const auto& j : retired_) if (!j->finished()) return true;
+    for (const auto& j : retired_)
+      if (!j->finished()) return true;
     return false;
   }
 
@@ -102,7 +101,12 @@ class RuntimeLink : public QObject {
    *  (a late answer or message from a runtime left behind is dropped). Any thread. */
   template <class F>
   void deliver(std::uint64_t gen, F fn) {
-    QMetaObject::invokeMethod(this, [this, gen, fn = std::move(fn)] { if (gen == generation_) fn(); }, Qt::QueuedConnection);
+    QMetaObject::invokeMethod(
+        this,
+        [this, gen, fn = std::move(fn)] {
+          if (gen == generation_) fn();
+        },
+        Qt::QueuedConnection);
   }
   std::string service(const std::string& name) const { return ns_ + "/" + name; }
 

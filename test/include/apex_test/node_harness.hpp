@@ -73,8 +73,7 @@ class NodeHarness {
   Message run(const std::vector<Message>& messages) {
     auto* sink = object<Collector>(graph_, "sink");
     const auto before = sink->size();
-    for (std::size_t i = 0; i < messages.size(); ++i)
-      object<MessageFeeder>(graph_, "in" + std::to_string(i))->feed(messages[i]);
+    for (std::size_t i = 0; i < messages.size(); ++i) object<MessageFeeder>(graph_, "in" + std::to_string(i))->feed(messages[i]);
     EXPECT_TRUE(sink->waitFor(before + 1)) << "the node sent nothing";
     EXPECT_TRUE(graph_.waitIdle(kWait));
     return sink->messages().back();

@@ -51,14 +51,16 @@ bool receive(ros::NodeHandle& nh, const std::string& topic, Msg& out, double tim
 inline std::uint64_t firingsOf(ros::NodeHandle& nh, const std::string& node) {
   apex::RuntimeStatus status;
   EXPECT_TRUE(receive(nh, "/apex/status", status)) << "no ~status";
-  for (const auto& n : status.nodes) if (n.name == node) return n.firings;
+  for (const auto& n : status.nodes)
+    if (n.name == node) return n.firings;
   return 0;
 }
 
 /** Whether `node` keeps firing: a later ~status shows more firings (statuses come every 0.5 s). */
 inline bool keepsFiring(ros::NodeHandle& nh, const std::string& node) {
   const auto first = firingsOf(nh, node);
-  for (int i = 0; i < 10; ++i) if (firingsOf(nh, node) > first) return true;
+  for (int i = 0; i < 10; ++i)
+    if (firingsOf(nh, node) > first) return true;
   return false;
 }
 

@@ -83,9 +83,7 @@ class Gain : public Node {
 /** Sums a and, if present, the optional b. */
 class OptionalSum : public Node {
  public:
-  static Manifest manifest() {
-    return Manifest("a + b?").input<int>("a").optionalInput<int>("b").output<int>("sum");
-  }
+  static Manifest manifest() { return Manifest("a + b?").input<int>("a").optionalInput<int>("b").output<int>("sum"); }
   void process() override {
     int s = *input<int>("a");
     if (hasInput("b")) s += *input<int>("b");

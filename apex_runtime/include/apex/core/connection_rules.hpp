@@ -23,10 +23,10 @@ struct PortView {
 
 /** @brief A node as the rules see it. */
 struct NodeView {
-  std::string type;          ///< its type id
+  std::string type;  ///< its type id
   bool placeholder = false;  ///< its type is not loaded: connections are kept as written
-  std::vector<PortView> ports;       ///< inputs, outputs, slots, triggers, and both ports of each interactive parameter
-  std::vector<std::string> params;   ///< every parameter, interactive or not
+  std::vector<PortView> ports;  ///< inputs, outputs, slots, triggers, and both ports of each interactive parameter
+  std::vector<std::string> params;  ///< every parameter, interactive or not
 };
 
 /** @brief What the rules ask of a graph. */

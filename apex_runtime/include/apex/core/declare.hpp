@@ -29,7 +29,7 @@ class ParamDecl;
 namespace param {
 ParamDecl<std::string> choice(std::string name, std::vector<std::string> options);
 ParamDecl<double> angle(std::string name);
-}
+}  // namespace param
 
 /** @brief An input carrying T. `optional`: ignored while unconnected, may receive Nothing. */
 template <class T>
@@ -162,9 +162,7 @@ inline ParamDecl<std::string> path(std::string name) { return {std::move(name), 
 inline ParamDecl<Interval> interval(std::string name) { return {std::move(name), ParamKind::Interval, Interval{}}; }
 inline ParamDecl<Color> color(std::string name) { return {std::move(name), ParamKind::Color, Color{}}; }
 inline ParamDecl<Pair> pair(std::string name) { return {std::move(name), ParamKind::Pair, Pair{}}; }
-inline ParamDecl<std::vector<double>> list(std::string name) {
-  return {std::move(name), ParamKind::List, std::vector<double>()};
-}
+inline ParamDecl<std::vector<double>> list(std::string name) { return {std::move(name), ParamKind::List, std::vector<double>()}; }
 inline ParamDecl<std::vector<std::string>> textList(std::string name) {
   return {std::move(name), ParamKind::TextList, std::vector<std::string>()};
 }

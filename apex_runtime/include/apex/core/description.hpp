@@ -17,16 +17,16 @@ struct GraphDescription;
 struct NodeDescription {
   std::string name, type;
   std::vector<std::pair<std::string, std::string>> parameters;  ///< name → YAML text, declaration order
-  std::vector<std::string> interactive;                         ///< parameters with ports: the exact set
+  std::vector<std::string> interactive;  ///< parameters with ports: the exact set
   bool enabled = true;
   std::string thread_group = "default";
-  std::string ui;                ///< free-form front-end metadata, YAML flow text ("" if none)
-  bool placeholder = false;      ///< type unknown here: kept and written back unchanged
-  std::string error;             ///< current error (state, not saved)
+  std::string ui;  ///< free-form front-end metadata, YAML flow text ("" if none)
+  bool placeholder = false;  ///< type unknown here: kept and written back unchanged
+  std::string error;  ///< current error (state, not saved)
   /** The instance's ports (state, not saved): its type's manifest, or what the type's
    *  interface function made of it for these parameters; nullptr for placeholders. */
   std::shared_ptr<const Manifest> interface;
-  int line = 0;                  ///< where it was read from, for messages (0: not from a file)
+  int line = 0;  ///< where it was read from, for messages (0: not from a file)
   /** A subgraph instance (type kSubgraphType): its inner graph, with its exports; `parameters`
    *  and `interactive` then name exported parameters. nullptr for ordinary nodes. */
   std::shared_ptr<const GraphDescription> subgraph;
@@ -73,7 +73,7 @@ struct GraphDescription {
 /** @brief Profiling of one node; times in nanoseconds. */
 struct NodeStats {
   std::string name;
-  std::uint64_t firings = 0;          ///< firings that took or sent a message: frames
+  std::uint64_t firings = 0;  ///< firings that took or sent a message: frames
   std::uint64_t nothing_firings = 0;  ///< firings that only passed Nothing (not in the rate or times)
   std::uint64_t last_ns = 0, mean_ns = 0, max_ns = 0;
   std::string error;

@@ -38,8 +38,8 @@ class FileRoots {
 
   /** @brief The absolute path `path` names — `package://pkg/x`, `$(find pkg)/x` and `~/x`
    *  understood, a relative path taken inside the first writable root, `..` and symlinks
-   *  resolved (a `..` after a folder that does not exist is refused) — if `access` is allowed there; otherwise an error naming the path, the roots and
-   *  how to allow it. Touches nothing on disk but reading links. */
+   *  resolved (a `..` after a folder that does not exist is refused) — if `access` is allowed there; otherwise an error naming
+   * the path, the roots and how to allow it. Touches nothing on disk but reading links. */
   Result<std::string> resolve(const std::string& path, Access access = Access::Read) const;
 
   /** @brief resolve(), and what `mode` needs: Read an existing regular file, Write a regular

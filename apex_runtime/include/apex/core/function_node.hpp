@@ -34,8 +34,7 @@ struct IsTuple<std::tuple<T...>> : std::true_type {};
 
 /** The outputs as a tuple type: void → (), T → (T), tuple<T...> → (T...). */
 template <class R>
-using OutputsOf = std::conditional_t<std::is_void_v<R>, std::tuple<>,
-                                     std::conditional_t<IsTuple<R>::value, R, std::tuple<R>>>;
+using OutputsOf = std::conditional_t<std::is_void_v<R>, std::tuple<>, std::conditional_t<IsTuple<R>::value, R, std::tuple<R>>>;
 
 template <class Tuple, class F, std::size_t... I>
 void forEachType(F&& f, std::index_sequence<I...>) {
@@ -71,8 +70,7 @@ class FunctionNode : public Node {
     if constexpr (std::is_void_v<typename Sig::Return>) {
       fn_(*input<std::tuple_element_t<I, Args>>(in_[I])...);
     } else if constexpr (detail::IsTuple<typename Sig::Return>::value) {
-      publishAll(fn_(*input<std::tuple_element_t<I, Args>>(in_[I])...),
-                 std::make_index_sequence<std::tuple_size_v<Outs>>{});
+      publishAll(fn_(*input<std::tuple_element_t<I, Args>>(in_[I])...), std::make_index_sequence<std::tuple_size_v<Outs>>{});
     } else {
       publish(out_[0], fn_(*input<std::tuple_element_t<I, Args>>(in_[I])...));
     }
@@ -94,17 +92,18 @@ Status registerFunction(NodeRegistry& registry, const std::string& id, Fn fn, st
   using Sig = detail::Signature<std::decay_t<Fn>>;
   constexpr std::size_t kIn = std::tuple_size_v<typename Sig::Args>;
   constexpr std::size_t kOut = std::tuple_size_v<detail::OutputsOf<typename Sig::Return>>;
-  if (inputs.empty()) for (std::size_t i = 0; i < kIn; ++i) inputs.push_back("in" + std::to_string(i));
-  if (outputs.empty()) for (std::size_t i = 0; i < kOut; ++i) outputs.push_back("out" + std::to_string(i));
+  if (inputs.empty())
+    for (std::size_t i = 0; i < kIn; ++i) inputs.push_back("in" + std::to_string(i));
+  if (outputs.empty())
+    for (std::size_t i = 0; i < kOut; ++i) outputs.push_back("out" + std::to_string(i));
   if (inputs.size() != kIn || outputs.size() != kOut) {
     return Status::error("function node '" + id + "': the function has " + std::to_string(kIn) + " inputs and " +
                          std::to_string(kOut) + " outputs, but " + std::to_string(inputs.size()) + " and " +
                          std::to_string(outputs.size()) + " names were given");
   }
   Manifest m = FunctionNode<Fn>::manifest(std::move(description), inputs, outputs);
-  return registry.add(id, std::move(m), [fn, inputs, outputs] {
-    return std::unique_ptr<Node>(new FunctionNode<Fn>(fn, inputs, outputs));
-  });
+  return registry.add(id, std::move(m),
+                      [fn, inputs, outputs] { return std::unique_ptr<Node>(new FunctionNode<Fn>(fn, inputs, outputs)); });
 }
 
 }  // namespace apex

@@ -43,8 +43,7 @@ class Graph {
   // --- edits: each returns why it was refused; a refused edit changes nothing ---
   /** @brief Adds a node of a registered type. An empty name is generated from the
    *  type; an empty group means "default"; a new group is created. Returns the name. */
-  Result<std::string> addNode(const std::string& type, const std::string& name = "",
-                              const std::string& thread_group = "");
+  Result<std::string> addNode(const std::string& type, const std::string& name = "", const std::string& thread_group = "");
   /** @brief Adds a node with the settings of a description (parameters, interactive set,
    *  enabled, group, UI), all or nothing: if one setting is refused, no node is added.
    *  A description of type kSubgraphType adds a subgraph: its inner nodes, connections and

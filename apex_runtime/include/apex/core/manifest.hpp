@@ -35,7 +35,7 @@ struct EventSpec {
 /** @brief How a node without inputs is scheduled. */
 enum class SourceMode {
   FreeRunning,  ///< fires whenever its outputs are free
-  Driven,       ///< fires only after notifyNewData(): an outside callback has data
+  Driven,  ///< fires only after notifyNewData(): an outside callback has data
 };
 
 struct Manifest;

@@ -13,7 +13,7 @@ namespace apex {
 
 /** @brief A port or message type: one instance per C++ type in the process. */
 struct TypeInfo {
-  std::string name;       ///< readable, e.g. "int", "cv::Mat"
+  std::string name;  ///< readable, e.g. "int", "cv::Mat"
   std::type_index index;  ///< the C++ type
 };
 
@@ -99,10 +99,10 @@ class Message {
 }  // namespace apex
 
 /** Give a type a readable name: APEX_TYPE_NAME(cv::Mat, "cv::Mat") at namespace scope. */
-#define APEX_TYPE_NAME(Type, Name)                 \
-  template <>                                      \
-  struct apex::TypeName<Type> {                    \
-    static std::string get() { return Name; }      \
+#define APEX_TYPE_NAME(Type, Name)            \
+  template <>                                 \
+  struct apex::TypeName<Type> {               \
+    static std::string get() { return Name; } \
   }
 
 APEX_TYPE_NAME(bool, "bool");

@@ -25,14 +25,14 @@ class Node;
 /** @brief A parameter input that one of a node's outputs feeds (Node::parameterTargets). */
 struct ParamTarget {
   std::string node;  ///< the receiving node's name
-  ParamSpec spec;    ///< its parameter's declaration (name, kind, range, step)
+  ParamSpec spec;  ///< its parameter's declaration (name, kind, range, step)
   ParamValue value;  ///< the value it holds now
 };
 namespace detail {
 class NodeState;
 /** Resolves every typed handle of `node` against `iface`; the first error, naming the handle. */
 Status resolveHandles(Node& node, const Manifest& iface);
-}
+}  // namespace detail
 
 /** @brief What the program hosting a graph offers its nodes, e.g. the ROS runtime's node
  *  handles (apex/ros/node_handles.hpp). The core only passes it on. */

@@ -33,7 +33,22 @@ struct Color {
 using ParamValue =
     std::variant<bool, int, double, std::string, Interval, Pair, Color, std::vector<double>, std::vector<std::string>>;
 
-enum class ParamKind { Bool, Int, Double, String, IntRange, DoubleRange, Interval, Set, Angle, Path, Color, Pair, List, TextList };
+enum class ParamKind {
+  Bool,
+  Int,
+  Double,
+  String,
+  IntRange,
+  DoubleRange,
+  Interval,
+  Set,
+  Angle,
+  Path,
+  Color,
+  Pair,
+  List,
+  TextList
+};
 enum class PathMode { Read, Write, Directory };
 
 /** @brief A parameter's declaration: what a node type says about one parameter. */
@@ -42,24 +57,39 @@ struct ParamSpec {
   ParamKind kind = ParamKind::Int;
   ParamValue default_value;
   std::string description;
-  double min = 0, max = 0, step = 0;   ///< ranges, intervals, angles
-  std::vector<std::string> options;    ///< sets
-  PathMode path_mode = PathMode::Read; ///< paths
-  bool interactive = false;            ///< gets ports by default
-  bool file_name = false;              ///< strings: a single file name, never a path (no '/', not "." or "..")
-  bool shapes_interface = false;       ///< a change may change the node's ports (Manifest::shapedBy)
-  bool every_set = false;              ///< parameterChanged() on every set, even to the same value
+  double min = 0, max = 0, step = 0;  ///< ranges, intervals, angles
+  std::vector<std::string> options;  ///< sets
+  PathMode path_mode = PathMode::Read;  ///< paths
+  bool interactive = false;  ///< gets ports by default
+  bool file_name = false;  ///< strings: a single file name, never a path (no '/', not "." or "..")
+  bool shapes_interface = false;  ///< a change may change the node's ports (Manifest::shapedBy)
+  bool every_set = false;  ///< parameterChanged() on every set, even to the same value
 
-  ParamSpec& describe(std::string text) { description = std::move(text); return *this; }
-  ParamSpec& makeInteractive(bool on = true) { interactive = on; return *this; }
+  ParamSpec& describe(std::string text) {
+    description = std::move(text);
+    return *this;
+  }
+  ParamSpec& makeInteractive(bool on = true) {
+    interactive = on;
+    return *this;
+  }
   /** @brief A string that names a file inside a folder given elsewhere: it cannot carry a path out of it. */
-  ParamSpec& fileName() { file_name = true; return *this; }
+  ParamSpec& fileName() {
+    file_name = true;
+    return *this;
+  }
   /** @brief Its value decides the node's ports (Manifest::shapedBy): setting it is an edit of the
    *  node's interface, so it is set by edits only and cannot have ports itself. */
-  ParamSpec& shapesInterface() { shapes_interface = true; return *this; }
+  ParamSpec& shapesInterface() {
+    shapes_interface = true;
+    return *this;
+  }
   /** @brief Setting it is a command as well as a value (e.g. a player's frame: go there, and
    *  send it again): parameterChanged() runs on every set, also to the value it has. */
-  ParamSpec& everySet() { every_set = true; return *this; }
+  ParamSpec& everySet() {
+    every_set = true;
+    return *this;
+  }
 
   /** @brief Checks a value's type and bounds; the message names the parameter. */
   Status validate(const ParamValue& value) const;
@@ -88,8 +118,7 @@ ParamSpec range(std::string name, int min, int max, int step, int def);
 ParamSpec range(std::string name, double min, double max, double step, double def);
 ParamSpec interval(std::string name, double min, double max, double low, double high, double step = 0);
 ParamSpec options(std::string name, std::vector<std::string> options, std::string def);
-ParamSpec angle(std::string name, double def_radians, double min = -3.14159265358979323846,
-                double max = 3.14159265358979323846);
+ParamSpec angle(std::string name, double def_radians, double min = -3.14159265358979323846, double max = 3.14159265358979323846);
 ParamSpec path(std::string name, std::string def, PathMode mode = PathMode::Read);
 ParamSpec color(std::string name, int r, int g, int b);
 ParamSpec pair(std::string name, double first, double second);

@@ -41,8 +41,7 @@ class Handle {
 
  protected:
   /** `type`: the C++ type of an input or output; `holds`: whether a value has the C++ type of a Param<T>. */
-  Handle(Node* node, Of of, std::string name, const TypeInfo* type, bool (*holds)(const ParamValue&),
-         std::string cpp);
+  Handle(Node* node, Of of, std::string name, const TypeInfo* type, bool (*holds)(const ParamValue&), std::string cpp);
   ~Handle();  // leaves the node's list
   /** The index in the node's current interface; throws if the port is not in it. */
   int index() const {
@@ -105,8 +104,9 @@ template <class T>
 class Param : public Handle {
  public:
   Param(Node* node, std::string name)
-      : Handle(node, Of::Param, std::move(name), nullptr, [](const ParamValue& v) { return std::holds_alternative<T>(v); },
-               "Param<" + typeOf<T>()->name + ">") {}
+      : Handle(
+            node, Of::Param, std::move(name), nullptr, [](const ParamValue& v) { return std::holds_alternative<T>(v); },
+            "Param<" + typeOf<T>()->name + ">") {}
   Param(Node* node, const ParamDecl<T>& decl) : Param(node, decl.name()) {}
   const T& get() const { return std::get<T>(paramAt(index())); }
 };

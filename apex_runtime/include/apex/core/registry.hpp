@@ -29,8 +29,7 @@ namespace detail {
 template <class T, class = void>
 struct HasManifest : std::false_type {};
 template <class T>
-struct HasManifest<T, std::void_t<decltype(T::manifest())>>
-    : std::is_convertible<decltype(T::manifest()), Manifest> {};
+struct HasManifest<T, std::void_t<decltype(T::manifest())>> : std::is_convertible<decltype(T::manifest()), Manifest> {};
 
 /** Compile-time checks of a node class, each saying how to fix it. */
 template <class T>
@@ -39,8 +38,7 @@ struct NodeTypeChecks {
   static_assert(!std::is_abstract_v<T>, "APEX node type is abstract: implement `void process() override`");
   static_assert(std::is_default_constructible_v<T>,
                 "APEX node types need a default constructor: take settings as parameters in manifest()");
-  static_assert(HasManifest<T>::value,
-                "APEX node types declare their interface in `static apex::Manifest manifest()`");
+  static_assert(HasManifest<T>::value, "APEX node types declare their interface in `static apex::Manifest manifest()`");
   static constexpr bool value = true;
 };
 }  // namespace detail

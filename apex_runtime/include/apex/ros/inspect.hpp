@@ -63,25 +63,26 @@ Inspector findInspector(const TypeInfo* type);
 template <class T, class RosMsg, class Convert>
 bool addInspector(Convert convert) {
   return registerInspector(
-      typeOf<T>(), Inspector{ros::message_traits::datatype<RosMsg>(),
-                             [](ros::NodeHandle& nh, const std::string& topic) { return nh.advertise<RosMsg>(topic, 1); },
-                             [convert](const ros::Publisher& pub, const Message& m) {
-                               if (auto p = m.as<T>()) pub.publish(convert(*p));
-                             },
-                             nullptr,
-                             [convert](const Message& m) {
-                               namespace mt = ros::message_traits;
-                               SerializedMessage out{mt::datatype<RosMsg>(), mt::md5sum<RosMsg>(), mt::definition<RosMsg>(), {}, {}};
-                               auto p = m.as<T>();
-                               if (!p) return out;
-                               const RosMsg msg = convert(*p);
-                               out.bytes.resize(ros::serialization::serializationLength(msg));
-                               ros::serialization::OStream stream(out.bytes.data(), static_cast<std::uint32_t>(out.bytes.size()));
-                               ros::serialization::serialize(stream, msg);
-                               if (const ros::Time* stamp = mt::timeStamp(msg)) out.stamp = *stamp;
-                               return out;
-                             },
-                             nullptr});
+      typeOf<T>(),
+      Inspector{ros::message_traits::datatype<RosMsg>(),
+                [](ros::NodeHandle& nh, const std::string& topic) { return nh.advertise<RosMsg>(topic, 1); },
+                [convert](const ros::Publisher& pub, const Message& m) {
+                  if (auto p = m.as<T>()) pub.publish(convert(*p));
+                },
+                nullptr,
+                [convert](const Message& m) {
+                  namespace mt = ros::message_traits;
+                  SerializedMessage out{mt::datatype<RosMsg>(), mt::md5sum<RosMsg>(), mt::definition<RosMsg>(), {}, {}};
+                  auto p = m.as<T>();
+                  if (!p) return out;
+                  const RosMsg msg = convert(*p);
+                  out.bytes.resize(ros::serialization::serializationLength(msg));
+                  ros::serialization::OStream stream(out.bytes.data(), static_cast<std::uint32_t>(out.bytes.size()));
+                  ros::serialization::serialize(stream, msg);
+                  if (const ros::Time* stamp = mt::timeStamp(msg)) out.stamp = *stamp;
+                  return out;
+                },
+                nullptr});
 }
 
 }  // namespace apex

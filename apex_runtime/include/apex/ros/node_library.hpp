@@ -32,14 +32,13 @@ class NodeLibrary {
 
 /** Exports this library's APEX_REGISTER_NODE types as plugin apex_plugins::Name;
  *  once per library, at namespace scope, outside any namespace. */
-#define APEX_NODE_LIBRARY(Name)                                                    \
-  namespace apex_plugins {                                                         \
-  class Name : public ::apex::NodeLibrary {                                        \
-   public:                                                                         \
-    std::vector<std::shared_ptr<const ::apex::NodeType>> types() const override { \
-      return ::apex::detail::moduleTypesOrThrow(::apex::detail::moduleTypes(),     \
-                                                ::apex::detail::moduleErrors());   \
-    }                                                                              \
-  };                                                                               \
-  }                                                                                \
+#define APEX_NODE_LIBRARY(Name)                                                                                 \
+  namespace apex_plugins {                                                                                      \
+  class Name : public ::apex::NodeLibrary {                                                                     \
+   public:                                                                                                      \
+    std::vector<std::shared_ptr<const ::apex::NodeType>> types() const override {                               \
+      return ::apex::detail::moduleTypesOrThrow(::apex::detail::moduleTypes(), ::apex::detail::moduleErrors()); \
+    }                                                                                                           \
+  };                                                                                                            \
+  }                                                                                                             \
   PLUGINLIB_EXPORT_CLASS(apex_plugins::Name, apex::NodeLibrary)
