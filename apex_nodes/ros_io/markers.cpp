@@ -1,4 +1,5 @@
-// MarkerPublisher: clusters' boxes (ClusterFeatures) as visualization_msgs/MarkerArray, for rviz.
+// MarkerPublisher: clusters' boxes (ClusterFeatures), a plane's outline (a hull) and image regions'
+// rays (Regions with their camera model) as visualization_msgs/MarkerArray, for rviz.
 // Like the publishers of topic_sink.hpp it advertises at setup and when its topic changes, and
 // builds an array only while someone subscribes. Also ClusterFeatures' inspector: a port of that
 // type shows in rviz (~inspect) and is recorded (BagWriter) as the same boxes.
@@ -123,6 +124,39 @@ visualization_msgs::Marker hullMarker(const Cloud& hull, const MarkerOptions& op
   return m;
 }
 
+visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs::CameraInfo& camera,
+                                      const MarkerOptions& options) {
+  const double fx = camera.P[0], fy = camera.P[5], cx = camera.P[2], cy = camera.P[6];
+  if (fx == 0 || fy == 0)
+    throw std::invalid_argument("camera model on frame '" + camera.header.frame_id +
+                                "' is not calibrated: P has no focal length");
+  visualization_msgs::Marker m;
+  m.header = regions.header;
+  m.ns = options.ns + "/rays";
+  m.id = 0;
+  m.action = visualization_msgs::Marker::ADD;
+  m.type = visualization_msgs::Marker::LINE_LIST;
+  m.pose.orientation.w = 1.0;
+  m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
+  m.scale.x = 0.005;
+  m.color.r = unit(options.color.r), m.color.g = unit(options.color.g), m.color.b = unit(options.color.b), m.color.a = 1.f;
+  const double d = options.ray_length;
+  auto at = [&](double u, double v) {  // the pixel's point at depth d
+    geometry_msgs::Point p;
+    p.x = (u - cx) / fx * d, p.y = (v - cy) / fy * d, p.z = d;
+    return p;
+  };
+  for (const auto& r : regions.regions) {
+    m.points.push_back(geometry_msgs::Point());  // the camera's origin
+    m.points.push_back(at(r.centroid.x, r.centroid.y));
+    const cv::Rect& b = r.box;
+    const geometry_msgs::Point c[4] = {at(b.x, b.y), at(b.x + b.width, b.y), at(b.x + b.width, b.y + b.height),
+                                       at(b.x, b.y + b.height)};
+    for (int k = 0; k < 4; ++k) m.points.push_back(c[k]), m.points.push_back(c[(k + 1) % 4]);
+  }
+  return m;
+}
+
 namespace {
 
 // A ClusterFeatures port inspected or recorded: its boxes as MarkerPublisher draws them by default.
@@ -149,7 +183,10 @@ const bool kInspectorRegistered = [] {
 
 class MarkerPublisher : public apex::Node {
  public:
-  static inline const apex::InputPort<ClusterFeatures> kFeatures{"features", "the clusters to draw"};
+  static inline const apex::InputPort<ClusterFeatures> kFeatures{"features", "if connected: the clusters to draw", true};
+  static inline const apex::InputPort<Regions> kRegions{
+      "regions", "if connected: regions of a camera's image, drawn as rays and boxes (needs camera_info)", true};
+  static inline const apex::InputPort<sensor_msgs::CameraInfo> kCamera{"camera_info", "the regions' camera model", true};
   static inline const apex::InputPort<Cloud> kHull{"hull", "if connected: a plane's hull (ConvexHull), drawn as its outline",
                                                    true};
   static inline const apex::ParamDecl<std::string> kTopic =
@@ -165,6 +202,12 @@ class MarkerPublisher : public apex::Node {
       apex::param::number("alpha").range(0.0, 1.0).step(0.05).init(0.5).describe("the boxes' opacity");
   static inline const apex::ParamDecl<double> kTextHeight =
       apex::param::number("text_height").range(0.005, 2.0).step(0.005).init(0.15).describe("the labels' letter height, metres");
+  static inline const apex::ParamDecl<double> kRayLength =
+      apex::param::number("ray_length")
+          .range(0.01, 100.0)
+          .step(0.01)
+          .init(2.0)
+          .describe("regions: how far from the camera their rays and boxes reach, metres");
   static inline const apex::ParamDecl<double> kLifetime =
       apex::param::number("lifetime")
           .range(0.0, 3600.0)
@@ -172,9 +215,12 @@ class MarkerPublisher : public apex::Node {
           .init(0.0)
           .describe("seconds a box stays without an update; 0: until the next message replaces it");
   static apex::Manifest manifest() {
-    return apex::Manifest("Publishes clusters' boxes as visualization_msgs/MarkerArray, for rviz")
+    return apex::Manifest(
+               "Publishes clusters' boxes, a plane's outline and image regions' rays as visualization_msgs/MarkerArray, for rviz")
         .input(kFeatures)
         .input(kHull)
+        .input(kRegions)
+        .input(kCamera)
         .param(kTopic)
         .param(kNamespace)
         .param(kOriented)
@@ -182,6 +228,7 @@ class MarkerPublisher : public apex::Node {
         .param(kColor)
         .param(kAlpha)
         .param(kTextHeight)
+        .param(kRayLength)
         .param(kLifetime);
   }
 
@@ -195,11 +242,18 @@ class MarkerPublisher : public apex::Node {
       last_count_ = kUnknownMarkerCount;
       return;
     }
-    const auto in = features_.get();
-    auto markers = clusterMarkers(*in, options(), last_count_);
+    visualization_msgs::MarkerArray markers;
+    if (const auto in = features_.get()) {
+      markers = clusterMarkers(*in, options(), last_count_);
+      last_count_ = in->clusters.size();
+    }
     if (const auto hull = hull_.get()) markers.markers.push_back(hullMarker(*hull, options()));
-    pub_.publish(markers);
-    last_count_ = in->clusters.size();
+    if (const auto regions = regions_.get()) {
+      const auto camera = camera_.get();
+      if (!camera) throw std::invalid_argument("regions need their camera's model: connect camera_info");
+      markers.markers.push_back(regionRays(*regions, *camera, options()));
+    }
+    if (!markers.markers.empty()) pub_.publish(markers);
   }
 
  private:
@@ -212,12 +266,15 @@ class MarkerPublisher : public apex::Node {
     o.color = color_.get();
     o.alpha = alpha_.get();
     o.text_height = text_height_.get();
+    o.ray_length = ray_length_.get();
     o.lifetime = lifetime_.get();
     return o;
   }
 
   apex::Input<ClusterFeatures> features_{this, kFeatures};
   apex::Input<Cloud> hull_{this, kHull};
+  apex::Input<Regions> regions_{this, kRegions};
+  apex::Input<sensor_msgs::CameraInfo> camera_{this, kCamera};
   apex::Param<std::string> topic_{this, kTopic};
   apex::Param<std::string> namespace_{this, kNamespace};
   apex::Param<bool> oriented_{this, kOriented};
@@ -225,6 +282,7 @@ class MarkerPublisher : public apex::Node {
   apex::Param<apex::Color> color_{this, kColor};
   apex::Param<double> alpha_{this, kAlpha};
   apex::Param<double> text_height_{this, kTextHeight};
+  apex::Param<double> ray_length_{this, kRayLength};
   apex::Param<double> lifetime_{this, kLifetime};
   ros::Publisher pub_;
   std::size_t last_count_ = kUnknownMarkerCount;  // the first array clears what an earlier run left

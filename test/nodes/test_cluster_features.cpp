@@ -179,6 +179,29 @@ TEST(Markers, AHullIsAClosedOutlineInItsFrame) {
                std::invalid_argument);
 }
 
+TEST(Markers, ImageRegionsAreRaysAndBoxesFromTheCamera) {
+  sensor_msgs::CameraInfo camera;
+  camera.P = {100, 0, 50, 0, 0, 100, 40, 0, 0, 0, 1, 0};
+  apex_nodes::Regions regions;
+  regions.header.frame_id = "camera";
+  apex_nodes::Region r;
+  r.centroid = cv::Point2d(150, 40), r.box = cv::Rect(50, 40, 100, 20);
+  regions.regions = {r};
+  apex_nodes::MarkerOptions options;
+  options.ray_length = 2.0;
+  const auto m = apex_nodes::regionRays(regions, camera, options);
+  EXPECT_EQ(m.header.frame_id, "camera");
+  EXPECT_EQ(m.type, visualization_msgs::Marker::LINE_LIST);
+  ASSERT_EQ(m.points.size(), 2u + 8u);  // the ray, the box's four edges
+  EXPECT_EQ(m.points[0], geometry_msgs::Point());  // from the camera's origin
+  EXPECT_DOUBLE_EQ(m.points[1].x, 2.0);  // u 150: one focal length right of the centre at depth 2
+  EXPECT_DOUBLE_EQ(m.points[1].y, 0.0);
+  EXPECT_DOUBLE_EQ(m.points[1].z, 2.0);
+  EXPECT_DOUBLE_EQ(m.points[2].x, 0.0);  // the box's corner (50, 40): on the axis
+  camera.P = {};
+  EXPECT_THROW(apex_nodes::regionRays(regions, camera, options), std::invalid_argument);
+}
+
 TEST(ClusterFeatures, CountsClustersAndMeasuresEmptyOnesAsNothing) {
   NodeHarness h("apex_nodes/ClusterFeatures", {"clusters"}, "count");
   auto typed = boxes();

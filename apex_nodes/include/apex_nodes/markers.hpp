@@ -23,6 +23,7 @@ struct MarkerOptions {
   double alpha = 0.5;  ///< the boxes' opacity, 0..1
   double lifetime = 0;  ///< seconds a marker stays without an update; 0: until replaced
   double text_height = 0.15;  ///< the labels' letter height, metres
+  double ray_length = 2.0;  ///< regions' rays and projected boxes: how far from the camera, metres
 };
 
 /** @brief For `last_count`: what the previous array drew is not known (the first one, or the
@@ -41,5 +42,14 @@ visualization_msgs::MarkerArray clusterMarkers(const ClusterFeatures& features, 
  *  closed LINE_STRIP in the hull's frame, id 0 in "<ns>/plane", 1 cm wide, in `options.color`.
  *  Throws std::invalid_argument if the hull has fewer than 3 points or no x, y, z. */
 visualization_msgs::Marker hullMarker(const Cloud& hull, const MarkerOptions& options);
+
+/** @brief Regions of a camera's image in 3-D, for rviz: from the camera's origin a ray through
+ *  each region's centroid, and the region's box projected to `options.ray_length` metres along
+ *  the optical axis, all one LINE_LIST (id 0 in "<ns>/rays") in the regions' frame, which must be
+ *  the camera's (its optical frame: x right, y down, z forward). The pixels are taken as the
+ *  model's rectified image's (P): regions of a raw image go through UndistortRegions first.
+ *  Throws std::invalid_argument naming the camera if the model is not calibrated. */
+visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs::CameraInfo& camera,
+                                      const MarkerOptions& options);
 
 }  // namespace apex_nodes
