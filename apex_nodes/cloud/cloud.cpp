@@ -16,8 +16,15 @@ std::string cloudName(const Cloud& c) {
          " on frame '" + c.header.frame_id + "'";
 }
 
-/** Bytes of one value of a PointField datatype; 0 if unknown. */
-Size fieldSize(std::uint8_t datatype) {
+const pcl::PCLPointField* findField(const Blob& points, const std::string& name) {
+  for (const auto& f : points.fields)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+}  // namespace
+
+std::uint32_t valueBytes(std::uint8_t datatype) {
   switch (datatype) {
     case pcl::PCLPointField::INT8:
     case pcl::PCLPointField::UINT8:
@@ -35,14 +42,6 @@ Size fieldSize(std::uint8_t datatype) {
       return 0;
   }
 }
-
-const pcl::PCLPointField* findField(const Blob& points, const std::string& name) {
-  for (const auto& f : points.fields)
-    if (f.name == name) return &f;
-  return nullptr;
-}
-
-}  // namespace
 
 std::size_t pointCount(const Cloud& cloud) { return cloud.points ? std::size_t(cloud.points->width) * cloud.points->height : 0; }
 
@@ -71,7 +70,7 @@ void checkCloud(const Cloud& cloud) {
   if (m.is_bigendian) bad("it is big-endian");
   if (m.point_step == 0) bad("point_step is 0");
   for (const auto& f : m.fields) {
-    const Size size = fieldSize(f.datatype);
+    const Size size = valueBytes(f.datatype);
     if (size == 0) bad("field '" + f.name + "' has the unknown datatype " + std::to_string(f.datatype));
     if (Size(f.offset) + size * std::max<Size>(1, f.count) > Size(m.point_step))
       bad("field '" + f.name + "' (offset " + std::to_string(f.offset) + ") does not fit in point_step " +

@@ -44,20 +44,10 @@ void moveRange(Blob& points, const Eigen::Affine3f& m, std::size_t begin, std::s
     eachTriple(points, *normals, begin, end, [&](const Eigen::Vector3f& v) { return m.linear() * v; });
 }
 
-/** Bytes of one value of a PointField datatype (cloud.cpp's checkCloud refused unknown ones). */
+/** Bytes of one value (checkCloud refused unknown datatypes; 4 stands for one here). */
 std::uint32_t valueSize(std::uint8_t datatype) {
-  switch (datatype) {
-    case pcl::PCLPointField::INT8:
-    case pcl::PCLPointField::UINT8:
-      return 1;
-    case pcl::PCLPointField::INT16:
-    case pcl::PCLPointField::UINT16:
-      return 2;
-    case pcl::PCLPointField::FLOAT64:
-      return 8;
-    default:
-      return 4;
-  }
+  const std::uint32_t n = valueBytes(datatype);
+  return n ? n : 4;
 }
 std::uint32_t fieldBytes(const pcl::PCLPointField& f) { return valueSize(f.datatype) * std::max<std::uint32_t>(1, f.count); }
 

@@ -18,6 +18,8 @@ namespace apex_nodes {
 using Blob = pcl::PCLPointCloud2;
 using XyzCloud = pcl::PointCloud<pcl::PointXYZ>;
 
+/** @brief Bytes of one value of a PointField datatype (pcl::PCLPointField::FLOAT32...); 0 if unknown. */
+std::uint32_t valueBytes(std::uint8_t datatype);
 /** @brief width x height. */
 std::size_t pointCount(const Cloud& cloud);
 /** @brief The names of the cloud's fields, e.g. "x, y, z, rgb", for messages. */
