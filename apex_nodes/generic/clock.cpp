@@ -13,6 +13,7 @@ class Clock : public apex::Node {
       apex::param::number("rate").range(0.01, 1000.0).step(0.01).init(10.0).describe("ticks per second");
   static apex::Manifest manifest() {
     return apex::Manifest("Ticks at a rate: a counter and the time since it started")
+        .inCategory("flow")
         .output(kCount)
         .output(kTime)
         .param(kRate)

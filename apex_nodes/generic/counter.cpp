@@ -9,6 +9,7 @@ class Counter : public apex::Node {
   static inline const apex::OutputPort<int> kCount{"count", "messages received since the last reset"};
   static apex::Manifest manifest() {
     return apex::Manifest("Counts the messages it receives")
+        .inCategory("flow")
         .input(kIn)
         .output(kCount)
         .slot("reset", &Counter::reset, "sets the count to zero");

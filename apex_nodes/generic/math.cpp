@@ -15,7 +15,9 @@ class Add : public apex::Node {
   static inline const apex::InputPort<double> kA{"a"};
   static inline const apex::InputPort<double> kB{"b"};
   static inline const apex::OutputPort<double> kSum{"sum"};
-  static apex::Manifest manifest() { return apex::Manifest("Adds two numbers").input(kA).input(kB).output(kSum); }
+  static apex::Manifest manifest() {
+    return apex::Manifest("Adds two numbers").inCategory("math").input(kA).input(kB).output(kSum);
+  }
   void process() override { sum_.publish(*a_.get() + *b_.get()); }
 
  private:
@@ -32,6 +34,7 @@ class Throttle : public apex::Node {
       param::number("rate").range(0.01, 1000.0).step(0.01).init(5.0).describe("messages per second");
   static apex::Manifest manifest() {
     return apex::Manifest("Passes at most `rate` messages per second; sends Nothing for the others")
+        .inCategory("flow")
         .input(kIn)
         .output(kOut)
         .param(kRate);
@@ -71,6 +74,7 @@ class TimeSync : public apex::Node {
       param::number("tolerance").range(0.0, 10.0).step(0.001).init(0.05).describe("seconds");
   static apex::Manifest manifest() {
     return apex::Manifest("Passes its messages on only if their stamps lie within a tolerance; else Nothing on all")
+        .inCategory("flow")
         .input(kInA)
         .input(kInB)
         .output(kOutA)
@@ -118,6 +122,7 @@ class Select : public apex::Node {
       param::integer("choice").range(0, 15).step(1).describe("the input passed on").interactive();
   static apex::Manifest manifest() {
     return apex::Manifest("Passes on the input chosen by `choice`; the others are read and dropped")
+        .inCategory("flow")
         .input(kIn0)
         .input(kIn1)
         .output(kOut)

@@ -113,6 +113,7 @@ class Optimizer : public apex::Node {
     return apex::Manifest(
                "Tunes other nodes' parameters: one output per dimension, connected to the parameter it tunes; "
                "each candidate is evaluated by the graph (evaluate: replay and score; the score comes back at fitness)")
+        .inCategory("optimisation")
         .input(kFitness)
         .output(kBestFitness)
         .output(kEvaluations)

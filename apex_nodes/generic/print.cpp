@@ -7,7 +7,9 @@ class Print : public apex::Node {
  public:
   static inline const apex::InputPort<apex::Any> kIn{"in", "any message"};
   static inline const apex::ParamDecl<std::string> kPrefix = apex::param::text("prefix").describe("text before each line");
-  static apex::Manifest manifest() { return apex::Manifest("Logs each message it receives").input(kIn).param(kPrefix); }
+  static apex::Manifest manifest() {
+    return apex::Manifest("Logs each message it receives").inCategory("flow").input(kIn).param(kPrefix);
+  }
   void process() override { log(apex::LogLevel::Info, prefix_.get() + text(in_.message())); }
 
  private:

@@ -7,7 +7,9 @@ class Relay : public apex::Node {
  public:
   static inline const apex::InputPort<apex::Any> kIn{"in", "any message"};
   static inline const apex::OutputPort<apex::Any> kOut{"out", "the same message"};
-  static apex::Manifest manifest() { return apex::Manifest("Passes any message through unchanged").input(kIn).output(kOut); }
+  static apex::Manifest manifest() {
+    return apex::Manifest("Passes any message through unchanged").inCategory("flow").input(kIn).output(kOut);
+  }
   void process() override { out_.publishMessage(in_.message()); }
 
  private:

@@ -9,7 +9,7 @@ class Scale : public apex::Node {
   static inline const apex::OutputPort<double> kOut{"out"};
   static inline const apex::ParamDecl<double> kFactor = apex::param::number("factor").init(1.0).describe("the factor");
   static apex::Manifest manifest() {
-    return apex::Manifest("Multiplies a number by a factor").input(kIn).output(kOut).param(kFactor);
+    return apex::Manifest("Multiplies a number by a factor").inCategory("math").input(kIn).output(kOut).param(kFactor);
   }
   void process() override { out_.publish(*in_.get() * factor_.get()); }
 

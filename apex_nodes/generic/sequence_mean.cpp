@@ -16,6 +16,7 @@ class SequenceMean : public apex::Node {
   static inline const apex::OutputPort<int> kCount{"count", "at the end of a sequence: how many values it had"};
   static apex::Manifest manifest() {
     return apex::Manifest("Averages a value over a sequence; sends mean and count at its end, then starts the next")
+        .inCategory("evaluation")
         .input(kValue)
         .output(kMean)
         .output(kCount)

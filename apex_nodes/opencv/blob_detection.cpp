@@ -19,6 +19,7 @@ class BlobDetection : public apex::Node {
   static inline const apex::ParamDecl<std::string> kConnectivity = param::choice("connectivity", {"4", "8"}).init("8");
   static apex::Manifest manifest() {
     return apex::Manifest("Finds connected regions of non-zero pixels (bounding box, area, centroid)")
+        .inCategory("detection")
         .input(kImage)
         .output(kRegions)
         .output(kCount)

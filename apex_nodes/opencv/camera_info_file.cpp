@@ -14,6 +14,7 @@ class CameraInfoFile : public apex::Node {
       "a calibration: ROS camera_calibration YAML or INI, or OpenCV's (camera_matrix, distortion_coefficients)");
   static apex::Manifest manifest() {
     return apex::Manifest("Sends a calibration file's camera model with each image's header")
+        .inCategory("cameras and stereo")
         .input(kImage)
         .output(kInfo)
         .param(kFile);

@@ -48,7 +48,9 @@ class ColorConvert : public ImageFilter {
  public:
   static inline const apex::ParamDecl<std::string> kConversion =
       apex::param::choice("conversion", names()).init("BGR2GRAY").describe("source and target colour space");
-  static apex::Manifest manifest() { return filterManifest("Converts between colour spaces (cv::cvtColor)").param(kConversion); }
+  static apex::Manifest manifest() {
+    return filterManifest("Converts between colour spaces (cv::cvtColor)").inCategory("colour").param(kConversion);
+  }
   ColorConvert() : ImageFilter("1234") {}
 
  private:

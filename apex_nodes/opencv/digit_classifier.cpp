@@ -27,6 +27,7 @@ class DigitClassifier : public apex::Node {
           .describe("a region whose best digit is less certain gets label -1 (shown as '?')");
   static apex::Manifest manifest() {
     return apex::Manifest("Classifies the digit in each region with a trained MLP (apex_train_mlp's model file)")
+        .inCategory("learning")
         .input(kImage)
         .input(kRegions)
         .output(kLabelled)

@@ -28,6 +28,7 @@ class DigitScore : public apex::Node {
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a sign");
   static apex::Manifest manifest() {
     return apex::Manifest("Scores regions' digit labels against the ground truth over a sequence (accuracy, confusion matrix)")
+        .inCategory("evaluation")
         .input(kRegions)
         .output(kAccuracy)
         .output(kMatched)

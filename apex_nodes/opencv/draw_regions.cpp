@@ -17,6 +17,7 @@ class DrawRegions : public apex::Node {
   static inline const apex::ParamDecl<int> kThickness = param::integer("thickness").range(1, 20).step(1).init(2);
   static apex::Manifest manifest() {
     return apex::Manifest("Draws regions' bounding boxes over an image, with their labels if a classifier gave them")
+        .inCategory("drawing")
         .input(kImage)
         .input(kRegions)
         .output(kDrawn)

@@ -22,6 +22,7 @@ class ImageExport : public apex::Node {
       param::flag("overwrite").describe("replace files already there (another run's)");
   static apex::Manifest manifest() {
     return apex::Manifest("Writes each image, or each region's crop, as a PNG file")
+        .inCategory("ROS I/O")
         .input(kImage)
         .input(kRegions)
         .output(kPath)

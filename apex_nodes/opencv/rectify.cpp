@@ -19,6 +19,7 @@ class Rectify : public apex::Node {
       param::choice("interpolation", {"linear", "nearest", "cubic", "area", "lanczos4"});
   static apex::Manifest manifest() {
     return apex::Manifest("Undistorts and rectifies an image by its camera model (image_proc's rectify)")
+        .inCategory("cameras and stereo")
         .input(kImage)
         .input(kInfo)
         .output(kRectified)

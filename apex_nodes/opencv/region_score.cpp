@@ -19,6 +19,7 @@ class RegionScore : public apex::Node {
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a truth box");
   static apex::Manifest manifest() {
     return apex::Manifest("Scores a frame's regions against the ground truth (apex_make_demo_bag's truth file)")
+        .inCategory("evaluation")
         .input(kRegions)
         .output(kPrecision)
         .output(kRecall)

@@ -39,6 +39,7 @@ class SampleExport : public apex::Node {
 
   static apex::Manifest manifest() {
     return apex::Manifest("Writes the crop of each region that matches a labelled sign of the ground truth, with an index file")
+        .inCategory("learning")
         .input(kImage)
         .input(kRegions)
         .output(kWritten)

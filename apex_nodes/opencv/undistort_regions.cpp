@@ -15,6 +15,7 @@ class UndistortRegions : public apex::Node {
   static inline const apex::OutputPort<Regions> kRectified{"regions", "where they are in the rectified image"};
   static apex::Manifest manifest() {
     return apex::Manifest("Moves regions of a raw image to the rectified image (undistorted points)")
+        .inCategory("cameras and stereo")
         .input(kRegions)
         .input(kInfo)
         .output(kRectified);

@@ -88,6 +88,7 @@ class ClusterFeaturesNode : public apex::Node {
       "poses", "each cluster's oriented box as a pose (centre, PCA axes): rviz shows them as arrows"};
   static apex::Manifest manifest() {
     return apex::Manifest("Measures each cluster: centroid, axis-aligned box, oriented box (PCA), point count")
+        .inCategory("cloud segmentation")
         .input(kClusters)
         .output(kFeatures)
         .output(kCount)

@@ -19,6 +19,7 @@ class EuclideanClustering : public apex::Node {
   static inline const apex::ParamDecl<int> kMaxSize = param::integer("max_size").range(1, 10000000).step(1).init(1000000);
   static apex::Manifest manifest() {
     return apex::Manifest("Splits a cloud into clusters of points closer than a tolerance")
+        .inCategory("cloud segmentation")
         .input(kCloud)
         .output(kClusters)
         .output(kCount)

@@ -48,6 +48,7 @@ class ClustersToCloud : public apex::Node {
   static inline const apex::OutputPort<Cloud> kCloud{"cloud", "every cluster's points, with a uint32 field 'label'"};
   static apex::Manifest manifest() {
     return apex::Manifest("Joins clusters into one cloud whose 'label' field says each point's cluster")
+        .inCategory("clouds")
         .input(kClusters)
         .output(kCloud);
   }

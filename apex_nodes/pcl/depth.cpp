@@ -127,6 +127,7 @@ class DepthToCloud : public apex::Node {
   static inline const apex::OutputPort<Cloud> kCloud{"cloud", "x, y, z per pixel, organised; NaN where no depth"};
   static apex::Manifest manifest() {
     return apex::Manifest("Depth image to point cloud (depth_image_proc's point_cloud_xyz)")
+        .inCategory("depth")
         .input(kDepth)
         .input(kCameraInfo)
         .output(kCloud);
@@ -150,6 +151,7 @@ class DepthColorToCloud : public apex::Node {
   static inline const apex::OutputPort<Cloud> kCloud{"cloud", "x, y, z, rgb per pixel, organised; NaN where no depth"};
   static apex::Manifest manifest() {
     return apex::Manifest("Depth and colour images to a coloured point cloud (depth_image_proc's point_cloud_xyzrgb)")
+        .inCategory("depth")
         .input(kDepth)
         .input(kColor)
         .input(kCameraInfo)
@@ -197,7 +199,11 @@ class CloudToDepth : public apex::Node {
   static inline const apex::InputPort<sensor_msgs::CameraInfo> kCameraInfo{"camera_info", "the camera to project into"};
   static inline const apex::OutputPort<Image> kDepth{"depth", "32FC1 (m), the nearest point per pixel; NaN where none"};
   static apex::Manifest manifest() {
-    return apex::Manifest("Projects a cloud into a camera: its depth image").input(kCloud).input(kCameraInfo).output(kDepth);
+    return apex::Manifest("Projects a cloud into a camera: its depth image")
+        .inCategory("depth")
+        .input(kCloud)
+        .input(kCameraInfo)
+        .output(kDepth);
   }
   void process() override {
     const auto cloud = cloud_.get();

@@ -88,6 +88,7 @@ class NormalEstimation : public apex::Node {
       param::list("viewpoint").init({0, 0, 0}).describe("x, y, z the normals turn towards (the sensor's origin)");
   static apex::Manifest manifest() {
     return apex::Manifest("Estimates each point's normal and curvature from its neighbours")
+        .inCategory("cloud segmentation")
         .input(kCloudIn)
         .output(kCloudOut)
         .param(kSearch)

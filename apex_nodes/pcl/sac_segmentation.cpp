@@ -134,6 +134,7 @@ class SACSegmentation : public apex::Node {
           .describe("cylinder and normal_ models: weight of the normals' angle against the distance");
   static apex::Manifest manifest() {
     return apex::Manifest("Fits a model (plane, line, circle, sphere, cylinder...) by sample consensus")
+        .inCategory("cloud segmentation")
         .input(kCloud)
         .output(kInliers)
         .output(kOutliers)
@@ -217,6 +218,7 @@ class ProjectInliers : public apex::Node {
           .describe("the coefficients' model; a parallel, perpendicular or normal_ plane's are a plane's");
   static apex::Manifest manifest() {
     return apex::Manifest("Moves each point onto a model (its nearest point on a plane, line, sphere...)")
+        .inCategory("cloud segmentation")
         .input(kCloudIn)
         .input(kCoefficients)
         .output(kCloudOut)

@@ -18,6 +18,7 @@ class PlaneSegmentation : public apex::Node {
   static inline const apex::ParamDecl<int> kMaxIterations = param::integer("max_iterations").range(1, 100000).step(1).init(200);
   static apex::Manifest manifest() {
     return apex::Manifest("Finds the dominant plane by RANSAC")
+        .inCategory("cloud segmentation")
         .input(kCloud)
         .output(kInliers)
         .output(kOutliers)

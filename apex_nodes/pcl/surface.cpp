@@ -64,6 +64,7 @@ class ConvexHull : public apex::Node {
           .describe("2: a polygon round points on a plane, 3: a polyhedron; auto: by how flat the points lie (PCL's test)");
   static apex::Manifest manifest() {
     return apex::Manifest("The points on a cloud's convex hull: a polygon or a polyhedron")
+        .inCategory("cloud segmentation")
         .input(kCloud)
         .output(kHull)
         .output(kArea)
@@ -116,6 +117,7 @@ class ExtractPolygonalPrism : public apex::Node {
   static inline const apex::ParamDecl<bool> kNegative = param::flag("negative").describe("keep the points outside instead");
   static apex::Manifest manifest() {
     return apex::Manifest("Keeps the points above a polygon, within a height: e.g. the objects on a table")
+        .inCategory("cloud segmentation")
         .input(kCloud)
         .input(kHull)
         .output(kCloudOut)

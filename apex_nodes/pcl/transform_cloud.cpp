@@ -13,6 +13,7 @@ class TransformCloud : public apex::Node {
   static inline const apex::OutputPort<Cloud> kCloudOut{"cloud"};
   static apex::Manifest manifest() {
     return apex::Manifest("Transforms a cloud into the transform's frame (e.g. from TfLookup)")
+        .inCategory("clouds")
         .input(kCloudIn)
         .input(kTransform)
         .output(kCloudOut);

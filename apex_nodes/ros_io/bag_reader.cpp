@@ -145,6 +145,7 @@ class BagReader : public apex::Node {
           .everySet();
   static apex::Manifest manifest() {
     return apex::Manifest("Plays a bag: one output per topic, one firing per frame; seeks, holds a frame")
+        .inCategory("ROS I/O")
         .output(kStamp)
         .trigger(kFinished)
         .slot("restart", &BagReader::restart, "back to the first frame (and send it)")

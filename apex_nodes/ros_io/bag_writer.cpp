@@ -78,6 +78,7 @@ class BagWriter : public apex::Node {
               "complete when the bag has played once");
   static apex::Manifest manifest() {
     return apex::Manifest("Records its inputs into a bag: one input per topic, each message at its own stamp")
+        .inCategory("ROS I/O")
         .slot("start", &BagWriter::start, "start recording (a new file: an old one of that name is replaced)")
         .slot("stop", &BagWriter::stop, "stop recording and close the file")
         .param(kFile)

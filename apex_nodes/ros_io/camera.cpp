@@ -25,6 +25,7 @@ class CameraSubscriber : public TopicSource<CameraFrame> {
   static inline const apex::ParamDecl<std::string> kTransport = transportParam();
   static apex::Manifest manifest() {
     return apex::Manifest("Receives a camera's images with their camera_info (image_transport); keeps only the newest")
+        .inCategory("ROS I/O")
         .output(kImage)
         .output(kInfo)
         .param(kTopic)
@@ -62,6 +63,7 @@ class CameraPublisher : public apex::Node {
       apex::param::text("topic").init("camera_out/image").describe("the image topic; camera_info goes beside it");
   static apex::Manifest manifest() {
     return apex::Manifest("Publishes images with their camera_info (image_transport), the image's header on both")
+        .inCategory("ROS I/O")
         .input(kImage)
         .input(kInfo)
         .param(kTopic);

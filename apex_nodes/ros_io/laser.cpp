@@ -18,6 +18,7 @@ class LaserScanSubscriber : public TopicSource<sensor_msgs::LaserScan> {
   static inline const apex::ParamDecl<std::string> kTopic = apex::param::text("topic").init("scan");
   static apex::Manifest manifest() {
     return apex::Manifest("Receives sensor_msgs/LaserScan; keeps only the newest")
+        .inCategory("ROS I/O")
         .output(kScan)
         .param(kTopic)
         .param(holdParam())
@@ -41,7 +42,10 @@ class LaserScanToCloud : public apex::Node {
   static inline const apex::InputPort<sensor_msgs::LaserScan> kScan{"scan"};
   static inline const apex::OutputPort<Cloud> kCloud{"cloud"};
   static apex::Manifest manifest() {
-    return apex::Manifest("Turns a scan's valid ranges into points in the scan's plane (z = 0)").input(kScan).output(kCloud);
+    return apex::Manifest("Turns a scan's valid ranges into points in the scan's plane (z = 0)")
+        .inCategory("ROS I/O")
+        .input(kScan)
+        .output(kCloud);
   }
   void process() override { cloud_.publish(scanToCloud(*scan_.get())); }
 

@@ -217,6 +217,7 @@ class MarkerPublisher : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest(
                "Publishes clusters' boxes, a plane's outline and image regions' rays as visualization_msgs/MarkerArray, for rviz")
+        .inCategory("ROS I/O")
         .input(kFeatures)
         .input(kHull)
         .input(kRegions)

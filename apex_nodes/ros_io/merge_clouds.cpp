@@ -28,6 +28,7 @@ class MergeClouds : public apex::Node {
     return apex::Manifest(
                "Merges clouds into one in `frame`, each moved by tf2 at its own stamp. Fields: all, if every input has "
                "the same; else those every input has (x, y, z always)")
+        .inCategory("ROS I/O")
         .input(kCloud0)
         .input(kCloud1)
         .output(kCloud)

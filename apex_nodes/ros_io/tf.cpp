@@ -25,6 +25,7 @@ class TfLookup : public apex::Node {
       apex::param::number("timeout").range(0.0, 10.0).step(0.01).init(0.1).describe("seconds to wait for the transform");
   static apex::Manifest manifest() {
     return apex::Manifest("Looks up the transform from the message's frame (or source_frame) to target_frame at its stamp")
+        .inCategory("ROS I/O")
         .input(kStamped)
         .output(kTransform)
         .param(kTargetFrame)

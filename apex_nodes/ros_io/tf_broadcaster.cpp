@@ -28,6 +28,7 @@ class TfBroadcaster : public apex::Node {
     return apex::Manifest(
                "Broadcasts a fixed transform parent_frame -> child_frame on /tf_static (roll, pitch, yaw about "
                "the parent's fixed x, y, z axes, as static_transform_publisher)")
+        .inCategory("ROS I/O")
         .param(kParent)
         .param(kChild)
         .param(kX)

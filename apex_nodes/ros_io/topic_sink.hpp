@@ -18,9 +18,10 @@ namespace apex_nodes {
 template <class T, class Publisher>
 class TopicSink : public apex::Node {
  public:
-  /** @brief A sink's manifest: its description, the input, and the topic with its default. */
+  /** @brief A sink's manifest: its description, the input, and the topic with its default; in "ROS I/O". */
   static apex::Manifest sinkManifest(std::string description, const apex::InputPort<T>& in, std::string topic) {
     return apex::Manifest(std::move(description))
+        .inCategory("ROS I/O")
         .input(in)
         .param(apex::param::text("topic").init(std::move(topic)).describe("resolved in the runtime's namespace"));
   }

@@ -20,6 +20,7 @@ class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
   static inline const apex::ParamDecl<std::string> kTransport = transportParam();
   static apex::Manifest manifest() {
     return apex::Manifest("Receives images from a topic (image_transport); keeps only the newest")
+        .inCategory("ROS I/O")
         .output(kImage)
         .param(kTopic)
         .param(kTransport)
@@ -57,6 +58,7 @@ class PointCloudSubscriber : public TopicSource<Cloud> {
   static inline const apex::ParamDecl<std::string> kTopic = apex::param::text("topic").init("points");
   static apex::Manifest manifest() {
     return apex::Manifest("Receives sensor_msgs/PointCloud2 with every field (x, y, z and the rest); keeps only the newest")
+        .inCategory("ROS I/O")
         .output(kCloud)
         .param(kTopic)
         .param(holdParam())

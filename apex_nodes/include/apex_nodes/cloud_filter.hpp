@@ -26,9 +26,10 @@ namespace apex_nodes {
 struct CloudFilterPorts {
   static inline const apex::InputPort<Cloud> kCloudIn{"cloud", "the cloud"};
   static inline const apex::OutputPort<Cloud> kCloudOut{"cloud", "the points kept"};
-  /** @brief A cloud filter's manifest: its description and the two ports; add the parameters. */
+  /** @brief A cloud filter's manifest: its description and the two ports, in the category "clouds";
+   *  add the parameters. */
   static apex::Manifest filterManifest(std::string description) {
-    return apex::Manifest(std::move(description)).input(kCloudIn).output(kCloudOut);
+    return apex::Manifest(std::move(description)).inCategory("clouds").input(kCloudIn).output(kCloudOut);
   }
 };
 

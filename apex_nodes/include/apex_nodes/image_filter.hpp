@@ -30,10 +30,11 @@ class ImageFilter : public apex::Node {
   static inline const apex::OutputPort<Image> kImageOut{"image", "the frame, filtered"};
 
   /** @brief A filter's manifest: its description and the two ports (an output of another name,
-   *  such as Canny's "edges", replaces "image"; the constructor names it too). */
+   *  such as Canny's "edges", replaces "image"; the constructor names it too), in the category
+   *  "image filters" (a filter of another kind calls inCategory() after). */
   static apex::Manifest filterManifest(std::string description, const apex::InputPort<Image>& in = kImageIn,
                                        const apex::OutputPort<Image>& out = kImageOut) {
-    return apex::Manifest(std::move(description)).input(in).output(out);
+    return apex::Manifest(std::move(description)).inCategory("image filters").input(in).output(out);
   }
 
  protected:

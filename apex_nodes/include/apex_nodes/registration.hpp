@@ -80,9 +80,11 @@ struct RegistrationPorts {
       "transform", "maps the source's frame into the target's (e.g. for TransformCloud); the source's stamp"};
   static inline const apex::OutputPort<double> kFitness{"fitness", "mean squared distance to the nearest target point (m^2)"};
   static inline const apex::OutputPort<bool> kConverged{"converged"};
-  /** @brief A registration node's manifest: its description and the ports; add the parameters. */
+  /** @brief A registration node's manifest: its description and the ports, in the category
+   *  "cloud registration"; add the parameters. */
   static apex::Manifest registrationManifest(std::string description) {
     return apex::Manifest(std::move(description))
+        .inCategory("cloud registration")
         .input(kSource)
         .input(kTarget)
         .input(kInitial)

@@ -85,6 +85,7 @@ NodeTypeInfo toTypeInfo(const NodeType& type) {
   NodeTypeInfo t;
   t.id = type.id;
   t.description = m.description;
+  t.category = m.category;
   t.ports = ports(m);
   for (const auto& s : m.params) t.parameters.push_back(param(s, toText(s.default_value), s.interactive));
   return t;

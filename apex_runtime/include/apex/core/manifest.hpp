@@ -68,6 +68,7 @@ using InterfaceFn = std::function<Status(const ParamValues& params, Manifest& if
 /** @brief Everything the registry knows about a node type before creating one. */
 struct Manifest {
   std::string description;
+  std::string category;  ///< where the palette and docs/nodes.md list the type, e.g. "image filters"
   std::vector<PortSpec> inputs, outputs;
   std::vector<ParamSpec> params;
   std::vector<EventSpec> slots, triggers;
@@ -75,6 +76,12 @@ struct Manifest {
   InterfaceFn shape;  ///< empty: every instance has exactly these ports
 
   explicit Manifest(std::string desc = {}) : description(std::move(desc)) {}
+
+  /** @brief The type's category, e.g. `Manifest("Smooths an image").inCategory("image filters")`. */
+  Manifest& inCategory(std::string name) {
+    category = std::move(name);
+    return *this;
+  }
 
   template <class T>
   Manifest& input(std::string name, std::string desc = {}) {
