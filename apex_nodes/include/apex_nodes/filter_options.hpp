@@ -1,0 +1,71 @@
+// What image filters share beyond the ImageFilter shape: depths by OpenCV's names ("16S", "32F")
+// and the encoding of a result of another depth, border modes by name, and an image in words for
+// errors that name two of them.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "apex_nodes/types.hpp"
+
+namespace apex_nodes {
+
+/** @brief A pixel depth as OpenCV names it: "8U", "16S", "32F"... */
+inline std::string depthName(int depth) {
+  static const char* const kNames[] = {"8U", "8S", "16U", "16S", "32S", "32F", "64F", "16F"};
+  return depth >= 0 && depth < 8 ? kNames[depth] : "depth " + std::to_string(depth);
+}
+
+/** @brief The depth a choice names ("8U", "16U", "16S", "32F", "64F"); "same": `same`. */
+inline int depthNamed(const std::string& name, int same) {
+  if (name == "same") return same;
+  for (int depth : {CV_8U, CV_8S, CV_16U, CV_16S, CV_32S, CV_32F, CV_64F})
+    if (name == depthName(depth)) return depth;
+  throw std::invalid_argument("unknown depth '" + name + "'");
+}
+
+/** @brief The sensor_msgs encoding of a result with `channels` channels of `depth` made from `in`:
+ *  the input's when both agree with it; 8 or 16 bits of the input's colour order ("bgr8" gives
+ *  "bgr16", "mono16" gives "mono8", one channel gives "mono8" or "mono16"); else the generic
+ *  name ("16SC1", "32FC3"). */
+inline std::string encodingOf(const Image& in, int channels, int depth) {
+  if (channels == in.mat.channels() && depth == in.mat.depth()) return in.encoding;
+  if (depth == CV_8U || depth == CV_16U) {
+    const std::string bits = depth == CV_8U ? "8" : "16";
+    if (channels == 1) return "mono" + bits;
+    for (const std::string family : {"bgra", "rgba", "bgr", "rgb"})
+      if (channels == in.mat.channels() && (in.encoding == family + "8" || in.encoding == family + "16")) return family + bits;
+  }
+  return depthName(depth) + "C" + std::to_string(channels);
+}
+
+/** @brief An image in words for an error: "640x480 'bgr8' (8UC3)". */
+inline std::string imageWords(const Image& image) {
+  return std::to_string(image.mat.cols) + "x" + std::to_string(image.mat.rows) + " '" + image.encoding + "' (" +
+         depthName(image.mat.depth()) + "C" + std::to_string(image.mat.channels()) + ")";
+}
+
+/** @brief How filters make up pixels beyond the image's edge, by name; the first is OpenCV's
+ *  default (BORDER_REFLECT_101: gfedcb|abcdefgh|gfedcba). */
+inline const std::vector<std::pair<std::string, int>>& borderModes() {
+  static const std::vector<std::pair<std::string, int>> modes{{"reflect_101", cv::BORDER_REFLECT_101},
+                                                              {"replicate", cv::BORDER_REPLICATE},
+                                                              {"reflect", cv::BORDER_REFLECT},
+                                                              {"constant", cv::BORDER_CONSTANT}};
+  return modes;
+}
+inline std::vector<std::string> borderNames() {
+  std::vector<std::string> names;
+  for (const auto& [name, mode] : borderModes()) names.push_back(name);
+  return names;
+}
+inline int borderNamed(const std::string& name) {
+  for (const auto& [n, mode] : borderModes())
+    if (n == name) return mode;
+  throw std::invalid_argument("unknown border mode '" + name + "'");
+}
+
+}  // namespace apex_nodes
