@@ -88,10 +88,10 @@ class ArucoDetector : public apex::Node {
       if (camera->distortion_model == "equidistant")
         throw std::invalid_argument("the camera model is a fisheye ('equidistant'): poses need a pinhole model");
     }
-    cv::Mat gray = in.mat;
     const bool rgb = in.encoding.rfind("rgb", 0) == 0;
-    if (in.mat.channels() == 3) cv::cvtColor(in.mat, gray, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY);
-    if (in.mat.channels() == 4) cv::cvtColor(in.mat, gray, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
+    if (in.mat.channels() == 3) cv::cvtColor(in.mat, gray_, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY);
+    if (in.mat.channels() == 4) cv::cvtColor(in.mat, gray_, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
+    const cv::Mat& gray = in.mat.channels() == 1 ? in.mat : gray_;  // read only
 
     const std::string& refinement = refinement_.get();
     parameters_->cornerRefinementMethod = refinement == "subpix"    ? aruco::CORNER_REFINE_SUBPIX
@@ -117,6 +117,7 @@ class ArucoDetector : public apex::Node {
   apex::Param<double> length_{this, kLength};
   apex::Param<std::string> refinement_{this, kRefinement};
   cv::Ptr<aruco::DetectorParameters> parameters_ = aruco::DetectorParameters::create();
+  cv::Mat gray_;  // a colour frame's gray, reused
 };
 
 }  // namespace apex_nodes

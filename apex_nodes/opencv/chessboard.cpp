@@ -44,10 +44,12 @@ class ChessboardCorners : public apex::Node {
     const Image& in = *image_.get();
     requireImage(in, "134");
     if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image, got '" + in.encoding + "'");
-    cv::Mat image = in.mat;
+    // Gray, once, for both calls: findChessboardCorners makes any colour image gray itself with
+    // cv::cvtColor's BGR2GRAY, which is what a bgr8 image gets here; rgb8 and rgba8 by their order.
     const bool rgb = in.encoding.rfind("rgb", 0) == 0;
-    if (in.mat.channels() == 4) cv::cvtColor(in.mat, image, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
-    else if (in.mat.channels() == 3 && rgb) cv::cvtColor(in.mat, image, cv::COLOR_RGB2GRAY);  // bgr8: as OpenCV takes it
+    if (in.mat.channels() == 4) cv::cvtColor(in.mat, gray_, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
+    else if (in.mat.channels() == 3) cv::cvtColor(in.mat, gray_, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY);
+    const cv::Mat& gray = in.mat.channels() == 1 ? in.mat : gray_;  // read only (OpenCV copies what it changes)
 
     auto out = std::make_shared<Corners>();
     out->header = in.header;
@@ -55,12 +57,10 @@ class ChessboardCorners : public apex::Node {
     out->pattern_size = cv::Size(columns_.get(), rows_.get());
     const int flags = (adaptive_.get() ? cv::CALIB_CB_ADAPTIVE_THRESH : 0) |
                       (normalize_.get() ? cv::CALIB_CB_NORMALIZE_IMAGE : 0) | (fast_check_.get() ? cv::CALIB_CB_FAST_CHECK : 0);
-    out->found = cv::findChessboardCorners(image, out->pattern_size, out->corners, flags);
+    out->found = cv::findChessboardCorners(gray, out->pattern_size, out->corners, flags);
     if (!out->found) {
       out->corners.clear();  // what it had of the board: not a result
     } else if (refine_.get()) {
-      cv::Mat gray = image;
-      if (image.channels() == 3) cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
       cv::cornerSubPix(gray, out->corners, cv::Size(refine_window_.get(), refine_window_.get()), cv::Size(-1, -1),
                        cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.001));
     }
@@ -77,6 +77,7 @@ class ChessboardCorners : public apex::Node {
   apex::Param<bool> adaptive_{this, kAdaptive};
   apex::Param<bool> normalize_{this, kNormalize};
   apex::Param<bool> fast_check_{this, kFastCheck};
+  cv::Mat gray_;  // a colour frame's gray, reused
 };
 
 }  // namespace apex_nodes

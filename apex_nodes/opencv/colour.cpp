@@ -3,6 +3,7 @@
 
 #include <array>
 #include <map>
+#include <utility>
 #include <opencv2/imgproc.hpp>
 
 #include "apex_nodes/filter_options.hpp"
@@ -42,20 +43,20 @@ class ColorRange : public ImageFilter {
     const bool rgb = in.encoding == "rgb8";
     if (!rgb && in.encoding != "bgr8")
       throw std::invalid_argument("needs a bgr8 or rgb8 image, got '" + in.encoding + "': its colours' order is unknown");
-    const cv::Scalar lower = threeNumbers(lower_.get(), "lower"), upper = threeNumbers(upper_.get(), "upper");
+    cv::Scalar lower = threeNumbers(lower_.get(), "lower"), upper = threeNumbers(upper_.get(), "upper");
     const auto& space = color_space_.get();
     const cv::Mat* pixels = &in.mat;
     if (space == "hsv") cv::cvtColor(in.mat, converted_, rgb ? cv::COLOR_RGB2HSV : cv::COLOR_BGR2HSV);
     else if (space == "lab") cv::cvtColor(in.mat, converted_, rgb ? cv::COLOR_RGB2Lab : cv::COLOR_BGR2Lab);
-    else if (rgb) cv::cvtColor(in.mat, converted_, cv::COLOR_RGB2BGR);
-    if (space != "bgr" || rgb) pixels = &converted_;
+    if (space != "bgr") pixels = &converted_;
+    else if (rgb) std::swap(lower[0], lower[2]), std::swap(upper[0], upper[2]);  // the bounds in r, g, b order: no copy
     cv::inRange(*pixels, lower, upper, out.mat);
     out.encoding = "mono8";
   }
   apex::Param<std::string> color_space_{this, kColorSpace};
   apex::Param<std::vector<double>> lower_{this, kLower};
   apex::Param<std::vector<double>> upper_{this, kUpper};
-  cv::Mat converted_;  // the image in color_space, reused
+  cv::Mat converted_;  // the image in hsv or lab, reused
 };
 
 class SplitChannels : public apex::Node {
@@ -78,6 +79,10 @@ class SplitChannels : public apex::Node {
   void process() override {
     const Image& in = *in_.get();
     requireImage(in, "1234");
+    if (in.mat.channels() == 1) {  // channel_0 is the image itself: its message as it came, no copy
+      outs_[0].publishMessage(in_.message());
+      return;
+    }
     for (int c = 0; c < in.mat.channels(); ++c) {  // the outputs of channels it lacks send Nothing
       auto out = buffers_[c].next(in);
       cv::extractChannel(in.mat, out->mat, c);

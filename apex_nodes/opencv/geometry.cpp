@@ -14,6 +14,11 @@ class Resize : public ImageFilter {
   static apex::Manifest manifest() { return filterManifest("Scales an image").param(kScale).param(kInterpolation); }
 
  private:
+  /** The scale keeps the size (scale 1, or close enough to round to it): cv::resize would copy. */
+  bool passesThrough(const Image& in) const override {
+    return cv::Size(cv::saturate_cast<int>(in.mat.cols * scale_.get()), cv::saturate_cast<int>(in.mat.rows * scale_.get())) ==
+           in.mat.size();
+  }
   void filter(const Image& in, Image& out) override {
     const auto& i = interpolation_.get();
     const int interp = i == "nearest"  ? cv::INTER_NEAREST

@@ -1,4 +1,6 @@
 // Intensity transforms: EqualizeHist, CLAHE, Normalize, ConvertScale.
+#include <cfloat>
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "apex_nodes/filter_options.hpp"
@@ -102,6 +104,11 @@ class ConvertScale : public ImageFilter {
   }
 
  private:
+  /** alpha 1, beta 0 (to DBL_EPSILON, as cv::Mat::convertTo tells), the same depth: a copy. */
+  bool passesThrough(const Image& in) const override {
+    return std::abs(alpha_.get() - 1) < DBL_EPSILON && std::abs(beta_.get()) < DBL_EPSILON &&
+           depthNamed(rtype_.get(), in.mat.depth()) == in.mat.depth();
+  }
   void filter(const Image& in, Image& out) override {
     const int depth = depthNamed(rtype_.get(), in.mat.depth());
     in.mat.convertTo(out.mat, depth, alpha_.get(), beta_.get());

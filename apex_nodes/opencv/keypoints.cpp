@@ -41,7 +41,7 @@ class KeypointDetector : public apex::Node {
 
   void process() override {
     const Image& in = *image_.get();
-    const cv::Mat gray = gray8(in);
+    const cv::Mat gray = gray8(in, gray_);
     if (!detector_) detector_ = create();
     auto out = std::make_shared<Keypoints>();
     out->header = in.header;
@@ -82,6 +82,7 @@ class KeypointDetector : public apex::Node {
   apex::Param<int> max_features_{this, kMaxFeatures};
   apex::Param<double> threshold_{this, kThreshold};
   cv::Ptr<cv::Feature2D> detector_;  // rebuilt after a parameter change
+  cv::Mat gray_;  // a colour frame's gray, reused
 };
 
 class DrawKeypoints : public apex::Node {

@@ -13,6 +13,19 @@ namespace {
 
 std::string sizeText(const cv::Size& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
 
+/** An 8-bit image (1, 3 or 4 channels) as cv::drawMatches takes it: gray or bgr8 as it is (it only
+ *  reads them, and turns gray to BGR itself, as cv::cvtColor's GRAY2BGR); rgb8, rgba8 and bgra8 as
+ *  bgr8 in `scratch` (a 4-channel image would make its result 4-channel). */
+const cv::Mat& drawable(const Image& in, cv::Mat& scratch) {
+  requireImage(in, "134");
+  if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image ('" + in.encoding + "')");
+  const bool rgb = in.encoding.rfind("rgb", 0) == 0;
+  if (in.mat.channels() == 1 || (in.mat.channels() == 3 && !rgb)) return in.mat;
+  if (in.mat.channels() == 4) cv::cvtColor(in.mat, scratch, rgb ? cv::COLOR_RGBA2BGR : cv::COLOR_BGRA2BGR);
+  else cv::cvtColor(in.mat, scratch, cv::COLOR_RGB2BGR);
+  return scratch;
+}
+
 /** "orb descriptors (32 columns of 8U)", for errors. */
 std::string describe(const Keypoints& k) {
   static const char* depths[] = {"8U", "8S", "16U", "16S", "32S", "32F", "64F", "16F"};
@@ -186,14 +199,13 @@ class DrawMatches : public apex::Node {
                                     " entries for " + std::to_string(m.matches.size()) + " matches");
       mask.assign(h->inlier_mask.begin(), h->inlier_mask.end());
     }
-    bgr8(query, query_bgr_);
-    bgr8(train, train_bgr_);
+    const cv::Mat &query_pixels = drawable(query, query_bgr_), &train_pixels = drawable(train, train_bgr_);
     auto out = buffer_.next(query);
     auto flags = cv::DrawMatchesFlags::DEFAULT;
     if (no_single_.get()) flags = flags | cv::DrawMatchesFlags::NOT_DRAW_SINGLE_POINTS;
     if (rich_.get()) flags = flags | cv::DrawMatchesFlags::DRAW_RICH_KEYPOINTS;
     const apex::Color &c = match_color_.get(), &p = point_color_.get();
-    cv::drawMatches(query_bgr_, m.query->keypoints, train_bgr_, m.train->keypoints, m.matches, out->mat,
+    cv::drawMatches(query_pixels, m.query->keypoints, train_pixels, m.train->keypoints, m.matches, out->mat,
                     cv::Scalar(c.b, c.g, c.r), cv::Scalar(p.b, p.g, p.r), mask, flags);
     out->encoding = "bgr8";
     image_out_.publish(out);
@@ -209,7 +221,7 @@ class DrawMatches : public apex::Node {
   apex::Param<apex::Color> point_color_{this, kPointColor};
   apex::Param<bool> no_single_{this, kNoSingle};
   apex::Param<bool> rich_{this, kRich};
-  cv::Mat query_bgr_, train_bgr_;  // reused between frames: never sent
+  cv::Mat query_bgr_, train_bgr_;  // rgb8 and 4-channel images as bgr8: reused between frames, never sent
   OutputBuffer buffer_;
 };
 

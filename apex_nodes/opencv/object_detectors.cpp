@@ -19,14 +19,14 @@ void require8Bit(const Image& in, const std::string& channels) {
   if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image, got '" + in.encoding + "'");
 }
 
-/** The image in gray (itself if it is), by its encoding's channel order. */
-cv::Mat grayOf(const Image& in) {
+/** The image in gray, by its encoding's channel order: its own pixels if it is (to read only),
+ *  else converted into `scratch` (the node's, reused) and that returned. */
+cv::Mat grayOf(const Image& in, cv::Mat& scratch) {
   if (in.mat.channels() == 1) return in.mat;
   const bool rgb = in.encoding.rfind("rgb", 0) == 0;
-  cv::Mat gray;
-  if (in.mat.channels() == 4) cv::cvtColor(in.mat, gray, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
-  else cv::cvtColor(in.mat, gray, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY);
-  return gray;
+  if (in.mat.channels() == 4) cv::cvtColor(in.mat, scratch, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
+  else cv::cvtColor(in.mat, scratch, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY);
+  return scratch;
 }
 
 Region boxRegion(const cv::Rect& box, int label = -1, double confidence = 0) {
@@ -93,11 +93,10 @@ class CascadeDetector : public apex::Node {
     if (!classifier_) load();
     const Image& in = *image_.get();
     require8Bit(in, "134");
-    cv::Mat gray = grayOf(in);
+    cv::Mat gray = grayOf(in, gray_);
     if (equalize_.get()) {
-      cv::Mat equalized;
-      cv::equalizeHist(gray, equalized);
-      gray = equalized;
+      cv::equalizeHist(gray, equalized_);  // not into gray: it may be the frame's own pixels
+      gray = equalized_;
     }
     std::vector<cv::Rect> found;
     classifier_->detectMultiScale(gray, found, scale_.get(), neighbors_.get(), 0, sizeOf(min_size_.get(), kMinSize.name()),
@@ -137,6 +136,7 @@ class CascadeDetector : public apex::Node {
   apex::Param<bool> equalize_{this, kEqualize};
   std::unique_ptr<cv::CascadeClassifier> classifier_;
   std::string error_;  // why the cascade set could not be read
+  cv::Mat gray_, equalized_;  // a colour frame's gray, and the gray equalised: reused
 };
 
 class HOGPeopleDetector : public apex::Node {
@@ -172,7 +172,10 @@ class HOGPeopleDetector : public apex::Node {
     const Image& in = *image_.get();
     require8Bit(in, "134");
     cv::Mat image = in.mat;
-    if (image.channels() == 4) cv::cvtColor(in.mat, image, cv::COLOR_BGRA2BGR);  // HOG takes 1 or 3
+    if (image.channels() == 4) {  // HOG takes 1 or 3
+      cv::cvtColor(in.mat, bgr_, cv::COLOR_BGRA2BGR);
+      image = bgr_;
+    }
     std::vector<cv::Rect> found;
     std::vector<double> weights;
     const cv::Size stride(win_stride_.get(), win_stride_.get()), padding(padding_.get(), padding_.get());
@@ -194,6 +197,7 @@ class HOGPeopleDetector : public apex::Node {
   apex::Param<int> group_threshold_{this, kGroupThreshold};
   apex::Param<bool> mean_shift_{this, kMeanShift};
   cv::HOGDescriptor hog_;
+  cv::Mat bgr_;  // a 4-channel frame without its alpha, reused
 };
 
 class QRCodeDetector : public apex::Node {
@@ -216,7 +220,7 @@ class QRCodeDetector : public apex::Node {
   void process() override {
     const Image& in = *image_.get();
     require8Bit(in, "134");
-    const cv::Mat gray = grayOf(in);
+    const cv::Mat gray = grayOf(in, gray_);
     std::vector<cv::Point2f> corners;
     std::string text;
     if (canDecode()) text = detector_.detectAndDecode(gray, corners);
@@ -253,6 +257,7 @@ class QRCodeDetector : public apex::Node {
   apex::Output<Regions> regions_{this, kRegions};
   apex::Output<std::string> text_{this, kText};
   cv::QRCodeDetector detector_;
+  cv::Mat gray_;  // a colour frame's gray, reused
 };
 
 }  // namespace apex_nodes

@@ -8,6 +8,39 @@
 namespace apex_nodes {
 namespace param = apex::param;
 
+namespace {
+/** A frame's gray pixels, kept for the next frame. A colour frame's are converted into one of two
+ *  scratch images, taking turns, so that converting a frame never writes the kept gray of the one
+ *  before; a gray frame's are its own, and the frame is held with them, so that its sender cannot
+ *  reuse them (OutputBuffer). */
+class KeptGray {
+ public:
+  /** `frame` in gray (gray8): its own pixels, or a scratch image the kept gray is not in. */
+  cv::Mat of(const Image& frame) { return gray8(frame, scratch_[next_]); }
+  /** Keeps `gray`, of(frame)'s result, as the previous frame's. */
+  void keep(const std::shared_ptr<const Image>& frame, const cv::Mat& gray) {
+    gray_ = gray;
+    if (gray.data == frame->mat.data) {
+      frame_ = frame;
+    } else {  // converted: scratch_[next_] is kept, the next frame is converted into the other
+      frame_.reset();
+      next_ ^= 1;
+    }
+  }
+  const cv::Mat& get() const { return gray_; }
+  void reset() {
+    gray_.release();
+    frame_.reset();
+  }
+
+ private:
+  cv::Mat scratch_[2];
+  int next_ = 0;  // the scratch image the next colour frame is converted into
+  cv::Mat gray_;  // the last frame's gray (perhaps the frame's own pixels: shared, never written)
+  std::shared_ptr<const Image> frame_;  // the last frame, if gray_ is its pixels
+};
+}  // namespace
+
 class OpticalFlowLK : public apex::Node {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "8-bit gray or colour (tracked on its gray)"};
@@ -54,27 +87,26 @@ class OpticalFlowLK : public apex::Node {
     endSequence();
   }
   void reset() {
-    previous_.release();
-    previous_frame_.reset();
+    previous_.reset();
     points_.clear();
   }
 
   void process() override {
     const auto frame = image_.get();
     const Image& in = *frame;
-    const cv::Mat gray = gray8(in);  // the input's own pixels if gray: never written
+    const cv::Mat gray = previous_.of(in);  // the input's own pixels if gray: never written
     auto out = std::make_shared<Tracks>();
     out->header = in.header;
     out->image_size = gray.size();
-    if (previous_.size() != gray.size()) reset();  // the first frame, or one of another size
-    if (!previous_.empty()) {
+    if (previous_.get().size() != gray.size()) reset();  // the first frame, or one of another size
+    if (!previous_.get().empty()) {
       if (redetect_.get() == "every_frame" || points_.empty() || 2 * points_.size() < detected_) {
-        cv::goodFeaturesToTrack(previous_, points_, max_corners_.get(), quality_.get(), min_distance_.get());
+        cv::goodFeaturesToTrack(previous_.get(), points_, max_corners_.get(), quality_.get(), min_distance_.get());
         detected_ = points_.size();
       }
       if (!points_.empty()) {
         std::vector<float> err;
-        cv::calcOpticalFlowPyrLK(previous_, gray, points_, out->current, out->status, err,
+        cv::calcOpticalFlowPyrLK(previous_.get(), gray, points_, out->current, out->status, err,
                                  cv::Size(win_size_.get(), win_size_.get()), max_level_.get());
         out->previous = points_;
       }
@@ -82,8 +114,7 @@ class OpticalFlowLK : public apex::Node {
       for (std::size_t i = 0; i < out->current.size(); ++i)
         if (out->status[i]) points_.push_back(out->current[i]);
     }
-    previous_ = gray;
-    previous_frame_ = frame;
+    previous_.keep(frame, gray);
     tracks_.publish(out);
   }
 
@@ -96,8 +127,7 @@ class OpticalFlowLK : public apex::Node {
   apex::Param<std::string> redetect_{this, kRedetect};
   apex::Param<int> win_size_{this, kWinSize};
   apex::Param<int> max_level_{this, kMaxLevel};
-  cv::Mat previous_;  // the last frame's gray pixels (perhaps the frame's own: shared, never written)
-  std::shared_ptr<const Image> previous_frame_;  // held, so that its sender cannot reuse its pixels (OutputBuffer)
+  KeptGray previous_;  // the last frame's gray
   std::vector<cv::Point2f> points_;  // to track from previous_
   std::size_t detected_ = 0;  // points the last detection found
 };
@@ -139,26 +169,22 @@ class OpticalFlowFarneback : public apex::Node {
     reset();
     endSequence();
   }
-  void reset() {
-    previous_.release();
-    previous_frame_.reset();
-  }
+  void reset() { previous_.reset(); }
 
   void process() override {
     const auto frame = image_.get();
     const Image& in = *frame;
-    const cv::Mat gray = gray8(in);
+    const cv::Mat gray = previous_.of(in);
     auto out = buffer_.next(in);
     out->encoding = "32FC2";
-    if (previous_.size() != gray.size()) {  // the first frame, or one of another size
+    if (previous_.get().size() != gray.size()) {  // the first frame, or one of another size
       out->mat.create(gray.size(), CV_32FC2);
       out->mat.setTo(cv::Scalar::all(0));
     } else {
-      cv::calcOpticalFlowFarneback(previous_, gray, out->mat, pyr_scale_.get(), levels_.get(), winsize_.get(), iterations_.get(),
-                                   std::stoi(poly_n_.get()), poly_sigma_.get(), 0);
+      cv::calcOpticalFlowFarneback(previous_.get(), gray, out->mat, pyr_scale_.get(), levels_.get(), winsize_.get(),
+                                   iterations_.get(), std::stoi(poly_n_.get()), poly_sigma_.get(), 0);
     }
-    previous_ = gray;
-    previous_frame_ = frame;
+    previous_.keep(frame, gray);
     flow_.publish(out);
   }
 
@@ -171,8 +197,7 @@ class OpticalFlowFarneback : public apex::Node {
   apex::Param<int> iterations_{this, kIterations};
   apex::Param<std::string> poly_n_{this, kPolyN};
   apex::Param<double> poly_sigma_{this, kPolySigma};
-  cv::Mat previous_;  // the last frame's gray pixels (perhaps the frame's own: shared, never written)
-  std::shared_ptr<const Image> previous_frame_;  // held, so that its sender cannot reuse its pixels (OutputBuffer)
+  KeptGray previous_;  // the last frame's gray
   OutputBuffer buffer_;
 };
 

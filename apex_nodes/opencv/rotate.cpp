@@ -15,12 +15,18 @@ class Rotate : public ImageFilter {
   }
 
  private:
-  void filter(const Image& in, Image& out) override {
+  /** The angle in quarter turns, 0..3, if it is a whole number of them (to 1e-9); else -1. */
+  int quarterTurns() const {
     const double quarter = angle_.get() / (M_PI / 2);
     const long turns = std::lround(quarter);
-    if (std::abs(quarter - turns) < 1e-9) {
-      const int q = static_cast<int>(((turns % 4) + 4) % 4);
-      if (q == 0) in.mat.copyTo(out.mat);
+    return std::abs(quarter - turns) < 1e-9 ? static_cast<int>(((turns % 4) + 4) % 4) : -1;
+  }
+  /** 0 or a whole turn: the frame as it is. */
+  bool passesThrough(const Image&) const override { return quarterTurns() == 0; }
+  void filter(const Image& in, Image& out) override {
+    const int q = quarterTurns();
+    if (q >= 0) {
+      if (q == 0) in.mat.copyTo(out.mat);  // not reached (passesThrough)
       if (q == 1) cv::rotate(in.mat, out.mat, cv::ROTATE_90_COUNTERCLOCKWISE);
       if (q == 2) cv::rotate(in.mat, out.mat, cv::ROTATE_180);
       if (q == 3) cv::rotate(in.mat, out.mat, cv::ROTATE_90_CLOCKWISE);

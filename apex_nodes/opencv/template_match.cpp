@@ -55,10 +55,10 @@ class TemplateMatch : public apex::Node {
       throw std::invalid_argument("the template (" + std::to_string(templ.mat.cols) + "x" + std::to_string(templ.mat.rows) +
                                   ") is larger than the image (" + std::to_string(in.mat.cols) + "x" +
                                   std::to_string(in.mat.rows) + ")");
-    cv::Mat t = templ.mat;
     const bool swapped =
         (in.encoding == "rgb8" && templ.encoding == "bgr8") || (in.encoding == "bgr8" && templ.encoding == "rgb8");
-    if (swapped) cv::cvtColor(templ.mat, t, cv::COLOR_RGB2BGR);  // the image's channel order
+    if (swapped) cv::cvtColor(templ.mat, swapped_, cv::COLOR_RGB2BGR);  // the image's channel order, in a copy of its own
+    const cv::Mat& t = swapped ? swapped_ : templ.mat;  // read only: the message's pixels are never written
 
     const int method = kMethods.at(method_.get());
     auto scores = buffer_.next(in);
@@ -68,7 +68,7 @@ class TemplateMatch : public apex::Node {
     auto out = std::make_shared<Regions>();
     out->header = in.header;
     out->image_size = in.mat.size();
-    cv::Mat conf = confidence(scores->mat, method);
+    cv::Mat& conf = confidence(scores->mat, method);
     const cv::Rect all(0, 0, conf.cols, conf.rows);
     for (int k = 0; k < max_matches_.get(); ++k) {
       double best = 0;
@@ -90,17 +90,21 @@ class TemplateMatch : public apex::Node {
   }
 
  private:
-  /** The scores as confidences, higher is better, 0..1 where the method allows. */
-  static cv::Mat confidence(const cv::Mat& scores, int method) {
-    cv::Mat conf;
+  /** The scores as confidences in conf_ (reused), higher is better, 0..1 where the method allows. */
+  cv::Mat& confidence(const cv::Mat& scores, int method) {
+    cv::Mat& conf = conf_;
     if (method == cv::TM_SQDIFF_NORMED) {
       cv::subtract(cv::Scalar::all(1.0), scores, conf);
     } else if (method == cv::TM_CCORR_NORMED || method == cv::TM_CCOEFF_NORMED) {
-      conf = scores.clone();
+      scores.copyTo(conf);
     } else {  // unbounded scores: scaled to 0..1 over this frame
       double lo = 0, hi = 0;
       cv::minMaxLoc(scores, &lo, &hi);
-      if (!(hi > lo)) return cv::Mat::ones(scores.size(), CV_32F);  // every position alike
+      if (!(hi > lo)) {  // every position alike
+        conf.create(scores.size(), CV_32F);
+        conf.setTo(cv::Scalar::all(1.0));
+        return conf;
+      }
       if (method == cv::TM_SQDIFF) scores.convertTo(conf, CV_32F, -1.0 / (hi - lo), hi / (hi - lo));
       else scores.convertTo(conf, CV_32F, 1.0 / (hi - lo), -lo / (hi - lo));
     }
@@ -116,6 +120,8 @@ class TemplateMatch : public apex::Node {
   apex::Param<double> threshold_{this, kThreshold};
   apex::Param<int> max_matches_{this, kMaxMatches};
   OutputBuffer buffer_;
+  cv::Mat swapped_;  // the template in the image's channel order, when they differ; reused
+  cv::Mat conf_;  // the confidences, marked off as matches are taken; reused, never sent
 };
 
 }  // namespace apex_nodes

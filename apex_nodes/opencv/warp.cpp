@@ -80,6 +80,19 @@ class WarpPerspective : public ImageFilter {
   WarpPerspective() : ImageFilter("1234") {}
 
  private:
+  /** m is the identity and the size the input's: every pixel lands on itself, weighted 1 (its
+   *  neighbours 0), so the warp is a copy; but not where OpenCV would refuse the depth, nor for a
+   *  float image with NaN or infinite values, which the zero weights spread to their neighbours
+   *  (0 * NaN is NaN) except with nearest. */
+  bool passesThrough(const Image& in) const override {
+    static const std::vector<double> kIdentity{1, 0, 0, 0, 1, 0, 0, 0, 1};
+    if (m_.get() != kIdentity) return false;
+    if ((width_.get() > 0 && width_.get() != in.mat.cols) || (height_.get() > 0 && height_.get() != in.mat.rows)) return false;
+    const int depth = in.mat.depth();
+    if (interpolation_.get() == "nearest") return depth != CV_16F;
+    if (depth == CV_8U || depth == CV_16U || depth == CV_16S) return true;
+    return (depth == CV_32F || depth == CV_64F) && cv::checkRange(in.mat);
+  }
   void filter(const Image& in, Image& out) override {
     const std::vector<double>& m = m_.get();
     if (m.size() != 9)

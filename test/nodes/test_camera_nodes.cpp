@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apex_nodes/types.hpp"
-#include "apex_test/node_harness.hpp"
+#include "apex_test/real_images.hpp"
 
 using namespace apex_test;
 using apex_nodes::Image;
@@ -18,17 +18,8 @@ using ::testing::HasSubstr;
 
 namespace {
 
-const std::string kData = "/usr/share/doc/opencv-doc/examples/data";  // scripts/install_deps installs opencv-doc
-
-std::shared_ptr<const Image> chessboard(const std::string& name = "left01.jpg") {
-  auto image = std::make_shared<Image>();
-  image->mat = cv::imread(kData + "/" + name, cv::IMREAD_COLOR);
-  image->encoding = "bgr8";
-  image->header.frame_id = "left_camera";
-  image->header.stamp = ros::Time(42, 7);
-  if (image->mat.empty()) ADD_FAILURE() << "cannot read " << kData << "/" << name << ": is opencv-doc installed?";
-  return image;
-}
+/** A frame of opencv-doc's chessboard sequence, bgr8, from the left camera. */
+std::shared_ptr<const Image> chessboard(const std::string& name = "left01.jpg") { return readDataImage(name, "left_camera"); }
 
 /** CameraInfoFile's model for the image, from `file`. */
 Message modelFrom(const std::string& file, const std::shared_ptr<const Image>& image) {
@@ -39,7 +30,7 @@ Message modelFrom(const std::string& file, const std::shared_ptr<const Image>& i
 
 TEST(CameraNodes, RectifyEqualsOpenCvsRemapOnARealCalibration) {
   const auto image = chessboard();
-  const Message info = modelFrom(kData + "/left_intrinsics.yml", image);
+  const Message info = modelFrom(kOpenCvData + "/left_intrinsics.yml", image);
   ASSERT_TRUE(info.as<CameraInfo>());
   EXPECT_EQ(info.as<CameraInfo>()->header, image->header);  // stamped like the frame it goes with
 
@@ -48,7 +39,7 @@ TEST(CameraNodes, RectifyEqualsOpenCvsRemapOnARealCalibration) {
   ASSERT_TRUE(out.as<Image>()) << h.error();
   const Image& got = *out.as<Image>();
 
-  cv::FileStorage fs(kData + "/left_intrinsics.yml", cv::FileStorage::READ);
+  cv::FileStorage fs(kOpenCvData + "/left_intrinsics.yml", cv::FileStorage::READ);
   cv::Mat K, D, map1, map2, want;
   fs["camera_matrix"] >> K;
   fs["distortion_coefficients"] >> D;
@@ -79,14 +70,14 @@ TEST(CameraNodes, CameraInfoFileReadsRosCalibrationFiles) {
 
 TEST(CameraNodes, AModelThatDoesNotFitTheImageIsAnErrorNamingBoth) {
   NodeHarness file("apex_nodes/CameraInfoFile", {"image"}, "camera_info");
-  file.set("file", kData + "/no_such_calibration.yml");
+  file.set("file", kOpenCvData + "/no_such_calibration.yml");
   EXPECT_TRUE(file.run(chessboard()).isNothing());
-  EXPECT_THAT(file.error(), HasSubstr("cannot read the calibration file '" + kData + "/no_such_calibration.yml'"));
-  file.set("file", kData + "/left01.jpg");
+  EXPECT_THAT(file.error(), HasSubstr("cannot read the calibration file '" + kOpenCvData + "/no_such_calibration.yml'"));
+  file.set("file", kOpenCvData + "/left01.jpg");
   EXPECT_TRUE(file.run(chessboard()).isNothing());
   EXPECT_THAT(file.error(), HasSubstr("is neither a ROS camera calibration"));
 
-  const Message info = modelFrom(kData + "/left_intrinsics.yml", chessboard());
+  const Message info = modelFrom(kOpenCvData + "/left_intrinsics.yml", chessboard());
   auto small = std::make_shared<Image>(*chessboard());
   cv::resize(small->mat, small->mat, cv::Size(320, 240));
   NodeHarness rectify("apex_nodes/Rectify", {"image", "camera_info"}, "image");
@@ -98,7 +89,7 @@ TEST(CameraNodes, AModelThatDoesNotFitTheImageIsAnErrorNamingBoth) {
 
 TEST(CameraNodes, UndistortRegionsMovesCentroidsAsOpenCvDoes) {
   const auto image = chessboard();
-  const Message info = modelFrom(kData + "/left_intrinsics.yml", image);
+  const Message info = modelFrom(kOpenCvData + "/left_intrinsics.yml", image);
   auto regions = std::make_shared<apex_nodes::Regions>();
   regions->header = image->header;
   apex_nodes::Region corner;  // near the image's corner, where the lens bends most

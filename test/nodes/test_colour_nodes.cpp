@@ -9,59 +9,14 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apex_nodes/types.hpp"
-#include "apex_test/node_harness.hpp"
+#include "apex_test/real_images.hpp"
 
 using namespace apex_test;
-using apex_nodes::Image;
-using ::testing::HasSubstr;
 
 namespace {
 
-const std::string kData = "/usr/share/doc/opencv-doc/examples/data";  // scripts/install_deps installs opencv-doc
-
-cv::Mat load(const std::string& name, int flags = cv::IMREAD_COLOR) {
-  cv::Mat m = cv::imread(kData + "/" + name, flags);
-  if (m.empty()) ADD_FAILURE() << "cannot read " << kData << "/" << name << ": is opencv-doc installed?";
-  return m;
-}
-cv::Mat gray(const std::string& name) { return load(name, cv::IMREAD_GRAYSCALE); }
-
-std::shared_ptr<const Image> image(cv::Mat mat, const std::string& encoding) {
-  auto i = std::make_shared<Image>();
-  i->header.stamp = ros::Time(42, 7);
-  i->header.frame_id = "camera";
-  i->encoding = encoding;
-  i->mat = std::move(mat);
-  return i;
-}
-
-/** Feeds one image per input of the node, in order, and returns what it sent. */
-Message run(NodeHarness& h, const std::vector<std::shared_ptr<const Image>>& images) {
-  std::vector<Message> messages;
-  for (const auto& i : images) messages.push_back(Message::share<Image>(i));
-  return h.run(messages);
-}
-
-/** Expects `want`, with `encoding` and the inputs' header. */
-void expectResult(NodeHarness& h, const Message& m, const cv::Mat& want, const std::string& encoding) {
-  ASSERT_TRUE(m.as<Image>()) << "the node sent no image: " << h.error();
-  const Image& got = *m.as<Image>();
-  EXPECT_EQ(got.header.stamp, ros::Time(42, 7));
-  EXPECT_EQ(got.header.frame_id, "camera");
-  EXPECT_EQ(got.encoding, encoding);
-  ASSERT_EQ(got.mat.size(), want.size());
-  ASSERT_EQ(got.mat.type(), want.type());
-  EXPECT_EQ(cv::norm(got.mat, want, cv::NORM_INF), 0.0);
-}
-
-/** Expects Nothing and an error saying `text`. */
-void expectError(NodeHarness& h, const Message& m, const std::string& text) {
-  EXPECT_TRUE(m.isNothing());
-  EXPECT_THAT(h.error(), HasSubstr(text));
-}
-
 TEST(ColourNodes, ColorRangeMatchesInRangeInEachSpaceForBgrAndRgbImages) {
-  const cv::Mat bgr = load("smarties.png");
+  const cv::Mat bgr = readData("smarties.png");
   cv::Mat rgb, want;
   cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
   NodeHarness h("apex_nodes/ColorRange", {"image"}, "mask");
@@ -85,75 +40,79 @@ TEST(ColourNodes, ColorRangeMatchesInRangeInEachSpaceForBgrAndRgbImages) {
     EXPECT_GT(cv::countNonZero(want), 0) << c.space;  // the range picks some pixels, not all
     EXPECT_LT(cv::countNonZero(want), static_cast<int>(want.total())) << c.space;
     SCOPED_TRACE(c.space);
-    expectResult(h, run(h, {image(bgr, "bgr8")}), want, "mono8");
-    expectResult(h, run(h, {image(rgb, "rgb8")}), want, "mono8");  // the same colours, in the other order
+    expectImage(h, runImages(h, {imageOf(bgr, "bgr8")}), want, "mono8");
+    expectImage(h, runImages(h, {imageOf(rgb, "rgb8")}), want, "mono8");  // the same colours, in the other order
   }
 }
 
 TEST(ColourNodes, ColorRangeRefusesImagesOfUnknownColourOrder) {
-  const cv::Mat bgr = load("smarties.png");
+  const cv::Mat bgr = readData("smarties.png");
   NodeHarness h("apex_nodes/ColorRange", {"image"}, "mask");
-  expectError(h, run(h, {image(gray("smarties.png"), "mono8")}),
-              "cannot handle 1-channel images (encoding 'mono8'); needs 3 channels");
-  expectError(h, run(h, {image(bgr, "8UC3")}), "needs a bgr8 or rgb8 image, got '8UC3'");
+  expectNothing(h, runImages(h, {imageOf(readGrayData("smarties.png"), "mono8")}),
+                "cannot handle 1-channel images (encoding 'mono8'); needs 3 channels");
+  expectNothing(h, runImages(h, {imageOf(bgr, "8UC3")}), "needs a bgr8 or rgb8 image, got '8UC3'");
   h.set("lower", "[10, 20]");
-  expectError(h, run(h, {image(bgr, "bgr8")}), "'lower' takes three numbers, one per channel, not 2");
+  expectNothing(h, runImages(h, {imageOf(bgr, "bgr8")}), "'lower' takes three numbers, one per channel, not 2");
 }
 
 TEST(ColourNodes, SplitChannelsSendsEachChannelAndNothingForChannelsTheImageLacks) {
-  const cv::Mat bgr = load("baboon.jpg");
+  const cv::Mat bgr = readData("baboon.jpg");
   std::vector<cv::Mat> planes;
   cv::split(bgr, planes);
   for (int c = 0; c < 3; ++c) {
     NodeHarness h("apex_nodes/SplitChannels", {"image"}, "channel_" + std::to_string(c));
-    expectResult(h, run(h, {image(bgr, "bgr8")}), planes[c], "mono8");
+    expectImage(h, runImages(h, {imageOf(bgr, "bgr8")}), planes[c], "mono8");
   }
   NodeHarness alpha("apex_nodes/SplitChannels", {"image"}, "channel_3");
-  EXPECT_TRUE(run(alpha, {image(bgr, "bgr8")}).isNothing());
+  EXPECT_TRUE(runImages(alpha, {imageOf(bgr, "bgr8")}).isNothing());
   EXPECT_EQ(alpha.error(), "");  // no fourth channel: Nothing, not an error
   cv::Mat bgra, wide;
-  cv::merge(std::vector<cv::Mat>{planes[0], planes[1], planes[2], gray("baboon.jpg")}, bgra);
-  expectResult(alpha, run(alpha, {image(bgra, "bgra8")}), gray("baboon.jpg"), "mono8");
+  cv::merge(std::vector<cv::Mat>{planes[0], planes[1], planes[2], readGrayData("baboon.jpg")}, bgra);
+  expectImage(alpha, runImages(alpha, {imageOf(bgra, "bgra8")}), readGrayData("baboon.jpg"), "mono8");
   NodeHarness green("apex_nodes/SplitChannels", {"image"}, "channel_1");
   bgr.convertTo(wide, CV_16U, 257);
   planes[1].convertTo(planes[1], CV_16U, 257);
-  expectResult(green, run(green, {image(wide, "bgr16")}), planes[1], "mono16");
+  expectImage(green, runImages(green, {imageOf(wide, "bgr16")}), planes[1], "mono16");
 }
 
 TEST(ColourNodes, MergeChannelsMakesBgrOrBgraOfSingleChannelImages) {
-  const cv::Mat bgr = load("fruits.jpg");
+  const cv::Mat bgr = readData("fruits.jpg");
   std::vector<cv::Mat> planes;
   cv::split(bgr, planes);
   NodeHarness h("apex_nodes/MergeChannels", {"channel_0", "channel_1", "channel_2"}, "image");  // channel_3 unconnected
-  expectResult(h, run(h, {image(planes[0], "mono8"), image(planes[1], "mono8"), image(planes[2], "mono8")}), bgr, "bgr8");
+  expectImage(h, runImages(h, {imageOf(planes[0], "mono8"), imageOf(planes[1], "mono8"), imageOf(planes[2], "mono8")}), bgr,
+              "bgr8");
   std::vector<cv::Mat> wide(3);
   cv::Mat want;
   for (int c = 0; c < 3; ++c) planes[c].convertTo(wide[c], CV_16U, 257);
   cv::merge(wide, want);
-  expectResult(h, run(h, {image(wide[0], "mono16"), image(wide[1], "mono16"), image(wide[2], "mono16")}), want, "bgr16");
+  expectImage(h, runImages(h, {imageOf(wide[0], "mono16"), imageOf(wide[1], "mono16"), imageOf(wide[2], "mono16")}), want,
+              "bgr16");
 
   NodeHarness four("apex_nodes/MergeChannels", {"channel_0", "channel_1", "channel_2", "channel_3"}, "image");
-  const cv::Mat alpha = gray("fruits.jpg");
+  const cv::Mat alpha = readGrayData("fruits.jpg");
   cv::merge(std::vector<cv::Mat>{planes[0], planes[1], planes[2], alpha}, want);
-  expectResult(
-      four, run(four, {image(planes[0], "mono8"), image(planes[1], "mono8"), image(planes[2], "mono8"), image(alpha, "mono8")}),
-      want, "bgra8");
+  expectImage(four,
+              runImages(four, {imageOf(planes[0], "mono8"), imageOf(planes[1], "mono8"), imageOf(planes[2], "mono8"),
+                               imageOf(alpha, "mono8")}),
+              want, "bgra8");
 }
 
 TEST(ColourNodes, MergeChannelsNamesTheChannelThatDoesNotFit) {
-  const cv::Mat bgr = load("fruits.jpg");
+  const cv::Mat bgr = readData("fruits.jpg");
   std::vector<cv::Mat> planes;
   cv::split(bgr, planes);
   cv::Mat half, wide;
   cv::resize(planes[1], half, cv::Size(256, 240));
   NodeHarness h("apex_nodes/MergeChannels", {"channel_0", "channel_1", "channel_2"}, "image");
-  expectError(h, run(h, {image(planes[0], "mono8"), image(half, "mono8"), image(planes[2], "mono8")}),
-              "channel_1 is 256x240 'mono8' (8UC1), channel_0 512x480 'mono8' (8UC1): the channels need the same size and depth");
+  expectNothing(
+      h, runImages(h, {imageOf(planes[0], "mono8"), imageOf(half, "mono8"), imageOf(planes[2], "mono8")}),
+      "channel_1 is 256x240 'mono8' (8UC1), channel_0 512x480 'mono8' (8UC1): the channels need the same size and depth");
   planes[2].convertTo(wide, CV_16U, 257);
-  expectError(h, run(h, {image(planes[0], "mono8"), image(planes[1], "mono8"), image(wide, "mono16")}),
-              "channel_2 is 512x480 'mono16' (16UC1), channel_0 512x480 'mono8' (8UC1)");
-  expectError(h, run(h, {image(planes[0], "mono8"), image(bgr, "bgr8"), image(planes[2], "mono8")}),
-              "channel_1 is 512x480 'bgr8' (8UC3); each input needs a single-channel image");
+  expectNothing(h, runImages(h, {imageOf(planes[0], "mono8"), imageOf(planes[1], "mono8"), imageOf(wide, "mono16")}),
+                "channel_2 is 512x480 'mono16' (16UC1), channel_0 512x480 'mono8' (8UC1)");
+  expectNothing(h, runImages(h, {imageOf(planes[0], "mono8"), imageOf(bgr, "bgr8"), imageOf(planes[2], "mono8")}),
+                "channel_1 is 512x480 'bgr8' (8UC3); each input needs a single-channel image");
 }
 
 /** `bgr` as a camera's raw Bayer mosaic: each pixel keeps the colour `pattern` gives its place
@@ -170,7 +129,7 @@ cv::Mat mosaic(const cv::Mat& bgr, const std::string& pattern) {
 }
 
 TEST(ColourNodes, DebayerMatchesOpenCVForEachPatternAndMethod) {
-  const cv::Mat bgr = load("fruits.jpg");
+  const cv::Mat bgr = readData("fruits.jpg");
   NodeHarness h("apex_nodes/Debayer", {"image"}, "image");
   // each pattern with the one that swaps red and blue: read so, the colours come out wrong
   const std::map<std::string, std::pair<int, int>> codes{{"rggb", {cv::COLOR_BayerRGGB2BGR, cv::COLOR_BayerBGGR2BGR}},
@@ -183,40 +142,40 @@ TEST(ColourNodes, DebayerMatchesOpenCVForEachPatternAndMethod) {
     cv::cvtColor(raw, want, code.first);
     cv::cvtColor(raw, swapped, code.second);
     EXPECT_LT(cv::norm(want, bgr, cv::NORM_L1), cv::norm(swapped, bgr, cv::NORM_L1)) << pattern;  // the codes mean what ROS means
-    expectResult(h, run(h, {image(raw, "bayer_" + pattern + "8")}), want, "bgr8");
+    expectImage(h, runImages(h, {imageOf(raw, "bayer_" + pattern + "8")}), want, "bgr8");
   }
   const cv::Mat raw = mosaic<uchar>(bgr, "grbg");
   h.set("method", "vng");
   cv::cvtColor(raw, want, cv::COLOR_BayerGRBG2BGR_VNG);
-  expectResult(h, run(h, {image(raw, "bayer_grbg8")}), want, "bgr8");
+  expectImage(h, runImages(h, {imageOf(raw, "bayer_grbg8")}), want, "bgr8");
   h.set("method", "ea");
   cv::cvtColor(raw, want, cv::COLOR_BayerGRBG2BGR_EA);
-  expectResult(h, run(h, {image(raw, "bayer_grbg8")}), want, "bgr8");
+  expectImage(h, runImages(h, {imageOf(raw, "bayer_grbg8")}), want, "bgr8");
 }
 
 TEST(ColourNodes, DebayerTakes16BitMosaicsAndNamesWhatItCannotRead) {
   cv::Mat wide, want;
-  load("fruits.jpg").convertTo(wide, CV_16U, 257);
+  readData("fruits.jpg").convertTo(wide, CV_16U, 257);
   const cv::Mat raw = mosaic<ushort>(wide, "bggr");
   NodeHarness h("apex_nodes/Debayer", {"image"}, "image");
   cv::cvtColor(raw, want, cv::COLOR_BayerBGGR2BGR);
-  expectResult(h, run(h, {image(raw, "bayer_bggr16")}), want, "bgr16");
+  expectImage(h, runImages(h, {imageOf(raw, "bayer_bggr16")}), want, "bgr16");
   h.set("method", "ea");
   cv::cvtColor(raw, want, cv::COLOR_BayerBGGR2BGR_EA);
-  expectResult(h, run(h, {image(raw, "bayer_bggr16")}), want, "bgr16");
+  expectImage(h, runImages(h, {imageOf(raw, "bayer_bggr16")}), want, "bgr16");
   h.set("method", "vng");
-  expectError(h, run(h, {image(raw, "bayer_bggr16")}),
-              "vng demosaics 8-bit mosaics only, not 'bayer_bggr16': choose bilinear or ea");
+  expectNothing(h, runImages(h, {imageOf(raw, "bayer_bggr16")}),
+                "vng demosaics 8-bit mosaics only, not 'bayer_bggr16': choose bilinear or ea");
   h.set("method", "bilinear");
   const std::string accepted = "needs bayer_rggb8, bayer_bggr8, bayer_gbrg8 or bayer_grbg8, or their 16-bit forms";
-  expectError(h, run(h, {image(load("fruits.jpg"), "bgr8")}), "cannot debayer 'bgr8'; " + accepted);
-  expectError(h, run(h, {image(gray("fruits.jpg"), "mono8")}), "cannot debayer 'mono8'; " + accepted);
-  expectError(h, run(h, {image(gray("fruits.jpg"), "bayer_rggb16")}),
-              "the encoding 'bayer_rggb16' does not fit the image's pixels, 1-channel 8U");
+  expectNothing(h, runImages(h, {readDataImage("fruits.jpg")}), "cannot debayer 'bgr8'; " + accepted);
+  expectNothing(h, runImages(h, {imageOf(readGrayData("fruits.jpg"), "mono8")}), "cannot debayer 'mono8'; " + accepted);
+  expectNothing(h, runImages(h, {imageOf(readGrayData("fruits.jpg"), "bayer_rggb16")}),
+                "the encoding 'bayer_rggb16' does not fit the image's pixels, 1-channel 8U");
 }
 
 TEST(CombineNodes, ImageCombineMatchesOpenCVForEachOperation) {
-  const cv::Mat a = load("graf1.png"), b = load("graf3.png");
+  const cv::Mat a = readData("graf1.png"), b = readData("graf3.png");
   NodeHarness h("apex_nodes/ImageCombine", {"a", "b"}, "image");
   h.set("alpha", "0.3");
   h.set("beta", "0.6");
@@ -237,42 +196,42 @@ TEST(CombineNodes, ImageCombineMatchesOpenCVForEachOperation) {
     cv::Mat want;
     op(a, b, want);
     SCOPED_TRACE(name);
-    expectResult(h, run(h, {image(a, "bgr8"), image(b, "bgr8")}), want, "bgr8");
+    expectImage(h, runImages(h, {imageOf(a, "bgr8"), imageOf(b, "bgr8")}), want, "bgr8");
   }
 }
 
 TEST(CombineNodes, ImageCombineNamesBothImagesWhenTheyDoNotMatch) {
-  const cv::Mat a = load("graf1.png");
+  const cv::Mat a = readData("graf1.png");
   NodeHarness h("apex_nodes/ImageCombine", {"a", "b"}, "image");
   h.set("operation", "absdiff");
-  expectError(h, run(h, {image(a, "bgr8"), image(load("baboon.jpg"), "bgr8")}),
-              "a is 800x640 'bgr8' (8UC3), b 512x512 'bgr8' (8UC3): absdiff needs two images of the same size and type");
-  expectError(h, run(h, {image(a, "bgr8"), image(gray("graf3.png"), "mono8")}),
-              "a is 800x640 'bgr8' (8UC3), b 800x640 'mono8' (8UC1)");
+  expectNothing(h, runImages(h, {imageOf(a, "bgr8"), readDataImage("baboon.jpg")}),
+                "a is 800x640 'bgr8' (8UC3), b 512x512 'bgr8' (8UC3): absdiff needs two images of the same size and type");
+  expectNothing(h, runImages(h, {imageOf(a, "bgr8"), imageOf(readGrayData("graf3.png"), "mono8")}),
+                "a is 800x640 'bgr8' (8UC3), b 800x640 'mono8' (8UC1)");
 }
 
 TEST(CombineNodes, ApplyMaskKeepsThePixelsUnderTheMask) {
-  const cv::Mat src = load("fruits.jpg");
+  const cv::Mat src = readData("fruits.jpg");
   cv::Mat mask, inverse;
-  cv::threshold(gray("fruits.jpg"), mask, 128, 255, cv::THRESH_BINARY);
+  cv::threshold(readGrayData("fruits.jpg"), mask, 128, 255, cv::THRESH_BINARY);
   cv::bitwise_not(mask, inverse);
   NodeHarness h("apex_nodes/ApplyMask", {"image", "mask"}, "image");
   for (const cv::Mat& m : {mask, inverse}) {
     cv::Mat want = cv::Mat::zeros(src.size(), src.type());
     src.copyTo(want, m);
-    expectResult(h, run(h, {image(src, "bgr8"), image(m, "mono8")}), want, "bgr8");
+    expectImage(h, runImages(h, {imageOf(src, "bgr8"), imageOf(m, "mono8")}), want, "bgr8");
   }
 }
 
 TEST(CombineNodes, ApplyMaskNeedsAMono8MaskOfTheImagesSize) {
-  const cv::Mat src = load("fruits.jpg");
+  const cv::Mat src = readData("fruits.jpg");
   cv::Mat half;
-  cv::resize(gray("fruits.jpg"), half, cv::Size(256, 240));
+  cv::resize(readGrayData("fruits.jpg"), half, cv::Size(256, 240));
   NodeHarness h("apex_nodes/ApplyMask", {"image", "mask"}, "image");
-  expectError(h, run(h, {image(src, "bgr8"), image(src, "bgr8")}),
-              "the mask is 512x480 'bgr8' (8UC3); it needs a single-channel 8-bit image (mono8)");
-  expectError(h, run(h, {image(src, "bgr8"), image(half, "mono8")}),
-              "the image is 512x480 'bgr8' (8UC3), the mask 256x240 'mono8' (8UC1): they need the same size");
+  expectNothing(h, runImages(h, {imageOf(src, "bgr8"), imageOf(src, "bgr8")}),
+                "the mask is 512x480 'bgr8' (8UC3); it needs a single-channel 8-bit image (mono8)");
+  expectNothing(h, runImages(h, {imageOf(src, "bgr8"), imageOf(half, "mono8")}),
+                "the image is 512x480 'bgr8' (8UC3), the mask 256x240 'mono8' (8UC1): they need the same size");
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apex_nodes/shapes.hpp"
-#include "apex_test/node_harness.hpp"
+#include "apex_test/real_images.hpp"
 
 using namespace apex_test;
 using apex_nodes::Contours;
@@ -19,27 +19,10 @@ using ::testing::HasSubstr;
 
 namespace {
 
-const std::string kData = "/usr/share/doc/opencv-doc/examples/data";  // scripts/install_deps installs opencv-doc
-
-std::shared_ptr<const Image> image(cv::Mat mat, const std::string& encoding) {
-  auto i = std::make_shared<Image>();
-  i->header.stamp = ros::Time(42, 7);
-  i->header.frame_id = "camera";
-  i->encoding = encoding;
-  i->mat = std::move(mat);
-  return i;
-}
-
-cv::Mat photo(const std::string& name, int flags) {
-  cv::Mat m = cv::imread(kData + "/" + name, flags);
-  if (m.empty()) ADD_FAILURE() << "cannot read " << kData << "/" << name << ": is opencv-doc installed?";
-  return m;
-}
-
 /** pic1.png's shapes white on black, as a threshold would give them. */
 cv::Mat binary() {
   cv::Mat b;
-  cv::threshold(photo("pic1.png", cv::IMREAD_GRAYSCALE), b, 128, 255, cv::THRESH_BINARY_INV);
+  cv::threshold(readGrayData("pic1.png"), b, 128, 255, cv::THRESH_BINARY_INV);
   return b;
 }
 
@@ -54,14 +37,9 @@ std::shared_ptr<const Contours> direct(int mode = cv::RETR_TREE, int method = cv
   return c;
 }
 
-void expectHeader(const std_msgs::Header& h) {
-  EXPECT_EQ(h.stamp, ros::Time(42, 7));
-  EXPECT_EQ(h.frame_id, "camera");
-}
-
 TEST(ContourNodes, FindContoursMatchesOpenCV) {
   NodeHarness h("apex_nodes/FindContours", {"image"}, "contours");
-  const auto in = image(binary(), "mono8");
+  const auto in = imageOf(binary(), "mono8");
   const cv::Mat before = in->mat.clone();
   for (const auto& [mode, method] : std::vector<std::pair<std::string, std::string>>{
            {"external", "simple"}, {"tree", "simple"}, {"ccomp", "none"}, {"list", "tc89_kcos"}}) {
@@ -81,7 +59,7 @@ TEST(ContourNodes, FindContoursMatchesOpenCV) {
     EXPECT_EQ(got.contours, want->contours) << mode << "/" << method;
     EXPECT_EQ(got.hierarchy, want->hierarchy) << mode << "/" << method;
     EXPECT_EQ(got.image_size, in->mat.size());
-    expectHeader(got.header);
+    expectCameraHeader(got.header);
   }
   EXPECT_GT(direct(cv::RETR_TREE)->contours.size(), direct(cv::RETR_EXTERNAL)->contours.size());  // the holes
   EXPECT_EQ(cv::norm(in->mat, before, cv::NORM_INF), 0);  // the input is left as it was
@@ -89,15 +67,15 @@ TEST(ContourNodes, FindContoursMatchesOpenCV) {
 
 TEST(ContourNodes, FindContoursRefusesWhatItCannotRead) {
   NodeHarness h("apex_nodes/FindContours", {"image"}, "contours");
-  EXPECT_TRUE(h.run(image(photo("pic1.png", cv::IMREAD_COLOR), "bgr8")).isNothing());
+  EXPECT_TRUE(h.run(readDataImage("pic1.png")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("cannot handle 3-channel images (encoding 'bgr8'); needs a single-channel image"));
   cv::Mat deep;
   binary().convertTo(deep, CV_16U);
-  EXPECT_TRUE(h.run(image(deep, "mono16")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(deep, "mono16")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("needs an 8-bit image, got 'mono16'"));
-  EXPECT_TRUE(h.run(image(cv::Mat(), "mono8")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(cv::Mat(), "mono8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("received an empty image"));
-  EXPECT_FALSE(h.run(image(binary(), "mono8")).isNothing());
+  EXPECT_FALSE(h.run(imageOf(binary(), "mono8")).isNothing());
   EXPECT_EQ(h.error(), "");
 }
 
@@ -143,7 +121,7 @@ TEST(ContourNodes, ContourFilterKeepsWhatItsIntervalsSay) {
   EXPECT_EQ(got->contours, want);
   EXPECT_GE(want.size(), 3u);
   EXPECT_LT(want.size(), in->contours.size());
-  expectHeader(got->header);
+  expectCameraHeader(got->header);
   EXPECT_EQ(got->image_size, in->image_size);
 
   h.set("vertices", "[4, 4]");  // the rectangles
@@ -196,7 +174,7 @@ TEST(ContourNodes, ContoursToRegionsGivesBoxesAreasAndCentroids) {
   const auto got = h.run(in).as<Regions>();
   ASSERT_TRUE(got) << h.error();
   ASSERT_EQ(got->regions.size(), in->contours.size());
-  expectHeader(got->header);
+  expectCameraHeader(got->header);
   EXPECT_EQ(got->image_size, in->image_size);
   for (std::size_t i = 0; i < in->contours.size(); ++i) {
     const auto& c = in->contours[i];
@@ -215,11 +193,11 @@ TEST(ContourNodes, ContoursToRegionsGivesBoxesAreasAndCentroids) {
 
 TEST(ContourNodes, DrawContoursMatchesOpenCV) {
   const auto contours = direct();
-  const cv::Mat gray = photo("pic1.png", cv::IMREAD_GRAYSCALE);
+  const cv::Mat gray = readGrayData("pic1.png");
   NodeHarness h("apex_nodes/DrawContours", {"image", "contours"}, "image");
   h.set("color", "{r: 255, g: 0, b: 0}");
   h.set("thickness", "-1");
-  const Message m = h.run({Message::share<Image>(image(gray, "mono8")), Message::share<Contours>(contours)});
+  const Message m = h.run({Message::share<Image>(imageOf(gray, "mono8")), Message::share<Contours>(contours)});
   ASSERT_TRUE(m.as<Image>()) << h.error();
   const Image& got = *m.as<Image>();
   cv::Mat want;
@@ -228,11 +206,11 @@ TEST(ContourNodes, DrawContoursMatchesOpenCV) {
   ASSERT_EQ(got.mat.type(), want.type());
   EXPECT_EQ(cv::norm(got.mat, want, cv::NORM_INF), 0);
   EXPECT_EQ(got.encoding, "bgr8");
-  expectHeader(got.header);
+  expectCameraHeader(got.header);
 
   h.set("thickness", "3");  // outlines, on a colour image
-  const cv::Mat colour = photo("pic1.png", cv::IMREAD_COLOR);
-  const Message outlined = h.run({Message::share<Image>(image(colour, "bgr8")), Message::share<Contours>(contours)});
+  const cv::Mat colour = readData("pic1.png");
+  const Message outlined = h.run({Message::share<Image>(imageOf(colour, "bgr8")), Message::share<Contours>(contours)});
   ASSERT_TRUE(outlined.as<Image>()) << h.error();
   colour.copyTo(want);
   cv::drawContours(want, contours->contours, -1, cv::Scalar(0, 0, 255), 3, cv::LINE_8, contours->hierarchy, INT_MAX);
@@ -240,7 +218,7 @@ TEST(ContourNodes, DrawContoursMatchesOpenCV) {
 
   cv::Mat small;
   cv::resize(gray, small, cv::Size(200, 150));
-  EXPECT_TRUE(h.run({Message::share<Image>(image(small, "mono8")), Message::share<Contours>(contours)}).isNothing());
+  EXPECT_TRUE(h.run({Message::share<Image>(imageOf(small, "mono8")), Message::share<Contours>(contours)}).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("contours of a 400x300 image cannot be drawn on one of 200x150"));
 }
 

@@ -14,7 +14,7 @@
 #include <opencv2/objdetect.hpp>
 
 #include "apex_nodes/shapes.hpp"
-#include "apex_test/node_harness.hpp"
+#include "apex_test/real_images.hpp"
 
 using namespace apex_test;
 using namespace apex_nodes;  // Image, Regions and the shapes
@@ -22,23 +22,7 @@ using ::testing::HasSubstr;
 
 namespace {
 
-const std::string kData = "/usr/share/doc/opencv-doc/examples/data";  // scripts/install_deps installs opencv-doc
 const std::string kFaces = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";  // opencv-data
-
-std::shared_ptr<const Image> image(cv::Mat mat, const std::string& encoding) {
-  auto i = std::make_shared<Image>();
-  i->header.stamp = ros::Time(42, 7);
-  i->header.frame_id = "camera";
-  i->encoding = encoding;
-  i->mat = std::move(mat);
-  return i;
-}
-
-cv::Mat photo(const std::string& name, int flags = cv::IMREAD_COLOR) {
-  cv::Mat m = cv::imread(kData + "/" + name, flags);
-  if (m.empty()) ADD_FAILURE() << "cannot read " << kData << "/" << name << ": is opencv-doc installed?";
-  return m;
-}
 
 template <class T>
 std::shared_ptr<const T> result(NodeHarness& h, const Message& m) {
@@ -47,8 +31,7 @@ std::shared_ptr<const T> result(NodeHarness& h, const Message& m) {
     ADD_FAILURE() << "the node sent " << m.typeName() << ": " << h.error();
     return p;
   }
-  EXPECT_EQ(p->header.stamp, ros::Time(42, 7));  // the frame's header, kept
-  EXPECT_EQ(p->header.frame_id, "camera");
+  expectCameraHeader(p->header);  // the frame's header, kept
   return p;
 }
 
@@ -60,10 +43,10 @@ std::vector<cv::Rect> boxes(const Regions& r) {
 
 TEST(DetectionNodes, HoughLinesMatchesOpenCV) {
   cv::Mat edges;
-  cv::Canny(photo("sudoku.png", cv::IMREAD_GRAYSCALE), edges, 50, 200);
+  cv::Canny(readGrayData("sudoku.png"), edges, 50, 200);
   NodeHarness h("apex_nodes/HoughLines", {"image"}, "lines");
   h.set("rho", "1"), h.set("theta", "1"), h.set("threshold", "50"), h.set("min_line_length", "50"), h.set("max_line_gap", "10");
-  const auto got = result<Lines>(h, h.run(image(edges, "mono8")));
+  const auto got = result<Lines>(h, h.run(imageOf(edges, "mono8")));
   ASSERT_TRUE(got);
   std::vector<cv::Vec4i> want;
   cv::HoughLinesP(edges, want, 1, CV_PI / 180, 50, 50, 10);
@@ -82,10 +65,10 @@ std::vector<cv::Vec3f> sorted(std::vector<cv::Vec3f> v) {
 
 TEST(DetectionNodes, HoughCirclesMatchesOpenCV) {
   cv::Mat gray;
-  cv::medianBlur(photo("smarties.png", cv::IMREAD_GRAYSCALE), gray, 5);
+  cv::medianBlur(readGrayData("smarties.png"), gray, 5);
   NodeHarness h("apex_nodes/HoughCircles", {"image"}, "circles");
   h.set("min_dist", "22.25"), h.set("param1", "100"), h.set("param2", "30"), h.set("min_radius", "1"), h.set("max_radius", "30");
-  auto got = result<Circles>(h, h.run(image(gray, "mono8")));
+  auto got = result<Circles>(h, h.run(imageOf(gray, "mono8")));
   ASSERT_TRUE(got);
   std::vector<cv::Vec3f> want;
   cv::HoughCircles(gray, want, cv::HOUGH_GRADIENT, 1, 22.25, 100, 30, 1, 30);
@@ -93,21 +76,21 @@ TEST(DetectionNodes, HoughCirclesMatchesOpenCV) {
   EXPECT_GE(want.size(), 10u);  // the sweets
 
   h.set("method", "gradient_alt"), h.set("dp", "1.5"), h.set("param1", "300"), h.set("param2", "0.9");
-  got = result<Circles>(h, h.run(image(gray, "mono8")));
+  got = result<Circles>(h, h.run(imageOf(gray, "mono8")));
   ASSERT_TRUE(got);
   cv::HoughCircles(gray, want, cv::HOUGH_GRADIENT_ALT, 1.5, 22.25, 300, 0.9, 1, 30);
   EXPECT_EQ(sorted(got->circles), sorted(want));
   EXPECT_GE(want.size(), 10u);
   h.set("param2", "30");
-  EXPECT_TRUE(h.run(image(gray, "mono8")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(gray, "mono8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("gradient_alt takes param2 within 0..1"));
 }
 
 TEST(DetectionNodes, TemplateMatchFindsTheBestPlacesAsOpenCV) {
-  const cv::Mat frame = photo("messi5.jpg");
+  const cv::Mat frame = readData("messi5.jpg");
   const cv::Mat templ = frame(cv::Rect(244, 62, 85, 85)).clone();  // the face
   NodeHarness h("apex_nodes/TemplateMatch", {"image", "template"}, "regions");
-  const std::vector<Message> in{Message::share<Image>(image(frame, "bgr8")), Message::share<Image>(image(templ, "bgr8"))};
+  const std::vector<Message> in{Message::share<Image>(imageOf(frame, "bgr8")), Message::share<Image>(imageOf(templ, "bgr8"))};
   auto got = result<Regions>(h, h.run(in));
   ASSERT_TRUE(got);
   cv::Mat scores;
@@ -145,16 +128,38 @@ TEST(DetectionNodes, TemplateMatchFindsTheBestPlacesAsOpenCV) {
 
   cv::Mat gray;
   cv::cvtColor(templ, gray, cv::COLOR_BGR2GRAY);
-  EXPECT_TRUE(h.run({in[0], Message::share<Image>(image(gray, "mono8"))}).isNothing());
+  EXPECT_TRUE(h.run({in[0], Message::share<Image>(imageOf(gray, "mono8"))}).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("the template ('mono8', 1 channels) is not of the image's type ('bgr8', 3 channels)"));
-  EXPECT_TRUE(h.run({Message::share<Image>(image(templ, "bgr8")), in[0]}).isNothing());
+  EXPECT_TRUE(h.run({Message::share<Image>(imageOf(templ, "bgr8")), in[0]}).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("the template (548x342) is larger than the image (85x85)"));
 }
 
+TEST(DetectionNodes, TemplateMatchTurnsAnRgbTemplateWithoutWritingIt) {
+  const cv::Mat frame = readData("messi5.jpg");
+  cv::Mat rgb;
+  cv::cvtColor(frame(cv::Rect(244, 62, 85, 85)), rgb, cv::COLOR_BGR2RGB);  // the face, as rgb8
+  const cv::Mat before = rgb.clone();
+  NodeHarness h("apex_nodes/TemplateMatch", {"image", "template"}, "regions");
+  h.set("max_matches", "3"), h.set("threshold", "0");
+  const std::vector<Message> in{Message::share<Image>(imageOf(frame, "bgr8")), Message::share<Image>(imageOf(rgb, "rgb8"))};
+  const auto first = result<Regions>(h, h.run(in));
+  ASSERT_TRUE(first);
+  expectSameMat(rgb, before);  // the template message's pixels (rgb shares them): as they were
+  const auto second = result<Regions>(h, h.run(in));  // the same messages: the same matches
+  ASSERT_TRUE(second);
+  ASSERT_EQ(first->regions.size(), 3u);
+  ASSERT_EQ(second->regions.size(), 3u);
+  EXPECT_EQ(first->regions[0].box, cv::Rect(244, 62, 85, 85));  // found in the image's channel order
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(second->regions[i].box, first->regions[i].box) << i;
+    EXPECT_EQ(second->regions[i].confidence, first->regions[i].confidence) << i;
+  }
+}
+
 TEST(DetectionNodes, CascadeDetectorFindsFacesAsOpenCV) {
-  const cv::Mat frame = photo("messi5.jpg");
+  const cv::Mat frame = readData("messi5.jpg");
   NodeHarness h("apex_nodes/CascadeDetector", {"image"}, "regions");
-  auto got = result<Regions>(h, h.run(image(frame, "bgr8")));
+  auto got = result<Regions>(h, h.run(imageOf(frame, "bgr8")));
   ASSERT_TRUE(got);
   cv::Mat gray;
   cv::cvtColor(frame, gray, cv::COLOR_BGR2GRAY);
@@ -167,7 +172,7 @@ TEST(DetectionNodes, CascadeDetectorFindsFacesAsOpenCV) {
   EXPECT_GE(want.size(), 1u);
 
   h.set("scale_factor", "1.2"), h.set("min_neighbors", "5"), h.set("min_size", "[60, 60]"), h.set("equalize_hist", "false");
-  got = result<Regions>(h, h.run(image(frame, "bgr8")));
+  got = result<Regions>(h, h.run(imageOf(frame, "bgr8")));
   ASSERT_TRUE(got);
   cv::cvtColor(frame, gray, cv::COLOR_BGR2GRAY);
   faces.detectMultiScale(gray, want, 1.2, 5, 0, cv::Size(60, 60), cv::Size());
@@ -176,13 +181,13 @@ TEST(DetectionNodes, CascadeDetectorFindsFacesAsOpenCV) {
 
 TEST(DetectionNodes, CascadeDetectorNamesAFileItCannotRead) {
   NodeHarness h("apex_nodes/CascadeDetector", {"image"}, "regions");
-  const auto frame = image(photo("messi5.jpg"), "bgr8");
+  const auto frame = readDataImage("messi5.jpg");
   h.set("cascade", "/nonexistent/cascade.xml");
   EXPECT_TRUE(h.run(frame).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("cannot read the cascade '/nonexistent/cascade.xml'"));
-  h.set("cascade", kData + "/left_intrinsics.yml");  // OpenCV's format, not a cascade
+  h.set("cascade", kOpenCvData + "/left_intrinsics.yml");  // OpenCV's format, not a cascade
   EXPECT_TRUE(h.run(frame).isNothing());
-  EXPECT_THAT(h.error(), HasSubstr("the cascade '" + kData + "/left_intrinsics.yml' is not a cascade classifier"));
+  EXPECT_THAT(h.error(), HasSubstr("the cascade '" + kOpenCvData + "/left_intrinsics.yml' is not a cascade classifier"));
   const std::string damaged = ::testing::TempDir() + "/apex_test_damaged_cascade.xml";
   {
     std::ifstream whole(kFaces);
@@ -199,9 +204,9 @@ TEST(DetectionNodes, CascadeDetectorNamesAFileItCannotRead) {
 }
 
 TEST(DetectionNodes, HOGPeopleDetectorMatchesOpenCV) {
-  const cv::Mat frame = photo("basketball1.png");
+  const cv::Mat frame = readData("basketball1.png");
   NodeHarness h("apex_nodes/HOGPeopleDetector", {"image"}, "regions");
-  const auto got = result<Regions>(h, h.run(image(frame, "bgr8")));
+  const auto got = result<Regions>(h, h.run(imageOf(frame, "bgr8")));
   ASSERT_TRUE(got);
   cv::HOGDescriptor hog;
   hog.setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
@@ -217,14 +222,14 @@ TEST(DetectionNodes, HOGPeopleDetectorMatchesOpenCV) {
 }
 
 TEST(DetectionNodes, QRCodeDetectorFindsACodeAsOpenCV) {
-  cv::Mat code, big, frame = photo("messi5.jpg");
+  cv::Mat code, big, frame = readData("messi5.jpg");
   cv::QRCodeEncoder::create()->encode("APEX node test", code);
   cv::resize(code, big, cv::Size(), 6, 6, cv::INTER_NEAREST);
   cv::copyMakeBorder(big, big, 24, 24, 24, 24, cv::BORDER_CONSTANT, cv::Scalar(255));
   cv::cvtColor(big, big, cv::COLOR_GRAY2BGR);
   big.copyTo(frame(cv::Rect(cv::Point(300, 100), big.size())));
   NodeHarness h("apex_nodes/QRCodeDetector", {"image"}, "regions");
-  const auto got = result<Regions>(h, h.run(image(frame, "bgr8")));
+  const auto got = result<Regions>(h, h.run(imageOf(frame, "bgr8")));
   ASSERT_TRUE(got);
   cv::Mat gray;
   cv::cvtColor(frame, gray, cv::COLOR_BGR2GRAY);
@@ -237,19 +242,19 @@ TEST(DetectionNodes, QRCodeDetectorFindsACodeAsOpenCV) {
 
   // The text: what OpenCV reads ("" from a build without a decoder, as Debian's).
   NodeHarness t("apex_nodes/QRCodeDetector", {"image"}, "text");
-  const auto text = t.run(image(frame, "bgr8")).as<std::string>();
+  const auto text = t.run(imageOf(frame, "bgr8")).as<std::string>();
   ASSERT_TRUE(text) << t.error();
   const std::string want = cv::QRCodeDetector().detectAndDecode(gray);
   EXPECT_EQ(*text, want);
   if (!want.empty()) {
     EXPECT_EQ(want, "APEX node test");
   }
-  EXPECT_EQ(*t.run(image(cv::Mat(200, 200, CV_8UC1, cv::Scalar(128)), "mono8")).as<std::string>(), "");  // no code
-  EXPECT_TRUE(result<Regions>(h, h.run(image(cv::Mat(200, 200, CV_8UC1, cv::Scalar(128)), "mono8")))->regions.empty());
+  EXPECT_EQ(*t.run(imageOf(cv::Mat(200, 200, CV_8UC1, cv::Scalar(128)), "mono8")).as<std::string>(), "");  // no code
+  EXPECT_TRUE(result<Regions>(h, h.run(imageOf(cv::Mat(200, 200, CV_8UC1, cv::Scalar(128)), "mono8")))->regions.empty());
 }
 
 TEST(DetectionNodes, ArucoDetectorFindsMarkersAndPosesAsOpenCV) {
-  cv::Mat frame = photo("left01.jpg");  // 640x480, as its calibration
+  cv::Mat frame = readData("left01.jpg");  // 640x480, as its calibration
   const auto dictionary = cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50);
   for (const auto& [id, at] : std::vector<std::pair<int, cv::Point>>{{7, {20, 20}}, {23, {480, 320}}}) {
     cv::Mat marker;
@@ -264,7 +269,7 @@ TEST(DetectionNodes, ArucoDetectorFindsMarkersAndPosesAsOpenCV) {
   ASSERT_EQ(ids.size(), 2u);
 
   NodeHarness h("apex_nodes/ArucoDetector", {"image"}, "markers");
-  const auto got = result<Markers>(h, h.run(image(frame, "bgr8")));
+  const auto got = result<Markers>(h, h.run(imageOf(frame, "bgr8")));
   ASSERT_TRUE(got);
   EXPECT_EQ(got->ids, ids);
   EXPECT_EQ(got->corners, corners);
@@ -273,7 +278,7 @@ TEST(DetectionNodes, ArucoDetectorFindsMarkersAndPosesAsOpenCV) {
 
   sensor_msgs::CameraInfo camera;
   camera.header.frame_id = "camera", camera.width = 640, camera.height = 480, camera.distortion_model = "plumb_bob";
-  cv::FileStorage fs(kData + "/left_intrinsics.yml", cv::FileStorage::READ);
+  cv::FileStorage fs(kOpenCvData + "/left_intrinsics.yml", cv::FileStorage::READ);
   cv::Mat K, D;
   fs["camera_matrix"] >> K;
   fs["distortion_coefficients"] >> D;
@@ -281,7 +286,7 @@ TEST(DetectionNodes, ArucoDetectorFindsMarkersAndPosesAsOpenCV) {
   camera.D.assign(D.begin<double>(), D.end<double>());
   NodeHarness posed("apex_nodes/ArucoDetector", {"image", "camera_info"}, "markers");
   posed.set("marker_length", "0.08");
-  const auto with = result<Markers>(posed, posed.run({Message::share<Image>(image(frame, "bgr8")), Message::make(camera)}));
+  const auto with = result<Markers>(posed, posed.run({Message::share<Image>(imageOf(frame, "bgr8")), Message::make(camera)}));
   ASSERT_TRUE(with);
   std::vector<cv::Vec3d> rvecs, tvecs;
   cv::aruco::estimatePoseSingleMarkers(corners, 0.08f, K, D, rvecs, tvecs);
@@ -292,14 +297,14 @@ TEST(DetectionNodes, ArucoDetectorFindsMarkersAndPosesAsOpenCV) {
     EXPECT_GT(with->tvecs[i][2], 0.1) << i;  // in front of the camera
   }
   camera.width = 320;  // a model for another image
-  EXPECT_TRUE(posed.run({Message::share<Image>(image(frame, "bgr8")), Message::make(camera)}).isNothing());
+  EXPECT_TRUE(posed.run({Message::share<Image>(imageOf(frame, "bgr8")), Message::make(camera)}).isNothing());
   EXPECT_THAT(posed.error(), HasSubstr("is not for an image of 640x480"));
 }
 
 TEST(DetectionNodes, ChessboardCornersMatchesOpenCV) {
-  const cv::Mat frame = photo("left01.jpg");
+  const cv::Mat frame = readData("left01.jpg");
   NodeHarness h("apex_nodes/ChessboardCorners", {"image"}, "corners");
-  auto got = result<Corners>(h, h.run(image(frame, "bgr8")));
+  auto got = result<Corners>(h, h.run(imageOf(frame, "bgr8")));
   ASSERT_TRUE(got);
   std::vector<cv::Point2f> want;
   ASSERT_TRUE(
@@ -314,7 +319,7 @@ TEST(DetectionNodes, ChessboardCornersMatchesOpenCV) {
   ASSERT_EQ(want.size(), 54u);
 
   h.set("pattern_columns", "7"), h.set("pattern_rows", "7");  // not this board: found = false, not an error
-  got = result<Corners>(h, h.run(image(frame, "bgr8")));
+  got = result<Corners>(h, h.run(imageOf(frame, "bgr8")));
   ASSERT_TRUE(got);
   EXPECT_FALSE(got->found);
   EXPECT_TRUE(got->corners.empty());
@@ -330,11 +335,11 @@ TEST(DetectionNodes, DetectorsNameTheImagesTheyCannotTake) {
       {"apex_nodes/ChessboardCorners", "corners"}};
   for (const auto& [type, output] : types) {
     NodeHarness h(type, {"image"}, output);
-    EXPECT_TRUE(h.run(image(deep, "mono16")).isNothing()) << type;
+    EXPECT_TRUE(h.run(imageOf(deep, "mono16")).isNothing()) << type;
     EXPECT_THAT(h.error(), HasSubstr("needs an 8-bit image, got 'mono16'")) << type;
-    EXPECT_TRUE(h.run(image(two, "yuv422")).isNothing()) << type;
+    EXPECT_TRUE(h.run(imageOf(two, "yuv422")).isNothing()) << type;
     EXPECT_THAT(h.error(), HasSubstr("cannot handle 2-channel images (encoding 'yuv422'); needs ")) << type;
-    EXPECT_TRUE(h.run(image(cv::Mat(), "bgr8")).isNothing()) << type;
+    EXPECT_TRUE(h.run(imageOf(cv::Mat(), "bgr8")).isNothing()) << type;
     EXPECT_THAT(h.error(), HasSubstr("received an empty image")) << type;
   }
 }

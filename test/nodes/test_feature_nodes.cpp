@@ -9,7 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "apex_nodes/features.hpp"
-#include "apex_test/node_harness.hpp"
+#include "apex_test/real_images.hpp"
 
 using namespace apex_test;
 using apex_nodes::Homography;
@@ -19,24 +19,6 @@ using apex_nodes::Matches;
 using ::testing::HasSubstr;
 
 namespace {
-
-const std::string kData = "/usr/share/doc/opencv-doc/examples/data";  // scripts/install_deps installs opencv-doc
-
-std::shared_ptr<const Image> image(cv::Mat mat, const std::string& encoding, const std::string& frame = "camera") {
-  auto i = std::make_shared<Image>();
-  i->header.stamp = ros::Time(42, 7);
-  i->header.frame_id = frame;
-  i->encoding = encoding;
-  i->mat = std::move(mat);
-  return i;
-}
-
-/** An opencv-doc image as bgr8, in frame `frame`. */
-std::shared_ptr<const Image> load(const std::string& name, const std::string& frame = "camera") {
-  cv::Mat m = cv::imread(kData + "/" + name, cv::IMREAD_COLOR);
-  if (m.empty()) ADD_FAILURE() << "cannot read " << kData << "/" << name << ": is opencv-doc installed?";
-  return image(m, "bgr8", frame);
-}
 
 cv::Mat grayOf(const Image& i) {
   cv::Mat g;
@@ -83,12 +65,6 @@ void expectSameMatches(const std::vector<cv::DMatch>& got, const std::vector<cv:
         << what << ": match " << i;
 }
 
-void expectSame(const cv::Mat& a, const cv::Mat& b) {
-  ASSERT_EQ(a.size(), b.size());
-  ASSERT_EQ(a.type(), b.type());
-  if (!a.empty()) EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
-}
-
 TEST(FeatureNodes, KeypointsEqualOpenCvsDetectors) {
   struct Case {
     std::string method, max_features, threshold;
@@ -103,7 +79,7 @@ TEST(FeatureNodes, KeypointsEqualOpenCvsDetectors) {
       {"fast", "500", "25", cv::FastFeatureDetector::create(25), 0},
       {"gftt", "200", "0.02", cv::GFTTDetector::create(200, 0.02), 0},
   };
-  const auto scene = load("box_in_scene.png");
+  const auto scene = readDataImage("box_in_scene.png");
   const cv::Mat gray = grayOf(*scene);
   for (const auto& c : cases) {
     const auto got = detect(scene, {{"method", c.method}, {"max_features", c.max_features}, {"threshold", c.threshold}});
@@ -114,7 +90,7 @@ TEST(FeatureNodes, KeypointsEqualOpenCvsDetectors) {
     else c.direct->detect(gray, want);
     EXPECT_GT(want.size(), 50u) << c.method;  // the scene has texture: not a test of nothing
     expectSameKeypoints(got->keypoints, want, c.method);
-    expectSame(got->descriptors, descriptors);
+    expectSameMat(got->descriptors, descriptors);
     EXPECT_EQ(got->descriptors.rows, c.norm ? int(want.size()) : 0) << c.method;
     EXPECT_EQ(got->method, c.method);
     EXPECT_EQ(got->norm_type, c.norm) << c.method;
@@ -125,20 +101,20 @@ TEST(FeatureNodes, KeypointsEqualOpenCvsDetectors) {
 
 TEST(FeatureNodes, KeypointsRefuseWhatTheyCannotUse) {
   NodeHarness h("apex_nodes/Keypoints", {"image"}, "keypoints");
-  EXPECT_TRUE(h.run(image(cv::Mat(64, 64, CV_16UC1, cv::Scalar(1000)), "mono16")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(cv::Mat(64, 64, CV_16UC1, cv::Scalar(1000)), "mono16")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("needs an 8-bit image ('mono16')"));
-  EXPECT_TRUE(h.run(image(cv::Mat(), "bgr8")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(cv::Mat(), "bgr8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("received an empty image"));
   h.set("max_features", "0");
-  EXPECT_TRUE(h.run(load("box.png")).isNothing());
+  EXPECT_TRUE(h.run(readDataImage("box.png")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("orb needs max_features of at least 1"));
   h.set("method", "sift");  // 0: no limit, as SIFT's nfeatures
-  EXPECT_FALSE(h.run(load("box.png")).isNothing());
+  EXPECT_FALSE(h.run(readDataImage("box.png")).isNothing());
   EXPECT_EQ(h.error(), "");
 }
 
 TEST(FeatureNodes, MatchDescriptorsEqualsBFMatcher) {
-  const auto box = detect(load("box.png", "object"), {}), scene = detect(load("box_in_scene.png"), {});  // ORB
+  const auto box = detect(readDataImage("box.png", "object"), {}), scene = detect(readDataImage("box_in_scene.png"), {});  // ORB
   ASSERT_TRUE(box && scene);
   std::vector<cv::DMatch> want;
   cv::BFMatcher(cv::NORM_HAMMING).match(box->descriptors, scene->descriptors, want);
@@ -156,8 +132,8 @@ TEST(FeatureNodes, MatchDescriptorsEqualsBFMatcher) {
   EXPECT_LT(want.size(), plain->matches.size());
 
   // Lowe's ratio test, on SIFT's float descriptors (L2).
-  const auto sbox = detect(load("box.png", "object"), {{"method", "sift"}});
-  const auto sscene = detect(load("box_in_scene.png"), {{"method", "sift"}});
+  const auto sbox = detect(readDataImage("box.png", "object"), {{"method", "sift"}});
+  const auto sscene = detect(readDataImage("box_in_scene.png"), {{"method", "sift"}});
   ASSERT_TRUE(sbox && sscene);
   std::vector<std::vector<cv::DMatch>> knn;
   cv::BFMatcher(cv::NORM_L2).knnMatch(sbox->descriptors, sscene->descriptors, knn, 2);
@@ -171,8 +147,8 @@ TEST(FeatureNodes, MatchDescriptorsEqualsBFMatcher) {
 }
 
 TEST(FeatureNodes, MatchDescriptorsErrorsNameTheProblem) {
-  const auto orb = detect(load("box.png"), {}), sift = detect(load("box_in_scene.png"), {{"method", "sift"}});
-  const auto fast = detect(load("box_in_scene.png"), {{"method", "fast"}});
+  const auto orb = detect(readDataImage("box.png"), {}), sift = detect(readDataImage("box_in_scene.png"), {{"method", "sift"}});
+  const auto fast = detect(readDataImage("box_in_scene.png"), {{"method", "fast"}});
   ASSERT_TRUE(orb && sift && fast);
   NodeHarness h("apex_nodes/MatchDescriptors", {"query", "train"}, "matches");
   EXPECT_TRUE(h.run({share(orb), share(sift)}).isNothing());
@@ -198,8 +174,8 @@ void pointsOf(const Matches& m, std::vector<cv::Point2f>& from, std::vector<cv::
 }
 
 TEST(FeatureNodes, FindHomographyEqualsOpenCvsOnTheBoxInTheScene) {
-  const auto box = detect(load("box.png", "object"), {{"method", "sift"}});
-  const auto scene = detect(load("box_in_scene.png"), {{"method", "sift"}});
+  const auto box = detect(readDataImage("box.png", "object"), {{"method", "sift"}});
+  const auto scene = detect(readDataImage("box_in_scene.png"), {{"method", "sift"}});
   ASSERT_TRUE(box && scene);
   const auto matches = match(box, scene, {{"ratio_test", "0.75"}});
   ASSERT_TRUE(matches);
@@ -216,7 +192,7 @@ TEST(FeatureNodes, FindHomographyEqualsOpenCvsOnTheBoxInTheScene) {
     std::vector<uchar> mask;
     const cv::Mat want = cv::findHomography(from, to, code, 4.0, mask);
     ASSERT_FALSE(want.empty()) << method;
-    expectSame(got->matrix, want);
+    expectSameMat(got->matrix, want);
     EXPECT_EQ(got->inlier_mask, mask) << method;
     EXPECT_EQ(got->inliers, cv::countNonZero(mask)) << method;
     EXPECT_GE(got->inliers, 10) << method;
@@ -226,11 +202,11 @@ TEST(FeatureNodes, FindHomographyEqualsOpenCvsOnTheBoxInTheScene) {
 }
 
 TEST(FeatureNodes, FindHomographyFindsGrafsTrueHomography) {
-  cv::FileStorage fs(kData + "/H1to3p.xml", cv::FileStorage::READ);
+  cv::FileStorage fs(kOpenCvData + "/H1to3p.xml", cv::FileStorage::READ);
   cv::Mat truth;
   fs["H13"] >> truth;
   ASSERT_EQ(truth.size(), cv::Size(3, 3));
-  const auto one = load("graf1.png"), three = load("graf3.png");
+  const auto one = readDataImage("graf1.png"), three = readDataImage("graf3.png");
   const auto q = detect(one, {{"method", "sift"}, {"max_features", "2000"}});
   const auto t = detect(three, {{"method", "sift"}, {"max_features", "2000"}});
   ASSERT_TRUE(q && t);
@@ -261,8 +237,8 @@ TEST(FeatureNodes, FindHomographyFindsGrafsTrueHomography) {
 }
 
 TEST(FeatureNodes, FindHomographyNeedsFourMatchesAndEnoughInliers) {
-  const auto box = detect(load("box.png", "object"), {{"method", "sift"}});
-  const auto scene = detect(load("box_in_scene.png"), {{"method", "sift"}});
+  const auto box = detect(readDataImage("box.png", "object"), {{"method", "sift"}});
+  const auto scene = detect(readDataImage("box_in_scene.png"), {{"method", "sift"}});
   ASSERT_TRUE(box && scene);
   const auto matches = match(box, scene, {{"ratio_test", "0.75"}});
   ASSERT_TRUE(matches);
@@ -281,7 +257,7 @@ TEST(FeatureNodes, FindHomographyNeedsFourMatchesAndEnoughInliers) {
 }
 
 TEST(FeatureNodes, DrawKeypointsEqualsOpenCvs) {
-  const auto box = load("box.png");
+  const auto box = readDataImage("box.png");
   const auto k = detect(box, {});
   ASSERT_TRUE(k);
   NodeHarness h("apex_nodes/DrawKeypoints", {"image", "keypoints"}, "image");
@@ -289,22 +265,22 @@ TEST(FeatureNodes, DrawKeypointsEqualsOpenCvs) {
   cv::drawKeypoints(box->mat, k->keypoints, want, cv::Scalar(0, 255, 0));
   auto got = h.run({Message::share<Image>(box), share(k)}).as<Image>();
   ASSERT_TRUE(got) << h.error();
-  expectSame(got->mat, want);
+  expectSameMat(got->mat, want);
   EXPECT_EQ(got->encoding, "bgr8");
   EXPECT_EQ(got->header, box->header);
   h.set("rich_keypoints", "true");
   h.set("color", "{r: 255, g: 0, b: 0}");
-  const auto gray = image(grayOf(*box), "mono8");  // drawn on its gray as a bgr8 image
+  const auto gray = imageOf(grayOf(*box), "mono8");  // drawn on its gray as a bgr8 image
   cv::drawKeypoints(gray->mat, k->keypoints, want, cv::Scalar(0, 0, 255), cv::DrawMatchesFlags::DRAW_RICH_KEYPOINTS);
   got = h.run({Message::share<Image>(gray), share(k)}).as<Image>();
   ASSERT_TRUE(got) << h.error();
-  expectSame(got->mat, want);
-  EXPECT_TRUE(h.run({Message::share<Image>(load("box_in_scene.png")), share(k)}).isNothing());
+  expectSameMat(got->mat, want);
+  EXPECT_TRUE(h.run({Message::share<Image>(readDataImage("box_in_scene.png")), share(k)}).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("the keypoints are of a 324x223 image, the image is 512x384"));
 }
 
 TEST(FeatureNodes, DrawMatchesEqualsOpenCvsWithTheInliersOnly) {
-  const auto box = load("box.png", "object"), scene = load("box_in_scene.png");
+  const auto box = readDataImage("box.png", "object"), scene = readDataImage("box_in_scene.png");
   const auto matches = match(detect(box, {{"method", "sift"}}), detect(scene, {{"method", "sift"}}), {{"ratio_test", "0.75"}});
   ASSERT_TRUE(matches);
   NodeHarness h("apex_nodes/DrawMatches", {"query_image", "train_image", "matches"}, "image");
@@ -313,7 +289,7 @@ TEST(FeatureNodes, DrawMatchesEqualsOpenCvsWithTheInliersOnly) {
                   cv::Scalar(0, 255, 0), cv::Scalar(0, 0, 255));
   auto got = h.run({Message::share<Image>(box), Message::share<Image>(scene), Message::share<Matches>(matches)}).as<Image>();
   ASSERT_TRUE(got) << h.error();
-  expectSame(got->mat, want);
+  expectSameMat(got->mat, want);
   EXPECT_EQ(got->mat.size(), cv::Size(324 + 512, 384));
   EXPECT_EQ(got->header, box->header);
   EXPECT_TRUE(h.run({Message::share<Image>(scene), Message::share<Image>(box), Message::share<Matches>(matches)}).isNothing());
@@ -331,7 +307,7 @@ TEST(FeatureNodes, DrawMatchesEqualsOpenCvsWithTheInliersOnly) {
                   Message::share<Homography>(homography)})
             .as<Image>();
   ASSERT_TRUE(got) << inliers.error();
-  expectSame(got->mat, want);
+  expectSameMat(got->mat, want);
 }
 
 }  // namespace

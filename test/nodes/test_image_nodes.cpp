@@ -12,7 +12,7 @@
 
 #include "apex_nodes/ros_convert.hpp"
 #include "apex_nodes/types.hpp"
-#include "apex_test/node_harness.hpp"
+#include "apex_test/real_images.hpp"
 
 using namespace apex_test;
 using apex_nodes::Image;
@@ -20,15 +20,6 @@ using apex_nodes::Regions;
 using ::testing::HasSubstr;
 
 namespace {
-
-std::shared_ptr<const Image> image(cv::Mat mat, const std::string& encoding) {
-  auto i = std::make_shared<Image>();
-  i->header.stamp = ros::Time(42, 7);
-  i->header.frame_id = "camera";
-  i->encoding = encoding;
-  i->mat = std::move(mat);
-  return i;
-}
 
 /** A deterministic textured BGR test image. */
 cv::Mat scene() {
@@ -51,15 +42,8 @@ cv::Mat gray() {
 const Image& out(const Message& m) {
   auto i = m.as<Image>();
   if (!i) throw std::runtime_error("expected an image, got " + m.typeName());
-  EXPECT_EQ(i->header.stamp, ros::Time(42, 7));
-  EXPECT_EQ(i->header.frame_id, "camera");
+  expectCameraHeader(i->header);
   return *i;
-}
-
-void expectSame(const cv::Mat& a, const cv::Mat& b) {
-  ASSERT_EQ(a.size(), b.size());
-  ASSERT_EQ(a.type(), b.type());
-  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
 }
 
 TEST(ImageNodes, AdaptiveThresholdMatchesOpenCV) {
@@ -70,8 +54,8 @@ TEST(ImageNodes, AdaptiveThresholdMatchesOpenCV) {
   h.set("c", "4");
   cv::Mat want;
   cv::adaptiveThreshold(gray(), want, 255, cv::ADAPTIVE_THRESH_GAUSSIAN_C, cv::THRESH_BINARY_INV, 15, 4);
-  const Image& got = out(h.run(image(gray(), "mono8")));
-  expectSame(got.mat, want);
+  const Image& got = out(h.run(imageOf(gray(), "mono8")));
+  expectSameMat(got.mat, want);
   EXPECT_EQ(got.encoding, "mono8");
   auto st = h.graph().setParameter("node", "block_size", "10");  // even: refused, as in the paper's Fig. 3
   EXPECT_THAT(st.message(), HasSubstr("not on the step"));
@@ -79,9 +63,9 @@ TEST(ImageNodes, AdaptiveThresholdMatchesOpenCV) {
 
 TEST(ImageNodes, AdaptiveThresholdRefusesColourImages) {
   NodeHarness h("apex_nodes/AdaptiveThreshold", {"image"}, "image");
-  EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(scene(), "bgr8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("cannot handle 3-channel images (encoding 'bgr8')"));
-  EXPECT_FALSE(h.run(image(gray(), "mono8")).isNothing());  // keeps running, error cleared
+  EXPECT_FALSE(h.run(imageOf(gray(), "mono8")).isNothing());  // keeps running, error cleared
   EXPECT_EQ(h.error(), "");
 }
 
@@ -89,26 +73,26 @@ TEST(ImageNodes, RotateExactAndAnyAngle) {
   NodeHarness h("apex_nodes/Rotate", {"image"}, "image");
   cv::Mat want;
   cv::rotate(scene(), want, cv::ROTATE_90_COUNTERCLOCKWISE);
-  expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);  // default: 90 degrees
+  expectSameMat(out(h.run(imageOf(scene(), "bgr8"))).mat, want);  // default: 90 degrees
   h.set("angle", "-1.5707963267948966");
   cv::rotate(scene(), want, cv::ROTATE_90_CLOCKWISE);
-  expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);
+  expectSameMat(out(h.run(imageOf(scene(), "bgr8"))).mat, want);
   h.set("angle", "0.5");
   const cv::Mat m = cv::getRotationMatrix2D(cv::Point2f(80, 60), 0.5 * 180 / M_PI, 1.0);
   cv::warpAffine(scene(), want, m, scene().size());
-  expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);
+  expectSameMat(out(h.run(imageOf(scene(), "bgr8"))).mat, want);
 }
 
 TEST(ImageNodes, ColorConvertMatchesOpenCVAndChecksChannels) {
   NodeHarness h("apex_nodes/ColorConvert", {"image"}, "image");
-  const Image& g = out(h.run(image(scene(), "bgr8")));
-  expectSame(g.mat, gray());
+  const Image& g = out(h.run(imageOf(scene(), "bgr8")));
+  expectSameMat(g.mat, gray());
   EXPECT_EQ(g.encoding, "mono8");
   h.set("conversion", "BGR2HSV");
   cv::Mat hsv;
   cv::cvtColor(scene(), hsv, cv::COLOR_BGR2HSV);
-  expectSame(out(h.run(image(scene(), "bgr8"))).mat, hsv);
-  EXPECT_TRUE(h.run(image(gray(), "mono8")).isNothing());
+  expectSameMat(out(h.run(imageOf(scene(), "bgr8"))).mat, hsv);
+  EXPECT_TRUE(h.run(imageOf(gray(), "mono8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("BGR2HSV needs a 3-channel image, got 1 channels ('mono8')"));
   EXPECT_THAT(h.graph().setParameter("node", "conversion", "BGR2XYZ").message(), HasSubstr("not one of"));
 }
@@ -161,7 +145,7 @@ TEST(ImageNodes, ColorConvertReadsCameraYuv422AsRosSendsIt) {
   EXPECT_EQ(bgr.encoding, "bgr8");
   cv::Mat want;
   cv::cvtColor(uyvy, want, cv::COLOR_YUV2BGR_UYVY);
-  expectSame(bgr.mat, want);  // size and type too
+  expectSameMat(bgr.mat, want);  // size and type too
   EXPECT_LE(cv::norm(bgr.mat, paired, cv::NORM_INF), 3.0);  // the colours sent, but for rounding
   h.set("conversion", "UYVY2GRAY");
   const Image& g = out(h.run(frame));
@@ -169,20 +153,20 @@ TEST(ImageNodes, ColorConvertReadsCameraYuv422AsRosSendsIt) {
   ASSERT_EQ(g.mat.type(), CV_8UC1);
   cv::Mat luma, video;
   cv::extractChannel(uyvy, luma, 1);
-  expectSame(g.mat, luma);  // the gray image is Y as sent: video range
+  expectSameMat(g.mat, luma);  // the gray image is Y as sent: video range
   cv::cvtColor(paired, video, cv::COLOR_BGR2GRAY);
   video.convertTo(video, CV_8U, 219 / 255.0, 16);
   EXPECT_LE(cv::norm(g.mat, video, cv::NORM_INF), 2.0);
   // YUYV ("yuv422_yuy2"): the same pixels from the other byte order.
   h.set("conversion", "YUYV2BGR");
-  expectSame(out(h.run(image(toYuyv(uyvy), "yuv422_yuy2"))).mat, bgr.mat);
+  expectSameMat(out(h.run(imageOf(toYuyv(uyvy), "yuv422_yuy2"))).mat, bgr.mat);
   h.set("conversion", "YUYV2GRAY");
-  expectSame(out(h.run(image(toYuyv(uyvy), "yuv422_yuy2"))).mat, g.mat);
+  expectSameMat(out(h.run(imageOf(toYuyv(uyvy), "yuv422_yuy2"))).mat, g.mat);
   // The wrong shape of input: errors naming it.
   h.set("conversion", "UYVY2BGR");
-  EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(scene(), "bgr8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("UYVY2BGR needs a 2-channel image, got 3 channels ('bgr8')"));
-  EXPECT_TRUE(h.run(image(uyvy.colRange(0, 159).clone(), "yuv422")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(uyvy.colRange(0, 159).clone(), "yuv422")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("an even width, got 159"));
 }
 
@@ -195,7 +179,7 @@ TEST(ImageNodes, MorphologyMatchesOpenCV) {
   cv::Mat want;
   cv::morphologyEx(gray(), want, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)), cv::Point(-1, -1),
                    2);
-  expectSame(out(h.run(image(gray(), "mono8"))).mat, want);
+  expectSameMat(out(h.run(imageOf(gray(), "mono8"))).mat, want);
 }
 
 TEST(ImageNodes, SmallFiltersMatchOpenCV) {
@@ -205,31 +189,31 @@ TEST(ImageNodes, SmallFiltersMatchOpenCV) {
     h.set("kernel_size", "7");
     h.set("sigma", "1.5");
     cv::GaussianBlur(scene(), want, cv::Size(7, 7), 1.5);
-    expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);
+    expectSameMat(out(h.run(imageOf(scene(), "bgr8"))).mat, want);
   }
   {
     NodeHarness h("apex_nodes/Threshold", {"image"}, "image");
     h.set("otsu", "true");
     cv::threshold(gray(), want, 128, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
-    expectSame(out(h.run(image(gray(), "mono8"))).mat, want);
+    expectSameMat(out(h.run(imageOf(gray(), "mono8"))).mat, want);
   }
   {
     NodeHarness h("apex_nodes/Canny", {"image"}, "edges");
     cv::Canny(gray(), want, 50, 150);
-    expectSame(out(h.run(image(gray(), "mono8"))).mat, want);
+    expectSameMat(out(h.run(imageOf(gray(), "mono8"))).mat, want);
   }
   {
     NodeHarness h("apex_nodes/Resize", {"image"}, "image");
     cv::resize(scene(), want, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
-    expectSame(out(h.run(image(scene(), "bgr8"))).mat, want);
+    expectSameMat(out(h.run(imageOf(scene(), "bgr8"))).mat, want);
   }
   {
     NodeHarness h("apex_nodes/Crop", {"image"}, "image");
     h.set("x", "150");
     h.set("y", "100");
-    expectSame(out(h.run(image(scene(), "bgr8"))).mat, scene()(cv::Rect(150, 100, 10, 20)));  // clipped
+    expectSameMat(out(h.run(imageOf(scene(), "bgr8"))).mat, scene()(cv::Rect(150, 100, 10, 20)));  // clipped
     h.set("x", "500");
-    EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
+    EXPECT_TRUE(h.run(imageOf(scene(), "bgr8")).isNothing());
     EXPECT_THAT(h.error(), HasSubstr("outside the 160x120 image"));
   }
 }
@@ -241,7 +225,7 @@ TEST(ImageNodes, BlobDetectionFindsRegionsWithAreaFilter) {
   cv::rectangle(binary, cv::Rect(150, 80, 2, 2), cv::Scalar(255), cv::FILLED);  // 4 px: noise
   NodeHarness h("apex_nodes/BlobDetection", {"image"}, "regions");
   h.set("min_area", "50");
-  auto regions = h.run(image(binary, "mono8")).as<Regions>();
+  auto regions = h.run(imageOf(binary, "mono8")).as<Regions>();
   ASSERT_TRUE(regions);
   ASSERT_EQ(regions->regions.size(), 2u);
   EXPECT_EQ(regions->regions[0].box, cv::Rect(10, 10, 20, 10));
@@ -257,11 +241,11 @@ TEST(ImageNodes, DrawRegionsDrawsTheBoxes) {
   apex_nodes::Region r;
   r.box = cv::Rect(5, 5, 30, 20);
   regions->regions.push_back(r);
-  const Image& got = out(h.run({Message::share<Image>(image(gray(), "mono8")), Message::share<Regions>(regions)}));
+  const Image& got = out(h.run({Message::share<Image>(imageOf(gray(), "mono8")), Message::share<Regions>(regions)}));
   cv::Mat want;
   cv::cvtColor(gray(), want, cv::COLOR_GRAY2BGR);
   cv::rectangle(want, r.box, cv::Scalar(0, 255, 0), 2);
-  expectSame(got.mat, want);
+  expectSameMat(got.mat, want);
   EXPECT_EQ(got.encoding, "bgr8");
 }
 
@@ -270,29 +254,29 @@ TEST(ImageNodes, ImageExportWritesFramesOrCrops) {
   ASSERT_NE(mkdtemp(dir), nullptr);
   NodeHarness h("apex_nodes/ImageExport", {"image"}, "path");
   h.set("directory", std::string("'") + dir + "'");
-  const std::string path = *h.run(image(scene(), "bgr8")).as<std::string>();
+  const std::string path = *h.run(imageOf(scene(), "bgr8")).as<std::string>();
   EXPECT_EQ(path, std::string(dir) + "/frame_0.png");
-  expectSame(cv::imread(path), scene());  // PNG: lossless
+  expectSameMat(cv::imread(path), scene());  // PNG: lossless
   h.set("directory", "/nonexistent/dir");
-  EXPECT_TRUE(h.run(image(scene(), "bgr8")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(scene(), "bgr8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("directory '/nonexistent/dir' does not exist"));
 
   // Another run (a new node, numbering from 0) finds frame_0.png there: left as it is
   NodeHarness again("apex_nodes/ImageExport", {"image"}, "path");
   again.set("directory", std::string("'") + dir + "'");
   const cv::Mat other(4, 4, CV_8UC3, cv::Scalar(1, 2, 3));
-  EXPECT_TRUE(again.run(image(other, "bgr8")).isNothing());
+  EXPECT_TRUE(again.run(imageOf(other, "bgr8")).isNothing());
   EXPECT_THAT(again.error(), HasSubstr("'" + path +
                                        "' exists (not written by this node): left as it is; set "
                                        "'overwrite' to replace such files, or choose another prefix or directory"));
-  expectSame(cv::imread(path), scene());
+  expectSameMat(cv::imread(path), scene());
   again.set("overwrite", "true");
-  EXPECT_EQ(*again.run(image(other, "bgr8")).as<std::string>(), std::string(dir) + "/frame_1.png");
+  EXPECT_EQ(*again.run(imageOf(other, "bgr8")).as<std::string>(), std::string(dir) + "/frame_1.png");
   NodeHarness replacing("apex_nodes/ImageExport", {"image"}, "path");
   replacing.set("directory", std::string("'") + dir + "'");
   replacing.set("overwrite", "true");
-  EXPECT_EQ(*replacing.run(image(other, "bgr8")).as<std::string>(), path);
-  expectSame(cv::imread(path), other);
+  EXPECT_EQ(*replacing.run(imageOf(other, "bgr8")).as<std::string>(), path);
+  expectSameMat(cv::imread(path), other);
   for (const char* f : {"frame_0.png", "frame_1.png"}) std::remove((std::string(dir) + "/" + f).c_str());
   rmdir(dir);
 }
@@ -300,7 +284,7 @@ TEST(ImageNodes, ImageExportWritesFramesOrCrops) {
 TEST(ImageNodes, EmptyImagesAreAnErrorNotACrash) {
   for (const char* type : {"apex_nodes/Rotate", "apex_nodes/GaussianBlur", "apex_nodes/Morphology"}) {
     NodeHarness h(type, {"image"}, "image");
-    EXPECT_TRUE(h.run(image(cv::Mat(), "bgr8")).isNothing()) << type;
+    EXPECT_TRUE(h.run(imageOf(cv::Mat(), "bgr8")).isNothing()) << type;
     EXPECT_THAT(h.error(), HasSubstr("received an empty image")) << type;
   }
 }

@@ -10,7 +10,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "apex_nodes/features.hpp"
-#include "apex_test/node_harness.hpp"
+#include "apex_test/real_images.hpp"
 
 using namespace apex_test;
 using apex_nodes::Image;
@@ -19,30 +19,13 @@ using ::testing::HasSubstr;
 
 namespace {
 
-const std::string kData = "/usr/share/doc/opencv-doc/examples/data";  // scripts/install_deps installs opencv-doc
-
-std::shared_ptr<const Image> image(cv::Mat mat, const std::string& encoding) {
-  auto i = std::make_shared<Image>();
-  i->header.stamp = ros::Time(42, 7);
-  i->header.frame_id = "camera";
-  i->encoding = encoding;
-  i->mat = std::move(mat);
-  return i;
-}
-
-std::shared_ptr<const Image> load(const std::string& name) {
-  cv::Mat m = cv::imread(kData + "/" + name, cv::IMREAD_COLOR);
-  if (m.empty()) ADD_FAILURE() << "cannot read " << kData << "/" << name << ": is opencv-doc installed?";
-  return image(m, "bgr8");
-}
-
 /** The first `n` frames of vtest.avi, bgr8. */
 std::vector<std::shared_ptr<const Image>> pedestrians(int n) {
-  cv::VideoCapture video(kData + "/vtest.avi");
-  if (!video.isOpened()) ADD_FAILURE() << "cannot open " << kData << "/vtest.avi";
+  cv::VideoCapture video(kOpenCvData + "/vtest.avi");
+  if (!video.isOpened()) ADD_FAILURE() << "cannot open " << kOpenCvData << "/vtest.avi";
   std::vector<std::shared_ptr<const Image>> frames;
   cv::Mat frame;
-  while (int(frames.size()) < n && video.read(frame)) frames.push_back(image(frame.clone(), "bgr8"));
+  while (int(frames.size()) < n && video.read(frame)) frames.push_back(imageOf(frame.clone(), "bgr8"));
   EXPECT_EQ(int(frames.size()), n);
   return frames;
 }
@@ -60,15 +43,8 @@ std::shared_ptr<const Image> imageFrom(const Message& m, NodeHarness& h) {
     ADD_FAILURE() << "expected an image, got " << m.typeName() << ": " << h.error();
     return std::make_shared<Image>();
   }
-  EXPECT_EQ(i->header.stamp, ros::Time(42, 7));
-  EXPECT_EQ(i->header.frame_id, "camera");
+  expectCameraHeader(i->header);
   return i;
-}
-
-void expectSame(const cv::Mat& a, const cv::Mat& b) {
-  ASSERT_EQ(a.size(), b.size());
-  ASSERT_EQ(a.type(), b.type());
-  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
 }
 
 TEST(MotionNodes, BackgroundSubtractionEqualsMog2OnPedestrians) {
@@ -80,7 +56,7 @@ TEST(MotionNodes, BackgroundSubtractionEqualsMog2OnPedestrians) {
   for (int i = 0; i < 20; ++i) {
     mog2->apply(frames[i]->mat, want);
     const auto got = imageFrom(h.run(frames[i]), h);
-    expectSame(got->mat, want);
+    expectSameMat(got->mat, want);
     EXPECT_EQ(got->encoding, "mono8");
   }
   EXPECT_GT(cv::countNonZero(want == 255), 500);  // people walking: not a test of an empty mask
@@ -89,18 +65,18 @@ TEST(MotionNodes, BackgroundSubtractionEqualsMog2OnPedestrians) {
   ASSERT_TRUE(h.graph().waitIdle(kWait));
   mog2 = cv::createBackgroundSubtractorMOG2();
   mog2->apply(frames[20]->mat, want);
-  expectSame(imageFrom(h.run(frames[20]), h)->mat, want);
+  expectSameMat(imageFrom(h.run(frames[20]), h)->mat, want);
 
   h.set("history", "50");  // a model parameter: a new model too
   h.set("detect_shadows", "false");
   mog2 = cv::createBackgroundSubtractorMOG2(50, 16, false);
   for (int i = 0; i < 2; ++i) {
     mog2->apply(frames[i]->mat, want);
-    expectSame(imageFrom(h.run(frames[i]), h)->mat, want);
+    expectSameMat(imageFrom(h.run(frames[i]), h)->mat, want);
   }
   h.set("learning_rate", "0.2");  // read per frame: the same model goes on
   mog2->apply(frames[2]->mat, want, 0.2);
-  expectSame(imageFrom(h.run(frames[2]), h)->mat, want);
+  expectSameMat(imageFrom(h.run(frames[2]), h)->mat, want);
 }
 
 TEST(MotionNodes, BackgroundSubtractionKnnAgreesWithOpenCvs) {
@@ -124,11 +100,11 @@ TEST(MotionNodes, BackgroundSubtractionKnnAgreesWithOpenCvs) {
 
 TEST(MotionNodes, BackgroundSubtractionRefusesWhatItCannotModel) {
   NodeHarness h("apex_nodes/BackgroundSubtraction", {"image"}, "mask");
-  EXPECT_TRUE(h.run(image(cv::Mat(48, 64, CV_8UC4, cv::Scalar::all(9)), "bgra8")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(cv::Mat(48, 64, CV_8UC4, cv::Scalar::all(9)), "bgra8")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("cannot handle 4-channel images (encoding 'bgra8'); needs 1 or 3 channels"));
-  EXPECT_TRUE(h.run(image(cv::Mat(48, 64, CV_16UC1, cv::Scalar::all(9)), "mono16")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(cv::Mat(48, 64, CV_16UC1, cv::Scalar::all(9)), "mono16")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("needs an 8-bit image ('mono16')"));
-  EXPECT_FALSE(h.run(image(cv::Mat(48, 64, CV_8UC1, cv::Scalar::all(9)), "mono8")).isNothing());
+  EXPECT_FALSE(h.run(imageOf(cv::Mat(48, 64, CV_8UC1, cv::Scalar::all(9)), "mono8")).isNothing());
   EXPECT_EQ(h.error(), "");
 }
 
@@ -139,7 +115,7 @@ std::shared_ptr<const Tracks> tracksFrom(const Message& m, NodeHarness& h) {
 }
 
 TEST(MotionNodes, OpticalFlowLKEqualsOpenCvsOnBasketball) {
-  const auto one = load("basketball1.png"), two = load("basketball2.png");
+  const auto one = readDataImage("basketball1.png"), two = readDataImage("basketball2.png");
   const cv::Mat g1 = grayOf(*one), g2 = grayOf(*two);
   NodeHarness h("apex_nodes/OpticalFlowLK", {"image"}, "tracks");
   const auto first = tracksFrom(h.run(one), h);
@@ -187,32 +163,32 @@ TEST(MotionNodes, OpticalFlowLKEqualsOpenCvsOnBasketball) {
 
 TEST(MotionNodes, OpticalFlowLKRefusesWhatItCannotTrack) {
   NodeHarness h("apex_nodes/OpticalFlowLK", {"image"}, "tracks");
-  EXPECT_TRUE(h.run(image(cv::Mat(48, 64, CV_16UC1, cv::Scalar::all(9)), "mono16")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(cv::Mat(48, 64, CV_16UC1, cv::Scalar::all(9)), "mono16")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("needs an 8-bit image ('mono16')"));
-  EXPECT_TRUE(h.run(image(cv::Mat(48, 64, CV_8UC2, cv::Scalar::all(9)), "yuv422")).isNothing());
+  EXPECT_TRUE(h.run(imageOf(cv::Mat(48, 64, CV_8UC2, cv::Scalar::all(9)), "yuv422")).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("cannot handle 2-channel images (encoding 'yuv422'); needs 1, 3 or 4 channels"));
 }
 
 TEST(MotionNodes, OpticalFlowFarnebackEqualsOpenCvsOnRubberWhale) {
-  const auto one = load("rubberwhale1.png"), two = load("rubberwhale2.png");
+  const auto one = readDataImage("rubberwhale1.png"), two = readDataImage("rubberwhale2.png");
   NodeHarness h("apex_nodes/OpticalFlowFarneback", {"image"}, "flow");
   const auto first = imageFrom(h.run(one), h);  // no previous frame: no motion
-  expectSame(first->mat, cv::Mat::zeros(one->mat.size(), CV_32FC2));
+  expectSameMat(first->mat, cv::Mat::zeros(one->mat.size(), CV_32FC2));
   EXPECT_EQ(first->encoding, "32FC2");
   cv::Mat want;
   cv::calcOpticalFlowFarneback(grayOf(*one), grayOf(*two), want, 0.5, 3, 15, 3, 5, 1.2, 0);  // the node's defaults
   const auto second = imageFrom(h.run(two), h);
-  expectSame(second->mat, want);
+  expectSameMat(second->mat, want);
   EXPECT_EQ(second->encoding, "32FC2");
   EXPECT_GT(cv::norm(want, cv::NORM_L1) / want.total(), 0.05);  // the whale moved: not a test of zeros
 
   h.set("poly_n", "7");
   h.set("poly_sigma", "1.5");
   cv::calcOpticalFlowFarneback(grayOf(*two), grayOf(*one), want, 0.5, 3, 15, 3, 7, 1.5, 0);
-  expectSame(imageFrom(h.run(one), h)->mat, want);
+  expectSameMat(imageFrom(h.run(one), h)->mat, want);
   ASSERT_TRUE(h.graph().fireSlot("node", "reset"));
   ASSERT_TRUE(h.graph().waitIdle(kWait));
-  expectSame(imageFrom(h.run(two), h)->mat, cv::Mat::zeros(one->mat.size(), CV_32FC2));
+  expectSameMat(imageFrom(h.run(two), h)->mat, cv::Mat::zeros(one->mat.size(), CV_32FC2));
 }
 
 TEST(MotionNodes, DelaySendsAnyMessageNMessagesLater) {
@@ -237,7 +213,7 @@ TEST(MotionNodes, DelaySendsAnyMessageNMessagesLater) {
   ASSERT_TRUE(h.graph().waitIdle(kWait));
   EXPECT_EQ(sent(8), -1);
   // An image, e.g. for frame differencing: the same object, not a copy.
-  const auto a = load("basketball1.png"), b = load("basketball2.png");
+  const auto a = readDataImage("basketball1.png"), b = readDataImage("basketball2.png");
   EXPECT_EQ(sent(9), 8);
   const Message nine = h.run(a);
   ASSERT_TRUE(nine.as<int>());

@@ -61,17 +61,17 @@ inline const std_msgs::Header& headerOf(const Homography& h) { return h.header; 
 inline const std_msgs::Header& headerOf(const Tracks& t) { return t.header; }
 
 /** @brief An 8-bit image (1, 3 or 4 channels) as the single-channel gray image detectors and
- *  optical flow work on: the pixels themselves if it is gray already, else a new image
- *  (cv::cvtColor's BGR2GRAY, or RGB2GRAY for "rgb8"/"rgba8"). Errors name what it got. */
-inline cv::Mat gray8(const Image& in) {
+ *  optical flow work on: the pixels themselves if it is gray already (to read only), else
+ *  converted into `scratch` (cv::cvtColor's BGR2GRAY, or RGB2GRAY for "rgb8"/"rgba8"), the
+ *  node's own image reused from frame to frame, and returned. Errors name what it got. */
+inline cv::Mat gray8(const Image& in, cv::Mat& scratch) {
   requireImage(in, "134");
   if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image ('" + in.encoding + "')");
   if (in.mat.channels() == 1) return in.mat;
   const bool rgb = in.encoding.rfind("rgb", 0) == 0;
-  cv::Mat gray;
-  if (in.mat.channels() == 3) cv::cvtColor(in.mat, gray, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY);
-  else cv::cvtColor(in.mat, gray, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
-  return gray;
+  if (in.mat.channels() == 3) cv::cvtColor(in.mat, scratch, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY);
+  else cv::cvtColor(in.mat, scratch, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
+  return scratch;
 }
 
 /** @brief An 8-bit image (1, 3 or 4 channels) as bgr8 in `out`, to draw on: never `in`'s pixels. */

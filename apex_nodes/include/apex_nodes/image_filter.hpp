@@ -13,6 +13,10 @@
 //     }
 //     apex::Param<int> kernel_{this, kKernel};
 //   };
+//
+// A filter whose settings leave a frame as it is (Rotate by 0, Resize to the same size...) says so
+// in passesThrough(): the shape then sends the frame's own message, no copy made (messages are
+// immutable, so the receivers share it safely). It is asked after the checks, before filter().
 #pragma once
 
 #include <string>
@@ -49,11 +53,19 @@ class ImageFilter : public apex::Node {
    *  sends Nothing. */
   virtual void filter(const Image& in, Image& out) = 0;
 
+  /** @brief True when filter() would give `in` itself (the same pixels, encoding and header):
+   *  the frame's message is sent as it came, filter() not called. Only where that is exact. */
+  virtual bool passesThrough(const Image& /*in*/) const { return false; }
+
  private:
   void process() final {
     const Image& in = *in_.get();
     requireImage(in, channels_);
     if (depth8_ && in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image ('" + in.encoding + "')");
+    if (passesThrough(in)) {  // the frame as it came: no copy
+      out_.publishMessage(in_.message());
+      return;
+    }
     auto out = buffer_.next(in);
     out->encoding = in.encoding;
     filter(in, *out);
