@@ -1,12 +1,14 @@
 // DigitClassifier: the digit on each region (a sign), by a model apex_train_mlp wrote. The model
 // is read when first needed, and again when the parameter is set or the file changes; a missing
 // or damaged file is an error on the node (the regions still go out, unlabelled).
-#include <sys/stat.h>
+// A preset for the number signs (its own digit features and MLP file); Classifier is the general
+// form: FeatureExtract's features of the regions, labelled by any cv::ml model (apex_train's).
 
 #include <memory>
 
 #include "apex/core/registry.hpp"
 #include "apex_nodes/digits.hpp"
+#include "apex_nodes/model_file.hpp"
 #include "apex_nodes/image_check.hpp"
 
 namespace apex_nodes {
@@ -35,7 +37,7 @@ class DigitClassifier : public apex::Node {
         .param(kMinConfidence);
   }
   void parameterChanged(const std::string& name) override {
-    if (name == kModel.name()) model_.reset(), failed_.clear();
+    if (name == kModel.name()) model_.forget();
   }
   void process() override {
     const Image& image = *image_.get();
@@ -65,41 +67,21 @@ class DigitClassifier : public apex::Node {
   const DigitModel& load() {
     const std::string& path = model_path_.get();
     if (path.empty()) throw std::invalid_argument("no model: set 'model' to a file apex_train_mlp wrote");
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) {
-      model_.reset();
-      throw std::invalid_argument("the model '" + path + "' is gone");
-    }
-    const Stamp stamp{st.st_mtim.tv_sec, st.st_mtim.tv_nsec, st.st_size};
-    if (model_ && stamp == stamp_) return *model_;
-    if (!failed_.empty() && stamp == stamp_) throw std::invalid_argument(failed_);  // not read again until it changes
-    model_.reset();  // a damaged file leaves no model behind
-    failed_.clear();
-    stamp_ = stamp;
-    try {
-      model_ = std::make_unique<DigitModel>(DigitModel::load(path));
-    } catch (const std::invalid_argument& e) {
-      failed_ = e.what();
-      throw;
-    }
-    log(apex::LogLevel::Info, "loaded the model '" + path + "': " + std::to_string(model_->classes().size()) +
-                                  " classes, validation accuracy " + std::to_string(model_->validationAccuracy()));
-    return *model_;
+    bool fresh = false;
+    const DigitModel& model = model_.get(
+        path, [](const std::string& p) { return DigitModel::load(p); }, fresh);
+    if (fresh)
+      log(apex::LogLevel::Info, "loaded the model '" + path + "': " + std::to_string(model.classes().size()) +
+                                    " classes, validation accuracy " + std::to_string(model.validationAccuracy()));
+    return model;
   }
-  struct Stamp {
-    long sec = 0, nsec = 0;
-    long long size = 0;
-    bool operator==(const Stamp& o) const { return sec == o.sec && nsec == o.nsec && size == o.size; }
-  };
 
   apex::Input<Image> image_{this, kImage};
   apex::Input<Regions> regions_{this, kRegions};
   apex::Output<Regions> regions_out_{this, kLabelled};
   apex::Param<std::string> model_path_{this, kModel};
   apex::Param<double> min_confidence_{this, kMinConfidence};
-  std::unique_ptr<DigitModel> model_;
-  Stamp stamp_;
-  std::string failed_;  // why the file at stamp_ could not be read
+  ModelFile<DigitModel> model_;
 };
 
 }  // namespace apex_nodes

@@ -12,6 +12,7 @@
 
 #include "apex/core/registry.hpp"
 #include "apex_nodes/ros_convert.hpp"
+#include "apex_nodes/ros_results.hpp"
 #include "bag_frames.hpp"
 
 namespace apex_nodes {
@@ -21,6 +22,7 @@ namespace {
 constexpr const char* kImageType = "sensor_msgs/Image";
 constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
 constexpr const char* kCameraInfoType = "sensor_msgs/CameraInfo";
+constexpr const char* kRegionsType = "apex/Regions";  // as BagWriter records Regions
 
 /** The topics a node plays and their outputs: `topics`, one output each; or, when that is
  *  empty, as graphs made before it: `image_topic` on output image, `cloud_topic` on cloud. */
@@ -38,6 +40,7 @@ const apex::TypeInfo* typeFor(const std::string& datatype) {
   if (datatype == kImageType) return apex::typeOf<Image>();
   if (datatype == kCloudType) return apex::typeOf<Cloud>();
   if (datatype == kCameraInfoType) return apex::typeOf<sensor_msgs::CameraInfo>();
+  if (datatype == kRegionsType) return apex::typeOf<Regions>();
   return nullptr;
 }
 
@@ -47,6 +50,7 @@ apex::Message convert(const rosbag::MessageInstance& m) {
   if (auto info = m.instantiate<sensor_msgs::CameraInfo>())  // shared: the pointer holds the message
     return apex::Message::share<sensor_msgs::CameraInfo>(
         std::shared_ptr<const sensor_msgs::CameraInfo>(info.get(), [info](const void*) {}));
+  if (auto regions = m.instantiate<apex::Regions>()) return apex::Message::make<Regions>(fromRos(*regions));
   return {};
 }
 
@@ -80,7 +84,7 @@ apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
       type = typeFor(it->second);
       if (!type)
         return apex::Status::error("topic '" + topic + "' holds " + it->second + "; BagReader plays " + kImageType + ", " +
-                                   kCloudType + " and " + kCameraInfoType);
+                                   kCloudType + ", " + kCameraInfoType + " and " + kRegionsType);
       desc += " (" + it->second + ")";
     }
     outputs.push_back({port, type, false, desc});

@@ -1,6 +1,7 @@
 // BagWriter: a bag recorder. One input per recorded topic, of any type that has a
 // ROS message (apex/ros/inspect.hpp: images, clouds, scans, transforms, numbers,
-// text...); each message is written with its own header stamp as its record time
+// text, and the image library's results as this package's messages: regions, contours,
+// keypoints, matches... (ros_results.hpp)); each message is written with its own header stamp as its record time
 // (a message without one takes the firing's newest stamp, else the clock), so
 // BagReader plays back the frames that were recorded. As `rosbag record` does, the
 // file is written as <file>.active and renamed when it is closed (stop, the end of a
@@ -112,9 +113,12 @@ class BagWriter : public apex::Node {
       const apex::Message& m = inputMessage(portForTopic(topic));
       if (m.isNothing()) continue;
       const apex::Inspector inspector = apex::findInspector(m.type());
-      if (!inspector.serialize)
+      if (!inspector.serialize) {
+        std::string types;
+        for (const auto& t : apex::inspectedTypes()) types += (types.empty() ? "" : ", ") + t;
         throw std::invalid_argument("input '" + portForTopic(topic) + "' carries " + m.typeName() +
-                                    ", which has no ROS message to record");
+                                    ", which has no ROS message to record (these types have one: " + types + ")");
+      }
       messages.emplace_back(topic, inspector.serialize(m));
       newest = std::max(newest, messages.back().second.stamp);
     }

@@ -1,11 +1,13 @@
-// MarkerPublisher: clusters' boxes (ClusterFeatures), a plane's outline (a hull) and image regions'
-// rays (Regions with their camera model) as visualization_msgs/MarkerArray, for rviz.
+// MarkerPublisher: clusters' boxes (ClusterFeatures), a plane's outline (a hull), image regions'
+// rays (Regions with their camera model) and keypoints (Keypoints, on their rays) as
+// visualization_msgs/MarkerArray, for rviz.
 // Like the publishers of topic_sink.hpp it advertises at setup and when its topic changes, and
 // builds an array only while someone subscribes. Also ClusterFeatures' inspector: a port of that
 // type shows in rviz (~inspect) and is recorded (BagWriter) as the same boxes.
 #include "apex_nodes/markers.hpp"
 
 #include "apex_nodes/cloud.hpp"
+#include "apex_nodes/features.hpp"
 
 #include <ros/ros.h>
 
@@ -42,6 +44,21 @@ geometry_msgs::Quaternion quaternion(const Eigen::Quaterniond& q) {
 }
 
 float unit(int channel) { return static_cast<float>(std::clamp(channel, 0, 255)) / 255.f; }
+
+/** A camera's rectified pinhole (P): where a pixel's ray is at depth d along the optical axis. */
+struct Pinhole {
+  explicit Pinhole(const sensor_msgs::CameraInfo& camera) : fx(camera.P[0]), fy(camera.P[5]), cx(camera.P[2]), cy(camera.P[6]) {
+    if (fx == 0 || fy == 0)
+      throw std::invalid_argument("camera model on frame '" + camera.header.frame_id +
+                                  "' is not calibrated: P has no focal length");
+  }
+  geometry_msgs::Point at(double u, double v, double d) const {
+    geometry_msgs::Point p;
+    p.x = (u - cx) / fx * d, p.y = (v - cy) / fy * d, p.z = d;
+    return p;
+  }
+  double fx, fy, cx, cy;
+};
 
 /** A marker of `ns` and `id` with the array's header, lifetime and a valid (identity) orientation. */
 visualization_msgs::Marker marker(const ClusterFeatures& features, const MarkerOptions& options, const std::string& ns, int id,
@@ -126,10 +143,7 @@ visualization_msgs::Marker hullMarker(const Cloud& hull, const MarkerOptions& op
 
 visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs::CameraInfo& camera,
                                       const MarkerOptions& options) {
-  const double fx = camera.P[0], fy = camera.P[5], cx = camera.P[2], cy = camera.P[6];
-  if (fx == 0 || fy == 0)
-    throw std::invalid_argument("camera model on frame '" + camera.header.frame_id +
-                                "' is not calibrated: P has no focal length");
+  const Pinhole pinhole(camera);
   visualization_msgs::Marker m;
   m.header = regions.header;
   m.ns = options.ns + "/rays";
@@ -140,12 +154,7 @@ visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs:
   m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
   m.scale.x = 0.005;
   m.color.r = unit(options.color.r), m.color.g = unit(options.color.g), m.color.b = unit(options.color.b), m.color.a = 1.f;
-  const double d = options.ray_length;
-  auto at = [&](double u, double v) {  // the pixel's point at depth d
-    geometry_msgs::Point p;
-    p.x = (u - cx) / fx * d, p.y = (v - cy) / fy * d, p.z = d;
-    return p;
-  };
+  auto at = [&](double u, double v) { return pinhole.at(u, v, options.ray_length); };  // the pixel's point at ray_length
   for (const auto& r : regions.regions) {
     m.points.push_back(geometry_msgs::Point());  // the camera's origin
     m.points.push_back(at(r.centroid.x, r.centroid.y));
@@ -154,6 +163,24 @@ visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs:
                                        at(b.x, b.y + b.height)};
     for (int k = 0; k < 4; ++k) m.points.push_back(c[k]), m.points.push_back(c[(k + 1) % 4]);
   }
+  return m;
+}
+
+visualization_msgs::Marker keypointPoints(const Keypoints& keypoints, const sensor_msgs::CameraInfo& camera,
+                                          const MarkerOptions& options) {
+  const Pinhole pinhole(camera);
+  visualization_msgs::Marker m;
+  m.header = keypoints.header;
+  m.ns = options.ns + "/keypoints";
+  m.id = 0;
+  m.action = visualization_msgs::Marker::ADD;
+  m.type = visualization_msgs::Marker::POINTS;
+  m.pose.orientation.w = 1.0;
+  m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
+  m.scale.x = m.scale.y = 0.01;
+  m.color.r = unit(options.color.r), m.color.g = unit(options.color.g), m.color.b = unit(options.color.b), m.color.a = 1.f;
+  m.points.reserve(keypoints.keypoints.size());
+  for (const cv::KeyPoint& k : keypoints.keypoints) m.points.push_back(pinhole.at(k.pt.x, k.pt.y, options.ray_length));
   return m;
 }
 
@@ -186,7 +213,10 @@ class MarkerPublisher : public apex::Node {
   static inline const apex::InputPort<ClusterFeatures> kFeatures{"features", "if connected: the clusters to draw", true};
   static inline const apex::InputPort<Regions> kRegions{
       "regions", "if connected: regions of a camera's image, drawn as rays and boxes (needs camera_info)", true};
-  static inline const apex::InputPort<sensor_msgs::CameraInfo> kCamera{"camera_info", "the regions' camera model", true};
+  static inline const apex::InputPort<Keypoints> kKeypoints{
+      "keypoints", "if connected: keypoints of a camera's image, drawn as points on their rays (needs camera_info)", true};
+  static inline const apex::InputPort<sensor_msgs::CameraInfo> kCamera{"camera_info", "the regions' and keypoints' camera model",
+                                                                       true};
   static inline const apex::InputPort<Cloud> kHull{"hull", "if connected: a plane's hull (ConvexHull), drawn as its outline",
                                                    true};
   static inline const apex::ParamDecl<std::string> kTopic =
@@ -207,7 +237,7 @@ class MarkerPublisher : public apex::Node {
           .range(0.01, 100.0)
           .step(0.01)
           .init(2.0)
-          .describe("regions: how far from the camera their rays and boxes reach, metres");
+          .describe("regions and keypoints: how far from the camera their rays, boxes and points reach, metres");
   static inline const apex::ParamDecl<double> kLifetime =
       apex::param::number("lifetime")
           .range(0.0, 3600.0)
@@ -216,11 +246,13 @@ class MarkerPublisher : public apex::Node {
           .describe("seconds a box stays without an update; 0: until the next message replaces it");
   static apex::Manifest manifest() {
     return apex::Manifest(
-               "Publishes clusters' boxes, a plane's outline and image regions' rays as visualization_msgs/MarkerArray, for rviz")
+               "Publishes clusters' boxes, a plane's outline, image regions' rays and keypoints as "
+               "visualization_msgs/MarkerArray, for rviz")
         .inCategory("ROS I/O")
         .input(kFeatures)
         .input(kHull)
         .input(kRegions)
+        .input(kKeypoints)
         .input(kCamera)
         .param(kTopic)
         .param(kNamespace)
@@ -249,11 +281,14 @@ class MarkerPublisher : public apex::Node {
       last_count_ = in->clusters.size();
     }
     if (const auto hull = hull_.get()) markers.markers.push_back(hullMarker(*hull, options()));
-    if (const auto regions = regions_.get()) {
-      const auto camera = camera_.get();
-      if (!camera) throw std::invalid_argument("regions need their camera's model: connect camera_info");
-      markers.markers.push_back(regionRays(*regions, *camera, options()));
-    }
+    auto camera = [this](const char* what) {
+      const auto c = camera_.get();
+      if (!c) throw std::invalid_argument(std::string(what) + " need their camera's model: connect camera_info");
+      return c;
+    };
+    if (const auto regions = regions_.get()) markers.markers.push_back(regionRays(*regions, *camera("regions"), options()));
+    if (const auto keypoints = keypoints_.get())
+      markers.markers.push_back(keypointPoints(*keypoints, *camera("keypoints"), options()));
     if (!markers.markers.empty()) pub_.publish(markers);
   }
 
@@ -275,6 +310,7 @@ class MarkerPublisher : public apex::Node {
   apex::Input<ClusterFeatures> features_{this, kFeatures};
   apex::Input<Cloud> hull_{this, kHull};
   apex::Input<Regions> regions_{this, kRegions};
+  apex::Input<Keypoints> keypoints_{this, kKeypoints};
   apex::Input<sensor_msgs::CameraInfo> camera_{this, kCamera};
   apex::Param<std::string> topic_{this, kTopic};
   apex::Param<std::string> namespace_{this, kNamespace};

@@ -4,11 +4,11 @@
 // Reads SAMPLES_DIR/index.csv, holds a share of the samples out, adds varied copies (slant, turn,
 // size) of the others, trains cv::ml::ANN_MLP (RPROP)
 // with a progress line per batch of epochs, prints the validation accuracy and the time per
-// classification, and writes the model with its feature settings (atomically).
+// classification, and writes the model with its feature settings (atomically). (apex_train trains
+// Classifier's models, of any cv::ml type, on FeatureExtract's features of the same samples.)
 #include <chrono>
 #include <cstdlib>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -17,6 +17,7 @@
 
 #include "apex_nodes/digits.hpp"
 #include "cli.hpp"
+#include "samples.hpp"
 
 namespace {
 
@@ -74,26 +75,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-/** The crops of SAMPLES_DIR/index.csv, with their labels. */
-void load(const Options& o, std::vector<cv::Mat>& crops, std::vector<int>& labels) {
-  const std::string index = o.samples + "/index.csv";
-  std::ifstream in(index);
-  if (!in) throw std::invalid_argument("cannot read '" + index + "' (SampleExport writes it)");
-  std::string line;
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (n == 1 && line.rfind("file,", 0) == 0) continue;
-    std::stringstream fields(line);
-    std::string file, label;
-    if (!std::getline(fields, file, ',') || !std::getline(fields, label, ','))
-      throw std::invalid_argument(index + " line " + std::to_string(n) + ": needs 'file,label,...'");
-    const cv::Mat crop = cv::imread(o.samples + "/" + file, cv::IMREAD_GRAYSCALE);
-    if (crop.empty()) throw std::invalid_argument(index + " line " + std::to_string(n) + ": cannot read '" + file + "'");
-    crops.push_back(crop);
-    labels.push_back(whole(index + " line " + std::to_string(n) + ": the label", label, 0, 1 << 20));
-  }
-  if (labels.empty()) throw std::invalid_argument(index + " lists no samples");
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,7 +88,7 @@ int main(int argc, char** argv) {
   try {
     std::vector<cv::Mat> crops;
     std::vector<int> labels;
-    load(o, crops, labels);
+    apex_tools::readSamples(o.samples, cv::IMREAD_GRAYSCALE, crops, labels);
     std::printf("apex_train_mlp: %zu samples from %s, %.0f%% held out for validation, %d varied copies of the others\n",
                 crops.size(), o.samples.c_str(), 100 * o.train.validation, o.train.augment);
     std::fflush(stdout);

@@ -11,6 +11,7 @@
 #include <std_msgs/Float64.h>
 #include <std_msgs/Int32.h>
 #include <std_msgs/String.h>
+#include <topic_tools/shape_shifter.h>
 
 #include <QMetaObject>
 
@@ -304,8 +305,15 @@ void RuntimeLink::watchPreview(const std::string& node, const std::string& port,
       const QString text = QString::fromStdString(m->data);  // the thumbnail's real size
       deliver(gen, [this, n, p, text] { emit aboutReceived(n, p, text); });
     }));
-  } else {
+  } else if (type.empty() || type.rfind("std_msgs/", 0) == 0) {  // numbers, text and YAML text: shown as they are
     subs.push_back(watchValues(node, port, topic, type));
+  } else {  // any other message (clouds, regions, keypoints...): what it was, from its describe
+    const boost::function<void(const topic_tools::ShapeShifter::ConstPtr&)> ignore = [](const auto&) {};
+    subs.push_back(nh_->subscribe<topic_tools::ShapeShifter>(topic, 1, ignore));  // the runtime publishes while subscribed
+    subs.push_back(nh_->subscribe<std_msgs::String>(topic + "/about", 1, [this, n, p, gen](const std_msgs::String::ConstPtr& m) {
+      const QString text = QString::fromStdString(m->data).left(200);
+      deliver(gen, [this, n, p, text] { emit scalarReceived(n, p, text); });
+    }));
   }
 }
 

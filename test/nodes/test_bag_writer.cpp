@@ -16,6 +16,10 @@ using namespace apex_test;
 using testing::HasSubstr;
 namespace fs = std::filesystem;
 
+/** A type with no ROS message (no inspector registered). */
+struct NoRosForm {};
+APEX_TYPE_NAME(NoRosForm, "test/NoRosForm");
+
 namespace {
 
 const char* kTopics = "[/camera/image_raw, /camera/points]";
@@ -266,9 +270,10 @@ TEST(BagWriter, ATypeWithNoRosMessageIsAnErrorOnTheNodeAndNothingIsWritten) {
   const std::string out = fresh("no_ros_type") + "/regions.bag";
   Graph g(pluginRegistry());
   feedRecorder(g, "[/regions]", out, "regions");
-  object<MessageFeeder>(g, "feed")->feed(Message::make<apex_nodes::Regions>({}));
+  object<MessageFeeder>(g, "feed")->feed(Message::make<NoRosForm>({}));
   ASSERT_TRUE(waitUntil([&] { return !errorOf(g, "rec").empty(); }));
-  EXPECT_THAT(errorOf(g, "rec"), HasSubstr("input 'regions' carries apex_nodes/Regions, which has no ROS message to record"));
+  EXPECT_THAT(errorOf(g, "rec"), HasSubstr("input 'regions' carries test/NoRosForm, which has no ROS message to record"));
+  EXPECT_THAT(errorOf(g, "rec"), HasSubstr("apex_nodes/Regions"));  // among the types that have one
   EXPECT_FALSE(fs::exists(out + ".active"));
   auto twice = g.setParameter("rec", "topics", "[/a/b, /a_b]");
   ASSERT_FALSE(twice);

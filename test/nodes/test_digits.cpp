@@ -278,7 +278,7 @@ TEST(DigitClassifier, AMissingOrDamagedModelIsAnErrorAndTheRegionsGoOnUnlabelled
   // gone
   fs::remove(path);
   EXPECT_TRUE(unlabelled());
-  EXPECT_THAT(h.error(), HasSubstr("the model '" + path + "' is gone"));
+  EXPECT_THAT(h.error(), HasSubstr("the model '" + path + "' cannot be read: no such file"));
   // damaged: cut off half-way, then not YAML at all, then another YAML file
   const std::string text = [&] {
     const std::string other = tempPath("whole.yaml");

@@ -1,5 +1,5 @@
-// Clusters' boxes and a plane's outline for rviz: what MarkerPublisher (ros_io/markers.cpp, in apex_nodes_ros) publishes,
-// built without ROS running so that tests check it.
+// Clusters' boxes, a plane's outline, image regions' rays and keypoints for rviz: what MarkerPublisher (ros_io/markers.cpp, in
+// apex_nodes_ros) publishes, built without ROS running so that tests check it.
 #pragma once
 
 #include <visualization_msgs/MarkerArray.h>
@@ -14,6 +14,8 @@
 
 namespace apex_nodes {
 
+struct Keypoints;  // features.hpp
+
 /** @brief How clusterMarkers draws. */
 struct MarkerOptions {
   std::string ns = "clusters";  ///< the boxes' marker namespace; labels go in "<ns>/labels"
@@ -23,7 +25,7 @@ struct MarkerOptions {
   double alpha = 0.5;  ///< the boxes' opacity, 0..1
   double lifetime = 0;  ///< seconds a marker stays without an update; 0: until replaced
   double text_height = 0.15;  ///< the labels' letter height, metres
-  double ray_length = 2.0;  ///< regions' rays and projected boxes: how far from the camera, metres
+  double ray_length = 2.0;  ///< regions' rays and projected boxes, keypoints: how far from the camera, metres
 };
 
 /** @brief For `last_count`: what the previous array drew is not known (the first one, or the
@@ -51,5 +53,14 @@ visualization_msgs::Marker hullMarker(const Cloud& hull, const MarkerOptions& op
  *  Throws std::invalid_argument naming the camera if the model is not calibrated. */
 visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs::CameraInfo& camera,
                                       const MarkerOptions& options);
+
+/** @brief Keypoints of a camera's image in 3-D, for rviz: each keypoint where its ray from the
+ *  camera reaches `options.ray_length` metres along the optical axis (the plane regionRays
+ *  projects boxes to), all one POINTS marker (id 0 in "<ns>/keypoints", 1 cm points) in the
+ *  keypoints' frame, which must be the camera's optical frame. Pixels as regionRays takes them
+ *  (the rectified image's, P). Throws std::invalid_argument naming the camera if the model is not
+ *  calibrated. */
+visualization_msgs::Marker keypointPoints(const Keypoints& keypoints, const sensor_msgs::CameraInfo& camera,
+                                          const MarkerOptions& options);
 
 }  // namespace apex_nodes

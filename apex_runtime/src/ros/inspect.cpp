@@ -5,6 +5,7 @@
 #include <std_msgs/Int32.h>
 #include <std_msgs/String.h>
 
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <typeindex>
@@ -84,6 +85,18 @@ bool registerShrink(const TypeInfo* type, std::function<Message(const Message&, 
 
 bool registerDescribe(const TypeInfo* type, std::function<std::string(const Message&)> describe) {
   return amend(type, &Inspector::describe, std::move(describe));
+}
+
+std::vector<std::string> inspectedTypes() {
+  (void)kBuiltins;
+  std::vector<std::string> out;
+  {
+    std::lock_guard<std::mutex> lock(tableMutex());
+    for (const auto& entry : table())
+      if (entry.second.serialize) out.push_back(entry.first->name);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 Inspector findInspector(const TypeInfo* type) {

@@ -59,6 +59,10 @@ bool addDescribe(Describe describe) {
 }
 /** @brief The converter for `type`; a YAML-text std_msgs/String one if none is registered. */
 Inspector findInspector(const TypeInfo* type);
+/** @brief The readable names of the types with a ROS message of their own (a registered converter
+ *  with `serialize`: built in, and what the loaded node libraries added), sorted: for errors
+ *  about a type that has none. */
+std::vector<std::string> inspectedTypes();
 
 template <class T, class RosMsg, class Convert>
 bool addInspector(Convert convert) {
