@@ -59,6 +59,10 @@ Options parse(int argc, char** argv) {
       plain.push_back(arg);
       continue;
     }
+    if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage << "\n";
+      std::exit(0);
+    }
     if (arg == "--deskew") {  // flags: no value
       o.features.deskew = true;
       continue;

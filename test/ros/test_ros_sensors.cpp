@@ -3,6 +3,7 @@
 // point, every field, the frame and the stamp to the nanosecond. A camera's images with their
 // camera_info (opencv-doc's real calibration): rectified as OpenCV's remap does, published with
 // the model, on the frame's stamp.
+#include <apex/ChessboardCorners.h>
 #include <gmock/gmock.h>
 #include <pcl/filters/voxel_grid.h>
 #include <pcl/point_types.h>
@@ -111,25 +112,50 @@ TEST(Clouds, VoxelGridAveragesIntensityAsPclDoes) {
 
 const std::string kData = "/usr/share/doc/opencv-doc/examples/data";  // scripts/install_deps installs opencv-doc
 
-TEST(Camera, ImagesAreRectifiedByTheirCameraInfoAndPublishedWithIt) {
-  const cv::Mat raw = cv::imread(kData + "/left01.jpg", cv::IMREAD_COLOR);
-  ASSERT_FALSE(raw.empty()) << "is opencv-doc installed?";
-  cv::FileStorage fs(kData + "/left_intrinsics.yml", cv::FileStorage::READ);
-  cv::Mat K, D;
-  fs["camera_matrix"] >> K;
-  fs["distortion_coefficients"] >> D;
+/** opencv-doc's left01.jpg with its calibration (left_intrinsics.yml), as a camera sends them. */
+struct LeftCamera {
+  cv::Mat raw, K, D;
+  sensor_msgs::ImagePtr image;
   sensor_msgs::CameraInfo info;
-  info.width = raw.cols, info.height = raw.rows, info.distortion_model = "plumb_bob";
-  std::copy(K.begin<double>(), K.end<double>(), info.K.begin());
-  info.D.assign(D.begin<double>(), D.end<double>());
+};
+
+LeftCamera leftCamera(const ros::Time& stamp) {
+  LeftCamera cam;
+  cam.raw = cv::imread(kData + "/left01.jpg", cv::IMREAD_COLOR);
+  if (cam.raw.empty()) ADD_FAILURE() << "cannot read left01.jpg: is opencv-doc installed?";
+  cv::FileStorage fs(kData + "/left_intrinsics.yml", cv::FileStorage::READ);
+  fs["camera_matrix"] >> cam.K;
+  fs["distortion_coefficients"] >> cam.D;
+  sensor_msgs::CameraInfo& info = cam.info;
+  info.width = cam.raw.cols, info.height = cam.raw.rows, info.distortion_model = "plumb_bob";
+  std::copy(cam.K.begin<double>(), cam.K.end<double>(), info.K.begin());
+  info.D.assign(cam.D.begin<double>(), cam.D.end<double>());
   info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) info.P[r * 4 + c] = info.K[r * 3 + c];
-  std_msgs::Header header;
-  header.frame_id = "left_camera", header.stamp = ros::Time(1700000000, 987654321);
-  info.header = header;
-  const sensor_msgs::ImagePtr image = cv_bridge::CvImage(header, "bgr8", raw).toImageMsg();
+  info.header.frame_id = "left_camera", info.header.stamp = stamp;
+  cam.image = cv_bridge::CvImage(info.header, "bgr8", cam.raw).toImageMsg();
+  return cam;
+}
 
+/** Sends the camera's frame on /camera/image_raw until `received()` (under `m`), for up to 30 s. */
+template <class Received>
+void sendUntil(const LeftCamera& cam, std::mutex& m, Received received) {
+  ros::NodeHandle nh;
+  image_transport::ImageTransport it(nh);
+  auto pub = it.advertiseCamera("/camera/image_raw", 1);
+  for (auto deadline = ros::WallTime::now() + ros::WallDuration(30); ros::WallTime::now() < deadline;) {
+    {
+      std::lock_guard<std::mutex> l(m);
+      if (received()) return;
+    }
+    pub.publish(*cam.image, cam.info);
+    ros::WallDuration(0.05).sleep();  // the pace of the resending, not a wait for a result
+  }
+}
+
+TEST(Camera, ImagesAreRectifiedByTheirCameraInfoAndPublishedWithIt) {
+  const LeftCamera cam = leftCamera(ros::Time(1700000000, 987654321));
   ros::NodeHandle nh;
   image_transport::ImageTransport it(nh);
   std::mutex m;
@@ -140,24 +166,49 @@ TEST(Camera, ImagesAreRectifiedByTheirCameraInfoAndPublishedWithIt) {
                                   std::lock_guard<std::mutex> l(m);
                                   got_image = i, got_info = c;
                                 });
-  auto pub = it.advertiseCamera("/camera/image_raw", 1);
-  for (auto deadline = ros::WallTime::now() + ros::WallDuration(30); ros::WallTime::now() < deadline;) {
-    {
-      std::lock_guard<std::mutex> l(m);
-      if (got_image) break;
-    }
-    pub.publish(*image, info);
-    ros::WallDuration(0.05).sleep();  // the pace of the resending, not a wait for a result
-  }
+  sendUntil(cam, m, [&] { return got_image != nullptr; });
   std::lock_guard<std::mutex> l(m);
   ASSERT_TRUE(got_image) << "nothing on /camera/image_rect";
-  EXPECT_EQ(got_image->header.stamp, header.stamp);
-  EXPECT_EQ(got_info->header.stamp, header.stamp);
-  EXPECT_EQ(got_info->K, info.K);
+  EXPECT_EQ(got_image->header.stamp, cam.info.header.stamp);
+  EXPECT_EQ(got_info->header.stamp, cam.info.header.stamp);
+  EXPECT_EQ(got_info->K, cam.info.K);
   cv::Mat map1, map2, want;
-  cv::initUndistortRectifyMap(K, D, cv::Mat::eye(3, 3, CV_64F), K, raw.size(), CV_16SC2, map1, map2);
-  cv::remap(raw, want, map1, map2, cv::INTER_LINEAR);
+  cv::initUndistortRectifyMap(cam.K, cam.D, cv::Mat::eye(3, 3, CV_64F), cam.K, cam.raw.size(), CV_16SC2, map1, map2);
+  cv::remap(cam.raw, want, map1, map2, cv::INTER_LINEAR);
   EXPECT_EQ(cv::norm(cv_bridge::toCvShare(got_image, "bgr8")->image, want, cv::NORM_INF), 0);
+}
+
+// A result of the image library through the runtime as a ROS message: ChessboardCorners' corners,
+// sent by ResultPublisher as apex/ChessboardCorners, equal to OpenCV's own.
+TEST(Camera, ResultPublisherSendsTheBoardsCornersAsAMessage) {
+  const LeftCamera cam = leftCamera(ros::Time(1700000001, 5));
+  ros::NodeHandle nh;
+  std::mutex m;
+  apex::ChessboardCorners::ConstPtr got;
+  auto sub = nh.subscribe<apex::ChessboardCorners>("/camera/board", 1, [&](const apex::ChessboardCorners::ConstPtr& c) {
+    std::lock_guard<std::mutex> l(m);
+    if (c->header.stamp == cam.info.header.stamp) got = c;
+  });
+  sendUntil(cam, m, [&] { return got != nullptr; });
+  std::lock_guard<std::mutex> l(m);
+  ASSERT_TRUE(got) << "nothing on /camera/board";
+  EXPECT_EQ(got->header.frame_id, "left_camera");
+  EXPECT_EQ(got->width, static_cast<std::uint32_t>(cam.raw.cols));
+  EXPECT_EQ(got->pattern_width, 9u);
+  EXPECT_EQ(got->pattern_height, 6u);
+  ASSERT_TRUE(got->found);
+  std::vector<cv::Point2f> want;  // as ChessboardCorners finds them, with its defaults
+  ASSERT_TRUE(
+      cv::findChessboardCorners(cam.raw, cv::Size(9, 6), want, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE));
+  cv::Mat gray;
+  cv::cvtColor(cam.raw, gray, cv::COLOR_BGR2GRAY);
+  cv::cornerSubPix(gray, want, cv::Size(11, 11), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.001));
+  ASSERT_EQ(got->corners.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(got->corners[i].x, want[i].x) << i;
+    EXPECT_EQ(got->corners[i].y, want[i].y) << i;
+  }
 }
 
 }  // namespace
