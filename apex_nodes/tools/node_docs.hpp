@@ -12,36 +12,18 @@
 #include <string>
 #include <vector>
 
+#include "apex/core/categories.hpp"
 #include "apex/core/registry.hpp"
 #include "convert.hpp"  // apex_runtime/src/ros: toTypeInfo
 
 namespace apex_node_docs {
 
-/** The categories of node types, in the order the palette and docs/nodes.md list them. */
-inline const std::vector<std::string>& categories() {
-  static const std::vector<std::string> names{"image filters",
-                                              "colour",
-                                              "contours and shapes",
-                                              "features",
-                                              "motion",
-                                              "detection",
-                                              "drawing",
-                                              "cameras and stereo",
-                                              "depth",
-                                              "learning",
-                                              "evaluation",
-                                              "clouds",
-                                              "cloud segmentation",
-                                              "cloud registration",
-                                              "ROS I/O",
-                                              "flow",
-                                              "math",
-                                              "optimisation"};
-  return names;
-}
+/** The categories of node types, in the order the palette and docs/nodes.md list them
+ *  (apex/core/categories.hpp: the panel's palette reads the same list). */
+inline const std::vector<std::string>& categories() { return apex::nodeCategories(); }
 
 /** The heading of types without a category. */
-inline const std::string kOther = "other";
+inline const std::string& kOther = apex::kOtherCategory;
 /** The prefix of the ids of APEX's own node types: the ones docs/nodes.md lists. */
 inline const std::string kOwnPrefix = "apex_nodes/";
 

@@ -1,5 +1,6 @@
 #include "apex_rviz_plugin/graph_editor.hpp"
 
+#include "apex_rviz_plugin/palette.hpp"
 #include "apex_rviz_plugin/view_parts.hpp"
 
 #include <QCursor>
@@ -10,7 +11,6 @@
 #include <QKeyEvent>
 #include <QLabel>
 #include <QLineEdit>
-#include <QListWidget>
 #include <QMenu>
 #include <QMessageBox>
 #include <QMouseEvent>
@@ -191,58 +191,14 @@ QWidget* GraphEditor::buildLevelBar() {  // where the view is inside subgraphs; 
 }
 
 QWidget* GraphEditor::buildPalette() {
-  auto* box = new QWidget;
-  auto* column = new QVBoxLayout(box);
-  column->setContentsMargins(0, 0, 0, 0);
-  search_ = new QLineEdit;
-  search_->setObjectName("search");
-  search_->setPlaceholderText("Search node types (Enter adds)");
-  palette_ = new QListWidget;
-  palette_->setObjectName("palette");
-  auto* refresh = button("refresh_types", "Reload types", "ask the runtime for its node types again");
-  column->addWidget(search_);
-  column->addWidget(palette_, 1);
-  column->addWidget(refresh);
-  box->setMaximumWidth(240);
-  connect(search_, &QLineEdit::textChanged, this, &GraphEditor::filterPalette);
-  connect(search_, &QLineEdit::returnPressed, this, &GraphEditor::addFromPalette);
-  connect(palette_, &QListWidget::itemActivated, this, [this](QListWidgetItem*) { addFromPalette(); });
-  connect(refresh, &QToolButton::clicked, this, [this] { emit typesRequested(); });
-  return box;
+  palette_ = new Palette;
+  connect(palette_, &Palette::addRequested, this, [this](const QString& type) { emit addRequested(type, newNodePosition()); });
+  connect(palette_, &Palette::refused, this, [this](const QString& why) { showMessage(why, true); });
+  connect(palette_, &Palette::reloadRequested, this, &GraphEditor::typesRequested);
+  return palette_;
 }
 
-void GraphEditor::showTypes(const std::vector<apex::NodeTypeInfo>& types) {
-  palette_->clear();
-  for (const auto& t : types) {
-    auto* item = new QListWidgetItem(QString::fromStdString(t.id), palette_);
-    QString tip = QString::fromStdString(t.description);
-    for (const auto& p : t.ports)
-      tip += QString::fromStdString("\n  " + p.kind + " " + p.name + (p.type.empty() ? "" : ": " + p.type));
-    item->setToolTip(tip);
-    item->setData(Qt::UserRole, QString::fromStdString(t.description));
-  }
-  filterPalette(search_->text());
-}
-
-void GraphEditor::filterPalette(const QString& text) {
-  QListWidgetItem* by_name = nullptr;  // a type whose name matches comes before one whose description does
-  QListWidgetItem* by_description = nullptr;
-  for (int i = 0; i < palette_->count(); ++i) {
-    QListWidgetItem* item = palette_->item(i);
-    const bool name = item->text().contains(text, Qt::CaseInsensitive);
-    const bool description = item->data(Qt::UserRole).toString().contains(text, Qt::CaseInsensitive);
-    item->setHidden(!name && !description);
-    if (name && !by_name) by_name = item;
-    if (description && !by_description) by_description = item;
-  }
-  palette_->setCurrentItem(by_name ? by_name : by_description);
-}
-
-void GraphEditor::addFromPalette() {
-  QListWidgetItem* item = palette_->currentItem();
-  if (!item || item->isHidden()) return showMessage("no node type matches '" + search_->text() + "'", true);
-  emit addRequested(item->text(), newNodePosition());
-}
+void GraphEditor::showTypes(const std::vector<apex::NodeTypeInfo>& types) { palette_->showTypes(types); }
 
 QPointF GraphEditor::newNodePosition() {  // the middle of the view, a little further each time
   const QPointF c = view_->mapToScene(view_->viewport()->rect().center());

@@ -41,7 +41,7 @@ TEST(NodeDocs, EveryOwnTypeHasADescriptionAndACategory) {
     EXPECT_FALSE(m.description.empty()) << type->id << " has no description: give its Manifest one";
     EXPECT_TRUE(std::find(known.begin(), known.end(), m.category) != known.end())
         << type->id << " has the category '" << m.category
-        << "': call .inCategory(...) in its manifest() with one of apex_node_docs::categories() (node_docs.hpp)";
+        << "': call .inCategory(...) in its manifest() with one of apex::nodeCategories() (apex/core/categories.hpp)";
   }
   EXPECT_GT(own, 0u) << "no apex_nodes/ types loaded: is the devel space sourced?";
 }

@@ -3,7 +3,7 @@
 // runtime's own graph (~get_graph), not in the panel. Screenshots are written.
 //   test_panel_widget SCREENSHOT.png DEMO_BAG GRAPHS_FOLDER
 // This file: adding, connecting, tuning, subgraphs, editing. The tests go on in
-// test_panel_tuning_and_layout.cpp and test_panel_runtimes.cpp (linked in that order).
+// test_panel_palette.cpp, test_panel_tuning_and_layout.cpp and test_panel_runtimes.cpp (linked in that order).
 #include "panel_test_support.hpp"
 
 namespace panel_test {
@@ -396,6 +396,7 @@ TEST_F(PanelWidgetTest, FindANodeByNameOrTypeAlsoInsideASubgraph) {
   QTest::keyClick(find, Qt::Key_Return);
   EXPECT_TRUE(panel.editor()->message().contains("no node's name or type contains")) << panel.editor()->message().toStdString();
 }
+
 
 }  // namespace
 }  // namespace panel_test

@@ -17,12 +17,12 @@ class QGraphicsView;
 class QLabel;
 class QMenu;
 class QLineEdit;
-class QListWidget;
 class QToolButton;
 
 namespace apex_rviz_plugin {
 
 class Minimap;
+class Palette;
 
 class GraphEditor : public QWidget {
   Q_OBJECT
@@ -107,9 +107,8 @@ class GraphEditor : public QWidget {
  private:
   QWidget* buildToolBar();
   QWidget* buildLevelBar();
+  /** The palette of node types (palette.hpp): what it asks to add goes at newNodePosition(). */
   QWidget* buildPalette();
-  void filterPalette(const QString& text);
-  void addFromPalette();
   void showNodeMenu(const QString& node, QPoint at);
   void showPortMenu(const QString& node, const QString& port, QPoint at);
   void showParamMenu(const QString& node, const QString& param, QPoint at);
@@ -131,10 +130,9 @@ class GraphEditor : public QWidget {
   Minimap* minimap_ = nullptr;
   const GraphModel* model_ = nullptr;
   QLineEdit* namespace_;
-  QLineEdit* search_;
   QLineEdit* find_ = nullptr;  ///< finds nodes on the canvas by name or type
   int found_ = -1;  ///< the match shown last
-  QListWidget* palette_;
+  Palette* palette_ = nullptr;
   QLabel* message_;
   QLabel* connection_;
   QToolButton *pause_, *undo_, *redo_;
