@@ -33,6 +33,11 @@ void PanelWidget::perform(const std::optional<Edit>& edit) {
     editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
     report(ok, message, QString::fromStdString(edit.label));
     if (!ok) editor_->showGraph(model_);  // widgets back to the values the runtime holds
+    while (pending_ == 0 && !waiting_steps_.empty()) {  // the undos and redos asked for meanwhile
+      const bool undo = waiting_steps_.front();
+      waiting_steps_.pop_front();
+      historyStep(undo);
+    }
   });
 }
 

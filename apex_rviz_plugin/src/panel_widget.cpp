@@ -97,9 +97,14 @@ void PanelWidget::onNamespaceEdited(const QString& ns) {
   if (ns.toStdString() != link_.ns()) setNamespace(ns);
 }
 
-void PanelWidget::onUndoRequested() { replay(history_.undo(), "undo"); }
+void PanelWidget::onUndoRequested() { historyStep(true); }
 
-void PanelWidget::onRedoRequested() { replay(history_.redo(), "redo"); }
+void PanelWidget::onRedoRequested() { historyStep(false); }
+
+void PanelWidget::historyStep(bool undo) {
+  if (pending_ > 0) return waiting_steps_.push_back(undo);  // the edit it would undo is not in the history yet
+  replay(undo ? history_.undo() : history_.redo(), undo ? "undo" : "redo");
+}
 
 void PanelWidget::onControlRequested(const QString& command) {
   link_.control(command.toStdString(), [this, command](bool ok, const std::string& m) { report(ok, m, command); });
@@ -240,6 +245,7 @@ void PanelWidget::updatePreviews() {
 
 void PanelWidget::forgetHistory() {
   history_.clear();
+  waiting_steps_.clear();
   ++history_epoch_;
   editor_->showHistory("", false, false);
 }

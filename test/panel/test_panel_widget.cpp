@@ -173,6 +173,17 @@ TEST_F(PanelWidgetTest, GroupIntoASubgraphOpenItWithADoubleClickGoUpAndUndo) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("clock_3") && !scene->node("subgraph_1"); }, kWaitMs))
       << panel.editor()->message().toStdString();
   EXPECT_TRUE(connected(runtimeGraph(), "clock_3", "count", "print_1", "in"));
+
+  // Undo before the runtime answered the edit it undoes (its new graph may show first): it waits
+  // for the answer and undoes that edit, not the one before it (it removed print_1, seen under load)
+  panel.editor()->showMessage("", false);
+  emit panel.editor()->groupIntoSubgraphRequested({"clock_3", "print_1"});
+  QTest::mouseClick(panel.editor()->findChild<QToolButton*>("undo"), Qt::LeftButton);  // no event handled in between
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editor()->message().startsWith("undo"); }, kWaitMs));
+  EXPECT_EQ(panel.editor()->message(), "undo");  // not refused
+  const auto after = runtimeGraph();
+  EXPECT_TRUE(find(after, "clock_3") && find(after, "print_1") && !find(after, "subgraph_1"));
+  EXPECT_TRUE(connected(after, "clock_3", "count", "print_1", "in"));
 }
 
 TEST_F(PanelWidgetTest, ANodeThatCannotFireSaysWhatItWaitsFor) {
@@ -396,7 +407,6 @@ TEST_F(PanelWidgetTest, FindANodeByNameOrTypeAlsoInsideASubgraph) {
   QTest::keyClick(find, Qt::Key_Return);
   EXPECT_TRUE(panel.editor()->message().contains("no node's name or type contains")) << panel.editor()->message().toStdString();
 }
-
 
 }  // namespace
 }  // namespace panel_test

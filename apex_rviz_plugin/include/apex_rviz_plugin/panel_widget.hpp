@@ -4,6 +4,7 @@
 // GraphPanel puts this in rviz; tests drive it directly.
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <map>
 #include <set>
@@ -49,6 +50,9 @@ class PanelWidget : public QWidget {
  private:
   void perform(const std::optional<Edit>& edit);
   void replay(std::vector<Call> calls, const QString& what);
+  /** Undo (true) or redo: at once, or, while an edit is unanswered (not in the history yet: the
+   *  runtime's new graph can show before its answer), after the answers, in the order asked. */
+  void historyStep(bool undo);
   /** Adds what a paste or duplicate made, and selects it once shown. */
   void pasted(const Pasted& p);
   void forgetHistory();
@@ -146,6 +150,7 @@ class PanelWidget : public QWidget {
   RuntimeLink link_;
   int type_count_ = 0;
   int pending_ = 0;
+  std::deque<bool> waiting_steps_;  // undo (true) or redo asked for while an edit was unanswered
   int history_epoch_ = 0;  // counts fresh histories: an edit answered after one began is not recorded
   std::map<std::string, apex::NodeTypeInfo> types_;  // by id, as the runtime listed them
   std::set<std::string> watched_;  // Optimizers whose progress is inspected
