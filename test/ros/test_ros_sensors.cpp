@@ -14,6 +14,7 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <condition_variable>
 #include <mutex>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -44,20 +45,19 @@ template <class Msg = sensor_msgs::PointCloud2>
 boost::shared_ptr<const Msg> sendAndReceive(const std::string& topic) {
   ros::NodeHandle nh;
   std::mutex m;
+  std::condition_variable arrived;
   boost::shared_ptr<const Msg> got;
   auto sub = nh.subscribe<Msg>(topic, 1, [&](const boost::shared_ptr<const Msg>& msg) {
     std::lock_guard<std::mutex> l(m);
     got = msg;
+    arrived.notify_all();
   });
   auto pub = nh.advertise<sensor_msgs::PointCloud2>("/clouds/in", 1);
   const auto message = lidarMessage();
   for (auto deadline = ros::WallTime::now() + ros::WallDuration(30); ros::WallTime::now() < deadline;) {
-    {
-      std::lock_guard<std::mutex> l(m);
-      if (got) return got;
-    }
     pub.publish(message);
-    ros::WallDuration(0.05).sleep();  // the pace of the resending, not a wait for a result
+    std::unique_lock<std::mutex> l(m);
+    if (arrived.wait_for(l, std::chrono::milliseconds(50), [&] { return got != nullptr; })) return got;
   }
   return nullptr;
 }
@@ -138,19 +138,17 @@ LeftCamera leftCamera(const ros::Time& stamp) {
   return cam;
 }
 
-/** Sends the camera's frame on /camera/image_raw until `received()` (under `m`), for up to 30 s. */
+/** Sends the camera's frame on /camera/image_raw until `received()` (under `m`; the subscriber's
+ *  callback notifies `arrived`), again after each 50 ms without it, for up to 30 s. */
 template <class Received>
-void sendUntil(const LeftCamera& cam, std::mutex& m, Received received) {
+void sendUntil(const LeftCamera& cam, std::mutex& m, std::condition_variable& arrived, Received received) {
   ros::NodeHandle nh;
   image_transport::ImageTransport it(nh);
   auto pub = it.advertiseCamera("/camera/image_raw", 1);
   for (auto deadline = ros::WallTime::now() + ros::WallDuration(30); ros::WallTime::now() < deadline;) {
-    {
-      std::lock_guard<std::mutex> l(m);
-      if (received()) return;
-    }
-    pub.publish(*cam.image, cam.info);
-    ros::WallDuration(0.05).sleep();  // the pace of the resending, not a wait for a result
+    pub.publish(*cam.image, cam.info);  // again until it arrives: the runtime may not be subscribed yet
+    std::unique_lock<std::mutex> l(m);
+    if (arrived.wait_for(l, std::chrono::milliseconds(50), received)) return;
   }
 }
 
@@ -159,14 +157,16 @@ TEST(Camera, ImagesAreRectifiedByTheirCameraInfoAndPublishedWithIt) {
   ros::NodeHandle nh;
   image_transport::ImageTransport it(nh);
   std::mutex m;
+  std::condition_variable arrived;
   sensor_msgs::ImageConstPtr got_image;
   sensor_msgs::CameraInfoConstPtr got_info;
   auto sub = it.subscribeCamera("/camera/image_rect", 1,
                                 [&](const sensor_msgs::ImageConstPtr& i, const sensor_msgs::CameraInfoConstPtr& c) {
                                   std::lock_guard<std::mutex> l(m);
                                   got_image = i, got_info = c;
+                                  arrived.notify_all();
                                 });
-  sendUntil(cam, m, [&] { return got_image != nullptr; });
+  sendUntil(cam, m, arrived, [&] { return got_image != nullptr; });
   std::lock_guard<std::mutex> l(m);
   ASSERT_TRUE(got_image) << "nothing on /camera/image_rect";
   EXPECT_EQ(got_image->header.stamp, cam.info.header.stamp);
@@ -184,12 +184,14 @@ TEST(Camera, ResultPublisherSendsTheBoardsCornersAsAMessage) {
   const LeftCamera cam = leftCamera(ros::Time(1700000001, 5));
   ros::NodeHandle nh;
   std::mutex m;
+  std::condition_variable arrived;
   apex::ChessboardCorners::ConstPtr got;
   auto sub = nh.subscribe<apex::ChessboardCorners>("/camera/board", 1, [&](const apex::ChessboardCorners::ConstPtr& c) {
     std::lock_guard<std::mutex> l(m);
     if (c->header.stamp == cam.info.header.stamp) got = c;
+    arrived.notify_all();
   });
-  sendUntil(cam, m, [&] { return got != nullptr; });
+  sendUntil(cam, m, arrived, [&] { return got != nullptr; });
   std::lock_guard<std::mutex> l(m);
   ASSERT_TRUE(got) << "nothing on /camera/board";
   EXPECT_EQ(got->header.frame_id, "left_camera");
