@@ -60,16 +60,26 @@ struct Pinhole {
   double fx, fy, cx, cy;
 };
 
-/** A marker of `ns` and `id` with the array's header, lifetime and a valid (identity) orientation. */
-visualization_msgs::Marker marker(const ClusterFeatures& features, const MarkerOptions& options, const std::string& ns, int id,
+/** A marker of `ns` and `id` with `header`, the options' lifetime and a valid (identity) orientation. */
+visualization_msgs::Marker marker(const std_msgs::Header& header, const MarkerOptions& options, const std::string& ns, int id,
                                   int action) {
   visualization_msgs::Marker m;
-  m.header = features.header;
+  m.header = header;
   m.ns = ns;
   m.id = id;
   m.action = action;
   m.pose.orientation.w = 1.0;
   m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
+  return m;
+}
+
+/** One marker (id 0) of `type` drawn `width` wide in the options' colour: a hull, rays, points. */
+visualization_msgs::Marker drawing(const std_msgs::Header& header, const MarkerOptions& options, const std::string& ns, int type,
+                                   double width) {
+  visualization_msgs::Marker m = marker(header, options, ns, 0, visualization_msgs::Marker::ADD);
+  m.type = type;
+  m.scale.x = width;
+  m.color.r = unit(options.color.r), m.color.g = unit(options.color.g), m.color.b = unit(options.color.b), m.color.a = 1.f;
   return m;
 }
 
@@ -80,16 +90,17 @@ visualization_msgs::MarkerArray clusterMarkers(const ClusterFeatures& features, 
   using visualization_msgs::Marker;
   const std::string label_ns = options.ns + "/labels";
   visualization_msgs::MarkerArray out;
-  if (features.clusters.size() < last_count) out.markers.push_back(marker(features, options, options.ns, 0, Marker::DELETEALL));
+  if (features.clusters.size() < last_count)
+    out.markers.push_back(marker(features.header, options, options.ns, 0, Marker::DELETEALL));
   for (std::size_t i = 0; i < features.clusters.size(); ++i) {
     const ClusterFeature& f = features.clusters[i];
     const int id = static_cast<int>(i);
     if (f.points == 0) {  // nothing to draw: none of an earlier array's boxes either
-      out.markers.push_back(marker(features, options, options.ns, id, Marker::DELETE));
-      if (options.labels) out.markers.push_back(marker(features, options, label_ns, id, Marker::DELETE));
+      out.markers.push_back(marker(features.header, options, options.ns, id, Marker::DELETE));
+      if (options.labels) out.markers.push_back(marker(features.header, options, label_ns, id, Marker::DELETE));
       continue;
     }
-    Marker box = marker(features, options, options.ns, id, Marker::ADD);
+    Marker box = marker(features.header, options, options.ns, id, Marker::ADD);
     box.type = Marker::CUBE;
     double half_height = 0;  // how far the box reaches above its centre, in the frame's z
     if (options.oriented) {
@@ -107,7 +118,7 @@ visualization_msgs::MarkerArray clusterMarkers(const ClusterFeatures& features, 
     box.color.a = static_cast<float>(std::clamp(options.alpha, 0.0, 1.0));
     out.markers.push_back(box);
     if (!options.labels) continue;
-    Marker text = marker(features, options, label_ns, id, Marker::ADD);
+    Marker text = marker(features.header, options, label_ns, id, Marker::ADD);
     text.type = Marker::TEXT_VIEW_FACING;
     text.text = std::to_string(f.label) + ": " + std::to_string(f.points) + " points";
     text.pose.position = box.pose.position;
@@ -122,16 +133,8 @@ visualization_msgs::MarkerArray clusterMarkers(const ClusterFeatures& features, 
 visualization_msgs::Marker hullMarker(const Cloud& hull, const MarkerOptions& options) {
   const auto points = xyzOf(hull);
   if (points->size() < 3) throw std::invalid_argument("a hull of " + std::to_string(points->size()) + " points outlines nothing");
-  visualization_msgs::Marker m;
-  m.header = hull.header;
-  m.ns = options.ns + "/plane";
-  m.id = 0;
-  m.action = visualization_msgs::Marker::ADD;
-  m.type = visualization_msgs::Marker::LINE_STRIP;
-  m.pose.orientation.w = 1.0;
-  m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
-  m.scale.x = 0.01;
-  m.color.r = unit(options.color.r), m.color.g = unit(options.color.g), m.color.b = unit(options.color.b), m.color.a = 1.f;
+  visualization_msgs::Marker m =
+      drawing(hull.header, options, options.ns + "/plane", visualization_msgs::Marker::LINE_STRIP, 0.01);
   for (const auto& p : *points) {
     geometry_msgs::Point q;
     q.x = p.x, q.y = p.y, q.z = p.z;
@@ -144,16 +147,8 @@ visualization_msgs::Marker hullMarker(const Cloud& hull, const MarkerOptions& op
 visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs::CameraInfo& camera,
                                       const MarkerOptions& options) {
   const Pinhole pinhole(camera);
-  visualization_msgs::Marker m;
-  m.header = regions.header;
-  m.ns = options.ns + "/rays";
-  m.id = 0;
-  m.action = visualization_msgs::Marker::ADD;
-  m.type = visualization_msgs::Marker::LINE_LIST;
-  m.pose.orientation.w = 1.0;
-  m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
-  m.scale.x = 0.005;
-  m.color.r = unit(options.color.r), m.color.g = unit(options.color.g), m.color.b = unit(options.color.b), m.color.a = 1.f;
+  visualization_msgs::Marker m =
+      drawing(regions.header, options, options.ns + "/rays", visualization_msgs::Marker::LINE_LIST, 0.005);
   auto at = [&](double u, double v) { return pinhole.at(u, v, options.ray_length); };  // the pixel's point at ray_length
   for (const auto& r : regions.regions) {
     m.points.push_back(geometry_msgs::Point());  // the camera's origin
@@ -169,16 +164,9 @@ visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs:
 visualization_msgs::Marker keypointPoints(const Keypoints& keypoints, const sensor_msgs::CameraInfo& camera,
                                           const MarkerOptions& options) {
   const Pinhole pinhole(camera);
-  visualization_msgs::Marker m;
-  m.header = keypoints.header;
-  m.ns = options.ns + "/keypoints";
-  m.id = 0;
-  m.action = visualization_msgs::Marker::ADD;
-  m.type = visualization_msgs::Marker::POINTS;
-  m.pose.orientation.w = 1.0;
-  m.lifetime = ros::Duration(std::max(0.0, options.lifetime));
-  m.scale.x = m.scale.y = 0.01;
-  m.color.r = unit(options.color.r), m.color.g = unit(options.color.g), m.color.b = unit(options.color.b), m.color.a = 1.f;
+  visualization_msgs::Marker m =
+      drawing(keypoints.header, options, options.ns + "/keypoints", visualization_msgs::Marker::POINTS, 0.01);
+  m.scale.y = m.scale.x;
   m.points.reserve(keypoints.keypoints.size());
   for (const cv::KeyPoint& k : keypoints.keypoints) m.points.push_back(pinhole.at(k.pt.x, k.pt.y, options.ray_length));
   return m;
