@@ -110,7 +110,8 @@ class TimeSync : public apex::Node {
   apex::Param<double> tolerance_{this, kTolerance};
 };
 
-/** Passes on one of its inputs: switch between variants of a pipeline while it runs. */
+/** The multiplexer (mux): passes on one of its inputs, to switch between variants of a pipeline while it
+ *  runs. Demux (demux.cpp) is its opposite. */
 class Select : public apex::Node {
  public:
   static inline const apex::InputPort<apex::Any> kIn0{"in_0", "", true};
@@ -121,7 +122,7 @@ class Select : public apex::Node {
   static inline const apex::ParamDecl<int> kChoice =
       param::integer("choice").range(0, 15).step(1).describe("the input passed on").interactive();
   static apex::Manifest manifest() {
-    return apex::Manifest("Passes on the input chosen by `choice`; the others are read and dropped")
+    return apex::Manifest("Passes on the input chosen by `choice`, a multiplexer (mux); the others are read and dropped")
         .inCategory("flow")
         .input(kIn0)
         .input(kIn1)

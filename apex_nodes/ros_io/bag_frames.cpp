@@ -73,6 +73,17 @@ std::vector<BagFrame> indexFrames(rosbag::Bag& bag, const std::vector<std::strin
   return frames;
 }
 
+std::shared_ptr<const RosMessage> readMessage(const rosbag::MessageInstance& m) {
+  auto out = std::make_shared<RosMessage>();
+  out->datatype = m.getDataType();
+  out->md5sum = m.getMD5Sum();
+  out->definition = m.getMessageDefinition();
+  out->bytes.resize(m.size());
+  ros::serialization::OStream stream(out->bytes.data(), static_cast<std::uint32_t>(out->bytes.size()));
+  m.write(stream);
+  return out;
+}
+
 std::string portForTopic(const std::string& topic) {
   std::string out;
   for (char c : topic) {

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "apex_nodes/ros_message.hpp"
+
 namespace apex_nodes {
 
 /** @brief Opens a bag for reading under the plugin lock; refuses what is not a regular file
@@ -36,6 +38,9 @@ struct BagFrame {
 /** @brief The frames of `topics` in `bag`: a frame starts at a message more than `window`
  *  seconds after the frame's first one, or on a topic the frame already has. */
 std::vector<BagFrame> indexFrames(rosbag::Bag& bag, const std::vector<std::string>& topics, double window);
+
+/** @brief A message of the bag as it is stored: its connection's type and its bytes (one copy). */
+std::shared_ptr<const RosMessage> readMessage(const rosbag::MessageInstance& m);
 
 /** @brief "/camera/image_raw" → "camera_image_raw": a port name for a topic. */
 std::string portForTopic(const std::string& topic);

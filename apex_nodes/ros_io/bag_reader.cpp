@@ -1,5 +1,8 @@
 // BagReader: a bag player. One output per played topic, typed by the topic's
-// message type (an interface per instance); the messages of one frame leave in
+// message type (an interface per instance): a type the library has a port type for
+// (images, clouds, scans, camera models, poses, numbers, regions: ros_message.hpp's
+// conversions) arrives converted, any other as the ROS message itself (RosMessage);
+// the messages of one frame leave in
 // one firing. Plays at the bag's pace times `rate` (0: as fast as the graph
 // takes them) and never drops: the next frame waits until the graph has read
 // the last one. Seeks in O(log n) (bag_frames.hpp). While paused it holds its
@@ -11,18 +14,13 @@
 #include <memory>
 
 #include "apex/core/registry.hpp"
-#include "apex_nodes/ros_convert.hpp"
-#include "apex_nodes/ros_results.hpp"
+#include "apex_nodes/ros_message.hpp"
+#include "apex_nodes/types.hpp"
 #include "bag_frames.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
 namespace {
-
-constexpr const char* kImageType = "sensor_msgs/Image";
-constexpr const char* kCloudType = "sensor_msgs/PointCloud2";
-constexpr const char* kCameraInfoType = "sensor_msgs/CameraInfo";
-constexpr const char* kRegionsType = "apex/Regions";  // as BagWriter records Regions
 
 /** The topics a node plays and their outputs: `topics`, one output each; or, when that is
  *  empty, as graphs made before it: `image_topic` on output image, `cloud_topic` on cloud. */
@@ -34,24 +32,6 @@ std::vector<std::pair<std::string, std::string>> playedTopics(const std::vector<
   if (!image_topic.empty()) out.emplace_back("image", image_topic);
   if (!cloud_topic.empty()) out.emplace_back("cloud", cloud_topic);
   return out;
-}
-
-const apex::TypeInfo* typeFor(const std::string& datatype) {
-  if (datatype == kImageType) return apex::typeOf<Image>();
-  if (datatype == kCloudType) return apex::typeOf<Cloud>();
-  if (datatype == kCameraInfoType) return apex::typeOf<sensor_msgs::CameraInfo>();
-  if (datatype == kRegionsType) return apex::typeOf<Regions>();
-  return nullptr;
-}
-
-apex::Message convert(const rosbag::MessageInstance& m) {
-  if (auto image = m.instantiate<sensor_msgs::Image>()) return apex::Message::share<Image>(fromRos(image));
-  if (auto cloud = m.instantiate<Cloud>()) return apex::Message::share<Cloud>(fromRos(boost::shared_ptr<const Cloud>(cloud)));
-  if (auto info = m.instantiate<sensor_msgs::CameraInfo>())  // shared: the pointer holds the message
-    return apex::Message::share<sensor_msgs::CameraInfo>(
-        std::shared_ptr<const sensor_msgs::CameraInfo>(info.get(), [info](const void*) {}));
-  if (auto regions = m.instantiate<apex::Regions>()) return apex::Message::make<Regions>(fromRos(*regions));
-  return {};
 }
 
 /** The outputs for the played topics, typed from the bag (`any` while the bag cannot be
@@ -81,10 +61,7 @@ apex::Status shapeOutputs(const apex::ParamValues& p, apex::Manifest& m) {
     if (legacy) {
       type = port == "image" ? apex::typeOf<Image>() : apex::typeOf<Cloud>();
     } else if (auto it = types.find(topic); it != types.end()) {
-      type = typeFor(it->second);
-      if (!type)
-        return apex::Status::error("topic '" + topic + "' holds " + it->second + "; BagReader plays " + kImageType + ", " +
-                                   kCloudType + ", " + kCameraInfoType + " and " + kRegionsType);
+      type = portType(it->second);
       desc += " (" + it->second + ")";
     }
     outputs.push_back({port, type, false, desc});
@@ -321,8 +298,7 @@ class BagReader : public apex::Node {
     for (const rosbag::MessageInstance& m : rosbag::View(*bag_, rosbag::TopicQuery(played_topics_), f.start, f.end)) {
       auto port = ports_.find(m.getTopic());
       if (port == ports_.end()) continue;
-      apex::Message msg = convert(m);
-      if (!msg.isNothing()) publishMessage(port->second, std::move(msg));
+      publishMessage(port->second, toPort(readMessage(m)));
     }
     stamp_.publish(f.start.toSec());
   }

@@ -1,6 +1,7 @@
 // ~inspect for the node library's types: images as sensor_msgs/Image, clouds
 // as sensor_msgs/PointCloud2 (every field), scans and camera models as themselves, the image
 // library's results as this package's messages (ros_results.hpp) (see apex/ros/inspect.hpp).
+// A ROS message of any type (RosMessage) has its own, in ros_message.cpp.
 #include <sensor_msgs/LaserScan.h>
 
 #include <algorithm>

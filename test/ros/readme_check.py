@@ -9,6 +9,9 @@ waits for a launch to come up). The lines shown after a command are what it prin
 `key: value` lines by their key, `...` for anything, any other line as a part of the output. A command exits 0 unless what it shows
 says "error". At the block's end, what it started is stopped (SIGINT, as Ctrl-C).
 
+A block right after `<!-- check: file NAME -->` is a file the user writes: it is saved as NAME in
+the working folder, for the sessions after it (e.g. a Python script they then run).
+
 A block right after `<!-- check: each -->` holds launch lines (roslaunch, rosrun) that are each
 started alone; each must bring up a runtime that answers `get_graph`, and is then stopped.
 `source` lines are left out (this check runs in the sourced devel space). A nodelet manager named
@@ -51,7 +54,7 @@ def blocks(readme):
         fenced = fenced != line.strip().startswith("```")
         if line.startswith("#") and not fenced:
             heading = re.sub(r"[^A-Za-z0-9]+", "_", line.lstrip("#").strip()).strip("_")
-        m = re.match(r"\s*<!-- check: (\w+)", line)
+        m = re.match(r"\s*<!-- check: (\w+)(?: ([\w.-]+))?", line)
         if not m:
             continue
         seen[heading] = seen.get(heading, 0) + 1
@@ -72,7 +75,7 @@ def blocks(readme):
             while j < len(lines) and (not lines[j].strip() or len(lines[j]) - len(lines[j].lstrip()) >= indent):
                 body.append(lines[j][indent:])
                 j += 1
-        out.append((m.group(1), name, j + 1 - len(body), [b.rstrip() for b in body]))
+        out.append((m.group(1), m.group(2) or name, j + 1 - len(body), [b.rstrip() for b in body]))
     return out
 
 
@@ -222,6 +225,13 @@ def run_session(body, env, cwd, log):
         s.stop()
 
 
+def save_file(name, body, cwd):
+    """A `file` block: saved in the working folder; None (no failure)."""
+    with open(os.path.join(cwd, name), "w") as f:
+        f.write("\n".join(body) + "\n")
+    return None
+
+
 def run_each(body, env, cwd, log):
     """The first launch line of an `each` block that brings up no runtime ('' if none)."""
     lines = [without_comment(l.strip()) for l in body if l.strip() and not l.strip().startswith(("#", "source "))]
@@ -289,8 +299,10 @@ def main():
         for kind, name, line, body in found:
             t0 = time.time()
             with open(os.path.join(work, name + ".log"), "w") as log:
-                run = run_session if kind == "session" else run_each
-                failure = run(body, env, cwd, log)
+                if kind == "file":
+                    failure = save_file(name, body, cwd)
+                else:
+                    failure = (run_session if kind == "session" else run_each)(body, env, cwd, log)
             cases.append((name, failure, time.time() - t0))
             print("README line %d, %s (%s): %s (%.0f s)" % (line, name, kind, failure or "OK", time.time() - t0),
                   flush=True)

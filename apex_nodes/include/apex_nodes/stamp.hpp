@@ -1,11 +1,14 @@
-// The ROS header of the stamped types APEX's nodes exchange.
+// The ROS header of the stamped types APEX's nodes exchange: read (headerOf) and replaced (withHeader), one list.
 #pragma once
 
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TransformStamped.h>
 
+#include <memory>
 #include <optional>
+#include <string>
+#include <type_traits>
 
 #include "apex_nodes/cluster_features.hpp"
 #include "apex_nodes/types.hpp"
@@ -17,20 +20,57 @@ APEX_TYPE_NAME(geometry_msgs::PoseArray, "geometry_msgs/PoseArray");
 
 namespace apex_nodes {
 
-/** @brief The message's header, if it is an image, cloud, regions, clusters, cluster features, scan,
- *  camera model, transform or pose(s). */
-inline std::optional<std_msgs::Header> headerOf(const apex::Message& m) {
-  if (auto p = m.as<Image>()) return p->header;
-  if (auto p = m.as<Cloud>()) return p->header;
-  if (auto p = m.as<Regions>()) return p->header;
-  if (auto p = m.as<Clusters>()) return p->header;
-  if (auto p = m.as<ClusterFeatures>()) return p->header;
-  if (auto p = m.as<sensor_msgs::LaserScan>()) return p->header;
-  if (auto p = m.as<sensor_msgs::CameraInfo>()) return p->header;
-  if (auto p = m.as<geometry_msgs::TransformStamped>()) return p->header;
-  if (auto p = m.as<geometry_msgs::PoseStamped>()) return p->header;
-  if (auto p = m.as<geometry_msgs::PoseArray>()) return p->header;
-  return std::nullopt;
+/** @brief A list of C++ types, e.g. StampedTypes. */
+template <class... Ts>
+struct TypeList {};
+
+namespace detail {
+/** Calls `f` with the payload (a shared_ptr<const T>) if the message is one of Ts; false if none. */
+template <class F, class... Ts>
+bool visitAs(const apex::Message& m, F& f, TypeList<Ts...>) {
+  auto one = [&](auto payload) {
+    if (payload) f(payload);
+    return payload != nullptr;
+  };
+  return (one(m.as<Ts>()) || ...);
 }
+
+template <class... Ts>
+std::string typeNames(TypeList<Ts...>) {
+  std::string names;
+  ((names += (names.empty() ? "" : ", ") + apex::typeOf<Ts>()->name), ...);
+  return names;
+}
+}  // namespace detail
+
+/** @brief The types with a ROS header that headerOf reads and withHeader sets: an image, cloud, regions,
+ *  clusters, cluster features, scan, camera model, transform or pose(s). A new stamped type is added here. */
+using StampedTypes = TypeList<Image, Cloud, Regions, Clusters, ClusterFeatures, sensor_msgs::LaserScan, sensor_msgs::CameraInfo,
+                              geometry_msgs::TransformStamped, geometry_msgs::PoseStamped, geometry_msgs::PoseArray>;
+
+/** @brief The message's header, if it is one of StampedTypes. */
+inline std::optional<std_msgs::Header> headerOf(const apex::Message& m) {
+  std::optional<std_msgs::Header> header;
+  auto read = [&](const auto& payload) { header = payload->header; };
+  detail::visitAs(m, read, StampedTypes{});
+  return header;
+}
+
+/** @brief A copy of the message with another header (a new object: messages are immutable; pixels and
+ *  points are shared, not copied), if it is one of StampedTypes. */
+inline std::optional<apex::Message> withHeader(const apex::Message& m, const std_msgs::Header& header) {
+  std::optional<apex::Message> out;
+  auto restamp = [&](const auto& payload) {
+    using T = std::remove_const_t<typename std::decay_t<decltype(payload)>::element_type>;
+    auto copy = std::make_shared<T>(*payload);
+    copy->header = header;
+    out = apex::Message::share<T>(std::move(copy));
+  };
+  detail::visitAs(m, restamp, StampedTypes{});
+  return out;
+}
+
+/** @brief The names of StampedTypes, for messages: "apex_nodes/Image, apex_nodes/Cloud, ...". */
+inline std::string stampedTypeNames() { return detail::typeNames(StampedTypes{}); }
 
 }  // namespace apex_nodes

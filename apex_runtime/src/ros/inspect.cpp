@@ -116,6 +116,7 @@ Inspector findInspector(const TypeInfo* type) {
                    },
                    nullptr,
                    nullptr,
+                   nullptr,
                    nullptr};
 }
 

@@ -12,7 +12,8 @@ namespace ros_host {
 /** One inspected port, published whole on inspect/<node>/<port> and, for the panel's
  *  previews, at most kPreviewRate times a second and shrunk on preview/<node>/<port>, with
  *  what the message was (its inspector's describe, e.g. an image's real size) on
- *  preview/<node>/<port>/about. A port that carries any type advertises on its first message. */
+ *  preview/<node>/<port>/about. A port that carries any type, or ROS messages of any type,
+ *  advertises on its first message. */
 struct Inspection::Tap {
   struct Topic {
     bool wanted = false;
@@ -26,9 +27,14 @@ struct Inspection::Tap {
   Topic whole, preview, about;
   std::chrono::steady_clock::time_point next_preview{};
 
-  void advertise() {  // under mutex, once the inspector is known
-    for (Topic* t : {&whole, &preview})
-      if (t->wanted && !t->pub) t->pub = inspector.advertise(nh, t->name);
+  /** Under mutex, once the inspector is known; `first`: the message being sent, if any (a type
+   *  whose ROS type is its message's own is advertised at its first message). */
+  void advertise(const Message* first = nullptr) {
+    for (Topic* t : {&whole, &preview}) {
+      if (!t->wanted || t->pub) continue;
+      if (!inspector.advertise_as) t->pub = inspector.advertise(nh, t->name);
+      else if (first) t->pub = inspector.advertise_as(nh, t->name, *first);
+    }
     if (preview.wanted && inspector.describe && !about.pub) about.pub = nh.advertise<std_msgs::String>(about.name, 1);
   }
 
@@ -36,7 +42,7 @@ struct Inspection::Tap {
     if (m.isNothing() || m.isEndOfSequence()) return;  // no frame to show
     std::lock_guard<std::mutex> lock(mutex);
     if (!typed) inspector = findInspector(m.type()), typed = true;
-    advertise();
+    advertise(&m);
     if (whole.pub && whole.pub.getNumSubscribers() > 0) inspector.publish(whole.pub, m);
     if (!preview.pub || preview.pub.getNumSubscribers() == 0) return;
     const auto now = std::chrono::steady_clock::now();
@@ -99,7 +105,8 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
   Tap::Topic& t = preview ? tap->preview : tap->whole;
   t.wanted = true;
   if (tap->typed) tap->advertise();
-  return std::make_pair(t.pub ? t.pub.getTopic() : nh_.resolveName(t.name), tap->typed ? tap->inspector.message_type : "");
+  const bool type_known = tap->typed && !tap->inspector.advertise_as;  // else: the first message's
+  return std::make_pair(t.pub ? t.pub.getTopic() : nh_.resolveName(t.name), type_known ? tap->inspector.message_type : "");
 }
 
 void Inspection::forgetNode(const std::string& node) {

@@ -33,6 +33,9 @@ struct Inspector {
   /** What a message is, in a few words (e.g. "640×480 bgr8"): sent beside its previews, as the
    *  preview itself may be shrunk; none: nothing is sent. */
   std::function<std::string(const Message&)> describe;
+  /** For a type whose ROS type is the message's own (a ROS message of any type): advertises the
+   *  topic as `first`'s type, at the first message; `advertise` is then not used. */
+  std::function<ros::Publisher(ros::NodeHandle&, const std::string& topic, const Message& first)> advertise_as;
 };
 
 /** @brief Registers the converter for messages of `type` (the last registration wins). */
@@ -86,6 +89,7 @@ bool addInspector(Convert convert) {
                   if (const ros::Time* stamp = mt::timeStamp(msg)) out.stamp = *stamp;
                   return out;
                 },
+                nullptr,
                 nullptr});
 }
 

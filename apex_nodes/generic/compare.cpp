@@ -1,0 +1,73 @@
+// Compare: a number against a threshold, as a bool for Switch or Select, and as events when the
+// answer changes (e.g. "the battery fell below 20 %").
+#include <cmath>
+#include <string>
+
+#include "apex/core/registry.hpp"
+#include "apex_nodes/flow.hpp"
+
+namespace apex_nodes {
+namespace param = apex::param;
+
+class Compare : public StatefulFlowNode {
+ public:
+  static inline const apex::InputPort<apex::Any> kValue{"value", "an int or a double; anything else is an error"};
+  static inline const apex::OutputPort<bool> kResult{"result",
+                                                     "whether `value` `operator` `threshold` holds, e.g. value less 0.5"};
+  static inline const apex::TriggerPort kRose{
+      "rose", "fires when the result turns true (also at the first value, as a PLC's R_TRIG: it counts as false before)"};
+  static inline const apex::TriggerPort kFell{"fell", "fires when the result turns false"};
+  static inline const apex::ParamDecl<std::string> kOperator =
+      param::choice("operator", {"greater", "greater_equal", "less", "less_equal", "equal", "not_equal"})
+          .describe("how `value` is compared with `threshold`");
+  static inline const apex::ParamDecl<double> kThreshold = param::number("threshold").describe("the value compared against");
+  static inline const apex::ParamDecl<double> kTolerance =
+      param::number("tolerance")
+          .range(0.0, 1e9)
+          .describe("equal and not_equal: values within this distance of `threshold` count as equal");
+  static apex::Manifest manifest() {
+    return apex::Manifest("Compares a number with a threshold: the answer as a bool, and events when it changes")
+        .inCategory("flow")
+        .input(kValue)
+        .output(kResult)
+        .param(kOperator)
+        .param(kThreshold)
+        .param(kTolerance)
+        .trigger(kRose)
+        .trigger(kFell)
+        .slot("reset", &Compare::reset,
+              "forgets the last result (false again, so a true next fires `rose`); the end of a sequence does too");
+  }
+  void process() override {
+    const bool now = holds(numberOf(value_.message(), kValue.name));
+    result_.publish(now);
+    if (now && !last_) rose_.fire();
+    if (!now && last_) fell_.fire();
+    last_ = now;
+  }
+  void reset() override { last_ = false; }
+
+ private:
+  bool holds(double v) const {
+    const double t = threshold_.get();
+    const std::string& op = operator_.get();
+    if (op == "greater") return v > t;
+    if (op == "greater_equal") return v >= t;
+    if (op == "less") return v < t;
+    if (op == "less_equal") return v <= t;
+    const bool equal = std::fabs(v - t) <= tolerance_.get() || v == t;  // v == t: equal infinities
+    return op == "equal" ? equal : !equal;
+  }
+  apex::Input<apex::Any> value_{this, kValue};
+  apex::Output<bool> result_{this, kResult};
+  apex::Trigger rose_{this, kRose};
+  apex::Trigger fell_{this, kFell};
+  apex::Param<std::string> operator_{this, kOperator};
+  apex::Param<double> threshold_{this, kThreshold};
+  apex::Param<double> tolerance_{this, kTolerance};
+  bool last_ = false;  // the last result; false before the first
+};
+
+}  // namespace apex_nodes
+
+APEX_REGISTER_NODE(apex_nodes::Compare, "apex_nodes/Compare");

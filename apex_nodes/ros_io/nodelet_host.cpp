@@ -1,0 +1,234 @@
+// NodeletHost and NodeletSource: any nodelet plugin (image_proc/rectify, pcl/VoxelGrid, a lab's
+// own) as a node of the graph, loaded by pluginlib as a nodelet manager loads it, under the
+// runtime's private namespace (/apex/nodelets/<node>), its listed topics remapped under that name.
+// NodeletHost answers frames: each frame's inputs are published to the nodelet and its answers
+// (stamped as the frame) are the node's outputs, within `timeout`; it spins the nodelet's queue
+// itself in process(), no thread. NodeletSource is a driven source: the nodelet publishes on its
+// own (from topics of the ROS graph, several outputs per input or none) on a thread of the node.
+// Two types, not a `mode` parameter: a parameter may change a node's ports but not how it is
+// scheduled (graph_interface.cpp), and a source has no inputs to wait for.
+#include <ros/ros.h>
+
+#include <algorithm>
+#include <memory>
+#include <sstream>
+
+#include "apex/core/registry.hpp"
+#include "apex/ros/node_handles.hpp"
+#include "nodelet_host.hpp"
+
+namespace apex_nodes {
+namespace param = apex::param;
+using nodelet_host::HostedNodelet;
+using Texts = std::vector<std::string>;
+
+/** What both types share: the parameters, loading, and the ports the topics make. */
+class NodeletNode : public apex::Node {
+ public:
+  static inline const apex::ParamDecl<std::string> kNodelet =
+      param::text("nodelet").init("image_proc/rectify").describe("the plugin, as `nodelet load` names it; a change reloads it");
+  static inline const apex::ParamDecl<Texts> kOutputs =
+      param::textList("outputs")
+          .init({"image_rect:sensor_msgs/Image"})
+          .describe("topics the nodelet advertises, topic:type, one output each (left/image: output left_image)")
+          .shapesInterface();
+  static inline const apex::ParamDecl<std::string> kConfig =
+      param::text("config").describe(
+          "its private parameters, a YAML map set before it loads (its dynamic_reconfigure server and param() read "
+          "them), e.g. {leaf_size: 0.05}; a change reloads it");
+
+  void setup() override {
+    started_ = true;
+    load();
+  }
+  void parameterChanged(const std::string& name) override {
+    if (started_ && name != "timeout") load();  // before setup(): it loads once with every value
+  }
+
+ protected:
+  /** Ports for `what`'s topics (inputs or outputs); an error refuses the parameter. */
+  static apex::Status addPorts(const apex::ParamValues& p, const std::string& what, std::vector<apex::PortSpec>& ports) {
+    auto topics = nodelet_host::parsePorts(p.get<Texts>(what), what);
+    if (!topics) return topics.status();
+    ports.clear();
+    for (const auto& t : *topics)
+      ports.push_back({t.port, t.type->port, false, "the nodelet's " + t.topic + " (" + t.type->name + ")"});
+    return apex::Status::ok();
+  }
+  /** The manifest with the ports its default parameters make (what the palette shows). */
+  static apex::Manifest withDefaultPorts(apex::Manifest m, const apex::InterfaceFn& shape) {
+    apex::ParamValues defaults;
+    for (const auto& spec : m.params) defaults.set(spec.name, spec.default_value);
+    if (auto st = shape(defaults, m); !st) throw std::logic_error("NodeletHost's default ports: " + st.message());
+    return m.shapedBy(shape);
+  }
+
+  /** The nodelet, or the reason it is not loaded (thrown: the node's error, Nothing out). */
+  HostedNodelet& nodelet() {
+    if (!nodelet_) throw std::runtime_error(error_);
+    return *nodelet_;
+  }
+  /** After a load: a source starts its thread. */
+  virtual void loaded(HostedNodelet&) {}
+
+ private:
+  void load() {
+    nodelet_.reset();  // first: unloaded before the new one takes its name
+    error_.clear();
+    try {
+      if (!ros::isInitialized()) throw std::runtime_error("ROS is not initialised: a nodelet needs a ROS node");
+      nodelet_ = std::make_unique<HostedNodelet>(options());
+      loaded(*nodelet_);
+    } catch (const std::exception& e) {
+      nodelet_.reset();
+      error_ = e.what();
+      throw;
+    }
+  }
+  nodelet_host::LoadOptions options() const {
+    nodelet_host::LoadOptions o;
+    o.type = param<std::string>(kNodelet.name());
+    if (o.type.empty()) throw std::invalid_argument("nodelet: name the plugin to load, e.g. image_proc/rectify");
+    o.name = ros::names::append(runtimeNamespace(), "nodelets/" + name());
+    if (interface().findParam("inputs")) o.inputs = topics("inputs");
+    o.outputs = topics(kOutputs.name());
+    o.config = nodelet_host::parseConfig(param<std::string>(kConfig.name()));
+    const ros::NodeHandle nh = apex::nodeHandle(*this);
+    o.remappings = nodelet_host::parseRemaps(param<Texts>("remap"), [&](const std::string& to) { return nh.resolveName(to); });
+    return o;
+  }
+  std::vector<nodelet_host::PortTopic> topics(const std::string& what) const {
+    auto parsed = nodelet_host::parsePorts(param<Texts>(what), what);
+    if (!parsed) throw std::invalid_argument(parsed.message());
+    return *parsed;
+  }
+  /** The runtime's private namespace (/apex); without a runtime, this process's node's. */
+  std::string runtimeNamespace() const {
+    if (const auto* ros_host = dynamic_cast<const apex::RosHost*>(host())) return ros_host->privateNodeHandle().getNamespace();
+    return ros::this_node::getName();
+  }
+
+  std::unique_ptr<HostedNodelet> nodelet_;  // its destructor unloads it
+  std::string error_;  // why it is not loaded
+  bool started_ = false;
+};
+
+class NodeletHost : public NodeletNode {
+ public:
+  static inline const apex::ParamDecl<Texts> kInputs =
+      param::textList("inputs")
+          .init({"image_mono:sensor_msgs/Image", "camera_info:sensor_msgs/CameraInfo"})
+          .describe("topics the nodelet subscribes to, topic:type, one input each; types: " + nodelet_host::rosTypeNames())
+          .shapesInterface();
+  static inline const apex::ParamDecl<double> kTimeout =
+      param::number("timeout").range(0.001, 60.0).step(0.001).init(1.0).describe(
+          "seconds to wait for every output of a frame; after it the node sends Nothing and says which is missing");
+  static inline const apex::ParamDecl<Texts> kRemap =
+      param::textList("remap").describe("its other topics, from:=to as `nodelet load` takes them (to: in the runtime's namespace)");
+  static apex::Manifest manifest() {
+    return withDefaultPorts(apex::Manifest("Runs a nodelet plugin on each frame: the inputs are published to it, its "
+                                           "answers stamped as the frame are the outputs (image_proc/rectify, pcl/VoxelGrid...)")
+                                .inCategory("ROS I/O")
+                                .param(kNodelet)
+                                .param(kInputs)
+                                .param(kOutputs)
+                                .param(kTimeout)
+                                .param(kConfig)
+                                .param(kRemap),
+                            shape);
+  }
+
+  void process() override {
+    HostedNodelet& n = nodelet();
+    const apex::Manifest& iface = interface();
+    const auto deadline = ros::WallTime::now() + ros::WallDuration(timeout_.get());
+    n.spin();  // what waits there: a lazy nodelet subscribes to its inputs once its outputs are read
+    if (!spinUntil(n, deadline, [&] { return n.unsubscribedInputs().empty(); }))
+      throw std::runtime_error(n.describe() + " did not subscribe to " + join(n.unsubscribedInputs()) + " within " +
+                               seconds() + "; " + n.topics());
+    std::vector<apex::Message> frame;
+    for (const auto& in : iface.inputs) frame.push_back(inputMessage(in.name));
+    n.send(frame);
+    if (!spinUntil(n, deadline, [&] { return n.allArrived(); }))
+      throw std::runtime_error(n.describe() + " did not answer within " + seconds() + ": " + n.missing());
+    for (std::size_t o = 0; o < iface.outputs.size(); ++o) {
+      auto r = n.take(o);
+      if (!r.error.empty()) throw std::runtime_error(n.describe() + ": output '" + iface.outputs[o].name + "': " + r.error);
+      publishMessage(iface.outputs[o].name, r.message);
+    }
+  }
+
+ private:
+  static apex::Status shape(const apex::ParamValues& p, apex::Manifest& m) {
+    if (auto st = addPorts(p, kInputs.name(), m.inputs); !st) return st;
+    if (auto st = addPorts(p, kOutputs.name(), m.outputs); !st) return st;
+    for (const auto& in : p.get<Texts>(kInputs.name()))
+      for (const auto& out : p.get<Texts>(kOutputs.name()))
+        if (in.substr(0, in.rfind(':')) == out.substr(0, out.rfind(':')))
+          return apex::Status::error("'" + in.substr(0, in.rfind(':')) + "' is both an input and an output of the nodelet");
+    return apex::Status::ok();
+  }
+  /** Spins the nodelet's queue until `done` or `deadline`; false at the deadline. */
+  template <class Done>
+  static bool spinUntil(HostedNodelet& n, const ros::WallTime& deadline, Done done) {
+    while (!done()) {
+      const double left = (deadline - ros::WallTime::now()).toSec();
+      if (left <= 0) return false;
+      n.spin(std::min(left, 0.01));
+    }
+    return true;
+  }
+  static std::string join(const Texts& texts) {
+    std::string out;
+    for (const auto& t : texts) out += (out.empty() ? "'" : ", '") + t + "'";
+    return out;
+  }
+  std::string seconds() const {
+    std::ostringstream s;
+    s << timeout_.get() << " s";
+    return s.str();
+  }
+
+  void loaded(HostedNodelet& n) override { n.spin(); }  // a lazy nodelet subscribes now, not at the first frame
+
+  apex::Param<double> timeout_{this, kTimeout};
+};
+
+class NodeletSource : public NodeletNode {
+ public:
+  static inline const apex::ParamDecl<Texts> kRemap =
+      param::textList("remap")
+          .init({"image_mono:=camera/image_raw"})
+          .describe("the topics it reads, from:=to as `nodelet load` takes them (to: in the runtime's namespace)");
+  static apex::Manifest manifest() {
+    return withDefaultPorts(apex::Manifest("Runs a nodelet plugin that publishes on its own (fed by ROS topics, any number "
+                                           "of outputs per input): each firing sends the newest message of each output")
+                                .inCategory("ROS I/O")
+                                .param(kNodelet)
+                                .param(kOutputs)
+                                .param(kConfig)
+                                .param(kRemap)
+                                .driven(),
+                            [](const apex::ParamValues& p, apex::Manifest& m) { return addPorts(p, kOutputs.name(), m.outputs); });
+  }
+
+  void process() override {
+    HostedNodelet& n = nodelet();
+    const apex::Manifest& iface = interface();
+    for (std::size_t o = 0; o < iface.outputs.size(); ++o) {
+      auto r = n.take(o);  // nothing new on a topic: Nothing on its output
+      if (!r.error.empty()) reportError(n.describe() + ": output '" + iface.outputs[o].name + "': " + r.error);
+      if (r.arrived) publishMessage(iface.outputs[o].name, r.message);
+    }
+  }
+
+ private:
+  void loaded(HostedNodelet& n) override {
+    n.spinInThread([this] { notifyNewData(); });
+  }
+};
+
+}  // namespace apex_nodes
+
+APEX_REGISTER_NODE(apex_nodes::NodeletHost, "apex_nodes/NodeletHost");
+APEX_REGISTER_NODE(apex_nodes::NodeletSource, "apex_nodes/NodeletSource");
