@@ -54,7 +54,7 @@ def blocks(readme):
         fenced = fenced != line.strip().startswith("```")
         if line.startswith("#") and not fenced:
             heading = re.sub(r"[^A-Za-z0-9]+", "_", line.lstrip("#").strip()).strip("_")
-        m = re.match(r"\s*<!-- check: (\w+)(?: ([\w.-]+))?", line)
+        m = re.match(r"\s*<!-- check: (\w+)(?: (?!--)([\w.-]+))?", line)
         if not m:
             continue
         seen[heading] = seen.get(heading, 0) + 1
