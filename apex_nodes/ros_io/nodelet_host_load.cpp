@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "apex/core/registry.hpp"
 #include "nodelet_host.hpp"
 
 namespace apex_nodes {
@@ -37,39 +38,10 @@ Plugins& plugins() {
   return *p;
 }
 
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
-/** Up to five declared plugins closest to `want`: a few edits away, in the whole name or in the
- *  part after '/' (a misspelt class in the right package). */
-std::string closest(const std::string& want, const std::vector<std::string>& declared) {
-  auto tail = [](const std::string& s) { return s.substr(s.find('/') + 1); };
-  const std::size_t near = std::max<std::size_t>(2, tail(want).size() / 3);
-  std::vector<std::pair<std::size_t, std::string>> ranked;
-  for (const auto& d : declared)
-    ranked.emplace_back(std::min(editDistance(want, d), editDistance(tail(want), tail(d))), d);
-  std::sort(ranked.begin(), ranked.end());
-  std::string out;
-  for (std::size_t i = 0; i < ranked.size() && i < 5 && ranked[i].first <= near; ++i)
-    out += (out.empty() ? "" : ", ") + ranked[i].second;
-  return out;
-}
-
 std::string notDeclared(const std::string& type, Loader& loader) {
   const auto declared = loader.getDeclaredClasses();
-  const std::string near = closest(type, declared);
+  std::string near;
+  for (const auto& name : apex::closestNames(type, declared, 5)) near += (near.empty() ? "" : ", ") + name;
   return "no nodelet plugin '" + type + "' is declared (" + std::to_string(declared.size()) +
          " are: rospack plugins --attrib=plugin nodelet)" + (near.empty() ? "" : ": did you mean " + near + "?");
 }

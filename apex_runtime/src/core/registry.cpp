@@ -128,13 +128,13 @@ Result<std::shared_ptr<const NodeType>> NodeRegistry::lookup(const std::string& 
                        ")");
 }
 
-std::vector<std::string> NodeRegistry::closest(const std::string& name, std::size_t count) const {
-  // A substring of a type's name ("Blur") ranks with one edit; beyond a third of the name's
-  // length in edits, a type is not close.
+std::vector<std::string> closestNames(const std::string& name, const std::vector<std::string>& candidates, std::size_t count) {
+  // A substring of a name ("Blur") ranks with one edit; beyond a third of the name's length in
+  // edits, a name is not close.
   const std::string wanted = lower(shortName(name));
-  if (wanted.size() > kMaxNameLength) return {};  // no type's name is that long: nothing is close
+  if (wanted.size() > kMaxNameLength) return {};  // no name is that long: nothing is close
   std::vector<std::pair<std::size_t, std::string>> scored;
-  for (const auto& id : ids()) {
+  for (const auto& id : candidates) {
     const std::string candidate = lower(shortName(id));
     std::size_t d = editDistance(wanted, candidate);
     if (wanted.size() >= 3 && candidate.find(wanted) != std::string::npos) d = std::min<std::size_t>(d, 1);
@@ -144,6 +144,10 @@ std::vector<std::string> NodeRegistry::closest(const std::string& name, std::siz
   std::vector<std::string> out;
   for (std::size_t i = 0; i < scored.size() && i < count; ++i) out.push_back(scored[i].second);
   return out;
+}
+
+std::vector<std::string> NodeRegistry::closest(const std::string& name, std::size_t count) const {
+  return closestNames(name, ids(), count);
 }
 
 std::vector<std::string> NodeRegistry::ids() const {
