@@ -1,5 +1,6 @@
 #include "apex_rviz_plugin/graph_editor.hpp"
 
+#include "apex_rviz_plugin/help_view.hpp"
 #include "apex_rviz_plugin/palette.hpp"
 #include "apex_rviz_plugin/view_parts.hpp"
 
@@ -88,6 +89,12 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   connect(scene_, &GraphScene::portMenuRequested, this, &GraphEditor::showPortMenu);
   connect(scene_, &GraphScene::paramMenuRequested, this, &GraphEditor::showParamMenu);
   connect(scene_, &GraphScene::canvasMenuRequested, this, &GraphEditor::showCanvasMenu);
+  connect(scene_, &GraphScene::canvasDoubleClicked, this, [this](QPointF at) { openQuickAdd(at); });
+  connect(scene_, &GraphScene::linkDropped, this, &GraphEditor::openLinkAdd);
+  connect(scene_, &QGraphicsScene::selectionChanged, this, [this] {  // an open help follows the node selected
+    const QStringList selected = selectedNodes();
+    if (help_ && help_->isVisible() && selected.size() == 1) showNodeHelp(selected.front());
+  });
   connect(scene_, &GraphScene::inspectRequested, this, &GraphEditor::inspectRequested);
   auto shortcut = [this](const QKeySequence& keys, auto fn) {
     auto* s = new QShortcut(keys, this);
@@ -195,10 +202,14 @@ QWidget* GraphEditor::buildPalette() {
   connect(palette_, &Palette::addRequested, this, [this](const QString& type) { emit addRequested(type, newNodePosition()); });
   connect(palette_, &Palette::refused, this, [this](const QString& why) { showMessage(why, true); });
   connect(palette_, &Palette::reloadRequested, this, &GraphEditor::typesRequested);
+  connect(palette_, &Palette::helpRequested, this, &GraphEditor::showTypeHelp);
   return palette_;
 }
 
-void GraphEditor::showTypes(const std::vector<apex::NodeTypeInfo>& types) { palette_->showTypes(types); }
+void GraphEditor::showTypes(const std::vector<apex::NodeTypeInfo>& types) {
+  types_ = Palette::inOrder(types);
+  palette_->showTypes(types);
+}
 
 QPointF GraphEditor::newNodePosition() {  // the middle of the view, a little further each time
   const QPointF c = view_->mapToScene(view_->viewport()->rect().center());
@@ -244,6 +255,9 @@ bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
     auto* key = static_cast<QKeyEvent*>(event);
     if (key->key() == Qt::Key_Delete || key->key() == Qt::Key_Backspace) return removeSelected(), true;
     const bool ctrl = key->modifiers() & Qt::ControlModifier;
+    const bool plain = key->modifiers() == Qt::NoModifier;  // Shift+Tab still moves the focus back
+    if (plain && (key->key() == Qt::Key_Tab || key->key() == Qt::Key_Space)) return openQuickAdd(cursorPosition()), true;
+    if (plain && key->key() == Qt::Key_F1 && selectedNodes().size() == 1) return showNodeHelp(selectedNodes().front()), true;
     if (ctrl && key->key() == Qt::Key_D) return emit duplicateRequested(selectedNodes()), true;
     if (ctrl && key->key() == Qt::Key_C) return emit copyRequested(selectedNodes()), true;
     if (ctrl && key->key() == Qt::Key_V) {
@@ -268,6 +282,8 @@ bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
     placeMinimap();
     return true;
   }
+  if (watched == view_->viewport() && event->type() == QEvent::MouseMove)  // where quick add opens without a cursor
+    last_mouse_ = static_cast<QMouseEvent*>(event)->pos();
   if (watched == view_->viewport() && event->type() == QEvent::Resize) growCanvas(), placeMinimap();  // its new size
   return QWidget::eventFilter(watched, event);
 }

@@ -62,6 +62,8 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
     if (p.kind == "output" || p.kind == "param_out")
       inspect->addAction(port, this, [this, node, port] { emit inspectRequested(node, port); });
   }
+  menu.addSeparator();
+  menu.addAction("Help (F1)", this, [this, node] { showNodeHelp(node); });  // what its type does, its ports and parameters
 }
 
 void GraphEditor::showPortMenu(const QString& node, const QString& port, QPoint at) {
@@ -99,6 +101,7 @@ void GraphEditor::showParamMenu(const QString& node, const QString& param, QPoin
 
 void GraphEditor::showCanvasMenu(QPointF scene_pos, QPoint at) {
   QMenu menu;
+  menu.addAction("Add node... (Tab)", this, [this, scene_pos] { openQuickAdd(scene_pos); });
   menu.addAction("Paste", this, [this, scene_pos] { emit pasteRequested(scene_pos); });
   menu.exec(at);
 }

@@ -1,10 +1,12 @@
 #include "apex_rviz_plugin/graph_scene.hpp"
 
+#include <QApplication>
 #include <QGraphicsProxyWidget>
 
 #include <QGraphicsSceneContextMenuEvent>
 #include <QGraphicsSceneMouseEvent>
 #include <QGraphicsView>
+#include <QPainterPath>
 #include <QPen>
 
 #include <set>
@@ -143,6 +145,10 @@ void GraphScene::setLevel(const std::string& path) {
 }
 
 void GraphScene::mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) {
+  if (emptyAt(e->scenePos())) {  // on empty canvas: a node to add there
+    emit canvasDoubleClicked(e->scenePos(), e->screenPos());
+    return e->accept();
+  }
   for (QGraphicsItem* i : items(e->scenePos())) {  // topmost first
     if (dynamic_cast<PortItem*>(i) || dynamic_cast<QGraphicsProxyWidget*>(i)) break;  // theirs
     auto* n = dynamic_cast<NodeItem*>(i);
@@ -195,16 +201,30 @@ PortItem* GraphScene::portAt(QPointF pos) const {
   return nullptr;
 }
 
+bool GraphScene::emptyAt(QPointF pos) const {
+  QPainterPathStroker near;  // a link's shape is the area its curve encloses: only its stroke counts
+  near.setWidth(8);
+  for (QGraphicsItem* i : items(pos)) {
+    if (i == drag_line_) continue;
+    const auto* c = dynamic_cast<const ConnectionItem*>(i);
+    if (!c || near.createStroke(c->path()).contains(pos)) return false;
+  }
+  return true;
+}
+
 void GraphScene::beginConnect(PortItem* from) {
   endDrag();
   drag_from_ = from;
   drag_line_ = addPath(QPainterPath(), QPen(QColor(255, 255, 255), 2, Qt::DotLine));
   drag_line_->setZValue(5);
-  const auto& src = from->port();
+  const std::string node = from->node()->info().name, port = from->port().name;
   for (const auto& [name, item] : nodes_) {
     for (PortItem* p : item->ports()) {
-      if (p->isSource()) continue;
-      const std::string why = model_ ? model_->whyNotReplacing(from->node()->info().name, src.name, name, p->port().name) : "";
+      if (p->isSource() == from->isSource()) continue;  // the ports at the link's other end
+      const std::string& other = p->port().name;
+      const std::string why = !model_              ? ""
+                              : from->isSource() ? model_->whyNotReplacing(node, port, name, other)
+                                                 : model_->whyNotReplacing(name, other, node, port);
       p->setMark(why.empty() ? PortItem::Mark::Accepts : PortItem::Mark::Refuses, QString::fromStdString(why));
     }
   }
@@ -212,18 +232,30 @@ void GraphScene::beginConnect(PortItem* from) {
 
 void GraphScene::mouseMoveEvent(QGraphicsSceneMouseEvent* e) {
   if (!drag_from_) return QGraphicsScene::mouseMoveEvent(e);
-  drag_line_->setPath(curve(drag_from_->scenePos(), e->scenePos()));
+  const QPointF at = drag_from_->scenePos();  // the curve always runs from the output to the input
+  drag_line_->setPath(drag_from_->isSource() ? curve(at, e->scenePos()) : curve(e->scenePos(), at));
 }
 
 void GraphScene::mouseReleaseEvent(QGraphicsSceneMouseEvent* e) {
   if (!drag_from_) return QGraphicsScene::mouseReleaseEvent(e);
   PortItem* target = portAt(e->scenePos());
   QGraphicsScene::mouseReleaseEvent(e);  // the port that started the drag lets go of the mouse
-  apex::Connection c;
-  c.from_node = drag_from_->node()->info().name, c.from_port = drag_from_->port().name;
+  finishConnect(target, e);
+}
+
+void GraphScene::finishConnect(PortItem* target, QGraphicsSceneMouseEvent* e) {
+  PortItem* from = drag_from_;
+  const QString node = QString::fromStdString(from->node()->info().name), port = QString::fromStdString(from->port().name);
+  const bool source = from->isSource();
+  const bool moved = (e->screenPos() - e->buttonDownScreenPos(Qt::LeftButton)).manhattanLength() >= QApplication::startDragDistance();
   endDrag();
-  if (!target || target->isSource()) return;
-  c.to_node = target->node()->info().name, c.to_port = target->port().name;
+  if (!target && moved && emptyAt(e->scenePos())) return emit linkDropped(node, port, source, e->scenePos(), e->screenPos());
+  if (!target || target->isSource() == source) return;
+  PortItem* out = source ? from : target;
+  PortItem* in = source ? target : from;
+  apex::Connection c;
+  c.from_node = out->node()->info().name, c.from_port = out->port().name;
+  c.to_node = in->node()->info().name, c.to_port = in->port().name;
   const std::string why = model_ ? model_->whyNotReplacing(c.from_node, c.from_port, c.to_node, c.to_port) : "";
   if (!why.empty()) emit refused(QString::fromStdString("cannot connect: " + why));
   else emit connectRequested(c);

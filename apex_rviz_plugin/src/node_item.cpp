@@ -99,8 +99,7 @@ void PortItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   else p->drawText(QRectF(10, -kRow / 2, half - 12, kRow), Qt::AlignLeft | Qt::AlignVCenter, label);
 }
 
-void PortItem::mousePressEvent(QGraphicsSceneMouseEvent* e) {
-  if (!isSource()) return e->ignore();
+void PortItem::mousePressEvent(QGraphicsSceneMouseEvent* e) {  // a link from here: from an output or to an input
   if (auto* s = qobject_cast<GraphScene*>(scene())) s->beginConnect(this);
   e->accept();
 }

@@ -2,6 +2,7 @@
 
 #include <QKeyEvent>
 #include <QLineEdit>
+#include <QMenu>
 #include <QToolButton>
 #include <QTreeWidget>
 #include <QVBoxLayout>
@@ -11,6 +12,7 @@
 #include <tuple>
 
 #include "apex/core/categories.hpp"
+#include "apex_rviz_plugin/type_search.hpp"
 
 namespace apex_rviz_plugin {
 namespace {
@@ -37,15 +39,6 @@ std::tuple<int, int, QString> place(const apex::NodeTypeInfo& type) {
   return {heading == QString::fromStdString(apex::kOtherCategory) ? 2 : 1, 0, heading};
 }
 
-/** How well a shown type matches what is searched (`phrase`, in lower case): 0 its name or id,
- *  1 its name starts with it, 2 its id holds it, 3 the words are found elsewhere. */
-int rank(const QTreeWidgetItem* item, const QString& phrase) {
-  const QString id = item->data(0, kId).toString().toLower(), name = item->text(0).toLower();
-  if (name == phrase || id == phrase) return 0;
-  if (name.startsWith(phrase)) return 1;
-  return id.contains(phrase) ? 2 : 3;
-}
-
 }  // namespace
 
 Palette::Palette(QWidget* parent) : QWidget(parent), search_(new QLineEdit), tree_(new QTreeWidget) {
@@ -53,13 +46,14 @@ Palette::Palette(QWidget* parent) : QWidget(parent), search_(new QLineEdit), tre
   search_->setPlaceholderText("Search node types (Enter adds)");
   search_->setToolTip(
       "the types whose name, category or description hold every word typed; Enter adds the best match, "
-      "Down goes to the list (Enter there adds the type picked)");
+      "Down goes to the list (Enter there adds the type picked); F1 explains the type");
   search_->setClearButtonEnabled(true);
   tree_->setObjectName("palette");
   tree_->setHeaderHidden(true);
   tree_->setUniformRowHeights(true);
   tree_->setIndentation(12);
   tree_->setSelectionMode(QAbstractItemView::SingleSelection);
+  tree_->setContextMenuPolicy(Qt::CustomContextMenu);  // Add, Help
   auto* refresh = new QToolButton;
   refresh->setObjectName("refresh_types");
   refresh->setText("Reload types");
@@ -83,6 +77,7 @@ Palette::Palette(QWidget* parent) : QWidget(parent), search_(new QLineEdit), tre
     if (!searching()) open_.remove(item->text(0));
   });
   connect(refresh, &QToolButton::clicked, this, &Palette::reloadRequested);
+  connect(tree_, &QTreeWidget::customContextMenuRequested, this, &Palette::showMenu);
   search_->installEventFilter(this);
   tree_->installEventFilter(this);
 }
@@ -118,6 +113,12 @@ QString Palette::tooltip(const apex::NodeTypeInfo& type) {
   return out + "</p>";
 }
 
+std::vector<apex::NodeTypeInfo> Palette::inOrder(std::vector<apex::NodeTypeInfo> types) {
+  std::stable_sort(types.begin(), types.end(),
+                   [](const apex::NodeTypeInfo& a, const apex::NodeTypeInfo& b) { return place(a) < place(b); });
+  return types;
+}
+
 void Palette::showTypes(const std::vector<apex::NodeTypeInfo>& types) {
   const QString picked = current();
   tree_->clear();
@@ -133,9 +134,9 @@ void Palette::showTypes(const std::vector<apex::NodeTypeInfo>& types) {
       heading->setFont(0, bold);
     }
     const QString id = QString::fromStdString(t.id);
-    auto* item = new QTreeWidgetItem(heading, {package(id).isEmpty() ? id : id.mid(id.indexOf('/') + 1)});
+    auto* item = new QTreeWidgetItem(heading, {TypeQuery::shortName(id)});
     item->setData(0, kId, id);
-    item->setData(0, kSearched, (id + '\n' + QString::fromStdString(t.category + '\n' + t.description)).toLower());
+    item->setData(0, kSearched, TypeQuery::searched(t));
     item->setToolTip(0, tooltip(t));
   }
   for (const auto& [key, heading] : headings) {
@@ -153,8 +154,7 @@ void Palette::showTypes(const std::vector<apex::NodeTypeInfo>& types) {
 bool Palette::searching() const { return !search_->text().trimmed().isEmpty(); }
 
 void Palette::filter() {
-  const QString phrase = search_->text().simplified().toLower();
-  const QStringList words = phrase.split(' ', Qt::SkipEmptyParts);
+  const TypeQuery query(search_->text());
   QTreeWidgetItem* best = nullptr;
   int best_rank = 4;
   for (int i = 0; i < tree_->topLevelItemCount(); ++i) {
@@ -162,18 +162,17 @@ void Palette::filter() {
     int shown = 0;
     for (int j = 0; j < heading->childCount(); ++j) {
       QTreeWidgetItem* type = heading->child(j);
-      const QString text = type->data(0, kSearched).toString();
-      const bool match = std::all_of(words.begin(), words.end(), [&](const QString& w) { return text.contains(w); });
+      const bool match = query.matches(type->data(0, kSearched).toString());
       type->setHidden(!match);
       if (!match) continue;
       ++shown;
-      const int r = words.isEmpty() ? 4 : rank(type, phrase);
+      const int r = query.rank(type->data(0, kId).toString());
       if (r < best_rank) best = type, best_rank = r;
     }
     heading->setHidden(shown == 0);
-    heading->setExpanded(words.isEmpty() ? open_.contains(heading->text(0)) : true);
+    heading->setExpanded(query.isEmpty() ? open_.contains(heading->text(0)) : true);
   }
-  if (words.isEmpty()) return;  // the type picked stays picked
+  if (query.isEmpty()) return;  // the type picked stays picked
   tree_->setCurrentItem(best);
   if (best) tree_->scrollToItem(best);
 }
@@ -191,9 +190,30 @@ void Palette::addCurrent() {
   emit addRequested(id);
 }
 
+void Palette::helpCurrent() {
+  const QString id = current();
+  if (id.isEmpty()) return emit refused("pick a node type in the list (or search for one), then F1 explains it");
+  emit helpRequested(id);
+}
+
+void Palette::fillMenu(QMenu& menu, const QString& type) {
+  menu.addAction("Add " + TypeQuery::shortName(type), this, [this, type] { emit addRequested(type); });
+  menu.addAction("Help (F1)", this, [this, type] { emit helpRequested(type); });
+}
+
+void Palette::showMenu(const QPoint& at) {
+  const QTreeWidgetItem* item = tree_->itemAt(at);
+  const QString id = item ? item->data(0, kId).toString() : QString();
+  if (id.isEmpty()) return;  // a heading
+  QMenu menu;
+  fillMenu(menu, id);
+  menu.exec(tree_->viewport()->mapToGlobal(at));
+}
+
 bool Palette::eventFilter(QObject* watched, QEvent* event) {
   if (event->type() != QEvent::KeyPress) return QWidget::eventFilter(watched, event);
   const int key = static_cast<QKeyEvent*>(event)->key();
+  if (key == Qt::Key_F1) return helpCurrent(), true;
   QTreeWidgetItem* item = tree_->currentItem();
   if (watched == search_ && key == Qt::Key_Down) {  // to the list: at the best match, or the first heading
     if (item && item->parent() && !item->parent()->isExpanded()) item = item->parent();

@@ -50,8 +50,7 @@ void PanelWidget::pasted(const Pasted& p) {
   if (!p.error.empty()) editor_->showMessage(QString::fromStdString(p.error), true);
 }
 
-void PanelWidget::onAddRequested(const QString& type_name, QPointF at) {
-  const std::string type = type_name.toStdString();
+std::pair<std::string, Box> PanelWidget::placeNew(const std::string& type, QPointF at, bool left_of) {
   const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
   std::set<std::string> sent;  // added a moment ago, not shown yet: their names are taken too
   for (const auto& [n, box] : placing_) sent.insert(n);
@@ -63,10 +62,25 @@ void PanelWidget::onAddRequested(const QString& type_name, QPointF at) {
   for (const auto& [n, box] : placing_)  // added a moment ago, not shown yet: their places are taken too
     if (!shown.count(n)) taken.push_back(box);
   Box wanted = typeBox(type);  // as a new node of the type is shown
-  wanted.x = at.x(), wanted.y = at.y();
+  wanted.x = left_of ? at.x() - wanted.width : at.x(), wanted.y = at.y();
   const Box free = freePlace(wanted, taken);  // on no other
   placing_[path] = free;
+  return {path, free};
+}
+
+void PanelWidget::onAddRequested(const QString& type_name, QPointF at) {
+  const std::string type = type_name.toStdString();
+  const auto [path, free] = placeNew(type, at);
   perform(model_.addNode(type, path, free.x, free.y));
+}
+
+void PanelWidget::onAddLinkedRequested(const QString& type_name, QPointF at, const apex::Connection& link) {
+  const std::string type = type_name.toStdString();
+  const bool feeds = link.from_node.empty();  // the new node is the link's source: left of where it was let go
+  const auto [path, free] = placeNew(type, at - QPointF(0, 40), feeds);  // its first ports about level with `at`
+  apex::Connection c = link;
+  (feeds ? c.from_node : c.to_node) = path;
+  perform(model_.addLinked(type, path, free.x, free.y, c));
 }
 
 void PanelWidget::onRemoveRequested(const QString& node) { perform(model_.removeNode(node.toStdString())); }

@@ -117,17 +117,9 @@ QString PanelWidget::presetFolder() { return GraphEditor::defaultGraphFolder() +
 Box PanelWidget::typeBox(const std::string& type) const {
   const auto t = types_.find(type);
   if (t == types_.end()) return Box{0, 0, NodeItem::kMinWidth, 150};  // a usual box
-  apex::NodeInfo info;  // as a new node of the type is shown: its ports, its parameters at their defaults
-  info.type = type;
-  auto interactive = [&](const std::string& name) {
-    for (const auto& p : t->second.parameters)
-      if (p.name == name) return bool(p.interactive);
-    return false;
-  };
-  for (const auto& p : t->second.ports)  // parameter ports only where the parameter is interactive by default
-    if ((p.kind != "param_in" && p.kind != "param_out") || interactive(p.name)) info.ports.push_back(p);
-  info.parameters = t->second.parameters;
-  const QRectF r = NodeItem(info).boundingRect();
+  // as a new node of the type is shown: its ports (with those of parameters that have ports by
+  // default), its parameters at their defaults
+  const QRectF r = NodeItem(GraphModel::newNode(t->second)).boundingRect();
   return Box{0, 0, r.width(), r.height()};
 }
 

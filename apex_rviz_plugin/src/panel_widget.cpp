@@ -53,6 +53,7 @@ void PanelWidget::connectEditor() {
   GraphScene* s = e->scene();
   // edits of the model (panel_edits.cpp)
   connect(e, &GraphEditor::addRequested, this, &PanelWidget::onAddRequested);
+  connect(e, &GraphEditor::addLinkedRequested, this, &PanelWidget::onAddLinkedRequested);
   connect(e, &GraphEditor::removeRequested, this, &PanelWidget::onRemoveRequested);
   connect(e, &GraphEditor::groupIntoSubgraphRequested, this, &PanelWidget::onGroupIntoSubgraphRequested);
   connect(e, &GraphEditor::ungroupRequested, this, &PanelWidget::onUngroupRequested);

@@ -1,7 +1,8 @@
 // The editor as a person sees it: a tool bar (runtime namespace, pause, step,
 // undo, redo, save, load), a searchable palette of node types and the graph
-// view. It draws what it is given and says what the person asked for, as
-// signals; it makes no calls itself (no ROS here).
+// view, the quick-add box at the cursor and the node types' help. It draws what
+// it is given and says what the person asked for, as signals; it makes no calls
+// itself (no ROS here).
 #pragma once
 
 #include <QStringList>
@@ -9,6 +10,7 @@
 
 #include <apex/NodeTypeInfo.h>
 
+#include <optional>
 #include <vector>
 
 #include "apex_rviz_plugin/graph_scene.hpp"
@@ -21,8 +23,10 @@ class QToolButton;
 
 namespace apex_rviz_plugin {
 
+class HelpView;
 class Minimap;
 class Palette;
+class QuickAdd;
 
 class GraphEditor : public QWidget {
   Q_OBJECT
@@ -63,13 +67,34 @@ class GraphEditor : public QWidget {
   /** @brief Fits the view to the next graph shown (after connecting to a runtime). */
   void fitNextGraph() { fit_pending_ = true; }
 
+  // --- adding where the person works, and the types' help (graph_editor_adding.cpp) ---
+  /** @brief Opens the quick-add box at scene point `at` (Tab or Space in the view, a double-click
+   *  on empty canvas): every type; the one chosen is added there. */
+  void openQuickAdd(QPointF at);
+  /** @brief Opens the quick-add box for a link dragged from `node`/`port` (an output, trigger or
+   *  parameter output if `source`) and let go at scene point `at`: the types with a port that fits
+   *  (GraphModel::linkable); the one chosen is added there with the link, as one edit. */
+  void openLinkAdd(const QString& node, const QString& port, bool source, QPointF at);
+  /** @brief The quick-add box; nullptr before it was first opened. */
+  QuickAdd* quickAdd() const { return quick_add_; }
+  /** @brief Shows a type's documentation (a palette entry's, F1 in the quick-add box). */
+  void showTypeHelp(const QString& type);
+  /** @brief Shows the documentation of a node's type (its menu's Help, F1 on the canvas). */
+  void showNodeHelp(const QString& node);
+  /** @brief The help window; nullptr before help was first asked for. */
+  HelpView* help() const { return help_; }
+
  protected:
-  /** The wheel zooms around the cursor; Delete, Ctrl+C, Ctrl+V, Ctrl+D on the selection. */
+  /** The wheel zooms around the cursor; Delete, Ctrl+C, Ctrl+V, Ctrl+D on the selection; Tab or
+   *  Space opens quick add at the cursor, F1 the selected node's help. */
   bool eventFilter(QObject* watched, QEvent* event) override;
 
  signals:
   void namespaceChanged(const QString& ns);
   void addRequested(const QString& type, QPointF pos);
+  /** A new node of `type` at `pos` with `link`, whose end at the new node has its port but no
+   *  node name (the name is the panel's to choose): one edit. */
+  void addLinkedRequested(const QString& type, QPointF pos, const apex::Connection& link);
   void removeRequested(const QString& node);
   void groupIntoSubgraphRequested(const QStringList& nodes);
   void ungroupRequested(const QString& subgraph);
@@ -118,6 +143,16 @@ class GraphEditor : public QWidget {
   /** Asks a preset's name, then saves the parameters of `nodes` (all if empty) under it. */
   void askPresetName(const QStringList& nodes);
   QPointF newNodePosition();
+  /** Where the cursor is on the canvas (else where the mouse was last over it, else the middle of the view). */
+  QPointF cursorPosition() const;
+  QuickAdd* ensureQuickAdd();
+  HelpView* ensureHelp();
+  /** A type chosen in the quick-add box: added where it was opened, with its link if a link opened it. */
+  void addChosen(const QString& type, const QString& port);
+  /** What a node of the graph is, for its help: its type as listed, else (a subgraph, a type not
+   *  listed) its ports and parameters as the node has them. */
+  apex::NodeTypeInfo typeOf(const apex::NodeInfo& node) const;
+  const apex::NodeTypeInfo* listedType(const std::string& id) const;
   void placeMinimap();
   /** The view's scene rectangle: the boxes with a view's size around them, what is seen, and `also`. */
   void growCanvas(const QRectF& also = QRectF());
@@ -133,6 +168,12 @@ class GraphEditor : public QWidget {
   QLineEdit* find_ = nullptr;  ///< finds nodes on the canvas by name or type
   int found_ = -1;  ///< the match shown last
   Palette* palette_ = nullptr;
+  std::vector<apex::NodeTypeInfo> types_;  ///< as the runtime listed them, in the palette's order
+  QuickAdd* quick_add_ = nullptr;
+  QPointF quick_at_;  ///< where the quick-add box adds (scene)
+  std::optional<apex::Connection> quick_link_;  ///< the dragged link it completes; its end at the new node without a name
+  HelpView* help_ = nullptr;
+  QPoint last_mouse_{-1, -1};  ///< where the mouse was last over the view (viewport pixels)
   QLabel* message_;
   QLabel* connection_;
   QToolButton *pause_, *undo_, *redo_;

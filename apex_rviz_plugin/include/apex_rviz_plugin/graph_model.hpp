@@ -70,6 +70,16 @@ struct Pasted {
   std::string error;
 };
 
+/** @brief Whether `port` is one of the events every node has: the slots enable and disable, the
+ *  trigger processed. */
+bool isBuiltinEvent(const std::string& port);
+
+/** @brief A node type a dragged link may join as a new node, and the port of it the link takes. */
+struct NewLink {
+  std::string type;  ///< the type's id
+  std::string port;  ///< its input, slot or parameter (a link from an output), or its output, trigger or parameter
+};
+
 class GraphModel {
  public:
   /** @brief Takes a ~graph message; false (and no change) if its revision is not newer. */
@@ -106,8 +116,25 @@ class GraphModel {
   std::string freshName(const std::string& type, const std::string& parent = "",
                         const std::set<std::string>& reserved = {}) const;
 
+  /** @brief A node of `type` named `name` as add_node makes it (and ~graph then shows it): the
+   *  type's ports, both ports of each parameter that has ports by default, the parameters at
+   *  their defaults. */
+  static apex::NodeInfo newNode(const apex::NodeTypeInfo& type, const std::string& name = "");
+  /** @brief The types a link dragged from `node`/`port` and let go on empty canvas may join as a
+   *  new node (graph_model_new_node.cpp): from an output, trigger or parameter output (`source`),
+   *  the types with an input, slot or parameter input that takes it; from an input, slot or
+   *  parameter input, those with a port that feeds it (replacing its link, as connect() does).
+   *  The runtime's rules decide (whyNot over the graph with the new node in it). Each type with
+   *  its first such port, its own ports before the events every node has (enable, disable,
+   *  processed); types that only have those come last. Otherwise in the order given. */
+  std::vector<NewLink> linkable(const std::vector<apex::NodeTypeInfo>& types, const std::string& node, const std::string& port,
+                                bool source) const;
+
   // --- edits: each returns the calls to make; the model changes when ~graph says so ---
   Edit addNode(const std::string& type, const std::string& name, double x, double y) const;
+  /** @brief A new node `name` of `type` at (x, y) and link `c`, one of whose ends is the new node,
+   *  as one edit: undone by dropping the link (giving back the one it replaced) and removing the node. */
+  Edit addLinked(const std::string& type, const std::string& name, double x, double y, const apex::Connection& c) const;
   /** @brief Removing a node, undone by adding it back with its parameters, group, UI and connections. */
   std::optional<Edit> removeNode(const std::string& name) const;
   /** @brief A new connection; one into an input fed already replaces that link (one edit). */

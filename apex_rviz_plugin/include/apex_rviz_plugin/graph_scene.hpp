@@ -196,8 +196,11 @@ class GraphScene : public QGraphicsScene {
   /** @brief The connections shown, as (from node, to node). */
   std::vector<std::pair<std::string, std::string>> edges() const;
 
-  /** @brief Starts dragging a connection from a port (called by the port). */
+  /** @brief Starts dragging a connection from a port (called by the port): from an output,
+   *  trigger or parameter output to an input, slot or parameter input, or the other way round. */
   void beginConnect(PortItem* from);
+  /** @brief Whether nothing is at `pos`: no box, port or widget, no link within a few pixels. */
+  bool emptyAt(QPointF pos) const;
 
  signals:
   void connectRequested(const apex::Connection& c);
@@ -212,6 +215,11 @@ class GraphScene : public QGraphicsScene {
   void nodeMenuRequested(const QString& node, QPoint screen_pos);
   /** A right-click on empty canvas, at a scene and a screen position. */
   void canvasMenuRequested(QPointF scene_pos, QPoint screen_pos);
+  /** A double-click on empty canvas, at a scene and a screen position. */
+  void canvasDoubleClicked(QPointF scene_pos, QPoint screen_pos);
+  /** A link dragged from node/port (an output, trigger or parameter output if `source`) and let
+   *  go on empty canvas, at a scene and a screen position: a new node for its other end. */
+  void linkDropped(const QString& node, const QString& port, bool source, QPointF scene_pos, QPoint screen_pos);
   void portMenuRequested(const QString& node, const QString& port, QPoint screen_pos);
   void inspectRequested(const QString& node, const QString& port);
   void slotFired(const QString& node, const QString& slot);
@@ -229,6 +237,8 @@ class GraphScene : public QGraphicsScene {
   /** A node dragged and let go: onto a connection it fits in, an insert; else a move. */
   void dropped(const QString& node, QPointF pos);
   PortItem* portAt(QPointF pos) const;
+  /** The dragged link let go at `e` on port `target` (nullptr: none): connected if the rules allow. */
+  void finishConnect(PortItem* target, QGraphicsSceneMouseEvent* e);
   void endDrag();
 
   const GraphModel* model_ = nullptr;

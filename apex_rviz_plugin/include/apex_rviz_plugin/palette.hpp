@@ -1,7 +1,8 @@
 // The palette of node types: a search field over a tree of the types the runtime lists
 // (ListNodeTypes), one collapsible heading per category, each type by its short name with its
-// description, ports and parameters as its tooltip. It says which type the person wants added,
-// as a signal; where the node goes is the editor's business.
+// description, ports and parameters as its tooltip. It says which type the person wants added
+// (or explained: F1, or Help in an entry's menu), as a signal; where the node goes is the editor's
+// business. What matches a search is TypeQuery's rule (type_search.hpp), shared with quick add.
 #pragma once
 
 #include <QSet>
@@ -13,6 +14,7 @@
 #include <vector>
 
 class QLineEdit;
+class QMenu;
 class QTreeWidget;
 class QTreeWidgetItem;
 
@@ -31,12 +33,19 @@ class Palette : public QWidget {
   /** @brief The tooltip of a type: its id and description, its ports with their types, its
    *  parameters with their kinds and defaults (rich text). */
   static QString tooltip(const apex::NodeTypeInfo& type);
+  /** @brief The types in the order the palette lists them: by heading (see heading()), in the
+   *  order given under each. */
+  static std::vector<apex::NodeTypeInfo> inOrder(std::vector<apex::NodeTypeInfo> types);
   /** @brief The id of the type Enter adds: the best match of the search, or the type picked;
    *  "" if none. */
   QString current() const;
+  /** @brief The menu of a right-click on a type: Add, Help. Filled for tests to read. */
+  void fillMenu(QMenu& menu, const QString& type);
 
  signals:
   void addRequested(const QString& type);
+  /** F1 on a type (in the list or the search field), or Help in its menu. */
+  void helpRequested(const QString& type);
   /** Enter with nothing to add: why. */
   void refused(const QString& why);
   void reloadRequested();
@@ -53,6 +62,9 @@ class Palette : public QWidget {
   void filter();
   /** Adds the current type (Enter in the search field). */
   void addCurrent();
+  /** Asks for the current type's help (F1). */
+  void helpCurrent();
+  void showMenu(const QPoint& at);
 
   QLineEdit* search_;
   QTreeWidget* tree_;

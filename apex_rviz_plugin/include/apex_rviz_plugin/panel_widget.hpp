@@ -101,6 +101,12 @@ class PanelWidget : public QWidget {
   // --- the editor's requests that become edits of the model, made through perform() (panel_edits.cpp) ---
   /** A new node of `type` in the subgraph shown, on a free place near `at`. */
   void onAddRequested(const QString& type, QPointF at);
+  /** A new node of `type` near `at` with `link` (its end at the new node named here), one edit:
+   *  a node that feeds the link is placed to the left of `at`, one fed by it to the right. */
+  void onAddLinkedRequested(const QString& type, QPointF at, const apex::Connection& link);
+  /** A path for a new node of `type` in the subgraph shown, and a free place for its box with its
+   *  top-left corner near `at` (its top-right one if `left_of`); reserved until the graph shows it. */
+  std::pair<std::string, Box> placeNew(const std::string& type, QPointF at, bool left_of = false);
   void onRemoveRequested(const QString& node);
   void onGroupIntoSubgraphRequested(const QStringList& nodes);
   void onUngroupRequested(const QString& subgraph);

@@ -1,0 +1,105 @@
+// GraphEditor, adding where the person works and explaining what is added: the quick-add box at
+// the cursor (Tab, Space, a double-click on empty canvas, a link let go on empty canvas) and the
+// help window of a node type (a palette entry's F1 or menu, a node's menu or F1).
+#include "apex_rviz_plugin/graph_editor.hpp"
+
+#include <QCursor>
+#include <QGraphicsView>
+
+#include <map>
+
+#include "apex_rviz_plugin/help_view.hpp"
+#include "apex_rviz_plugin/quick_add.hpp"
+
+namespace apex_rviz_plugin {
+
+QPointF GraphEditor::cursorPosition() const {
+  const QRect port = view_->viewport()->rect();
+  const QPoint cursor = view_->viewport()->mapFromGlobal(QCursor::pos());
+  if (port.contains(cursor)) return view_->mapToScene(cursor);
+  if (port.contains(last_mouse_)) return view_->mapToScene(last_mouse_);  // no cursor (offscreen), or it left the view
+  return view_->mapToScene(port.center());
+}
+
+QuickAdd* GraphEditor::ensureQuickAdd() {
+  if (quick_add_) return quick_add_;
+  quick_add_ = new QuickAdd(this);
+  connect(quick_add_, &QuickAdd::chosen, this, &GraphEditor::addChosen);
+  connect(quick_add_, &QuickAdd::helpRequested, this, &GraphEditor::showTypeHelp);
+  return quick_add_;
+}
+
+void GraphEditor::openQuickAdd(QPointF at) {
+  if (types_.empty()) return showMessage("the runtime has listed no node types yet (Reload types)", true);
+  std::vector<QuickAdd::Offer> offers;
+  for (const auto& t : types_) offers.push_back({t, QString()});
+  quick_at_ = at;
+  quick_link_.reset();
+  ensureQuickAdd()->open(std::move(offers), view_->viewport()->mapToGlobal(view_->mapFromScene(at)), "Add a node here");
+}
+
+void GraphEditor::openLinkAdd(const QString& node, const QString& port, bool source, QPointF at) {
+  if (!model_) return;
+  const std::string n = node.toStdString(), p = port.toStdString();
+  std::map<std::string, const apex::NodeTypeInfo*> by_id;
+  for (const auto& t : types_) by_id[t.id] = &t;
+  std::vector<QuickAdd::Offer> offers;
+  for (const NewLink& l : model_->linkable(types_, n, p, source))
+    offers.push_back({*by_id.at(l.type), QString::fromStdString(l.port)});
+  const apex::PortInfo* info = model_->port(n, p, "");
+  const QString what = node + "/" + port + (info && !info->type.empty() ? " (" + QString::fromStdString(info->type) + ")" : "");
+  if (offers.empty()) return showMessage("no node type has a port that can be linked with " + what, true);
+  apex::Connection link;  // its end at the new node: the port only, named when chosen
+  if (source) link.from_node = n, link.from_port = p;
+  else link.to_node = n, link.to_port = p;
+  quick_at_ = at;
+  quick_link_ = link;
+  ensureQuickAdd()->open(std::move(offers), view_->viewport()->mapToGlobal(view_->mapFromScene(at)),
+                         (source ? "Add a node fed by " : "Add a node feeding ") + what);
+}
+
+void GraphEditor::addChosen(const QString& type, const QString& port) {
+  if (!quick_link_) return emit addRequested(type, quick_at_);
+  apex::Connection link = *quick_link_;
+  (link.from_node.empty() ? link.from_port : link.to_port) = port.toStdString();
+  emit addLinkedRequested(type, quick_at_, link);
+}
+
+HelpView* GraphEditor::ensureHelp() {
+  if (!help_) help_ = new HelpView(this);
+  return help_;
+}
+
+const apex::NodeTypeInfo* GraphEditor::listedType(const std::string& id) const {
+  for (const auto& t : types_)
+    if (t.id == id) return &t;
+  return nullptr;
+}
+
+void GraphEditor::showTypeHelp(const QString& type) {
+  const apex::NodeTypeInfo* t = listedType(type.toStdString());
+  if (!t) return showMessage("the runtime has not listed a node type " + type, true);
+  ensureHelp()->showType(*t);
+}
+
+apex::NodeTypeInfo GraphEditor::typeOf(const apex::NodeInfo& node) const {
+  if (const apex::NodeTypeInfo* t = node.subgraph.empty() ? listedType(node.type) : nullptr) return *t;
+  apex::NodeTypeInfo t;  // what the node itself shows: its ports (parameters apart) and parameters
+  t.id = node.type;
+  t.description = node.subgraph.empty() ? "(a type the runtime does not list: the ports and parameters the node has)"
+                  : node.subgraph == "inline"
+                      ? "A subgraph written in the graph file: the ports and parameters it exports."
+                      : "A subgraph from " + node.subgraph + ": the ports and parameters it exports.";
+  for (const auto& p : node.ports)
+    if (p.kind != "param_in" && p.kind != "param_out") t.ports.push_back(p);
+  t.parameters = node.parameters;
+  return t;
+}
+
+void GraphEditor::showNodeHelp(const QString& node) {
+  const apex::NodeInfo* info = model_ ? model_->node(node.toStdString()) : nullptr;
+  if (!info) return;
+  ensureHelp()->showType(typeOf(*info), node);
+}
+
+}  // namespace apex_rviz_plugin
