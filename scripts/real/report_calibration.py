@@ -28,15 +28,16 @@ from std_msgs.msg import Float64
 
 import apex
 from apex.msg import ChessboardCorners
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # real_report.py is beside this script (also in devel)
+import real_report  # (beside this script)
+from real_report import node_errors
 
 NAME = "calibration"
 RECTIFIED = "/real_calibration/rectified"
 
 
 def fail(text):
-    print("%s: FAILED: %s" % (NAME, text), flush=True)
-    rospy.signal_shutdown("failed")
-    sys.exit(1)
+    real_report.fail(NAME, text)
 
 
 def image_array(msg):
@@ -98,15 +99,6 @@ def wait_for_connections(subs, deadline):
             if time.time() > deadline or rospy.is_shutdown():
                 fail("nobody publishes %s (is the graph graphs/real_calibration.yaml loaded?)" % s.resolved_name)
             time.sleep(0.05)
-
-
-def node_errors(rt):
-    """The graph's nodes in error, as text ('' if none), from its next status (they come twice a second)."""
-    try:
-        status = rt.status(timeout=3)
-    except apex.ApexError:
-        return ""
-    return "; ".join("%s: %s" % (n.name, n.error) for n in status.nodes if n.state == "error")
 
 
 def opencv_corners(frames, board):
@@ -219,7 +211,7 @@ def main():
         # a node in error will not deliver (e.g. calib cannot write its file): say so now, not at the timeout
         errors = node_errors(rt)
         if errors:
-            fail("waiting for %s: %s; nodes in error: %s" % (wanted, had(), errors))
+            fail("waiting for %s: %s; nodes in error%s" % (wanted, had(), errors))
         if time.time() > deadline or rospy.is_shutdown():
             fail("timed out after %g s waiting for %s: %s" % (args.timeout, wanted, had()))
 

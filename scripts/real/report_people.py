@@ -22,6 +22,9 @@ import rospy
 
 import apex
 from apex.msg import Regions
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # real_report.py is beside this script (also in devel)
+import real_report  # (beside this script)
+from real_report import node_errors
 
 IMAGE_TOPIC = '/camera/image_raw'
 RECORD_TOPIC = '/people/regions'  # graphs/real_people.yaml's record node: its input people_regions
@@ -29,18 +32,7 @@ START_TIMEOUT = 60.0  # s: the runtime's services, the inspect topic's connectio
 
 
 def fail(why):
-    print('people: FAILED: ' + why)
-    sys.stdout.flush()
-    rospy.signal_shutdown('failed')
-    sys.exit(1)
-
-
-def node_errors(rt):
-    """The nodes in an error state: '; name: error' each, '' if none."""
-    try:
-        return ''.join('; %s: %s' % (name, n.error) for name, n in sorted(rt.nodes().items()) if n.state == 'error')
-    except apex.ApexError as e:
-        return '; (the graph could not be read: %s)' % e.message
+    real_report.fail('people', why)
 
 
 def bag_timing(path):

@@ -12,6 +12,7 @@ more than 1 px or have no match (Middlebury's bad-pixel measure). Prints both, a
     report_stereo.py BAG [--truth aloeGT.png] [--timeout S] [--stay]
 --stay (rviz): leaves the graph running, paused on its frame, instead of ending the launch."""
 import argparse
+import os
 import sys
 import threading
 import time
@@ -24,6 +25,8 @@ import rospy
 from sensor_msgs.msg import Image, PointCloud2
 
 import apex
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # real_report.py is beside this script (also in devel)
+import real_report  # (beside this script)
 
 NAME = "stereo"
 DISPARITY, POINTS = "/real_stereo/disparity", "/real_stereo/points"
@@ -31,9 +34,7 @@ LEFT, RIGHT = "/stereo/left/image_raw", "/stereo/right/image_raw"
 
 
 def fail(text):
-    print("%s: FAILED: %s" % (NAME, text), flush=True)
-    rospy.signal_shutdown("failed")
-    sys.exit(1)
+    real_report.fail(NAME, text)
 
 
 def image_array(msg):
@@ -193,12 +194,9 @@ def main():
                 break
             changed.wait(0.5)
         missing = " and ".join(t for k, t in (("disparity", DISPARITY), ("cloud", POINTS)) if k not in got)
-        try:  # a node in error will not deliver: say so now, not at the timeout
-            errors = "; ".join("%s: %s" % (n.name, n.error) for n in rt.status(timeout=3).nodes if n.state == "error")
-        except apex.ApexError:
-            errors = ""
+        errors = real_report.node_errors(rt)  # a node in error will not deliver: say so now, not at the timeout
         if errors:
-            fail("waiting for %s: nodes in error: %s" % (missing, errors))
+            fail("waiting for %s: nodes in error%s" % (missing, errors))
         if time.time() > deadline or rospy.is_shutdown():
             fail("timed out after %g s waiting for %s" % (args.timeout, missing))
     ours = image_array(got["disparity"])

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # The real rviz, under Xvfb, opens an rviz config (launch/apex_panel.rviz) against a
 # runtime playing a graph (graphs/demo.yaml) on a bag: the panel plugin loads
-# without errors, shows the graph and the runtime's timing. Writes a JUnit result
-# and a screenshot.
+# without errors, shows the graph and the runtime's timing; and the config's layout
+# leaves rviz's 3D view at least half of the window (test/panel/rviz_layout.py
+# measures it: the render window, found by the view's background colour). Writes a
+# JUnit result (NAME, NAME_3DViewKeepsHalfTheWindow) and a screenshot.
 #   rviz_check.sh RESULT_XML SCREENSHOT_PNG BAG [GRAPH CONFIG [NAME]]
+#   APEX_RVIZ_UNDOCK_SHOT=PNG   also undock the panel (a double-click on its title bar),
+#                               screenshot it floating into PNG, and dock it back
 # Needs the devel space sourced; starts (and stops) its own X server and master.
 set -uo pipefail
 result=$1 shot=$2 bag=$3
@@ -12,6 +16,8 @@ graph=${4:-$root/graphs/demo.yaml} config=${5:-$root/launch/apex_panel.rviz} nam
 work=$(mktemp -d)
 pids=()
 failure=""
+layout_failure=""
+layout="the layout was not measured"
 
 cleanup() {
   for ((i = ${#pids[@]} - 1; i >= 0; i--)); do kill -INT "${pids[i]}" 2>/dev/null; done
@@ -30,6 +36,54 @@ wait_for() {
     [ $SECONDS -lt $end ] || return 1
     sleep 0.2
   done
+}
+
+# The share of rviz's window that its 3D view has in the screenshot (rviz_layout.py measure),
+# with the config's background colour (rviz's default: 48; 48; 48).
+background=$(sed -n 's/^ *Background Color: *\([0-9]*\); *\([0-9]*\); *\([0-9]*\).*/\1,\2,\3/p' "$config" | head -1)
+background=${background:-48,48,48}
+measure_layout() {
+  if ! layout=$(python3 "$root/test/panel/rviz_layout.py" measure "$shot" --windows "$work/windows.txt" \
+                  --background "$background" --name "${config#"$root"/}" 2>&1); then
+    layout_failure=$(printf '%s' "$layout" | tail -1)
+  fi
+  echo "rviz check: $layout" | head -1
+}
+
+# Undocks the panel by a double-click on its title bar (just below the 3D view), screenshots
+# it floating, docks it back the same way; the panel must be a window of its own in between,
+# and back in rviz's window afterwards, where it was (the 3D view measured again, screenshot
+# beside: *_docked_again.png), with rviz still running.
+undock_and_back() {
+  local geometry x y w h floating
+  geometry=$(printf '%s' "$layout" | head -1 | sed -n 's/.* is \([0-9]*\)x\([0-9]*\) at +\([0-9]*\)+\([0-9]*\),.*/\1 \2 \3 \4/p')
+  read -r w h x y <<<"$geometry"
+  if [ -z "$geometry" ]; then layout_failure="undock: the 3D view was not found"; return; fi
+  python3 "$root/test/panel/rviz_layout.py" click 300 $((y + h + 16)) --double
+  sleep 2
+  xwininfo -root -tree >"$work/undocked.txt" 2>&1
+  if ! floating=$(python3 "$root/test/panel/rviz_layout.py" window "APEX graph" --windows "$work/undocked.txt"); then
+    layout_failure="undock: a double-click on the panel's title bar (300, $((y + h + 16))) did not float it"
+    import -display "$DISPLAY" -window root "$APEX_RVIZ_UNDOCK_SHOT" 2>/dev/null
+    return
+  fi
+  import -display "$DISPLAY" -window root "$APEX_RVIZ_UNDOCK_SHOT" 2>"$work/import.log"
+  echo "rviz check: the panel floats at $floating (screenshot $APEX_RVIZ_UNDOCK_SHOT)"
+  python3 "$root/test/panel/rviz_layout.py" measure "$APEX_RVIZ_UNDOCK_SHOT" --windows "$work/undocked.txt" --min 0 \
+    --background "$background" --name "rviz check: while it floats, ${config#"$root"/}"
+  read -r x y <<<"$(printf '%s' "$floating" | sed 's/^[0-9]*x[0-9]*+\([0-9-]*\)+\([0-9-]*\)$/\1 \2/')"
+  python3 "$root/test/panel/rviz_layout.py" click $((x + 100)) $((y + 10)) --double
+  sleep 2
+  xwininfo -root -tree >"$work/windows.txt" 2>&1
+  if python3 "$root/test/panel/rviz_layout.py" window "APEX graph" --windows "$work/windows.txt" >/dev/null; then
+    layout_failure="undock: a double-click on the floating panel's title bar did not dock it back"
+  elif ! kill -0 "${pids[-1]}" 2>/dev/null; then
+    layout_failure="undock: rviz ended"
+  else  # back where it was: the 3D view as before
+    local shot=${APEX_RVIZ_UNDOCK_SHOT%.png}_docked_again.png  # measure_layout reads it
+    import -display "$DISPLAY" -window root "$shot" 2>"$work/import.log" && measure_layout
+    [ -z "$layout_failure" ] || layout_failure="docked again: $layout_failure"
+  fi
 }
 
 # A display and a master port nobody uses.
@@ -57,7 +111,14 @@ else
     failure="the panel did not show the runtime's status"
   fi
   sleep 1  # one more frame drawn by the X server before the picture (nothing to wait on)
-  import -display "$DISPLAY" -window root "$shot" 2>"$work/import.log" || failure="${failure:-no screenshot: $(cat "$work/import.log")}"
+  xwininfo -root -tree >"$work/windows.txt" 2>&1
+  if import -display "$DISPLAY" -window root "$shot" 2>"$work/import.log"; then
+    measure_layout
+    [ -n "${APEX_RVIZ_UNDOCK_SHOT:-}" ] && [ -z "$failure$layout_failure" ] && undock_and_back
+  else
+    failure="${failure:-no screenshot: $(cat "$work/import.log")}"
+    layout_failure="no screenshot"
+  fi
 fi
 errors=$(grep -E "ERROR|PluginlibFactory|failed to load|Failed to load" "$work/rviz.log" | grep -v "media_export" | head -5)
 [ -z "$failure" ] && [ -n "$errors" ] && failure="rviz reported errors: $errors"
@@ -66,14 +127,24 @@ cleanup
 trap - EXIT
 esc() { sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g' -e 's/"/\&quot;/g'; }
 mkdir -p "$(dirname "$result")"
+testcase() {  # NAME FAILURE-OR-EMPTY
+  if [ -z "$2" ]; then printf '<testcase classname="Rviz" name="%s"/>' "$1"
+  else printf '<testcase classname="Rviz" name="%s"><failure message="%s"/></testcase>' "$1" "$(printf '%s' "$2" | esc)"
+  fi
+}
+failures=$(( (${#failure} > 0) + (${#layout_failure} > 0) ))
 if [ -z "$failure" ]; then
   echo "rviz check: ok (screenshot $shot)"
-  printf '<testsuite name="rviz" tests="1" failures="0"><testcase classname="Rviz" name="%s"/></testsuite>\n' "$name" >"$result"
 else
   echo "rviz check: FAILED: $failure"
   tail -20 "$work/rviz.log"
-  msg=$(printf '%s' "$failure" | esc)
-  printf '<testsuite name="rviz" tests="1" failures="1"><testcase classname="Rviz" name="%s"><failure message="%s"/></testcase></testsuite>\n' "$name" "$msg" >"$result"
 fi
+[ -n "$layout_failure" ] && echo "rviz check: FAILED: $layout_failure"
+{
+  printf '<testsuite name="rviz" tests="2" failures="%d">' "$failures"
+  testcase "$name" "$failure"
+  testcase "${name}_3DViewKeepsHalfTheWindow" "$layout_failure"
+  printf '</testsuite>\n'
+} >"$result"
 rm -rf "$work"
-[ -z "$failure" ]
+[ -z "$failure$layout_failure" ]
