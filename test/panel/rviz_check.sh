@@ -60,9 +60,10 @@ undock_and_back() {
   read -r w h x y <<<"$geometry"
   if [ -z "$geometry" ]; then layout_failure="undock: the 3D view was not found"; return; fi
   python3 "$root/test/panel/rviz_layout.py" click 300 $((y + h + 16)) --double
-  sleep 2
-  xwininfo -root -tree >"$work/undocked.txt" 2>&1
-  if ! floating=$(python3 "$root/test/panel/rviz_layout.py" window "APEX graph" --windows "$work/undocked.txt"); then
+  floats() { xwininfo -root -tree >"$work/undocked.txt" 2>&1 &&
+             python3 "$root/test/panel/rviz_layout.py" window "APEX graph" --windows "$work/undocked.txt"; }
+  wait_for 10 floats  # the panel a window of its own
+  if ! floating=$(floats); then
     layout_failure="undock: a double-click on the panel's title bar (300, $((y + h + 16))) did not float it"
     import -display "$DISPLAY" -window root "$APEX_RVIZ_UNDOCK_SHOT" 2>/dev/null
     return
@@ -73,9 +74,10 @@ undock_and_back() {
     --background "$background" --name "rviz check: while it floats, ${config#"$root"/}"
   read -r x y <<<"$(printf '%s' "$floating" | sed 's/^[0-9]*x[0-9]*+\([0-9-]*\)+\([0-9-]*\)$/\1 \2/')"
   python3 "$root/test/panel/rviz_layout.py" click $((x + 100)) $((y + 10)) --double
-  sleep 2
-  xwininfo -root -tree >"$work/windows.txt" 2>&1
-  if python3 "$root/test/panel/rviz_layout.py" window "APEX graph" --windows "$work/windows.txt" >/dev/null; then
+  docked() { xwininfo -root -tree >"$work/windows.txt" 2>&1 &&
+             ! python3 "$root/test/panel/rviz_layout.py" window "APEX graph" --windows "$work/windows.txt"; }
+  wait_for 10 docked  # back in rviz's window
+  if ! docked; then
     layout_failure="undock: a double-click on the floating panel's title bar did not dock it back"
   elif ! kill -0 "${pids[-1]}" 2>/dev/null; then
     layout_failure="undock: rviz ended"

@@ -27,7 +27,6 @@ import re
 import struct
 import subprocess
 import sys
-import time
 
 # --- the layouts ---------------------------------------------------------------------------------
 # At rviz's default size (1200x846) the window has ~755 px between the tool bar and the status bar.
@@ -343,16 +342,15 @@ def click(x, y, double=False):
     dpy = x11.XOpenDisplay(None)
     if not dpy:
         raise SystemExit("click: cannot open the display")
+    # The X server paces the click itself (XTest's delay, in ms, before each event): the pointer
+    # comes to rest, then each press and release as a person's double-click; XSync returns once
+    # the server has taken them all.
     xtst.XTestFakeMotionEvent(dpy, -1, x, y, 0)
-    x11.XFlush(dpy)
-    time.sleep(0.2)
     for i in range(2 if double else 1):
-        xtst.XTestFakeButtonEvent(dpy, 1, 1, 0)
-        x11.XFlush(dpy)
-        time.sleep(0.03)
-        xtst.XTestFakeButtonEvent(dpy, 1, 0, 0)
-        x11.XFlush(dpy)
-        time.sleep(0.08)
+        xtst.XTestFakeButtonEvent(dpy, 1, 1, 200 if i == 0 else 80)
+        xtst.XTestFakeButtonEvent(dpy, 1, 0, 30)
+    x11.XSync.argtypes = [ctypes.c_void_p, ctypes.c_int]
+    x11.XSync(dpy, 0)
     x11.XCloseDisplay(dpy)
 
 
