@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "edit_requests.hpp"
 #include "edit_scope.hpp"
 #include "graph_impl.hpp"
 #include "live.hpp"
@@ -27,7 +28,12 @@ constexpr const char* kDefaultGroup = "default";
 
 }  // namespace
 
-Graph::Impl::Impl(NodeRegistry registry) : registry_(std::move(registry)) { group(kDefaultGroup); }
+Graph::Impl::Impl(NodeRegistry registry)
+    : registry_(std::move(registry)),
+      edits_(std::make_shared<detail::EditRequests>(
+          [this](const NodePtr& node, const std::string& param, const ParamValue& value) { applyRequested(node, param, value); })) {
+  group(kDefaultGroup);
+}
 
 void Graph::Impl::setHost(std::shared_ptr<const Host> host) {
   auto lock = lockEdits();
@@ -35,6 +41,7 @@ void Graph::Impl::setHost(std::shared_ptr<const Host> host) {
 }
 
 Graph::Impl::~Impl() {
+  edits_->stop();  // first: a request applied now would edit what goes below
   stop();
   std::lock_guard<std::mutex> lock(edit_mutex_);
   clearLocked();
@@ -84,6 +91,11 @@ std::size_t Graph::Impl::connectionCount() const { return links_ + dormant_.size
 // ------------------------------------------------------------------ nodes
 
 Result<std::string> Graph::Impl::addNode(const std::string& type_id, const std::string& wanted, const std::string& group_name) {
+  return addNodeWith(type_id, wanted, group_name, {});
+}
+
+Result<std::string> Graph::Impl::addNodeWith(const std::string& type_id, const std::string& wanted, const std::string& group_name,
+                                             const std::vector<std::pair<std::string, std::string>>& params) {
   auto lock = lockEdits();
   auto found = registry_.lookup(type_id);  // its id, or its name without the package prefix
   if (!found) return found.status();
@@ -109,12 +121,14 @@ Result<std::string> Graph::Impl::addNode(const std::string& type_id, const std::
   }
   auto state = std::make_shared<NodeState>(name, type, next_seq_++, revision_);
   state->host = host_;
+  state->edits = edits_;
   if (type->manifest->shape) {  // its ports for its default parameters
     auto iface = interfaceFor(*state, "", nullptr);
     if (!iface) return iface.status();
     state->setInterface(iface.value());
   }
   state->attach(std::move(object));
+  if (auto st = presetParams(*state, params); !st) return st;  // before setup(): it sees them
   state->group = group(gname);
   if (!subgraphs_.enabledAround(name)) state->outer_enabled = false;
   detail::initLiveness(state.get());
@@ -131,15 +145,13 @@ Result<std::string> Graph::Impl::addNode(const NodeDescription& d) {
   if (d.type == kSubgraphType) return addSubgraph(d);
   auto type = registry_.lookup(d.type);
   if (!type) return type.status();
-  auto added = addNode(type.value()->id, d.name, d.thread_group);
+  auto added = addNodeWith(type.value()->id, d.name, d.thread_group, d.parameters);
   if (!added) return added;
   const std::string name = added.value();
   auto undo = [&](const std::string& why) {
     (void)removeNode(name);
     return Status::error(why);
   };
-  for (const auto& [param, text] : d.parameters)
-    if (auto r = setParameter(name, param, text); !r) return undo(r.message());
   // The description's list is the exact set: a parameter interactive by default
   // but switched off before saving stays off.
   for (const auto& param : d.interactive)
@@ -232,26 +244,66 @@ Result<std::string> Graph::Impl::setParameter(const std::string& outer, const st
   NodeState& s = *n.value();
   if (!s.type)
     return Status::error(nodeLabel(node) + " has the unknown type '" + s.typeId() + "': its parameters are kept unchanged");
+  auto value = parseParam(s, param, text);
+  if (!value) return value.status();
+  if (auto st = setParameterLocked(s, s.findParam(param), value.value()); !st) return st;
+  return toText(value.value());
+}
+
+Result<ParamValue> Graph::Impl::parseParam(const NodeState& s, const std::string& param, const std::string& text) const {
   const int i = s.findParam(param);
   if (i < 0)
-    return Status::error(nodeLabel(node, s.typeId()) + " has no parameter '" + param +
+    return Status::error(nodeLabel(s.name, s.typeId()) + " has no parameter '" + param +
                          "' (parameters: " + s.manifest().listParams() + ")");
-  const ParamSpec& spec = s.manifest().params[i];
   if (text.size() > kMaxYamlString)  // a graph file could not hold it
-    return Status::error(nodeLabel(node) + ": parameter '" + param + "': a value of " + std::to_string(text.size()) +
+    return Status::error(nodeLabel(s.name) + ": parameter '" + param + "': a value of " + std::to_string(text.size()) +
                          " characters, over the limit of " + std::to_string(kMaxYamlString));
-  auto value = spec.parse(text);
-  if (!value) return Status::error(nodeLabel(node) + ": " + value.message());
+  auto value = s.manifest().params[i].parse(text);
+  if (!value) return Status::error(nodeLabel(s.name) + ": " + value.message());
+  return value;
+}
+
+Status Graph::Impl::presetParams(NodeState& s, const std::vector<std::pair<std::string, std::string>>& params) {
+  // Not in the graph yet: no edges, no thread; setup() applies them (NodeState::runSetup).
+  for (const auto& [param, text] : params) {
+    auto value = parseParam(s, param, text);
+    if (!value) return value.status();
+    if (s.manifest().params[s.findParam(param)].shapes_interface) {
+      auto iface = interfaceFor(s, param, &value.value());
+      if (!iface) return iface.status();
+      s.setInterface(iface.value());
+    }
+    s.params[s.findParam(param)].requested = value.value();
+  }
+  return Status::ok();
+}
+
+Status Graph::Impl::setParameterLocked(NodeState& s, int index, const ParamValue& value) {
+  const ParamSpec& spec = s.manifest().params[index];
   if (spec.shapes_interface) {
-    auto iface = interfaceFor(s, param, &value.value());
+    const std::string param = spec.name;  // the spec goes with the old interface
+    auto iface = interfaceFor(s, param, &value);
     if (!iface) return iface.status();
-    applyInterface(&s, iface.value(), [&] { s.requestParam(s.findParam(param), value.value()); });
+    applyInterface(&s, iface.value(), [&] { s.requestParam(s.findParam(param), value); });
   } else {
-    s.requestParam(i, value.value());
+    s.requestParam(index, value);
   }
   changedDownstreamOf(&s);
   bump();
-  return toText(value.value());
+  return Status::ok();
+}
+
+void Graph::Impl::applyRequested(const NodePtr& node, const std::string& param, const ParamValue& value) {
+  auto lock = lockEdits();
+  const auto it = nodes_.find(node->name);
+  if (it == nodes_.end() || it->second != node || !node->type) return;  // removed (or replaced) meanwhile
+  const int i = node->findParam(param);
+  Status st = i < 0 ? Status::error("has no parameter '" + param + "' (parameters: " + node->manifest().listParams() + ")")
+                    : node->manifest().params[i].validate(value);
+  if (st) st = setParameterLocked(*node, i, value);
+  if (st) return;
+  const std::string text = "asked to set '" + param + "': " + st.message();  // reportError names the node
+  node->post([text](NodeState& n) { n.reportError(text); });  // its error is its group's to set
 }
 
 void Graph::Impl::changedDownstreamOf(NodeState* node) {

@@ -24,6 +24,7 @@ class ThreadGroup;
 struct Edge;
 struct EventEdge;
 class Restructure;
+class EditRequests;
 }  // namespace detail
 
 struct Graph::Impl {
@@ -139,6 +140,19 @@ struct Graph::Impl {
   bool ran_ = false;  // started at least once: messages may be in flight
   bool paused_ = false;
   std::shared_ptr<std::atomic<std::uint64_t>> revision_ = std::make_shared<std::atomic<std::uint64_t>>(0);
+  /** Node::requestEdit's queue; stopped first when the graph goes. */
+  std::shared_ptr<detail::EditRequests> edits_;
+  /** addNode, its parameters set before its setup() runs (NodeDescription's, in order). */
+  Result<std::string> addNodeWith(const std::string& type, const std::string& name, const std::string& thread_group,
+                                  const std::vector<std::pair<std::string, std::string>>& params);
+  /** Parameters of a node not yet in the graph, in order: an interface follows each that shapes it. */
+  Status presetParams(detail::NodeState& node, const std::vector<std::pair<std::string, std::string>>& params);
+  /** `text` as a value of the node's parameter `param`; refused naming both. */
+  Result<ParamValue> parseParam(const detail::NodeState& node, const std::string& param, const std::string& text) const;
+  /** Sets a parameter of `node` as setParameter does (under the edit lock). */
+  Status setParameterLocked(detail::NodeState& node, int index, const ParamValue& value);
+  /** A node's own request (Node::requestEdit), if it is still in the graph; a refusal is its error. */
+  void applyRequested(const std::shared_ptr<detail::NodeState>& node, const std::string& param, const ParamValue& value);
   void bump() { revision_->fetch_add(1, std::memory_order_relaxed); }
 };
 

@@ -204,6 +204,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
     n->queued = false;
     n->queued_from_outside = false;  // the staged groups and their counts go away
     n->revision = revision_;
+    n->edits = edits_;
     std::lock_guard<std::mutex> g(n->group_mutex);
     n->group = group(n->group->name());
   }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "apex/core/node_names.hpp"
+#include "edit_requests.hpp"
 #include "node_state.hpp"
 
 namespace apex {
@@ -83,6 +84,11 @@ void Node::updateParam(std::string_view name, ParamValue value) {
   if (i < 0) unknown(s, "parameter", name, s.manifest().listParams());
   if (auto st = s.manifest().params[i].validate(value); !st) throw std::invalid_argument(nodeLabel(s.name) + ": " + st.message());
   s.updateParam(i, std::move(value));
+}
+
+void Node::requestEdit(std::string_view name, ParamValue value) {
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
+  if (s.edits) s.edits->push(s.weak_from_this(), std::string(name), std::move(value));
 }
 
 void Node::trigger(std::string_view name) {

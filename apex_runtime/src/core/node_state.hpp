@@ -40,6 +40,7 @@ namespace apex {
 namespace detail {
 
 class NodeState;
+class EditRequests;
 
 /** Where the registry puts the built-in events (registry.cpp): first in every manifest(). */
 constexpr int kEnableIndex = 0, kDisableIndex = 1;  // slots
@@ -113,6 +114,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::shared_ptr<std::atomic<std::uint64_t>> revision;  // the graph's: bumped on every visible change
   std::unique_ptr<Node> node;
   std::shared_ptr<const Host> host;  // the graph's, when the node was made
+  std::shared_ptr<EditRequests> edits;  // the graph's: where Node::requestEdit asks
   void attach(std::unique_ptr<Node> object) {
     node = std::move(object);
     (void)resolveHandles(*node, manifest());  // checked at registration against the default interface

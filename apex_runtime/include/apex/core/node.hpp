@@ -131,6 +131,14 @@ class Node {
    *  wins. Throws std::invalid_argument for an unknown parameter or a value its spec refuses. */
   void updateParam(std::string_view name, ParamValue value);
 
+  /** @brief Asks the graph to set one of the node's own parameters as an edit does: one that
+   *  shapes the interface (ParamSpec::shapesInterface) changes the node's ports and parameters,
+   *  e.g. to what a plugin it loaded offers, known only after setup(). From setup(), process(),
+   *  parameterChanged() or a slot handler; applied soon after by a thread of the graph's, never
+   *  within the call, and then parameterChanged() runs as after any edit. Dropped if the node is
+   *  gone by then; a value its interface refuses becomes the node's error. */
+  void requestEdit(std::string_view name, ParamValue value);
+
   /** @brief Sends the end-of-sequence token on every output this firing. */
   void endSequence();
 

@@ -1,0 +1,48 @@
+#include "edit_requests.hpp"
+
+namespace apex {
+namespace detail {
+
+void EditRequests::push(std::weak_ptr<NodeState> node, std::string param, ParamValue value) {
+  std::lock_guard<std::mutex> lock(m_);
+  if (stopped_) return;
+  for (auto& r : queue_)  // asked again before it was applied: the newest value only (bounded queue)
+    if (!r.node.owner_before(node) && !node.owner_before(r.node) && r.param == param) {
+      r.value = std::move(value);
+      return;
+    }
+  queue_.push_back({std::move(node), std::move(param), std::move(value)});
+  if (!worker_.joinable()) worker_ = std::thread([this] { run(); });
+  cv_.notify_one();
+}
+
+void EditRequests::stop() {
+  std::thread worker;
+  {
+    std::lock_guard<std::mutex> lock(m_);
+    stopped_ = true;
+    queue_.clear();
+    worker = std::move(worker_);
+  }
+  cv_.notify_one();
+  if (worker.joinable()) worker.join();
+}
+
+void EditRequests::run() {
+  std::unique_lock<std::mutex> lock(m_);
+  for (;;) {
+    cv_.wait(lock, [this] { return stopped_ || !queue_.empty(); });
+    if (stopped_) return;
+    Request r = std::move(queue_.front());
+    queue_.pop_front();
+    auto node = r.node.lock();
+    if (!node) continue;
+    lock.unlock();  // the edit waits for thread groups, whose nodes may push meanwhile
+    apply_(node, r.param, r.value);
+    node.reset();
+    lock.lock();
+  }
+}
+
+}  // namespace detail
+}  // namespace apex

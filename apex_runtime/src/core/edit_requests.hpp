@@ -1,0 +1,55 @@
+// Edits a node asks for itself (Node::requestEdit): e.g. a plugin host that learns what its
+// plugin offers only once loaded, in setup(), and must change its own parameters then. Node
+// code runs on a thread group, where an edit cannot be made (it would wait for that very
+// group), so the request waits here and one thread of the graph's applies it as an edit.
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "apex/core/param.hpp"
+
+namespace apex {
+namespace detail {
+
+class NodeState;
+
+class EditRequests {
+ public:
+  /** Makes the edit; the node may be gone from the graph by then (check). */
+  using Apply = std::function<void(const std::shared_ptr<NodeState>& node, const std::string& param, const ParamValue& value)>;
+
+  explicit EditRequests(Apply apply) : apply_(std::move(apply)) {}
+  ~EditRequests() { stop(); }
+  EditRequests(const EditRequests&) = delete;
+  EditRequests& operator=(const EditRequests&) = delete;
+
+  /** Queues a request (replacing one of the same node and parameter not yet applied); its
+   *  thread starts at the first. After stop(): dropped. */
+  void push(std::weak_ptr<NodeState> node, std::string param, ParamValue value);
+  /** Applies nothing more: waits for a request being applied, drops the rest. Idempotent. */
+  void stop();
+
+ private:
+  struct Request {
+    std::weak_ptr<NodeState> node;
+    std::string param;
+    ParamValue value;
+  };
+  void run();
+
+  Apply apply_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::deque<Request> queue_;
+  bool stopped_ = false;
+  std::thread worker_;
+};
+
+}  // namespace detail
+}  // namespace apex
