@@ -10,12 +10,14 @@
 #include <ros/ros.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
 #include <sstream>
 
 #include "apex/core/registry.hpp"
 #include "apex/ros/node_handles.hpp"
 #include "nodelet_host.hpp"
+#include "nodelet_reconfigure.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
@@ -35,14 +37,28 @@ class NodeletNode : public apex::Node {
   static inline const apex::ParamDecl<std::string> kConfig =
       param::text("config").describe(
           "its private parameters, a YAML map set before it loads (its dynamic_reconfigure server and param() read "
-          "them), e.g. {leaf_size: 0.05}; a change reloads it");
+          "them), e.g. {leaf_size: 0.05}; a change reloads it. What it offers through dynamic_reconfigure becomes "
+          "parameters of this node: their values win over these, except when this changes");
+  static inline const apex::ParamDecl<Texts> kReconfigure =
+      param::textList("reconfigure")
+          .describe("what the nodelet offers through dynamic_reconfigure, one YAML entry per parameter: filled in by "
+                    "this node when the nodelet loads (each becomes a parameter of this node, set live)")
+          .shapesInterface();
 
   void setup() override {
     started_ = true;
-    load();
+    load(false);
   }
   void parameterChanged(const std::string& name) override {
-    if (started_ && name != "timeout") load();  // before setup(): it loads once with every value
+    if (!started_ || name == "timeout" || name == kReconfigure.name()) return;  // before setup(): it loads once with every value
+    if (auto o = offered(name)) {
+      auto& now = nodelet_values_[name];
+      if (now == paramValue(name)) return;  // the nodelet has it (this node took it from the nodelet)
+      nodelet_host::reconfigure(nodelet(), *o, paramValue(name), kAnswerWithin);
+      now = paramValue(name);
+      return;
+    }
+    load(name == kConfig.name());  // a new config: the user's values, over the ones offered before
   }
 
  protected:
@@ -55,12 +71,19 @@ class NodeletNode : public apex::Node {
       ports.push_back({t.port, t.type->port, false, "the nodelet's " + t.topic + " (" + t.type->name + ")"});
     return apex::Status::ok();
   }
+  /** The offered parameters (`reconfigure`) on top of the ports `shape` makes. */
+  static apex::InterfaceFn withOffered(apex::InterfaceFn shape) {
+    return [shape](const apex::ParamValues& p, apex::Manifest& m) {
+      if (auto st = shape(p, m); !st) return st;
+      return nodelet_host::addOffered(p.get<Texts>(kReconfigure.name()), m);
+    };
+  }
   /** The manifest with the ports its default parameters make (what the palette shows). */
   static apex::Manifest withDefaultPorts(apex::Manifest m, const apex::InterfaceFn& shape) {
     apex::ParamValues defaults;
     for (const auto& spec : m.params) defaults.set(spec.name, spec.default_value);
     if (auto st = shape(defaults, m); !st) throw std::logic_error("NodeletHost's default ports: " + st.message());
-    return m.shapedBy(shape);
+    return m.shapedBy(withOffered(shape));
   }
 
   /** The nodelet, or the reason it is not loaded (thrown: the node's error, Nothing out). */
@@ -72,27 +95,47 @@ class NodeletNode : public apex::Node {
   virtual void loaded(HostedNodelet&) {}
 
  private:
-  void load() {
+  /** `config_wins`: its values go over the offered parameters' (else the other way round). */
+  void load(bool config_wins) {
     nodelet_.reset();  // first: unloaded before the new one takes its name
     error_.clear();
+    nodelet_values_.clear();
     try {
       if (!ros::isInitialized()) throw std::runtime_error("ROS is not initialised: a nodelet needs a ROS node");
-      nodelet_ = std::make_unique<HostedNodelet>(options());
+      nodelet_ = std::make_unique<HostedNodelet>(options(config_wins));
       loaded(*nodelet_);
+      takeOffers(nodelet_host::offeredBy(*nodelet_, kAnswerWithin));
     } catch (const std::exception& e) {
       nodelet_.reset();
       error_ = e.what();
       throw;
     }
   }
-  nodelet_host::LoadOptions options() const {
+  /** What the loaded nodelet offers, and the values it has, become this node's: edits, applied
+   *  after this call (Node::requestEdit), the list first. */
+  void takeOffers(const std::vector<std::string>& entries) {
+    if (entries != param<Texts>(kReconfigure.name())) requestEdit(kReconfigure.name(), entries);
+    auto offered = nodelet_host::parseOffered(entries);
+    if (!offered) throw std::runtime_error(nodelet_->describe() + ": " + offered.message());
+    for (const auto& o : *offered) {
+      const apex::ParamValue value = nodelet_host::valueOf(o);
+      nodelet_values_[o.param] = value;
+      const auto* spec = interface().findParam(o.param);
+      if (spec && !(paramValue(o.param) == value)) requestEdit(o.param, value);  // a new one starts with it
+    }
+  }
+  nodelet_host::LoadOptions options(bool config_wins) const {
     nodelet_host::LoadOptions o;
     o.type = param<std::string>(kNodelet.name());
     if (o.type.empty()) throw std::invalid_argument("nodelet: name the plugin to load, e.g. image_proc/rectify");
     o.name = ros::names::append(runtimeNamespace(), "nodelets/" + name());
     if (interface().findParam("inputs")) o.inputs = topics("inputs");
     o.outputs = topics(kOutputs.name());
-    o.config = nodelet_host::parseConfig(param<std::string>(kConfig.name()));
+    const auto config = nodelet_host::parseConfig(param<std::string>(kConfig.name()));
+    for (const auto& offer : offers())  // the values of its offered parameters, as last set here
+      if (interface().findParam(offer.param)) o.config[offer.name] = nodelet_host::toNodelet(offer, paramValue(offer.param));
+    for (const auto& [key, value] : config)
+      if (config_wins || !o.config.count(key)) o.config[key] = value;
     const ros::NodeHandle nh = apex::nodeHandle(*this);
     o.remappings = nodelet_host::parseRemaps(param<Texts>("remap"), [&](const std::string& to) { return nh.resolveName(to); });
     return o;
@@ -108,7 +151,21 @@ class NodeletNode : public apex::Node {
     return ros::this_node::getName();
   }
 
+  /** The offered parameters this node has now. */
+  std::vector<nodelet_host::Offered> offers() const {
+    auto parsed = nodelet_host::parseOffered(param<Texts>(kReconfigure.name()));
+    if (!parsed) throw std::invalid_argument(parsed.message());
+    return *parsed;
+  }
+  std::optional<nodelet_host::Offered> offered(const std::string& param) const {
+    for (auto& o : offers())
+      if (o.param == param) return o;
+    return std::nullopt;
+  }
+
+  static constexpr double kAnswerWithin = 5.0;  // seconds for its dynamic_reconfigure server to answer
   std::unique_ptr<HostedNodelet> nodelet_;  // its destructor unloads it
+  std::map<std::string, apex::ParamValue> nodelet_values_;  // the offered parameters' values the nodelet has
   std::string error_;  // why it is not loaded
   bool started_ = false;
 };
@@ -134,7 +191,8 @@ class NodeletHost : public NodeletNode {
                                 .param(kOutputs)
                                 .param(kTimeout)
                                 .param(kConfig)
-                                .param(kRemap),
+                                .param(kRemap)
+                                .param(kReconfigure),
                             shape);
   }
 
@@ -171,12 +229,7 @@ class NodeletHost : public NodeletNode {
   /** Spins the nodelet's queue until `done` or `deadline`; false at the deadline. */
   template <class Done>
   static bool spinUntil(HostedNodelet& n, const ros::WallTime& deadline, Done done) {
-    while (!done()) {
-      const double left = (deadline - ros::WallTime::now()).toSec();
-      if (left <= 0) return false;
-      n.spin(std::min(left, 0.01));
-    }
-    return true;
+    return n.spinUntil(done, std::max(0.0, (deadline - ros::WallTime::now()).toSec()));
   }
   static std::string join(const Texts& texts) {
     std::string out;
@@ -208,6 +261,7 @@ class NodeletSource : public NodeletNode {
                                 .param(kOutputs)
                                 .param(kConfig)
                                 .param(kRemap)
+                                .param(kReconfigure)
                                 .driven(),
                             [](const apex::ParamValues& p, apex::Manifest& m) { return addPorts(p, kOutputs.name(), m.outputs); });
   }

@@ -95,6 +95,11 @@ class HostedNodelet {
   void spinInThread(std::function<void()> arrived);
   /** Runs every callback waiting in its queue, waiting up to `timeout` for the first (no thread). */
   void spin(double timeout = 0.0);
+  /** Until `done()` or `timeout` seconds: spins its queue, or waits while its own thread does
+   *  (spinInThread). False at the timeout. */
+  bool spinUntil(const std::function<bool()>& done, double timeout);
+  /** A handle whose callbacks run in its queue (with its own). */
+  ros::NodeHandle handle();
 
   /** The inputs with no subscriber yet (the nodelet did not subscribe to them, or not yet). */
   std::vector<std::string> unsubscribedInputs() const;

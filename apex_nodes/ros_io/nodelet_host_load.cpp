@@ -152,8 +152,7 @@ HostedNodelet::~HostedNodelet() { unload(); }
 void HostedNodelet::load() {
   ros::param::del(name_);  // what a nodelet of this name left (its dynamic_reconfigure values)
   for (const auto& [key, value] : options_.config) ros::param::set(name_ + "/" + key, value);
-  ros::NodeHandle nh;
-  nh.setCallbackQueue(&queue_);
+  ros::NodeHandle nh = handle();
   received_.resize(options_.outputs.size());
   late_.resize(options_.outputs.size());
   advertiseInputs(nh);
@@ -213,6 +212,23 @@ void HostedNodelet::stopSpinning() {
 }
 
 void HostedNodelet::spin(double timeout) { queue_.callAvailable(ros::WallDuration(timeout)); }
+
+bool HostedNodelet::spinUntil(const std::function<bool()>& done, double timeout) {
+  const auto deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (!done()) {
+    const double left = (deadline - ros::WallTime::now()).toSec();
+    if (left <= 0) return false;
+    if (spinning_) std::this_thread::sleep_for(std::chrono::milliseconds(2));  // its thread runs the callbacks
+    else spin(std::min(left, 0.01));
+  }
+  return true;
+}
+
+ros::NodeHandle HostedNodelet::handle() {
+  ros::NodeHandle nh;
+  nh.setCallbackQueue(&queue_);
+  return nh;
+}
 
 std::vector<std::string> HostedNodelet::unsubscribedInputs() const {
   std::vector<std::string> out;

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Any ROS message type through a runtime (issue #34), scripted with the module `apex`:
 TopicSubscriber, FieldExtract driving a parameter, BagWriter recording the raw messages, TopicPublisher,
-and NodeletHost running Debian's pcl_ros VoxelGrid against APEX's own VoxelGrid."""
+and NodeletHost running Debian's pcl_ros VoxelGrid against APEX's own VoxelGrid, its dynamic_reconfigure parameters
+mirrored as the node's own."""
 import os
 import tempfile
 import unittest
@@ -155,8 +156,12 @@ class AnyTopic(unittest.TestCase):
         header = rospy.Header(stamp=rospy.Time(2000, 7), frame_id='lidar')
         pub = rospy.Publisher('/points', PointCloud2, queue_size=10)
         wait_for(lambda: pub.get_num_connections() > 0, 30, 'the runtime subscribes to /points')
-        wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, points)),
-                            by_nodelet.messages and by_apex.messages)[1], 30, 'both voxel clouds')
+        try:
+            wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, points)),
+                              by_nodelet.messages and by_apex.messages)[1], 30, 'both voxel clouds')
+        except AssertionError as e:
+            raise AssertionError('%s; %s' % (e, ' | '.join(' '.join(str(rt.status(n)).split())
+                                                              for n in ('cloud', 'pcl_voxels', 'voxels')))) from None
         a, b = by_nodelet.messages[0], by_apex.messages[0]
         self.assertEqual(a.header.stamp, header.stamp)  # the output belongs to the input's frame
         self.assertEqual(b.header.stamp, header.stamp)
@@ -174,6 +179,61 @@ class AnyTopic(unittest.TestCase):
         count = len(by_apex.messages)
         wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, points)), len(by_apex.messages) > count)[1],
                    30, "APEX's VoxelGrid still sends")
+
+    def test_a_hosted_nodelets_dynamic_reconfigure_parameters_are_its_nodes_own(self):
+        rt = self.rt
+        rt.add_node('PointCloudSubscriber', 'cloud', params={'topic': '/points'})
+        rt.add_node('NodeletHost', 'pcl_voxels', params={
+            'nodelet': 'pcl/VoxelGrid', 'inputs': ['input:sensor_msgs/PointCloud2'],
+            'outputs': ['output:sensor_msgs/PointCloud2'], 'config': "{leaf_size: 0.1, filter_field_name: ''}"})
+        # what the nodelet offers becomes the node's parameters, with the values it loaded with
+        wait_for(lambda: 'leaf_size' in rt.parameters('pcl_voxels'), 30, "the nodelet's leaf_size as a parameter")
+        params = rt.parameters('pcl_voxels')
+        self.assertAlmostEqual(params['leaf_size'], 0.1)
+        self.assertEqual(params['filter_field_name'], '')
+        self.assertIn('filter_limit_max', params)
+        self.assertEqual(rt.node('pcl_voxels').error, '')
+        # set like any parameter: the nodelet gets it live (its dynamic_reconfigure server), not reloaded
+        rt.add_node('VoxelGrid', 'voxels', params={'leaf_size': 0.25})
+        rt.add_node('PointCloudPublisher', 'pub_nodelet', params={'topic': '/offered_nodelet'})
+        rt.add_node('PointCloudPublisher', 'pub_apex', params={'topic': '/offered_apex'})
+        rt.connect('cloud', 'cloud', 'pcl_voxels', 'input')
+        rt.connect('cloud', 'cloud', 'voxels', 'cloud')
+        rt.connect('pcl_voxels', 'output', 'pub_nodelet', 'cloud')
+        rt.connect('voxels', 'cloud', 'pub_apex', 'cloud')
+        rt.set_parameter('pcl_voxels', 'leaf_size', 0.25)
+        wait_for(lambda: rospy.get_param('/apex/nodelets/pcl_voxels/leaf_size', 0) == 0.25, 30,
+                 "the nodelet's own leaf_size to follow")
+        # topics of their own: rospy may keep a connection of another test's publisher of the same name
+        by_nodelet, by_apex = Received('/offered_nodelet', PointCloud2), Received('/offered_apex', PointCloud2)
+        wait_for(lambda: by_nodelet.sub.get_num_connections() > 0 and by_apex.sub.get_num_connections() > 0, 30,
+                 'the publishers connect')
+        points = [((k * 37 % 101) / 50.0 - 1, (k * 53 % 103) / 51.5 - 1, (k * 71 % 107) / 53.5 - 1) for k in range(3000)]
+        pub = rospy.Publisher('/points', PointCloud2, queue_size=10)
+        wait_for(lambda: pub.get_num_connections() > 0, 30, 'the runtime subscribes to /points')
+        header = rospy.Header(stamp=rospy.Time(3000, 1), frame_id='lidar')
+        wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, points)),
+                          by_nodelet.messages and by_apex.messages)[1], 30, 'both voxel clouds')
+        pa = sorted(point_cloud2.read_points(by_nodelet.messages[-1], ('x', 'y', 'z')))
+        pb = sorted(point_cloud2.read_points(by_apex.messages[-1], ('x', 'y', 'z')))
+        self.assertGreater(len(pa), 20)
+        self.assertEqual(pa, pb)  # VoxelGrid at 0.25 both, so the nodelet had the new value
+        # bounds are the nodelet's own: refused here, with the parameter named
+        with self.assertRaises(apex.ApexError) as refused:
+            rt.set_parameter('pcl_voxels', 'leaf_size', 5.0)
+        self.assertIn('leaf_size', str(refused.exception))
+        # saved with the graph and loaded with it: the nodelet starts with the value
+        path = os.path.join(tempfile.mkdtemp(dir='/tmp'), 'voxels.yaml')
+        rt.save_graph(path)
+        with open(path) as f:
+            self.assertIn('leaf_size: 0.25', f.read())
+        rt.clear()
+        wait_for(lambda: not rospy.has_param('/apex/nodelets/pcl_voxels'), 30, "the nodelet's parameters to go")
+        rt.load_graph(path)
+        wait_for(lambda: rospy.get_param('/apex/nodelets/pcl_voxels/leaf_size', 0) == 0.25, 30,
+                 'the loaded nodelet to start with the saved value')
+        self.assertAlmostEqual(rt.parameter('pcl_voxels', 'leaf_size'), 0.25)
+        self.assertEqual(rt.node('pcl_voxels').error, '')
 
 
 if __name__ == '__main__':
