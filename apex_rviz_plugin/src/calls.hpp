@@ -17,6 +17,11 @@ inline std::string join(const std::string& parent, const std::string& name) {
   return parent.empty() ? name : parent + "/" + name;
 }
 
+/** Whether two connections join the same ports. */
+inline bool same(const apex::Connection& a, const apex::Connection& b) {
+  return a.from_node == b.from_node && a.from_port == b.from_port && a.to_node == b.to_node && a.to_port == b.to_port;
+}
+
 /** UI metadata holding a position. */
 inline std::string ui(double x, double y) {
   return "{x: " + std::to_string(static_cast<int>(x)) + ", y: " + std::to_string(static_cast<int>(y)) + "}";

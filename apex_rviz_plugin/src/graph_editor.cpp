@@ -1,11 +1,11 @@
 #include "apex_rviz_plugin/graph_editor.hpp"
 
+#include "apex_rviz_plugin/file_dialog.hpp"
 #include "apex_rviz_plugin/help_view.hpp"
 #include "apex_rviz_plugin/palette.hpp"
 #include "apex_rviz_plugin/view_parts.hpp"
 
 #include <QCursor>
-#include <QFileDialog>
 #include <QGraphicsView>
 #include <QHBoxLayout>
 #include <QInputDialog>
@@ -66,6 +66,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   view_->viewport()->installEventFilter(this);
   view_->installEventFilter(this);  // Delete and Ctrl+D on the selected nodes
   minimap_ = new Minimap(scene_, view_);
+  new EdgeScroller(view_);  // a box dragged to the view's edge scrolls it
   for (QScrollBar* bar : {view_->horizontalScrollBar(), view_->verticalScrollBar()})  // scrolled or zoomed
     connect(bar, &QScrollBar::valueChanged, this, [this] { placeMinimap(), minimap_->update(); });
   connect(scene_, &QGraphicsScene::sceneRectChanged, this, [this] { growCanvas(), placeMinimap(); });
@@ -88,6 +89,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   connect(scene_, &GraphScene::nodeMenuRequested, this, &GraphEditor::showNodeMenu);
   connect(scene_, &GraphScene::portMenuRequested, this, &GraphEditor::showPortMenu);
   connect(scene_, &GraphScene::paramMenuRequested, this, &GraphEditor::showParamMenu);
+  connect(scene_, &GraphScene::linkMenuRequested, this, &GraphEditor::showLinkMenu);
   connect(scene_, &GraphScene::canvasMenuRequested, this, &GraphEditor::showCanvasMenu);
   connect(scene_, &GraphScene::canvasDoubleClicked, this, [this](QPointF at) { openQuickAdd(at); });
   connect(scene_, &GraphScene::linkDropped, this, &GraphEditor::openLinkAdd);
@@ -172,13 +174,13 @@ QWidget* GraphEditor::buildToolBar() {
   });
   auto* save = button("save", "Save...", "save the graph to a file (written by the runtime)");
   auto* load = button("load", "Load...", "load a graph file into the runtime (all or nothing)");
-  connect(save, &QToolButton::clicked, this, [this] {
-    const QString path = QFileDialog::getSaveFileName(this, "Save graph", last_path_, "APEX graphs (*.yaml)");
-    if (!path.isEmpty()) emit saveRequested(last_path_ = path);
+  connect(save, &QToolButton::clicked, this, [this] {  // a name typed without ".yaml" gets it
+    const FileDialogSpec spec{"save_dialog", "Save graph", last_path_, FileDialogSpec::Mode::Save, "APEX graphs (*.yaml)", "yaml"};
+    openFileDialog(file_dialog_, this, spec, [this](const QString& path) { emit saveRequested(last_path_ = path); });
   });
   connect(load, &QToolButton::clicked, this, [this] {
-    const QString path = QFileDialog::getOpenFileName(this, "Load graph", last_path_, "APEX graphs (*.yaml)");
-    if (!path.isEmpty()) emit loadRequested(last_path_ = path);
+    const FileDialogSpec spec{"load_dialog", "Load graph", last_path_, FileDialogSpec::Mode::Open, "APEX graphs (*.yaml)", ""};
+    openFileDialog(file_dialog_, this, spec, [this](const QString& path) { emit loadRequested(last_path_ = path); });
   });
   auto* buttons = new QToolBar;
   buttons->setObjectName("buttons");
@@ -237,17 +239,31 @@ void GraphEditor::showGraph(const GraphModel& model) {
 }
 
 void GraphEditor::fitGraph() {
-  const QRectF r = scene_->itemsBoundingRect().adjusted(-20, -20, 20, 20);
+  QRectF r = scene_->itemsBoundingRect().adjusted(-20, -20, 20, 20);
   if (r.isEmpty()) return;
   const QRect port = view_->viewport()->rect();
-  const double s = std::clamp(std::min(port.width() / r.width(), port.height() / r.height()), 0.4, 1.0);
+  double s = 1.0;
+  for (int i = 0; i < 4; ++i) {  // boxes draw larger when zoomed out (names alone): fit what they become
+    const double next = std::clamp(std::min(port.width() / r.width(), port.height() / r.height()), kMinZoom, 1.0);
+    if (i > 0 && next >= s) break;
+    s = next;
+    scene_->setZoom(s);
+    r = scene_->itemsBoundingRect().adjusted(-20, -20, 20, 20);
+  }
   view_->resetTransform();
   view_->scale(s, s);
-  scene_->setZoom(s);
   growCanvas();
   view_->ensureVisible(QRectF(r.topLeft(), QSizeF(1, 1)), 0, 0);  // a graph too big to fit: its start
   if (s * r.width() <= port.width() && s * r.height() <= port.height()) view_->centerOn(r.center());
   placeMinimap();
+}
+
+void GraphEditor::reveal(const QRectF& area) {
+  const double s = view_->transform().m11();
+  const QSizeF seen = QSizeF(view_->viewport()->size()) / s;  // a box taller than the view: its title
+  const QRectF shown(area.topLeft(), QSizeF(std::min(area.width(), seen.width() - 20 / s), std::min(area.height(), seen.height() - 20 / s)));
+  growCanvas(shown);
+  view_->ensureVisible(shown, 10, 10);
 }
 
 bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
@@ -269,7 +285,7 @@ bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
   if (watched == view_->viewport() && event->type() == QEvent::Wheel) {  // zooms around the cursor
     auto* wheel = static_cast<QWheelEvent*>(event);
     const double now = view_->transform().m11();
-    const double f = std::clamp(std::pow(1.15, wheel->angleDelta().y() / 120.0), 0.1 / now, 3.0 / now);
+    const double f = std::clamp(std::pow(1.15, wheel->angleDelta().y() / 120.0), kMinZoom / now, 3.0 / now);
     const QPoint at = wheel->position().toPoint();  // the event's own place, not the cursor's (none offscreen)
     const QPointF under = view_->mapToScene(at);
     view_->scale(f, f);

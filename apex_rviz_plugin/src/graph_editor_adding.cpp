@@ -1,6 +1,7 @@
 // GraphEditor, adding where the person works and explaining what is added: the quick-add box at
-// the cursor (Tab, Space, a double-click on empty canvas, a link let go on empty canvas) and the
-// help window of a node type (a palette entry's F1 or menu, a node's menu or F1).
+// the cursor (Tab, Space, a double-click on empty canvas, a link let go on empty canvas; between
+// two boxes for a link's "Insert node...") and the help window of a node type (a palette entry's
+// F1 or menu, a node's menu or F1).
 #include "apex_rviz_plugin/graph_editor.hpp"
 
 #include <QCursor>
@@ -34,7 +35,7 @@ void GraphEditor::openQuickAdd(QPointF at) {
   std::vector<QuickAdd::Offer> offers;
   for (const auto& t : types_) offers.push_back({t, QString()});
   quick_at_ = at;
-  quick_link_.reset();
+  quick_link_.reset(), quick_insert_.reset();
   ensureQuickAdd()->open(std::move(offers), view_->viewport()->mapToGlobal(view_->mapFromScene(at)), "Add a node here");
 }
 
@@ -53,12 +54,35 @@ void GraphEditor::openLinkAdd(const QString& node, const QString& port, bool sou
   if (source) link.from_node = n, link.from_port = p;
   else link.to_node = n, link.to_port = p;
   quick_at_ = at;
-  quick_link_ = link;
+  quick_link_ = link, quick_insert_.reset();
   ensureQuickAdd()->open(std::move(offers), view_->viewport()->mapToGlobal(view_->mapFromScene(at)),
                          (source ? "Add a node fed by " : "Add a node feeding ") + what);
 }
 
+void GraphEditor::openInsertAdd(const apex::Connection& link) {
+  if (!model_) return;
+  const QString what = QString::fromStdString(link.from_node + "/" + link.from_port + " -> " + link.to_node + "/" + link.to_port);
+  std::vector<QuickAdd::Offer> offers;
+  quick_inserts_ = model_->insertable(types_, link);
+  for (const NewInsert& i : quick_inserts_)
+    if (const apex::NodeTypeInfo* t = listedType(i.type))
+      offers.push_back({*t, QString::fromStdString(i.in + " \u2192 " + i.out)});
+  if (offers.empty()) return showMessage("no node type can go into " + what, true);
+  const NodeItem* from = scene_->node(link.from_node);
+  const NodeItem* to = scene_->node(link.to_node);
+  quick_at_ = from && to ? (from->sceneBoundingRect().center() + to->sceneBoundingRect().center()) / 2 : cursorPosition();
+  quick_link_.reset(), quick_insert_ = link;
+  ensureQuickAdd()->open(std::move(offers), view_->viewport()->mapToGlobal(view_->mapFromScene(quick_at_)),
+                         "Insert a node into " + what);
+}
+
 void GraphEditor::addChosen(const QString& type, const QString& port) {
+  if (quick_insert_) {
+    for (const NewInsert& i : quick_inserts_)
+      if (i.type == type.toStdString())
+        emit insertNewRequested(type, quick_at_, *quick_insert_, QString::fromStdString(i.in), QString::fromStdString(i.out));
+    return;
+  }
   if (!quick_link_) return emit addRequested(type, quick_at_);
   apex::Connection link = *quick_link_;
   (link.from_node.empty() ? link.from_port : link.to_port) = port.toStdString();

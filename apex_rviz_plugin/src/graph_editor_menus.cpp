@@ -1,6 +1,7 @@
-// GraphEditor's menus and dialogs: a node's, a port's, a parameter's, the
+// GraphEditor's menus and dialogs: a node's, a port's (with "Show in rviz"), a parameter's, the
 // canvas's and the presets' menus; asking a name for a preset or a node.
 #include "apex_rviz_plugin/graph_editor.hpp"
+#include "apex_rviz_plugin/rviz_displays.hpp"
 
 #include <QInputDialog>
 #include <QMenu>
@@ -67,13 +68,42 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
 }
 
 void GraphEditor::showPortMenu(const QString& node, const QString& port, QPoint at) {
+  QMenu menu;
+  fillPortMenu(menu, node, port);
+  if (!menu.isEmpty()) menu.exec(at);
+}
+
+void GraphEditor::fillPortMenu(QMenu& menu, const QString& node, const QString& port) {
   const NodeItem* item = scene_->node(node.toStdString());
   const PortItem* p = item ? item->port(port.toStdString(), true) : nullptr;
-  QMenu menu;
-  if (p) menu.addAction("Inspect " + port, this, [this, node, port] { emit inspectRequested(node, port); });
-  else if (item && item->port(port.toStdString(), false) && item->port(port.toStdString(), false)->port().kind == "slot")
+  if (p) {
+    menu.addAction("Inspect " + port, this, [this, node, port] { emit inspectRequested(node, port); });
+    addShowInRviz(menu, node, port, p->port().type);
+  } else if (item && item->port(port.toStdString(), false) && item->port(port.toStdString(), false)->port().kind == "slot") {
     menu.addAction("Fire " + port, this, [this, node, port] { emit fireSlotRequested(node, port); });
-  if (!menu.isEmpty()) menu.exec(at);
+  }
+}
+
+void GraphEditor::addShowInRviz(QMenu& menu, const QString& node, const QString& port, const std::string& port_type) {
+  // An inspection's answer makes the display (PanelWidget::onInspect), as a double-click's does.
+  QAction* show = menu.addAction("Show in rviz", this, [this, node, port] { emit inspectRequested(node, port); });
+  show->setObjectName("show_in_rviz");
+  menu.setToolTipsVisible(true);
+  const auto known = message_types_.find(port_type);
+  if (known == message_types_.end())
+    return show->setToolTip("shown if rviz has a display for its messages (their type is known once it is inspected)");
+  const auto display = rvizDisplayFor(known->second);
+  show->setEnabled(display.has_value());
+  show->setToolTip(QString::fromStdString(display ? "as " + display->rviz_class + " (" + known->second + ")"
+                                                  : "not in rviz: " + noRvizDisplayReason(known->second)));
+}
+
+void GraphEditor::showMessageType(const QString& node, const QString& port, const std::string& message_type) {
+  const NodeItem* item = scene_->node(node.toStdString());
+  const PortItem* p = item ? item->port(port.toStdString(), true) : nullptr;
+  // A port of any type is inspected as its first message's type: not the same for every such port.
+  if (p && !message_type.empty() && !p->port().type.empty() && p->port().type != "any")
+    message_types_[p->port().type] = message_type;
 }
 
 void GraphEditor::fillParamMenu(QMenu& menu, const QString& node, const QString& param) {
@@ -97,6 +127,20 @@ void GraphEditor::showParamMenu(const QString& node, const QString& param, QPoin
   QMenu menu;
   fillParamMenu(menu, node, param);
   menu.exec(at);
+}
+
+void GraphEditor::showLinkMenu(const apex::Connection& link, QPoint at) {
+  QMenu menu;
+  fillLinkMenu(menu, link);
+  menu.exec(at);
+}
+
+void GraphEditor::fillLinkMenu(QMenu& menu, const apex::Connection& link) {
+  QAction* insert = menu.addAction("Insert node...", this, [this, link] { openInsertAdd(link); });
+  insert->setObjectName("insert_node");
+  // A right-click used to disconnect at once: now it asks, as Blender and Groot2 do.
+  QAction* remove = menu.addAction("Delete link", this, [this, link] { scene_->removeLink(link); });
+  remove->setObjectName("delete_link");
 }
 
 void GraphEditor::showCanvasMenu(QPointF scene_pos, QPoint at) {

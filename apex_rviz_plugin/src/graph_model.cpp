@@ -76,10 +76,6 @@ class StateView : public apex::ConnectionView {
   const apex::GraphState& graph_;
 };
 
-bool same(const apex::Connection& a, const apex::Connection& b) {
-  return a.from_node == b.from_node && a.from_port == b.from_port && a.to_node == b.to_node && a.to_port == b.to_port;
-}
-
 }  // namespace
 
 bool GraphModel::update(const apex::GraphState& graph) {

@@ -1,8 +1,10 @@
 // GraphModel, new nodes with a link: a node as add_node will make it, which types a link dragged
-// to empty canvas may join (by the runtime's own rules), and adding one with its link as one edit.
+// to empty canvas may join, or a link may take in its place (by the runtime's own rules), and
+// adding one with its links as one edit.
 #include "apex_rviz_plugin/graph_model.hpp"
 
 #include <algorithm>
+#include <functional>
 
 #include "apex/core/manifest.hpp"  // the events every node has
 #include "calls.hpp"
@@ -38,53 +40,103 @@ apex::NodeInfo GraphModel::newNode(const apex::NodeTypeInfo& type, const std::st
   return n;
 }
 
+GraphModel GraphModel::probe(const std::string& level, const std::optional<apex::Connection>& gone) const {
+  GraphModel p;
+  p.graph_ = graph_;
+  p.has_graph_ = true;
+  auto& cs = p.graph_.connections;
+  if (gone) cs.erase(std::remove_if(cs.begin(), cs.end(), [&](const apex::Connection& c) { return same(c, *gone); }), cs.end());
+  p.graph_.nodes.emplace_back();
+  p.graph_.nodes.back().name = join(level, "new node");  // a space: no node of the graph has this name
+  return p;
+}
+
+namespace {
+
+/** The port of `added` that `takes` a link: its first own one, else the first of the events every
+ *  node has (`*builtin` true then); "" if none. */
+std::string portTaking(const apex::NodeInfo& added, const std::function<bool(const std::string&)>& takes, bool* builtin) {
+  std::string event;
+  for (const auto& p : added.ports) {
+    if (!event.empty() && isBuiltinEvent(p.name)) continue;
+    if (!takes(p.name)) continue;
+    if (!isBuiltinEvent(p.name)) return *builtin = false, p.name;
+    event = p.name;
+  }
+  *builtin = !event.empty();
+  return event;
+}
+
+/** The offers' types, fewer of their ends on events every node has (the int) first, else in their order. */
+template <class T>
+std::vector<T> ownFirst(std::vector<std::pair<int, T>> offers) {
+  std::stable_sort(offers.begin(), offers.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<T> out;
+  for (auto& o : offers) out.push_back(std::move(o.second));
+  return out;
+}
+
+/** `next` done after `e`, and undone before it. */
+void andThen(Edit& e, const Edit& next) {
+  e.apply.insert(e.apply.end(), next.apply.begin(), next.apply.end());
+  e.revert.insert(e.revert.begin(), next.revert.begin(), next.revert.end());
+}
+
+}  // namespace
+
 std::vector<NewLink> GraphModel::linkable(const std::vector<apex::NodeTypeInfo>& types, const std::string& node,
                                           const std::string& port, bool source) const {
-  GraphModel probe;  // the graph with the new node in it, and without the link a new one into `port` replaces
-  probe.graph_ = graph_;
-  probe.has_graph_ = true;
-  if (const auto old = source ? std::nullopt : feeding(node, port)) {
-    auto& cs = probe.graph_.connections;
-    cs.erase(std::remove_if(cs.begin(), cs.end(),
-                            [&](const apex::Connection& c) {
-                              return c.from_node == old->from_node && c.from_port == old->from_port && c.to_node == node &&
-                                     c.to_port == port;
-                            }),
-             cs.end());
-  }
-  const std::string name = join(parentOf(node), "new node");  // a space: no node of the graph has this name
-  probe.graph_.nodes.emplace_back();
+  // the graph with the new node in it, and without the link a new one into `port` replaces
+  GraphModel probed = probe(parentOf(node), source ? std::nullopt : feeding(node, port));
+  apex::NodeInfo& added = probed.graph_.nodes.back();
+  const std::string name = added.name;
   auto takes = [&](const std::string& p) {
-    return (source ? probe.whyNot(node, port, name, p) : probe.whyNot(name, p, node, port)).empty();
+    return (source ? probed.whyNot(node, port, name, p) : probed.whyNot(name, p, node, port)).empty();
   };
-  std::vector<NewLink> own, events_only;
+  std::vector<std::pair<int, NewLink>> offers;
   for (const auto& t : types) {
-    apex::NodeInfo& added = probe.graph_.nodes.back();
     added = newNode(t, name);
-    std::string builtin;  // a port every node has, if it is the only one that fits
-    for (const auto& p : added.ports) {
-      if (!builtin.empty() && isBuiltinEvent(p.name)) continue;
-      if (!takes(p.name)) continue;
-      if (!isBuiltinEvent(p.name)) {
-        own.push_back({t.id, p.name});
-        builtin.clear();
-        break;
-      }
-      builtin = p.name;
-    }
-    if (!builtin.empty()) events_only.push_back({t.id, builtin});
+    bool builtin = false;
+    const std::string p = portTaking(added, takes, &builtin);
+    if (!p.empty()) offers.push_back({builtin, {t.id, p}});
   }
-  own.insert(own.end(), events_only.begin(), events_only.end());
-  return own;
+  return ownFirst(std::move(offers));
+}
+
+std::vector<NewInsert> GraphModel::insertable(const std::vector<apex::NodeTypeInfo>& types, const apex::Connection& link) const {
+  GraphModel probed = probe(parentOf(link.from_node), link);  // the new node in the link's place
+  apex::NodeInfo& added = probed.graph_.nodes.back();
+  const std::string name = added.name;
+  auto fed = [&](const std::string& p) { return probed.whyNot(link.from_node, link.from_port, name, p).empty(); };
+  auto feeds = [&](const std::string& p) { return probed.whyNot(name, p, link.to_node, link.to_port).empty(); };
+  std::vector<std::pair<int, NewInsert>> offers;
+  for (const auto& t : types) {
+    added = newNode(t, name);
+    bool in_builtin = false, out_builtin = false;
+    const std::string in = portTaking(added, fed, &in_builtin), out = portTaking(added, feeds, &out_builtin);
+    if (!in.empty() && !out.empty()) offers.push_back({in_builtin + out_builtin, {t.id, in, out}});
+  }
+  return ownFirst(std::move(offers));
 }
 
 Edit GraphModel::addLinked(const std::string& type, const std::string& name, double x, double y, const apex::Connection& c) const {
   Edit e = addNode(type, name, x, y);
-  const Edit link = connect(c);  // into an input in use: replaces its link, and undo gives it back
+  andThen(e, connect(c));  // into an input in use: replaces its link, and undo gives it back; the link undone first
   e.label = "Add " + name + (c.from_node == name ? " feeding " + c.to_node + "/" + c.to_port
                                                   : " fed by " + c.from_node + "/" + c.from_port);
-  e.apply.insert(e.apply.end(), link.apply.begin(), link.apply.end());
-  e.revert.insert(e.revert.begin(), link.revert.begin(), link.revert.end());  // the link first, then the node
+  return e;
+}
+
+Edit GraphModel::addInserted(const std::string& type, const std::string& name, double x, double y, const apex::Connection& link,
+                             const std::string& in, const std::string& out) const {
+  apex::Connection into = link, out_of = link;
+  into.to_node = out_of.from_node = name;
+  into.to_port = in, out_of.from_port = out;
+  Edit e = addLinked(type, name, x, y, into);
+  const auto replaced = feeding(link.to_node, link.to_port);
+  andThen(e, connect(out_of));  // into an input: replaces `link`
+  if (!replaced || !same(*replaced, link)) andThen(e, disconnect(link));  // into a slot, which takes many: not replaced
+  e.label = "Insert " + name + " into " + link.from_node + "/" + link.from_port + " -> " + link.to_node + "/" + link.to_port;
   return e;
 }
 

@@ -6,9 +6,13 @@
 #include <QGraphicsSceneContextMenuEvent>
 #include <QGraphicsSceneMouseEvent>
 #include <QGraphicsView>
+#include <QLabel>
 #include <QPainterPath>
 #include <QPen>
 
+#include "apex_rviz_plugin/param_editor.hpp"
+
+#include <algorithm>
 #include <set>
 
 namespace apex_rviz_plugin {
@@ -19,6 +23,14 @@ QPainterPath curve(QPointF a, QPointF b) {
   QPainterPath path(a);
   path.cubicTo(a + QPointF(dx, 0), b - QPointF(dx, 0), b);
   return path;
+}
+
+/** Whether `pos` is on the link's curve, within a few pixels: its shape is the area the curve
+ *  encloses, which is not the link. */
+bool onCurve(const ConnectionItem* c, QPointF pos) {
+  QPainterPathStroker near;
+  near.setWidth(8);
+  return near.createStroke(c->path()).contains(pos);
 }
 
 }  // namespace
@@ -34,7 +46,7 @@ ConnectionItem::ConnectionItem(const apex::Connection& c, PortItem* from, PortIt
   setPen(pen);
   setZValue(0);
   setToolTip(QString::fromStdString(c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port +
-                                    "\n(right-click to disconnect)"));
+                                    "\n(right-click: delete it)"));
   reroute();
 }
 
@@ -202,14 +214,36 @@ PortItem* GraphScene::portAt(QPointF pos) const {
 }
 
 bool GraphScene::emptyAt(QPointF pos) const {
-  QPainterPathStroker near;  // a link's shape is the area its curve encloses: only its stroke counts
-  near.setWidth(8);
   for (QGraphicsItem* i : items(pos)) {
     if (i == drag_line_) continue;
     const auto* c = dynamic_cast<const ConnectionItem*>(i);
-    if (!c || near.createStroke(c->path()).contains(pos)) return false;
+    if (!c || onCurve(c, pos)) return false;
   }
   return true;
+}
+
+void GraphScene::removeLink(const apex::Connection& c) {
+  const auto same = [&c](const ConnectionItem* i) {
+    const apex::Connection& o = i->connection();
+    return o.from_node == c.from_node && o.from_port == c.from_port && o.to_node == c.to_node && o.to_port == c.to_port;
+  };
+  const auto it = std::find_if(connections_.begin(), connections_.end(), same);
+  if (it != connections_.end()) delete *it, connections_.erase(it);  // gone from the canvas now, not at the next graph
+  emit disconnectRequested(c);
+}
+
+std::pair<QString, QString> GraphScene::paramAt(QPointF pos) const {
+  for (QGraphicsItem* i : items(pos)) {  // topmost first: the box's widgets, if any
+    auto* proxy = dynamic_cast<QGraphicsProxyWidget*>(i);
+    auto* node = proxy ? dynamic_cast<NodeItem*>(proxy->parentItem()) : nullptr;
+    if (!node || !proxy->widget()) continue;
+    QWidget* under = proxy->widget()->childAt(proxy->mapFromScene(pos).toPoint());
+    auto* editor = qobject_cast<ParamEditor*>(under);
+    if (!editor && qobject_cast<QLabel*>(under)) editor = qobject_cast<ParamEditor*>(under->parentWidget());
+    if (!editor) return {};
+    return {QString::fromStdString(node->info().name), QString::fromStdString(editor->param().name)};
+  }
+  return {};
 }
 
 void GraphScene::beginConnect(PortItem* from) {
@@ -271,6 +305,13 @@ void GraphScene::endDrag() {
 }
 
 void GraphScene::contextMenuEvent(QGraphicsSceneContextMenuEvent* e) {
+  // A parameter's name: its menu, here. Passed to the box's widgets it would need the box to have
+  // the keyboard focus (QGraphicsProxyWidget drops it otherwise, as accepted: nothing showed).
+  const auto [node_name, param] = paramAt(e->scenePos());
+  if (!param.isEmpty()) {
+    emit paramMenuRequested(node_name, param, e->screenPos());
+    return e->accept();
+  }
   QGraphicsScene::contextMenuEvent(e);  // proxied widgets first
   if (e->isAccepted()) return;
   for (QGraphicsItem* i : items(e->scenePos())) {
@@ -279,8 +320,8 @@ void GraphScene::contextMenuEvent(QGraphicsSceneContextMenuEvent* e) {
                              e->screenPos());
       return e->accept();
     }
-    if (auto* c = dynamic_cast<ConnectionItem*>(i)) {
-      emit disconnectRequested(c->connection());
+    if (auto* c = dynamic_cast<ConnectionItem*>(i); c && onCurve(c, e->scenePos())) {
+      emit linkMenuRequested(c->connection(), e->screenPos());
       return e->accept();
     }
     if (auto* n = dynamic_cast<NodeItem*>(i)) {

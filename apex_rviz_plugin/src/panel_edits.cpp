@@ -23,6 +23,7 @@ std::vector<std::string> stdNames(const QStringList& nodes) {
 void PanelWidget::perform(const std::optional<Edit>& edit) {
   if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
   reservePlaces(edit->apply);
+  announceRenames(edit->apply);
   ++pending_;
   link_.run(edit->apply, [this, edit = *edit, epoch = history_epoch_](bool ok, const std::string& message) {
     --pending_;
@@ -71,6 +72,7 @@ std::pair<std::string, Box> PanelWidget::placeNew(const std::string& type, QPoin
 void PanelWidget::onAddRequested(const QString& type_name, QPointF at) {
   const std::string type = type_name.toStdString();
   const auto [path, free] = placeNew(type, at);
+  editor_->reveal(QRectF(free.x, free.y, free.width, free.height));  // a free place may be below the view
   perform(model_.addNode(type, path, free.x, free.y));
 }
 
@@ -81,6 +83,15 @@ void PanelWidget::onAddLinkedRequested(const QString& type_name, QPointF at, con
   apex::Connection c = link;
   (feeds ? c.from_node : c.to_node) = path;
   perform(model_.addLinked(type, path, free.x, free.y, c));
+}
+
+void PanelWidget::onInsertNewRequested(const QString& type_name, QPointF at, const apex::Connection& link, const QString& in,
+                                       const QString& out) {
+  const std::string type = type_name.toStdString();
+  const Box size = typeBox(type);
+  const auto [path, free] = placeNew(type, at - QPointF(size.width / 2, size.height / 2));  // centred between the two
+  editor_->reveal(QRectF(free.x, free.y, free.width, free.height));  // a free place may be below the view
+  perform(model_.addInserted(type, path, free.x, free.y, link, in.toStdString(), out.toStdString()));
 }
 
 void PanelWidget::onRemoveRequested(const QString& node) { perform(model_.removeNode(node.toStdString())); }

@@ -8,12 +8,18 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "apex_rviz_plugin/recovery_bar.hpp"
+#include "apex_rviz_plugin/rviz_displays.hpp"
+
 namespace apex_rviz_plugin {
 
 PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEditor) {
   auto* column = new QVBoxLayout(this);
   column->setContentsMargins(0, 0, 0, 0);
+  column->addWidget(recovery_ = new RecoveryBar);
   column->addWidget(editor_);
+  connect(recovery_, &RecoveryBar::restoreRequested, this, &PanelWidget::onRecoveryRestore);
+  connect(recovery_, &RecoveryBar::discardRequested, this, &PanelWidget::onRecoveryDiscard);
   connect(&link_, &RuntimeLink::graphReceived, this, &PanelWidget::onGraph);
   connect(&link_, &RuntimeLink::statusReceived, this, [this](const apex::RuntimeStatus& s) {
     editor_->scene()->showStatus(s);
@@ -29,6 +35,8 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
     editor_->showConnection(up, text);
     if (!up) model_.reset(), watched_.clear(), previewing_.clear(), forgetHistory();  // a runtime that comes back starts anew
     if (up) refreshTypes(), editor_->fitNextGraph(), untangle_ = true;
+    if (up) askRecovery();
+    else recovery_->withdraw();
   });
   connectEditor();
 }
@@ -41,9 +49,10 @@ void PanelWidget::setNamespace(const QString& ns) {
   watched_.clear();
   inspected_.clear();
   previewing_.clear();  // the link dropped its subscriptions with the namespace
-  pending_ = 0;  // and drops the answers of the runtime left: nothing of it is waited for
+  pending_ = 0, replaying_ = 0;  // and drops the answers of the runtime left: nothing of it is waited for
   placing_.clear(), sizes_.clear(), untangle_from_ = 0;
   forgetHistory();
+  recovery_->withdraw();  // the runtime left's copy: the new one is asked once connected
   editor_->showGraph(model_);
   emit namespaceChanged(QString::fromStdString(link_.ns()));
 }
@@ -54,6 +63,7 @@ void PanelWidget::connectEditor() {
   // edits of the model (panel_edits.cpp)
   connect(e, &GraphEditor::addRequested, this, &PanelWidget::onAddRequested);
   connect(e, &GraphEditor::addLinkedRequested, this, &PanelWidget::onAddLinkedRequested);
+  connect(e, &GraphEditor::insertNewRequested, this, &PanelWidget::onInsertNewRequested);
   connect(e, &GraphEditor::removeRequested, this, &PanelWidget::onRemoveRequested);
   connect(e, &GraphEditor::groupIntoSubgraphRequested, this, &PanelWidget::onGroupIntoSubgraphRequested);
   connect(e, &GraphEditor::ungroupRequested, this, &PanelWidget::onUngroupRequested);
@@ -104,7 +114,8 @@ void PanelWidget::onRedoRequested() { historyStep(false); }
 
 void PanelWidget::historyStep(bool undo) {
   if (pending_ > 0) return waiting_steps_.push_back(undo);  // the edit it would undo is not in the history yet
-  replay(undo ? history_.undo() : history_.redo(), undo ? "undo" : "redo");
+  const std::string label = undo ? history_.undoLabel() : history_.redoLabel();  // the step's own name
+  replay(undo ? history_.undo() : history_.redo(), undo, label);
 }
 
 void PanelWidget::onControlRequested(const QString& command) {
@@ -172,10 +183,25 @@ void PanelWidget::onLevelChanged() {
   QTimer::singleShot(0, this, [this] { placeUnplaced(); });  // once the level's nodes are shown
 }
 
-void PanelWidget::replay(std::vector<Call> calls, const QString& what) {
+void PanelWidget::replay(std::vector<Call> calls, bool undo, const std::string& label) {
   editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
   if (calls.empty()) return;
-  link_.run(std::move(calls), [this, what](bool ok, const std::string& m) { report(ok, m, what); });
+  announceRenames(calls);
+  ++replaying_;
+  redo_base_.reset();
+  link_.runThenRead(std::move(calls), [this, undo, label](bool ok, const std::string& m, const apex::GraphState& after) {
+    stepDone(undo, label, ok, m, after);
+  });
+}
+
+void PanelWidget::announceRenames(const std::vector<Call>& calls) {
+  for (const auto& c : calls) {
+    const auto* r = std::get_if<apex::RenameNode::Request>(&c.request);
+    if (!r) continue;
+    const auto slash = r->name.rfind('/');  // the node stays in its subgraph
+    const std::string path = (slash == std::string::npos ? "" : r->name.substr(0, slash + 1)) + r->new_name;
+    emit renameSent(QString::fromStdString(r->name), QString::fromStdString(path));
+  }
 }
 
 void PanelWidget::listPresets() {
@@ -237,6 +263,7 @@ void PanelWidget::updatePreviews() {
     link_.inspect(
         node, port,
         [this, node, port, key](bool ok, const std::string&, const std::string& topic, const std::string& type) {
+          if (ok) editor_->showMessageType(QString::fromStdString(node), QString::fromStdString(port), type);
           if (!ok || !previewing_.count(key) || !previews_) return previewing_.erase(key), void();
           link_.watchPreview(node, port, topic, type);
         },
@@ -290,6 +317,7 @@ void PanelWidget::onGraph(const apex::GraphState& graph) {
     model_.update(graph);
   }
   editor_->showGraph(model_);
+  dropRedoIfEditedElsewhere();
   if (untangle_from_ && graph.revision >= untangle_from_) untangleLoaded();
   else arrangeShown();
   watchOptimizers();
@@ -326,8 +354,8 @@ void PanelWidget::onInspect(const QString& node, const QString& port) {
       [this, node, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
         if (!ok) return report(false, m, "inspect " + node + "/" + port);
         const QString t = QString::fromStdString(topic), name = node + "/" + port;
-        if (type == "sensor_msgs/Image") emit displayRequested("rviz/Image", name, t);
-        else if (type == "sensor_msgs/PointCloud2") emit displayRequested("rviz/PointCloud2", name, t);
+        editor_->showMessageType(node, port, type);  // for the port menu's "Show in rviz"
+        if (rvizDisplayFor(type)) emit displayRequested(node, port, t, QString::fromStdString(type));
         else if (type.empty())  // a port of any type: its first message decides
           return report(
               true, "",

@@ -1,5 +1,7 @@
 #include "apex_rviz_plugin/param_editor.hpp"
 
+#include "apex_rviz_plugin/file_dialog.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <QAbstractSlider>
@@ -8,7 +10,6 @@
 #include <QComboBox>
 #include <QDial>
 #include <QDoubleSpinBox>
-#include <QFileDialog>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
@@ -165,9 +166,11 @@ ParamEditor::ParamEditor(const apex::ParamInfo& param, QWidget* parent) : QWidge
   auto* label = new QLabel(QString::fromStdString(param.name));
   label->setMinimumWidth(50);
   row->addWidget(label, 1);
-  setContextMenuPolicy(Qt::CustomContextMenu);  // reset to default; a number can be tuned too
-  connect(this, &QWidget::customContextMenuRequested, this,
-          [this](const QPoint& at) { emit menuRequested(QString::fromStdString(param_.name), mapToGlobal(at)); });
+  for (QWidget* w : std::initializer_list<QWidget*>{this, label}) {  // reset to default; a number can be tuned too
+    w->setContextMenuPolicy(Qt::CustomContextMenu);  // the name too, not only the value's widgets
+    connect(w, &QWidget::customContextMenuRequested, this,
+            [this, w](const QPoint& at) { emit menuRequested(QString::fromStdString(param_.name), w->mapToGlobal(at)); });
+  }
   build();
   if (!param.type.empty()) {  // a parameter with a port type can be linked: show its ports
     interactive_ = new QCheckBox;
@@ -360,14 +363,17 @@ void ParamEditor::buildPath() {
     if (!typedInto(line)) return;  // Return, then focus away: one edit
     send(quoted(line->text()), false);
   });
-  connect(browse, &QPushButton::clicked, this, [this, line] {
-    const QString mode = QString::fromStdString(param_.path_mode);
-    const QString path = mode == "directory" ? QFileDialog::getExistingDirectory(this, "Directory", line->text())
-                         : mode == "write"   ? QFileDialog::getSaveFileName(this, "File", line->text())
-                                             : QFileDialog::getOpenFileName(this, "File", line->text());
-    if (path.isEmpty()) return;
-    line->setText(path);
-    send(quoted(path), false);
+  connect(browse, &QPushButton::clicked, this, [this, line] {  // in the current file's folder
+    const std::string& mode = param_.path_mode;
+    const FileDialogSpec spec{"path_dialog", QString::fromStdString(param_.name), line->text(),
+                              mode == "directory" ? FileDialogSpec::Mode::Directory
+                              : mode == "write"   ? FileDialogSpec::Mode::Save
+                                                  : FileDialogSpec::Mode::Open,
+                              "", ""};
+    openFileDialog(dialog_, this, spec, [this, line](const QString& path) {
+      line->setText(path);
+      send(quoted(path), false);
+    });
   });
   show_ = [line](const std::string& v) { line->setText(QString::fromStdString(as<std::string>(parse(v), v))); };
 }
@@ -379,7 +385,7 @@ void ParamEditor::buildColor() {
   auto paint = [button](const QColor& c) { button->setStyleSheet("background-color: " + c.name()); };
   auto current = std::make_shared<QColor>();
   connect(button, &QPushButton::clicked, this, [this, current, paint] {
-    const QColor c = QColorDialog::getColor(*current, this, QString::fromStdString(param_.name));
+    const QColor c = QColorDialog::getColor(*current, dialogParent(this), QString::fromStdString(param_.name));
     if (!c.isValid()) return;
     *current = c;
     paint(c);

@@ -2,6 +2,7 @@
 
 #include <apex/Control.h>
 #include <apex/FireSlot.h>
+#include <apex/GetGraph.h>
 #include <apex/Inspect.h>
 #include <apex/ListNodeTypes.h>
 #include <apex/LoadGraph.h>
@@ -187,6 +188,20 @@ void RuntimeLink::run(std::vector<Call> calls, Done done) {
       [done](const Result& r) { done(r.first, r.second); });
 }
 
+void RuntimeLink::runThenRead(std::vector<Call> calls,
+                              std::function<void(bool, const std::string&, const apex::GraphState&)> done) {
+  // On the job thread after the calls, in order: get_graph answers with them applied.
+  auto result = std::make_shared<Result>();
+  run(std::move(calls), [result](bool ok, const std::string& m) { *result = {ok, m}; });
+  const std::string name = service("get_graph");
+  async<apex::GraphState>(
+      [name] {
+        std::string m;
+        return callService<apex::GetGraph>(name, {}, &m).second.graph;
+      },
+      [result, done](const apex::GraphState& after) { done(result->first, result->second, after); });
+}
+
 void RuntimeLink::listTypes(std::function<void(bool, const std::string&, const std::vector<apex::NodeTypeInfo>&)> done) {
   const std::string name = service("list_node_types");
   using Out = std::tuple<bool, std::string, std::vector<apex::NodeTypeInfo>>;
@@ -243,6 +258,21 @@ void RuntimeLink::fireSlot(const std::string& node, const std::string& slot, Don
   apex::FireSlot::Request req;
   req.node = node, req.slot = slot;
   callOne<apex::FireSlot>("fire_slot", req, std::move(done));
+}
+
+void RuntimeLink::recovery(const std::string& action,
+                           std::function<void(bool, const std::string&, const apex::Recovery::Response&)> done) {
+  apex::Recovery::Request req;
+  req.action = action;
+  const std::string name = service("recovery");
+  using Out = std::tuple<bool, std::string, apex::Recovery::Response>;
+  async<Out>(
+      [name, req] {
+        std::string m;
+        auto [ok, res] = callService<apex::Recovery>(name, req, &m);
+        return Out{ok, m, res};
+      },
+      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
 }
 
 void RuntimeLink::inspect(const std::string& node, const std::string& port,

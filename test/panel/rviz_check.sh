@@ -13,30 +13,10 @@ set -uo pipefail
 result=$1 shot=$2 bag=$3
 root=$(cd "$(dirname "$0")/../.." && pwd)
 graph=${4:-$root/graphs/demo.yaml} config=${5:-$root/launch/apex_panel.rviz} name=${6:-PanelLoadsAndShowsTheDemoGraph}
-work=$(mktemp -d)
-pids=()
 failure=""
 layout_failure=""
 layout="the layout was not measured"
-
-cleanup() {
-  for ((i = ${#pids[@]} - 1; i >= 0; i--)); do kill -INT "${pids[i]}" 2>/dev/null; done
-  for p in "${pids[@]}"; do
-    for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
-    kill -KILL "$p" 2>/dev/null
-  done
-}
-trap cleanup EXIT
-
-# Waits until a command succeeds (every 0.2 s), at most $1 seconds.
-wait_for() {
-  local limit=$1; shift
-  local end=$((SECONDS + limit))
-  until "$@" >/dev/null 2>&1; do
-    [ $SECONDS -lt $end ] || return 1
-    sleep 0.2
-  done
-}
+source "$root/test/panel/rviz_session.sh"
 
 # The share of rviz's window that its 3D view has in the screenshot (rviz_layout.py measure),
 # with the config's background colour (rviz's default: 48; 48; 48).
@@ -88,20 +68,7 @@ undock_and_back() {
   fi
 }
 
-# A display and a master port nobody uses.
-display=$((90 + $$ % 100))
-while [ -e "/tmp/.X11-unix/X$display" ]; do display=$((display + 1)); done
-port=$((12000 + $$ % 1000))
-export DISPLAY=":$display" LIBGL_ALWAYS_SOFTWARE=1 ROS_MASTER_URI="http://localhost:$port"
-export XDG_RUNTIME_DIR="$work" ROSCONSOLE_STDOUT_LINE_BUFFERED=1
-
-Xvfb "$DISPLAY" -screen 0 1700x1000x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
-pids+=($!)
-roscore -p "$port" >"$work/roscore.log" 2>&1 &
-pids+=($!)
-if ! wait_for 30 test -e "/tmp/.X11-unix/X$display"; then failure="Xvfb did not start: $(tail -3 "$work/xvfb.log")"
-elif ! wait_for 60 rosparam get /rosdistro; then failure="the ROS master did not start"
-else
+if start_x_and_master; then  # else `failure` says why
   rosparam set /apex/overrides "{bag: {file: '$bag', loop: true}}"
   rosrun apex apex_runtime_node __name:=apex _graph:="$graph" >"$work/runtime.log" 2>&1 &
   pids+=($!)
@@ -122,18 +89,12 @@ else
     layout_failure="no screenshot"
   fi
 fi
-errors=$(grep -E "ERROR|PluginlibFactory|failed to load|Failed to load" "$work/rviz.log" | grep -v "media_export" | head -5)
+errors=$(rviz_errors "$work/rviz.log")
 [ -z "$failure" ] && [ -n "$errors" ] && failure="rviz reported errors: $errors"
 
 cleanup
 trap - EXIT
-esc() { sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g' -e 's/"/\&quot;/g'; }
 mkdir -p "$(dirname "$result")"
-testcase() {  # NAME FAILURE-OR-EMPTY
-  if [ -z "$2" ]; then printf '<testcase classname="Rviz" name="%s"/>' "$1"
-  else printf '<testcase classname="Rviz" name="%s"><failure message="%s"/></testcase>' "$1" "$(printf '%s' "$2" | esc)"
-  fi
-}
 failures=$(( (${#failure} > 0) + (${#layout_failure} > 0) ))
 if [ -z "$failure" ]; then
   echo "rviz check: ok (screenshot $shot)"

@@ -1,6 +1,6 @@
-// The panel's model: a link dragged to empty canvas, without a display. Which types may take it
-// (the runtime's rules over the graph with the new node in it), and the node added with its link
-// as one edit.
+// The panel's model: a link dragged to empty canvas, or a link a new node goes into, without a
+// display. Which types may take it (the runtime's rules over the graph with the new node in it),
+// and the node added with its links as one edit.
 #include <gmock/gmock.h>
 
 #include "apex_rviz_plugin/graph_model.hpp"
@@ -91,6 +91,58 @@ TEST(GraphModelNewNode, AddedWithItsLinkInOneEdit) {
   EXPECT_THAT(services(e.apply), ElementsAre("add_node", "set_ui", "disconnect", "connect"));
   EXPECT_THAT(services(e.revert), ElementsAre("disconnect", "connect", "remove_node"));
   EXPECT_EQ(std::get<apex::Connect::Request>(e.revert[1].request).from_node, "relay");
+}
+
+std::vector<std::string> offered(const std::vector<NewInsert>& inserts) {
+  std::vector<std::string> out;
+  for (const auto& i : inserts) out.push_back(i.type + " " + i.in + " " + i.out);
+  return out;
+}
+
+apex::Connection connection(const std::string& from, const std::string& from_port, const std::string& to, const std::string& to_port) {
+  apex::Connection c;
+  c.from_node = from, c.from_port = from_port, c.to_node = to, c.to_port = to_port;
+  return c;
+}
+
+TEST(GraphModelNewNode, ALinkIsOfferedTheTypesThatTakeItsSourceAndFeedItsTarget) {
+  GraphModel m;
+  m.update(graph(1));
+  // relay/out (any) -> count/in (any): every type with an input and an output of its own
+  EXPECT_THAT(offered(m.insertable(types(), connection("relay", "out", "count", "in"))),
+              ElementsAre("t/Scale in out", "t/Blur image image", "t/Tuned threshold threshold", "t/Relay in out"));
+  // clock/count (an int) -> relay/in: a double or image input does not take it
+  EXPECT_THAT(offered(m.insertable(types(), connection("clock", "count", "relay", "in"))),
+              ElementsAre("t/Tuned threshold threshold", "t/Relay in out"));
+  // a trigger into a slot: a slot of its own first, the events every node has otherwise
+  EXPECT_THAT(offered(m.insertable(types(), connection("clock", "processed", "count", "reset"))),
+              ElementsAre("t/Resettable reset processed", "t/Scale enable processed", "t/Blur enable processed",
+                          "t/Tuned enable processed", "t/Relay enable processed", "t/Pulse enable processed"));
+}
+
+TEST(GraphModelNewNode, InsertedIntoALinkInOneEditThatGivesTheLinkBack) {
+  GraphModel m;
+  m.update(graph(1));
+  const apex::Connection link = connection("relay", "out", "count", "in");
+  Edit e = m.addInserted("t/Relay", "relay_2", 10, 20, link, "in", "out");
+  EXPECT_EQ(e.label, "Insert relay_2 into relay/out -> count/in");
+  EXPECT_THAT(services(e.apply), ElementsAre("add_node", "set_ui", "connect", "disconnect", "connect"));
+  auto ends = [](const Call& c) {
+    const auto& r = std::get<apex::Connect::Request>(c.request);
+    return r.from_node + "/" + r.from_port + " -> " + r.to_node + "/" + r.to_port;
+  };
+  EXPECT_EQ(ends(e.apply[2]), "relay/out -> relay_2/in");
+  EXPECT_EQ(ends(e.apply[3]), "relay/out -> count/in");
+  EXPECT_EQ(ends(e.apply[4]), "relay_2/out -> count/in");
+  EXPECT_THAT(services(e.revert), ElementsAre("disconnect", "connect", "disconnect", "remove_node"));
+  EXPECT_EQ(ends(e.revert[1]), "relay/out -> count/in");
+
+  // a slot takes many links: the old one is dropped as well, and comes back first on undo
+  e = m.addInserted("t/Resettable", "resettable_1", 10, 20, connection("clock", "processed", "count", "reset"), "reset", "processed");
+  EXPECT_THAT(services(e.apply), ElementsAre("add_node", "set_ui", "connect", "connect", "disconnect"));
+  EXPECT_EQ(ends(e.apply[4]), "clock/processed -> count/reset");
+  EXPECT_THAT(services(e.revert), ElementsAre("connect", "disconnect", "disconnect", "remove_node"));
+  EXPECT_EQ(ends(e.revert[0]), "clock/processed -> count/reset");
 }
 
 }  // namespace

@@ -183,11 +183,22 @@ TEST_F(PanelWidgetTest, LoadedGraphsAreLaidOutWithNoBoxOnAnotherAndTidyIsOneUndo
   EXPECT_LT(scene->node("clock")->x(), scene->node("r1")->x());  // sources left, sinks right
   EXPECT_LT(scene->node("r1")->x(), scene->node("r4")->x());
 
-  // zoomed out to see them all: names alone, large; the minimap takes the view elsewhere
+  // Fit zooms out until every box is in view: names alone, large; nothing is out of view, so no minimap
   panel.editor()->fitGraph();
   EXPECT_FALSE(scene->node("r1")->detailed());
+  const QRectF fitted = view->mapToScene(view->viewport()->rect()).boundingRect();
+  for (const auto& [name, box] : scene->boxes())
+    EXPECT_TRUE(fitted.contains(QRectF(box.x, box.y, box.width, box.height))) << name << " is out of view after Fit";
   auto* minimap = panel.editor()->findChild<QWidget*>("minimap");
-  ASSERT_TRUE(minimap && minimap->isVisible());
+  ASSERT_TRUE(minimap);
+  EXPECT_FALSE(minimap->isVisible());
+  // 1:1 with the clock at the view's right edge: most of the graph out of view, the minimap (in a
+  // corner with no box) takes the view elsewhere
+  view->resetTransform();
+  scene->setZoom(1);
+  view->centerOn(scene->node("clock")->sceneBoundingRect().center() - QPointF(view->viewport()->width() * 0.35, 0));
+  QApplication::processEvents();
+  ASSERT_TRUE(minimap->isVisible());
   const QPointF centre = view->mapToScene(view->viewport()->rect().center());
   QTest::mouseClick(minimap, Qt::LeftButton, Qt::NoModifier, QPoint(minimap->width() - 6, minimap->height() - 6));
   EXPECT_NE(view->mapToScene(view->viewport()->rect().center()), centre);

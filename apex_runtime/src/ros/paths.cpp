@@ -31,7 +31,8 @@ std::vector<std::string> configuredRoots(const ros::NodeHandle& pnh) {
   return list;
 }
 
-/** $ROS_HOME/apex, or ~/.ros/apex: the runtime's own folder, made if missing. */
+}  // namespace
+
 std::string ownFolder() {
   const char* ros_home = std::getenv("ROS_HOME");
   const char* home = std::getenv("HOME");
@@ -40,8 +41,6 @@ std::string ownFolder() {
   std::filesystem::create_directories(folder, ec);
   return folder;
 }
-
-}  // namespace
 
 std::string packagePath(const std::string& package) { return ros::package::getPath(package); }
 

@@ -18,6 +18,10 @@ namespace ros_host {
 /** @brief package:// and $(find pkg) through rospack, as everywhere in ROS. */
 std::string packagePath(const std::string& package);
 
+/** @brief $ROS_HOME/apex, or ~/.ros/apex (roscpp has no call for ROS_HOME; rospkg reads the
+ *  same variable): the runtime's own folder, made if missing. */
+std::string ownFolder();
+
 /** @brief The folders of what a runtime's launch named: the graph's and those of files to write
  *  (writable), those of files only read, such as a bag (read only: a bag in ~ must not make all of
  *  ~ writable). */

@@ -40,6 +40,7 @@
 #include "paths.hpp"
 #include "plugin_types.hpp"
 #include "reconfigure.hpp"
+#include "recovery.hpp"
 
 namespace apex {
 namespace ros_host {
@@ -69,6 +70,7 @@ struct RuntimeHost::Impl {
   std::unique_ptr<Reconfigure> reconfigure;  // after the graph: gone before it
   std::unique_ptr<Diagnostics> diagnostics;
   std::unique_ptr<MasterWatch> master_watch;  // last made, first gone
+  std::unique_ptr<Recovery> recovery;  // unsaved edits kept on disk (recovery.hpp)
   std::mutex publish_mutex;
   std::uint64_t published_revision = ~0ull;
 
@@ -248,6 +250,7 @@ struct RuntimeHost::Impl {
       res.revision = graph.revision();
       inspection.clear();
       for (const auto& w : res.warnings) ROS_WARN_STREAM_NAMED("apex", w);
+      recovery->saved(snapshot().text);
     }
     return answered(res, report.status());
   }
@@ -255,7 +258,15 @@ struct RuntimeHost::Impl {
   bool saveGraph(SaveGraph::Request& req, SaveGraph::Response& res) {
     auto path = roots.resolve(req.path, FileRoots::Access::Write);
     if (path) res.path = path.value();  // a relative path: in the first writable root
-    return answered(res, path ? saveGraphFile(graph, path.value()) : path.status());
+    const std::string text = snapshot().text;  // before: an edit during the save keeps a copy
+    const Status st = path ? saveGraphFile(graph, path.value()) : path.status();
+    if (st) recovery->saved(text);
+    return answered(res, st);
+  }
+
+  Recovery::Snapshot snapshot() const {
+    const GraphDescription d = graph.describe();
+    return {formatGraphText(d), d.nodes.size()};
   }
 
   // ------------------------------------------------------------ paths from outside
@@ -332,6 +343,8 @@ struct RuntimeHost::Impl {
   }
 
   void advertise() {
+    // first: a panel asks for it as soon as it sees ~graph
+    services.push_back(serveRecovery(pnh, *recovery, [this](auto& req, auto& res) { return loadGraph(req, res); }));
     graph_pub = pnh.advertise<GraphState>("graph", 1, true);
     status_pub = pnh.advertise<RuntimeStatus>("status", 1);
     serve("list_node_types", &Impl::listNodeTypes);
@@ -364,7 +377,10 @@ struct RuntimeHost::Impl {
             return applied;
           });
     if (diagnosed) diagnostics = std::make_unique<Diagnostics>(nh, pnh, graph);
-    change_timer = pnh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) { publishIfChanged(); });
+    change_timer = pnh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) {
+      publishIfChanged();
+      recovery->tick(graph.revision(), [this] { return snapshot(); });
+    });
     status_timer = pnh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
       if (status_pub.getNumSubscribers() > 0) status_pub.publish(toStatus(graph));
     });
@@ -443,6 +459,8 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
   impl_->loadTypes();
   impl_->loadStartupGraph();  // trusted, like ~overrides: the operator's own launch file
   impl_->loadRoots();  // its folders among them
+  impl_->recovery = std::make_unique<Recovery>(ownFolder() + "/recovery", impl_->pnh.getNamespace());
+  impl_->recovery->saved(impl_->snapshot().text);  // the start-up graph, as its launch gives it again
   impl_->graph.start();
   impl_->advertise();
   impl_->publishIfChanged();
@@ -450,6 +468,8 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
 }
 
 RuntimeHost::~RuntimeHost() {
+  impl_->change_timer.stop();
+  impl_->recovery->close();  // first: a stop that then waits for a node in process() is still clean
   impl_->master_watch.reset();
   {
     std::lock_guard<std::mutex> lock(impl_->publish_mutex);  // they are used under it

@@ -5,16 +5,19 @@
 // itself (no ROS here).
 #pragma once
 
+#include <QPointer>
 #include <QStringList>
 #include <QWidget>
 
 #include <apex/NodeTypeInfo.h>
 
+#include <map>
 #include <optional>
 #include <vector>
 
 #include "apex_rviz_plugin/graph_scene.hpp"
 
+class QFileDialog;
 class QGraphicsView;
 class QLabel;
 class QMenu;
@@ -37,6 +40,17 @@ class GraphEditor : public QWidget {
   void fillParamMenu(QMenu& menu, const QString& node, const QString& param);
   /** @brief The menu of a right-click on a node. Filled for tests to read; shown by a right-click. */
   void fillNodeMenu(QMenu& menu, const QString& node);
+  /** @brief The menu of a right-click on a link: "Insert node..." (openInsertAdd) and "Delete link"
+   *  (it disappears at once, and comes back if the runtime refuses). Filled for tests to read;
+   *  shown by a right-click. */
+  void fillLinkMenu(QMenu& menu, const apex::Connection& link);
+  /** @brief The menu of a right-click on a port: inspect (an output) or fire (a slot), and for an
+   *  output "Show in rviz", disabled with the reason as its tooltip once the port's ROS message
+   *  type is known to have no rviz display. Filled for tests to read; shown by a right-click. */
+  void fillPortMenu(QMenu& menu, const QString& node, const QString& port);
+  /** @brief The runtime inspects node/port as `message_type` (empty: not known): remembered for
+   *  every port of its type, which the runtime inspects alike, for "Show in rviz". */
+  void showMessageType(const QString& node, const QString& port, const std::string& message_type);
   /** @brief The Presets button's menu: save all, and per saved preset restore or compare.
    *  Filled for tests to read; shown by the button. */
   void fillPresetMenu(QMenu& menu);
@@ -62,8 +76,13 @@ class GraphEditor : public QWidget {
   void showHistory(const QString& undo_label, bool can_undo, bool can_redo);
   void setNamespace(const QString& ns);
   QString message() const;
-  /** @brief Scales and scrolls the view to show the whole graph (at most 1:1, at least 40%). */
+  /** @brief The smallest zoom (Fit, the wheel): a docked view shows a graph of hundreds of nodes whole. */
+  static constexpr double kMinZoom = 0.01;  // Fit shows a graph of hundreds of nodes whole
+  /** @brief Scales and scrolls the view to show the whole graph (at most 1:1, at least kMinZoom). */
   void fitGraph();
+  /** @brief Scrolls the view (growing the canvas if needed) to show `area`'s top-left part: where
+   *  a node was just put (freePlace may have moved it below the view). */
+  void reveal(const QRectF& area);
   /** @brief Fits the view to the next graph shown (after connecting to a runtime). */
   void fitNextGraph() { fit_pending_ = true; }
 
@@ -75,6 +94,10 @@ class GraphEditor : public QWidget {
    *  parameter output if `source`) and let go at scene point `at`: the types with a port that fits
    *  (GraphModel::linkable); the one chosen is added there with the link, as one edit. */
   void openLinkAdd(const QString& node, const QString& port, bool source, QPointF at);
+  /** @brief Opens the quick-add box midway between the boxes `link` joins, offering the types a
+   *  new node put into it may be of (GraphModel::insertable); the one chosen is added there, with
+   *  the link's source into it and it into the link's target in the link's place, as one edit. */
+  void openInsertAdd(const apex::Connection& link);
   /** @brief The quick-add box; nullptr before it was first opened. */
   QuickAdd* quickAdd() const { return quick_add_; }
   /** @brief Shows a type's documentation (a palette entry's, F1 in the quick-add box). */
@@ -95,6 +118,9 @@ class GraphEditor : public QWidget {
   /** A new node of `type` at `pos` with `link`, whose end at the new node has its port but no
    *  node name (the name is the panel's to choose): one edit. */
   void addLinkedRequested(const QString& type, QPointF pos, const apex::Connection& link);
+  /** A new node of `type` centred at `pos` put into `link`: fed through its port `in`, feeding
+   *  through `out` (the name is the panel's to choose): one edit. */
+  void insertNewRequested(const QString& type, QPointF pos, const apex::Connection& link, const QString& in, const QString& out);
   void removeRequested(const QString& node);
   void groupIntoSubgraphRequested(const QStringList& nodes);
   void ungroupRequested(const QString& subgraph);
@@ -136,7 +162,10 @@ class GraphEditor : public QWidget {
   QWidget* buildPalette();
   void showNodeMenu(const QString& node, QPoint at);
   void showPortMenu(const QString& node, const QString& port, QPoint at);
+  /** "Show in rviz" for an output of `port_type`: see fillPortMenu. */
+  void addShowInRviz(QMenu& menu, const QString& node, const QString& port, const std::string& port_type);
   void showParamMenu(const QString& node, const QString& param, QPoint at);
+  void showLinkMenu(const apex::Connection& link, QPoint at);
   void removeSelected();
   void showCanvasMenu(QPointF scene_pos, QPoint at);
   void askNewName(const QString& node);
@@ -172,6 +201,8 @@ class GraphEditor : public QWidget {
   QuickAdd* quick_add_ = nullptr;
   QPointF quick_at_;  ///< where the quick-add box adds (scene)
   std::optional<apex::Connection> quick_link_;  ///< the dragged link it completes; its end at the new node without a name
+  std::optional<apex::Connection> quick_insert_;  ///< the link it puts a node into
+  std::vector<NewInsert> quick_inserts_;  ///< the types offered for quick_insert_, with their ports
   HelpView* help_ = nullptr;
   QPoint last_mouse_{-1, -1};  ///< where the mouse was last over the view (viewport pixels)
   QLabel* message_;
@@ -180,8 +211,10 @@ class GraphEditor : public QWidget {
   int added_ = 0;
   QStringList select_when_shown_;
   QStringList presets_;
+  std::map<std::string, std::string> message_types_;  ///< port type -> ROS message type, as inspections answered
   bool fit_pending_ = true;
   QString last_path_ = defaultGraphFolder();  // where a runtime saves and loads by default (~file_roots)
+  QPointer<QFileDialog> file_dialog_;  // Save's or Load's, while open: one at a time
 };
 
 }  // namespace apex_rviz_plugin

@@ -80,6 +80,14 @@ struct NewLink {
   std::string port;  ///< its input, slot or parameter (a link from an output), or its output, trigger or parameter
 };
 
+/** @brief A node type a link may take in its place as a new node, and the ports of it the link's
+ *  two halves join. */
+struct NewInsert {
+  std::string type;  ///< the type's id
+  std::string in;  ///< its port the link's source feeds
+  std::string out;  ///< its port that feeds the link's target
+};
+
 class GraphModel {
  public:
   /** @brief Takes a ~graph message; false (and no change) if its revision is not newer. */
@@ -129,12 +137,22 @@ class GraphModel {
    *  processed); types that only have those come last. Otherwise in the order given. */
   std::vector<NewLink> linkable(const std::vector<apex::NodeTypeInfo>& types, const std::string& node, const std::string& port,
                                 bool source) const;
+  /** @brief The types a new node put into `link` may be of ("Insert node..." on a link): those with
+   *  a port the link's source feeds and one that feeds the link's target in its place, by the
+   *  runtime's rules and linkable's choice of ports. Types with fewer of those ports among the
+   *  events every node has come first; otherwise in the order given. */
+  std::vector<NewInsert> insertable(const std::vector<apex::NodeTypeInfo>& types, const apex::Connection& link) const;
 
   // --- edits: each returns the calls to make; the model changes when ~graph says so ---
   Edit addNode(const std::string& type, const std::string& name, double x, double y) const;
   /** @brief A new node `name` of `type` at (x, y) and link `c`, one of whose ends is the new node,
    *  as one edit: undone by dropping the link (giving back the one it replaced) and removing the node. */
   Edit addLinked(const std::string& type, const std::string& name, double x, double y, const apex::Connection& c) const;
+  /** @brief A new node `name` of `type` at (x, y) put into `link`: the link's source into its port
+   *  `in`, its port `out` into the link's target, `link` gone; one edit, undone by giving `link`
+   *  back and removing the node. */
+  Edit addInserted(const std::string& type, const std::string& name, double x, double y, const apex::Connection& link,
+                   const std::string& in, const std::string& out) const;
   /** @brief Removing a node, undone by adding it back with its parameters, group, UI and connections. */
   std::optional<Edit> removeNode(const std::string& name) const;
   /** @brief A new connection; one into an input fed already replaces that link (one edit). */
@@ -201,6 +219,10 @@ class GraphModel {
   std::vector<std::string> optimizers() const;
 
  private:
+  /** This graph without `gone` (if any) and with a node of no type named "new node" at `level`
+   *  (last of its nodes), for linkable and insertable to try the types in. */
+  GraphModel probe(const std::string& level, const std::optional<apex::Connection>& gone) const;
+
   apex::GraphState graph_;
   bool has_graph_ = false;
 };
@@ -218,6 +240,9 @@ class EditHistory {
   std::vector<Call> undo();
   std::vector<Call> redo();
   std::string undoLabel() const { return undo_.empty() ? "" : undo_.back().label; }
+  std::string redoLabel() const { return redo_.empty() ? "" : redo_.back().label; }
+  /** @brief Forgets what could be redone (the graph was edited elsewhere: it no longer applies). */
+  void dropRedo() { redo_.clear(); }
 
  private:
   std::vector<Edit> undo_, redo_;

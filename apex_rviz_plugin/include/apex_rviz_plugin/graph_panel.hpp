@@ -1,9 +1,19 @@
 // apex_rviz_plugin/GraphPanel: the graph editor docked in rviz. Thin: it holds
 // a PanelWidget, keeps the runtime's namespace in the .rviz config, and turns
-// an inspected image or cloud into an rviz display.
+// an inspected port into an rviz display (rviz_displays.hpp) that follows its
+// node: renamed with it, removed with it, disabled while it cannot run.
 #pragma once
 
 #include <rviz/panel.h>
+
+#include <QPointer>
+#include <map>
+
+#include "apex_rviz_plugin/rviz_displays.hpp"
+
+namespace rviz {
+class Display;
+}
 
 namespace apex_rviz_plugin {
 
@@ -18,9 +28,17 @@ class GraphPanel : public rviz::Panel {
   void save(rviz::Config config) const override;
 
  private:
-  void addDisplay(const QString& rviz_class, const QString& name, const QString& topic);
+  /** node/port is published on `topic` as `message_type`: its display, made once (or the one a
+   *  config kept under its name), shows `topic`, enabled if its node can run. */
+  void showDisplay(const QString& node, const QString& port, const QString& topic, const QString& message_type);
+  /** The graph shown changed: the displays made here follow it. */
+  void followGraph();
+  /** Removes a display from rviz as its Displays panel does. */
+  void removeDisplay(rviz::Display* display);
 
   PanelWidget* widget_;
+  FollowedDisplays followed_;
+  std::map<int, QPointer<rviz::Display>> displays_;  // by followed_'s id; null once deleted in rviz
 };
 
 }  // namespace apex_rviz_plugin

@@ -201,6 +201,9 @@ class GraphScene : public QGraphicsScene {
   void beginConnect(PortItem* from);
   /** @brief Whether nothing is at `pos`: no box, port or widget, no link within a few pixels. */
   bool emptyAt(QPointF pos) const;
+  /** @brief Takes link `c` off the canvas at once and asks for its removal (disconnectRequested);
+   *  the next graph shown draws it again if the runtime refused. */
+  void removeLink(const apex::Connection& c);
 
  signals:
   void connectRequested(const apex::Connection& c);
@@ -221,6 +224,8 @@ class GraphScene : public QGraphicsScene {
    *  go on empty canvas, at a scene and a screen position: a new node for its other end. */
   void linkDropped(const QString& node, const QString& port, bool source, QPointF scene_pos, QPoint screen_pos);
   void portMenuRequested(const QString& node, const QString& port, QPoint screen_pos);
+  /** A right-click on a link, at a screen position. */
+  void linkMenuRequested(const apex::Connection& c, QPoint screen_pos);
   void inspectRequested(const QString& node, const QString& port);
   void slotFired(const QString& node, const QString& slot);
   void paramMenuRequested(const QString& node, const QString& param, QPoint screen_pos);
@@ -237,6 +242,9 @@ class GraphScene : public QGraphicsScene {
   /** A node dragged and let go: onto a connection it fits in, an insert; else a move. */
   void dropped(const QString& node, QPointF pos);
   PortItem* portAt(QPointF pos) const;
+  /** The node and parameter whose name (its label, or its editor's empty space) is at `pos`;
+   *  empty if none (elsewhere, or on a field or slider that has its own handling). */
+  std::pair<QString, QString> paramAt(QPointF pos) const;
   /** The dragged link let go at `e` on port `target` (nullptr: none): connected if the rules allow. */
   void finishConnect(PortItem* target, QGraphicsSceneMouseEvent* e);
   void endDrag();

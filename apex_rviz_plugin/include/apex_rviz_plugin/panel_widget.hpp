@@ -18,6 +18,8 @@
 
 namespace apex_rviz_plugin {
 
+class RecoveryBar;
+
 class PanelWidget : public QWidget {
   Q_OBJECT
  public:
@@ -37,11 +39,17 @@ class PanelWidget : public QWidget {
   /** @brief Where presets are saved, one YAML file per name: $ROS_HOME/apex/presets. */
   static QString presetFolder();
   QSize sizeHint() const override { return QSize(1000, 650); }  ///< room for a few nodes side by side
+  /** @brief Inspects node/port as a double-click on it does (an rviz display of it, if it has one). */
+  void inspect(const QString& node, const QString& port) { onInspect(node, port); }
 
  signals:
   void namespaceChanged(const QString& ns);
-  /** The runtime publishes a port as an image or a cloud: rviz may show it (rviz class, name, topic). */
-  void displayRequested(const QString& rviz_class, const QString& name, const QString& topic);
+  /** The runtime publishes node/port on `topic` as `message_type`, which rviz has a display for
+   *  (rviz_displays.hpp): rviz may show it. */
+  void displayRequested(const QString& node, const QString& port, const QString& topic, const QString& message_type);
+  /** A rename of node `from` (its new path `to`) is sent to the runtime: who follows node names
+   *  (GraphPanel's displays) follows it once a graph shows it. */
+  void renameSent(const QString& from, const QString& to);
   /** The graph shown changed (after a ~graph message): for tests and status. */
   void graphShown(quint64 revision);
   /** Timing from ~status is shown. */
@@ -49,7 +57,15 @@ class PanelWidget : public QWidget {
 
  private:
   void perform(const std::optional<Edit>& edit);
-  void replay(std::vector<Call> calls, const QString& what);
+  /** An undo (`undo`) or redo step's calls, named `label` (the edit's own): the message says
+   *  "undid: <label>" or "redid: <label>"; what the graph is after them is what a redo applies to. */
+  void replay(std::vector<Call> calls, bool undo, const std::string& label);
+  // --- redo after edits made elsewhere (panel_history.cpp) ---
+  /** An undo or redo step answered; `after`, the runtime's graph right after it. */
+  void stepDone(bool undo, const std::string& label, bool ok, const std::string& message, const apex::GraphState& after);
+  /** Someone else (a script, another panel) edited the graph since the last undo or redo: what
+   *  could be redone no longer applies and is dropped. */
+  void dropRedoIfEditedElsewhere();
   /** Undo (true) or redo: at once, or, while an edit is unanswered (not in the history yet: the
    *  runtime's new graph can show before its answer), after the answers, in the order asked. */
   void historyStep(bool undo);
@@ -89,6 +105,8 @@ class PanelWidget : public QWidget {
   void reservePlaces(const std::vector<Call>& calls);
   void onGraph(const apex::GraphState& graph);
   void onInspect(const QString& node, const QString& port);
+  /** The renames among `calls`, about to be sent, as renameSent. */
+  void announceRenames(const std::vector<Call>& calls);
   void refreshTypes();
   /** The size of a new node of `type`'s box, measured on one made for it. */
   Box typeBox(const std::string& type) const;
@@ -104,6 +122,8 @@ class PanelWidget : public QWidget {
   /** A new node of `type` near `at` with `link` (its end at the new node named here), one edit:
    *  a node that feeds the link is placed to the left of `at`, one fed by it to the right. */
   void onAddLinkedRequested(const QString& type, QPointF at, const apex::Connection& link);
+  /** A new node of `type` centred near `at`, put into `link` through its ports `in` and `out`: one edit. */
+  void onInsertNewRequested(const QString& type, QPointF at, const apex::Connection& link, const QString& in, const QString& out);
   /** A path for a new node of `type` in the subgraph shown, and a free place for its box with its
    *  top-left corner near `at` (its top-right one if `left_of`); reserved until the graph shows it. */
   std::pair<std::string, Box> placeNew(const std::string& type, QPointF at, bool left_of = false);
@@ -149,6 +169,11 @@ class PanelWidget : public QWidget {
   void onPresetCompareRequested(const QString& name);
   /** Another subgraph shown: its nodes without a position get one once shown. */
   void onLevelChanged();
+  // --- the unsaved graph a previous run of the runtime left (panel_recovery.cpp) ---
+  /** Asks the runtime just connected: the bar offers its copy, if it has one. */
+  void askRecovery();
+  void onRecoveryRestore();
+  void onRecoveryDiscard();
 
   GraphEditor* editor_;
   GraphModel model_;
@@ -168,7 +193,12 @@ class PanelWidget : public QWidget {
   bool previews_ = false;
   QTimer* preview_timer_ = nullptr;
   std::set<std::string> previewing_;  // "node/port" whose preview is asked for or watched
+  RecoveryBar* recovery_ = nullptr;  // above the editor, hidden unless a copy is offered
   bool untangle_ = true;  // next graph shown: boxes on top of each other are laid out (a Load, a new level)
+  int replaying_ = 0;  // undo and redo steps sent, not answered yet
+  /** The graph a redo applies to: its revision and shape (panel_history.cpp) right after the last
+   *  undo or redo; unset while unknown. */
+  std::optional<std::pair<std::uint64_t, std::string>> redo_base_;
 };
 
 }  // namespace apex_rviz_plugin

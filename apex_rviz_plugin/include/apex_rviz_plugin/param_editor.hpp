@@ -4,6 +4,7 @@
 // while a slider is dragged) and shows the value the runtime applied. No ROS.
 #pragma once
 
+#include <QPointer>
 #include <QTimer>
 #include <QWidget>
 
@@ -12,6 +13,7 @@
 #include <functional>
 
 class QCheckBox;
+class QFileDialog;
 class QHBoxLayout;
 
 namespace apex_rviz_plugin {
@@ -54,6 +56,7 @@ class ParamEditor : public QWidget {
   bool drag_sent_ = false;  ///< values went out during the drag: its release must end it
   QCheckBox* interactive_ = nullptr;
   QHBoxLayout* row_ = nullptr;  ///< the name, the value's widgets, the ports check box
+  QPointer<QFileDialog> dialog_;  ///< a path's file chooser while open: one at a time
 };
 
 }  // namespace apex_rviz_plugin

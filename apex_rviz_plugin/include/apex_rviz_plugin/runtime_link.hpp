@@ -11,6 +11,7 @@
 
 #include <apex/GraphState.h>
 #include <apex/NodeTypeInfo.h>
+#include <apex/Recovery.h>
 #include <apex/RuntimeStatus.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
@@ -47,12 +48,18 @@ class RuntimeLink : public QObject {
 
   /** @brief Makes the calls in order, stopping at the first refused one; `done` gets its message. */
   void run(std::vector<Call> calls, Done done);
+  /** @brief As run, then reads the graph (get_graph): `done` also gets the graph as the runtime
+   *  had it right after the calls (revision 0 if it did not answer). */
+  void runThenRead(std::vector<Call> calls, std::function<void(bool, const std::string&, const apex::GraphState& after)> done);
   void listTypes(std::function<void(bool, const std::string&, const std::vector<apex::NodeTypeInfo>&)> done);
   void control(const std::string& command, Done done);
   void saveGraph(const std::string& path, Done done);
   /** `done` also gets the loaded graph's revision: the ~graph with it or a later one shows that graph. */
   void loadGraph(const std::string& path, std::function<void(bool, const std::string&, std::uint64_t revision)> done);
   void fireSlot(const std::string& node, const std::string& slot, Done done);
+  /** @brief ~recovery with `action` (keep, restore, discard): `done` gets the unsaved graph a
+   *  previous run left, as the runtime reports it after the action. */
+  void recovery(const std::string& action, std::function<void(bool, const std::string&, const apex::Recovery::Response&)> done);
   /** @brief Asks the runtime to publish a port; `done` gets the topic and its message type. */
   void inspect(const std::string& node, const std::string& port,
                std::function<void(bool, const std::string& message, const std::string& topic, const std::string& type)> done,

@@ -1,7 +1,9 @@
-// Two small widgets around the graph view: the minimap in its corner, and the
-// breadcrumb over it that says (and changes) which subgraph the view shows.
+// Small parts around the graph view: the minimap in a corner, the breadcrumb over
+// it that says (and changes) which subgraph the view shows, and the scrolling of
+// the view while a box is dragged to its edge.
 #pragma once
 
+#include <QTimer>
 #include <QTransform>
 #include <QWidget>
 
@@ -17,8 +19,9 @@ class GraphScene;
 class Minimap : public QWidget {
  public:
   Minimap(GraphScene* scene, QGraphicsView* main);
-  /** @brief In the view's bottom-right corner; shown only when the view does not show every
-   *  box and has room for it. */
+  /** @brief Shown only when there are boxes, the view does not show them all and has room for
+   *  it; then in the first corner of the view (bottom-right, bottom-left, top-right, top-left)
+   *  where it covers no box, and hidden if it would cover one in each: it never hides a node. */
   void place();
 
  protected:
@@ -29,6 +32,26 @@ class Minimap : public QWidget {
   GraphScene* scene_;
   QGraphicsView* main_;
   QTransform map_;  // scene -> minimap
+};
+
+/** @brief Scrolls the view while a box is dragged within a few pixels of its edge, faster the
+ *  closer, and the box goes along (as in Blender's node editor and Groot2). */
+class EdgeScroller : public QObject {
+ public:
+  explicit EdgeScroller(QGraphicsView* view);
+
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
+
+ private:
+  /** Pixels to scroll by at the cursor (0, 0 away from the edges). */
+  QPoint speed() const;
+  void step();
+
+  QGraphicsView* view_;
+  QTimer timer_;
+  QPoint at_;  // the cursor while dragging, viewport pixels
+  Qt::MouseButtons held_;
 };
 
 /** @brief Where the view is among nested subgraphs: "graph › camera_detector › inner", each
