@@ -160,6 +160,21 @@ class PanelWidgetTest : public ::testing::Test {
     ASSERT_TRUE(search);
   }
 
+  /** New: an empty graph and a fresh history. */
+  void emptyGraph() {
+    emit panel.editor()->newRequested();
+    ASSERT_TRUE(QTest::qWaitFor(
+        [&] { return panel.editor()->scene()->boxes().empty() && runtimeGraph().nodes.empty() && panel.editsPending() == 0; },
+        kWaitMs));
+  }
+  /** Waits until the node is shown where the panel put it, with no edit on its way. */
+  void waitPlaced(const std::string& node) {
+    ASSERT_TRUE(QTest::qWaitFor(
+        [&] { return panel.editor()->scene()->node(node) && panel.model().hasPosition(node) && panel.editsPending() == 0; },
+        kWaitMs))
+        << node << "; " << panel.editor()->message().toStdString();
+  }
+
   /** Types into the palette's search field and presses Enter: adds the first match. */
   std::string addByKeyboard(const QString& type, const std::string& expected_name) {
     search->setFocus();

@@ -39,19 +39,6 @@ std::vector<QFileDialog*> fileDialogs() {
 
 class FirstUseTest : public PanelWidgetTest {
  protected:
-  /** New: an empty graph and a fresh history. */
-  void emptyGraph() {
-    emit panel.editor()->newRequested();
-    ASSERT_TRUE(QTest::qWaitFor(
-        [&] { return panel.editor()->scene()->boxes().empty() && runtimeGraph().nodes.empty() && panel.editsPending() == 0; },
-        kWaitMs));
-  }
-  void waitPlaced(const std::string& node) {
-    ASSERT_TRUE(QTest::qWaitFor(
-        [&] { return panel.editor()->scene()->node(node) && panel.model().hasPosition(node) && panel.editsPending() == 0; },
-        kWaitMs))
-        << node << "; " << panel.editor()->message().toStdString();
-  }
   /** Runs `act`, then reads and closes the popup menu it showed (QMenu::exec waits for a person
    *  otherwise); nothing if none showed within a few seconds. */
   Popup popupOf(const std::function<void()>& act) {

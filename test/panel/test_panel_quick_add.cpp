@@ -17,20 +17,6 @@ namespace {
 
 class QuickAddTest : public PanelWidgetTest {
  protected:
-  /** New: an empty graph and a fresh history. */
-  void emptyGraph() {
-    emit panel.editor()->newRequested();
-    ASSERT_TRUE(QTest::qWaitFor(
-        [&] { return panel.editor()->scene()->boxes().empty() && runtimeGraph().nodes.empty() && panel.editsPending() == 0; },
-        kWaitMs));
-  }
-  /** Waits until the node is shown where the panel put it, with no edit on its way. */
-  void waitPlaced(const std::string& node) {
-    ASSERT_TRUE(QTest::qWaitFor(
-        [&] { return panel.editor()->scene()->node(node) && panel.model().hasPosition(node) && panel.editsPending() == 0; },
-        kWaitMs))
-        << node << "; " << panel.editor()->message().toStdString();
-  }
   /** The ids the palette shows for `words`, sorted. */
   QStringList paletteShows(const QString& words) {
     search->setText(words);
