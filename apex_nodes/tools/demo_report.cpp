@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     expected += truth[i];
     if (i < found.size()) seen += found[i], matching += found[i] == truth[i];
   }
-  std::printf("\n=== APEX demo: the paper's camera pipeline (Fig. 2) on %zu synthetic frames\n", truth.size());
+  std::printf("\n=== APEX demo: the paper's camera pipeline (Fig. 2) on %zu frames\n", truth.size());
   std::printf("frames processed:   %zu of %zu%s\n", found.size(), truth.size(), all ? "" : " (timed out)");
   std::printf("regions found:      %d, ground truth %d; frames with the right count: %d of %zu\n", seen, expected, matching,
               truth.size());

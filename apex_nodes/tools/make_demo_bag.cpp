@@ -2,12 +2,15 @@
 // backgrounds, seen by a camera mounted on its side (as in the paper's SICK
 // Robot Day setup), and a point cloud per frame; plus the ground truth.
 //   apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|hard]
+//                      [--backgrounds synthetic|real]
 // Each sign's digit is drawn in one of five fonts, with its own size, stroke, slant and turn
 // (the truth lists the digits), so that reading it takes a trained classifier.
 // Deterministic: the same files for the same options. Hard frames add uneven
 // light, shadows, blur, noise, faint and partly hidden signs, and dark shapes
 // that are not signs: data on which the shipped parameters do poorly and tuned
-// ones do well.
+// ones do well. With --backgrounds real, each frame's background is a crop of one of opencv-doc's
+// photographs (demo_backgrounds.hpp; $APEX_OPENCV_DATA overrides its folder) instead of the
+// texture; the signs, digits and clouds stay those of the same seed's synthetic frames.
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl_conversions/pcl_conversions.h>
@@ -26,6 +29,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "demo_backgrounds.hpp"
 
 namespace {
 
@@ -37,6 +41,7 @@ struct Options {
   int frames = 40;
   std::uint64_t seed = 20261121;  // the demo's: its checks expect these exact frames
   bool hard = false;
+  bool real = false;  // backgrounds: opencv-doc's photographs instead of the generated texture
 };
 
 using apex_tools::number;
@@ -54,7 +59,7 @@ Options parse(int argc, char** argv) {
     std::string value;
     const auto eq = arg.find('=');  // --seed=7 as well as --seed 7
     if (eq != std::string::npos) value = arg.substr(eq + 1), arg.resize(eq);
-    if (arg != "--seed" && arg != "--frames" && arg != "--difficulty")
+    if (arg != "--seed" && arg != "--frames" && arg != "--difficulty" && arg != "--backgrounds")
       throw std::invalid_argument("unknown option '" + arg + "'");
     if (eq == std::string::npos) {
       if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
@@ -65,6 +70,11 @@ Options parse(int argc, char** argv) {
     if (arg == "--difficulty") {
       if (value != "easy" && value != "hard") throw std::invalid_argument("--difficulty is easy or hard, not '" + value + "'");
       o.hard = value == "hard";
+    }
+    if (arg == "--backgrounds") {
+      if (value != "synthetic" && value != "real")
+        throw std::invalid_argument("--backgrounds is synthetic or real, not '" + value + "'");
+      o.real = value == "real";
     }
   }
   if (plain.size() < 2 || plain.size() > 3)
@@ -296,19 +306,72 @@ sensor_msgs::PointCloud2 cloud(cv::RNG& rng, const std_msgs::Header& header) {
   return msg;
 }
 
+/** The frame's background. The texture is drawn from `rng` even when a photo replaces it, so
+ *  that `rng` goes on as for synthetic frames: the same seed gives the same signs, digits and
+ *  clouds on either kind. With `photos`, a crop of one (from `crops`), and `where` says which. */
+cv::Mat frameBackground(cv::RNG& rng, cv::RNG& crops, const std::vector<apex_tools::BackgroundPhoto>& photos,
+                        std::string& where) {
+  cv::Mat scene = background(rng);
+  if (photos.empty()) return scene;
+  const apex_tools::BackgroundCrop crop = apex_tools::pickCrop(photos, scene.size(), crops);
+  photos[crop.photo].image(crop.rect).copyTo(scene);
+  where = "photo: " + photos[crop.photo].name + ", x: " + std::to_string(crop.rect.x) + ", y: " + std::to_string(crop.rect.y);
+  return scene;
+}
+
+void writeTruthHeader(std::ostream& truth, const Options& opt) {
+  truth << "# ground truth of " << opt.bag << ": per image frame, the signs in the upright scene\n"
+        << "image_topic: /camera/image_raw\ncloud_topic: /camera/points\n"
+        << "scene_size: [" << kWidth << ", " << kHeight << "]\ncamera_rotation: " << kCameraRotation << "\n"
+        << "difficulty: " << (opt.hard ? "hard" : "easy") << "\n"
+        << (opt.real ? "backgrounds: real\n" : "") << "seed: " << opt.seed << "\nframes:\n";
+}
+
+/** A frame's line: its signs' boxes and digits, and (real backgrounds) where its background was
+ *  cut, in the photo as scaled (demo_backgrounds.hpp). */
+void writeFrameTruth(std::ostream& truth, const ros::Time& stamp, const std::vector<cv::Rect>& boxes,
+                     const std::vector<int>& numbers, const std::string& where) {
+  truth << "  - {stamp: " << stamp.toNSec() << ", signs: " << boxes.size() << ", boxes: [";
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    const auto& b = boxes[i];
+    truth << (i ? ", " : "") << "[" << b.x << ", " << b.y << ", " << b.width << ", " << b.height << "]";
+  }
+  truth << "], digits: [";  // the number on each sign, in the order of the boxes
+  for (std::size_t i = 0; i < numbers.size(); ++i) truth << (i ? ", " : "") << numbers[i];
+  truth << "]";
+  if (!where.empty()) truth << ", background: {" << where << "}";
+  truth << "}\n";
+}
+
+/** The background photos when `opt` asks for them (none otherwise); read before any file is
+ *  written, so that a missing one leaves no bag. Throws std::runtime_error naming the file. */
+std::vector<apex_tools::BackgroundPhoto> photosFor(const Options& opt) {
+  if (!opt.real) return {};
+  return apex_tools::loadBackgroundPhotos(apex_tools::opencvDataDir(), {kWidth, kHeight});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Options opt;
+  std::vector<apex_tools::BackgroundPhoto> photos;
   try {
     opt = parse(argc, argv);
   } catch (const std::invalid_argument& e) {
     std::cerr << "apex_make_demo_bag: " << e.what()
-              << "\nusage: apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|hard]\n";
+              << "\nusage: apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|hard]"
+                 " [--backgrounds synthetic|real]\n";
     return 2;
+  }
+  try {
+    photos = photosFor(opt);
+  } catch (const std::runtime_error& e) {
+    std::cerr << "apex_make_demo_bag: " << e.what() << "\n";
+    return 1;
   }
   cv::RNG rng(opt.seed);
   cv::RNG style(opt.seed * 2654435761ULL + 12345);  // the digits' fonts, sizes, slants: a stream apart
+  cv::RNG crops(opt.seed * 0x9E3779B97F4A7C15ULL + 777);  // which photo, where: a stream apart too
   rosbag::Bag bag;
   try {
     bag.open(opt.bag, rosbag::bagmode::Write);
@@ -317,29 +380,22 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::ofstream truth(opt.truth);
-  truth << "# ground truth of " << opt.bag << ": per image frame, the signs in the upright scene\n"
-        << "image_topic: /camera/image_raw\ncloud_topic: /camera/points\n"
-        << "scene_size: [" << kWidth << ", " << kHeight << "]\ncamera_rotation: " << kCameraRotation << "\n"
-        << "difficulty: " << (opt.hard ? "hard" : "easy") << "\nseed: " << opt.seed << "\nframes:\n";
+  writeTruthHeader(truth, opt);
   const ros::Time start(1700000000, 0);
   for (int f = 0; f < opt.frames; ++f) {
     std_msgs::Header header;
     header.seq = f;
     header.stamp = start + ros::Duration(0.1 * f);
     header.frame_id = "camera";
-    cv::Mat scene = background(rng);
+    std::string where;
+    cv::Mat scene = frameBackground(rng, crops, photos, where);
     const auto boxes = placeSigns(rng, 1 + f % 4);
-    truth << "  - {stamp: " << header.stamp.toNSec() << ", signs: " << boxes.size() << ", boxes: [";
     std::vector<int> numbers;
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
+    for (const auto& b : boxes) {
       numbers.push_back(rng.uniform(0, 10));
-      if (!opt.hard) drawSign(scene, boxes[i], numbers.back(), rng, style);  // easy: the RNG calls the demo's checks rely on
-      const auto& b = boxes[i];
-      truth << (i ? ", " : "") << "[" << b.x << ", " << b.y << ", " << b.width << ", " << b.height << "]";
+      if (!opt.hard) drawSign(scene, b, numbers.back(), rng, style);  // easy: the RNG calls the demo's checks rely on
     }
-    truth << "], digits: [";  // the number on each sign, in the order of the boxes
-    for (std::size_t i = 0; i < numbers.size(); ++i) truth << (i ? ", " : "") << numbers[i];
-    truth << "]}\n";
+    writeFrameTruth(truth, header.stamp, boxes, numbers, where);
     if (opt.hard) drawHardFrame(scene, boxes, numbers, rng, style);
     cv::Mat seen;
     cv::rotate(scene, seen, cv::ROTATE_90_CLOCKWISE);  // the camera lies on its side
@@ -349,7 +405,7 @@ int main(int argc, char** argv) {
     bag.write("/camera/points", cloud_header.stamp, cloud(rng, cloud_header));
   }
   bag.close();
-  std::cout << "wrote " << opt.frames << (opt.hard ? " hard" : "") << " frames to " << opt.bag << " and the ground truth to "
-            << opt.truth << "\n";
+  std::cout << "wrote " << opt.frames << (opt.hard ? " hard" : "") << " frames" << (opt.real ? " on photographs" : "") << " to "
+            << opt.bag << " and the ground truth to " << opt.truth << "\n";
   return truth ? 0 : 1;
 }
