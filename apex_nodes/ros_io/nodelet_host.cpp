@@ -52,10 +52,10 @@ class NodeletNode : public apex::Node {
   void parameterChanged(const std::string& name) override {
     if (!started_ || name == "timeout" || name == kReconfigure.name()) return;  // before setup(): it loads once with every value
     if (auto o = offered(name)) {
-      auto& now = nodelet_values_[name];
-      if (now == paramValue(name)) return;  // the nodelet has it (this node took it from the nodelet)
+      const auto now = nodelet_values_.find(name);
+      if (now != nodelet_values_.end() && now->second == paramValue(name)) return;  // the nodelet has it (taken from it)
       nodelet_host::reconfigure(nodelet(), *o, paramValue(name), kAnswerWithin);
-      now = paramValue(name);
+      nodelet_values_[name] = paramValue(name);
       return;
     }
     load(name == kConfig.name());  // a new config: the user's values, over the ones offered before
@@ -104,24 +104,31 @@ class NodeletNode : public apex::Node {
       if (!ros::isInitialized()) throw std::runtime_error("ROS is not initialised: a nodelet needs a ROS node");
       nodelet_ = std::make_unique<HostedNodelet>(options(config_wins));
       loaded(*nodelet_);
-      takeOffers(nodelet_host::offeredBy(*nodelet_, kAnswerWithin));
     } catch (const std::exception& e) {
       nodelet_.reset();
       error_ = e.what();
       throw;
     }
+    try {  // what it offers: a failure here leaves the nodelet running, the parameters as they were
+      takeOffers(nodelet_host::offeredBy(*nodelet_, kAnswerWithin));
+    } catch (const std::exception& e) {
+      reportError(e.what());
+    }
   }
   /** What the loaded nodelet offers, and the values it has, become this node's: edits, applied
    *  after this call (Node::requestEdit), the list first. */
-  void takeOffers(const std::vector<std::string>& entries) {
-    if (entries != param<Texts>(kReconfigure.name())) requestEdit(kReconfigure.name(), entries);
-    auto offered = nodelet_host::parseOffered(entries);
+  void takeOffers(const nodelet_host::Offers& offers) {
+    if (offers.entries != param<Texts>(kReconfigure.name())) requestEdit(kReconfigure.name(), offers.entries);
+    auto offered = nodelet_host::parseOffered(offers.entries);
     if (!offered) throw std::runtime_error(nodelet_->describe() + ": " + offered.message());
     for (const auto& o : *offered) {
-      const apex::ParamValue value = nodelet_host::valueOf(o);
-      nodelet_values_[o.param] = value;
-      const auto* spec = interface().findParam(o.param);
-      if (spec && !(paramValue(o.param) == value)) requestEdit(o.param, value);  // a new one starts with it
+      const auto at = offers.values.find(o.name);
+      const auto value = nodelet_host::valueOf(o, at == offers.values.end() ? std::string() : at->second);
+      if (!value) continue;  // one the parameter cannot hold: the next set goes to the nodelet in any case
+      nodelet_values_[o.param] = *value;
+      // applied after the list (requests keep their order), so also to a parameter made by it
+      const bool has = interface().findParam(o.param);
+      if (!has || !(paramValue(o.param) == *value)) requestEdit(o.param, *value);
     }
   }
   nodelet_host::LoadOptions options(bool config_wins) const {

@@ -69,19 +69,11 @@ void emitOptions(YAML::Emitter& e, const std::string& edit_method) {
   e << YAML::EndSeq;
 }
 
-std::string entry(const dynamic_reconfigure::ParamDescription& p, const ConfigDescription& d, const Config& now) {
+/** `name`'s value in `c` as YAML text ("" if absent). */
+std::string valueText(const Config& c, const std::string& name) {
   YAML::Emitter e;
   e.SetDoublePrecision(17);
-  e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << p.name << YAML::Key << "type" << YAML::Value
-    << p.type << YAML::Key << "value" << YAML::Value;
-  if (!emitValue(now, p.name, [&](const auto& v) { e << v; }) && !emitValue(d.dflt, p.name, [&](const auto& v) { e << v; }))
-    e << YAML::Null;
-  if (auto min = number(d.min, p.name)) e << YAML::Key << "min" << YAML::Value << *min;
-  if (auto max = number(d.max, p.name)) e << YAML::Key << "max" << YAML::Value << *max;
-  e << YAML::Key << "description" << YAML::Value << p.description;
-  emitOptions(e, p.edit_method);
-  e << YAML::EndMap;
-  return e.c_str();
+  return emitValue(c, name, [&](const auto& v) { e << v; }) ? std::string(e.c_str()) : std::string();
 }
 
 /** The parameters of NodeletHost and NodeletSource themselves: an offered one of the same name
@@ -120,10 +112,16 @@ apex::Result<Offered> parseEntry(const std::string& text) {
   }
 }
 
-/** The enum option whose value is `value` (YAML text), or "". */
+/** The enum option whose value is `value` (YAML text), or "": numbers compared as numbers (the
+ *  description's 0.1 and an emitted 0.10000000000000001 are one value). */
 std::string optionOf(const Offered& o, const std::string& value) {
-  for (const auto& [name, v] : o.options)
-    if (YAML::Load(v).as<std::string>() == YAML::Load(value).as<std::string>()) return name;
+  const YAML::Node want = YAML::Load(value);
+  double a = 0, b = 0;
+  const bool number = YAML::convert<double>::decode(want, a);
+  for (const auto& [name, v] : o.options) {
+    const YAML::Node have = YAML::Load(v);
+    if (number ? YAML::convert<double>::decode(have, b) && a == b : have.as<std::string>() == want.as<std::string>()) return name;
+  }
   return "";
 }
 
@@ -133,7 +131,7 @@ apex::Result<apex::ParamSpec> specOf(const Offered& o) {
   if (!o.options.empty()) {
     std::vector<std::string> names;
     for (const auto& opt : o.options) names.push_back(opt.first);
-    std::string current = optionOf(o, o.value);
+    const std::string current = v.IsNull() ? std::string() : optionOf(o, o.value);
     s = apex::param::options(o.param, names, current.empty() ? names.front() : current);
   } else if (o.type == "bool") {
     s = apex::param::boolean(o.param, v.as<bool>());
@@ -152,7 +150,23 @@ apex::Result<apex::ParamSpec> specOf(const Offered& o) {
 
 }  // namespace
 
-std::vector<std::string> offeredBy(HostedNodelet& nodelet, double timeout) {
+// Its value is the nodelet's default, not the one it has now: the entries stay the same across
+// loads (no edit of `reconfigure` after each), and the values the nodelet has come apart (Offers).
+std::string entryOf(const dynamic_reconfigure::ParamDescription& p, const ConfigDescription& d) {
+  YAML::Emitter e;
+  e.SetDoublePrecision(17);
+  e << YAML::Flow << YAML::BeginMap << YAML::Key << "name" << YAML::Value << p.name << YAML::Key << "type" << YAML::Value
+    << p.type << YAML::Key << "value" << YAML::Value;
+  if (!emitValue(d.dflt, p.name, [&](const auto& v) { e << v; })) e << YAML::Null;
+  if (auto min = number(d.min, p.name)) e << YAML::Key << "min" << YAML::Value << *min;
+  if (auto max = number(d.max, p.name)) e << YAML::Key << "max" << YAML::Value << *max;
+  e << YAML::Key << "description" << YAML::Value << p.description;
+  emitOptions(e, p.edit_method);
+  e << YAML::EndMap;
+  return e.c_str();
+}
+
+Offers offeredBy(HostedNodelet& nodelet, double timeout) {
   const std::string descriptions = nodelet.name() + "/parameter_descriptions", updates = nodelet.name() + "/parameter_updates";
   ros::V_string advertised;
   ros::this_node::getAdvertisedTopics(advertised);
@@ -184,10 +198,13 @@ std::vector<std::string> offeredBy(HostedNodelet& nodelet, double timeout) {
   if (!came)
     throw std::runtime_error(nodelet.describe() + " advertises " + descriptions + " but sent no description and values within " +
                              seconds(timeout));
-  std::vector<std::string> out;
+  Offers out;
   for (const auto& group : got->description->groups)
-    for (const auto& p : group.parameters) out.push_back(entry(p, *got->description, *got->values));
-  std::sort(out.begin(), out.end());
+    for (const auto& p : group.parameters) {
+      out.entries.push_back(entryOf(p, *got->description));
+      out.values[p.name] = valueText(*got->values, p.name);
+    }
+  std::sort(out.entries.begin(), out.entries.end());
   return out;
 }
 
@@ -212,9 +229,13 @@ apex::Status addOffered(const std::vector<std::string>& entries, apex::Manifest&
   return apex::Status::ok();
 }
 
-apex::ParamValue valueOf(const Offered& o) {
-  auto spec = specOf(o);  // its default is that value
-  if (!spec) throw std::runtime_error(spec.message());
+std::optional<apex::ParamValue> valueOf(const Offered& o, const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  Offered now = o;
+  now.value = text;
+  if (!o.options.empty() && optionOf(o, text).empty()) return std::nullopt;  // not one of its options
+  auto spec = specOf(now);  // its default is that value
+  if (!spec) return std::nullopt;
   return spec->default_value;
 }
 

@@ -6,7 +6,9 @@
 #pragma once
 
 #include <XmlRpcValue.h>
+#include <dynamic_reconfigure/ConfigDescription.h>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -24,15 +26,25 @@ struct Offered {
   std::string param;  ///< the node's parameter: the name, or nodelet_<name> where the host has one of that name
   std::string type;  ///< bool, int, double or str (dynamic_reconfigure's)
   std::optional<double> min, max;  ///< finite bounds only
-  std::string value;  ///< YAML text: its value when the nodelet was loaded
+  std::string value;  ///< YAML text: the nodelet's default
   std::string description;
   std::vector<std::pair<std::string, std::string>> options;  ///< an enum: name and value (YAML text)
 };
 
-/** What the loaded nodelet offers, as `reconfigure` entries (sorted by name); none if it serves
- *  no dynamic_reconfigure under its name. Waits up to `timeout` seconds for the server's latched
- *  description and values; throws std::runtime_error naming the nodelet if they do not come. */
-std::vector<std::string> offeredBy(HostedNodelet& nodelet, double timeout);
+/** What a loaded nodelet offers. */
+struct Offers {
+  std::vector<std::string> entries;  ///< `reconfigure` entries (sorted by name)
+  std::map<std::string, std::string> values;  ///< by the nodelet's name: the value it has now, YAML text
+};
+
+/** What the loaded nodelet offers; none if it serves no dynamic_reconfigure under its name. Waits
+ *  up to `timeout` seconds for the server's latched description and values; throws
+ *  std::runtime_error naming the nodelet if they do not come. */
+Offers offeredBy(HostedNodelet& nodelet, double timeout);
+
+/** The `reconfigure` entry of one parameter of a dynamic_reconfigure description (its type,
+ *  bounds where finite, description, an enum's options; its value: the default). */
+std::string entryOf(const dynamic_reconfigure::ParamDescription& param, const dynamic_reconfigure::ConfigDescription& all);
 
 /** Parses `reconfigure` entries; an error names the entry. */
 apex::Result<std::vector<Offered>> parseOffered(const std::vector<std::string>& entries);
@@ -40,8 +52,9 @@ apex::Result<std::vector<Offered>> parseOffered(const std::vector<std::string>& 
 /** Adds the offered parameters to an interface (NodeletHost's shape). */
 apex::Status addOffered(const std::vector<std::string>& entries, apex::Manifest& m);
 
-/** Its value when the nodelet was loaded, as the node's parameter holds it. */
-apex::ParamValue valueOf(const Offered& offered);
+/** The nodelet's value `text` (YAML) as the node's parameter holds it; nullopt if the parameter
+ *  cannot hold it (an enum value that is none of its options, out of its bounds). */
+std::optional<apex::ParamValue> valueOf(const Offered& offered, const std::string& text);
 
 /** The value as the nodelet takes it (an enum's option: its value). */
 XmlRpc::XmlRpcValue toNodelet(const Offered& offered, const apex::ParamValue& value);

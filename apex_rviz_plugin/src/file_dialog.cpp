@@ -43,9 +43,13 @@ QFileDialog* openFileDialog(QPointer<QFileDialog>& open_one, QWidget* parent, co
     dialog->setDirectory(start.absolutePath());
     dialog->selectFile(start.fileName());
   }
-  QObject::connect(dialog, &QFileDialog::fileSelected, dialog, [chosen = std::move(chosen)](const QString& path) {
+  // The dialog belongs to the view, the requester may not outlive it (a node's box is rebuilt when
+  // its parameters change shape): its going closes the dialog and cuts the answer.
+  QObject* requester = parent ? static_cast<QObject*>(parent) : dialog;
+  QObject::connect(dialog, &QFileDialog::fileSelected, requester, [chosen = std::move(chosen)](const QString& path) {
     if (!path.isEmpty()) chosen(path);
   });
+  if (parent) QObject::connect(parent, &QObject::destroyed, dialog, &QWidget::close);
   open_one = dialog;
   dialog->open();
   return dialog;

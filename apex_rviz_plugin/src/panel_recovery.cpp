@@ -21,7 +21,7 @@ void PanelWidget::onRecoveryRestore() {
   const auto done = replacingGraph("restored the unsaved graph");  // as a Load: a fresh history
   link_.recovery("restore", [this, done](bool ok, const std::string& m, const apex::Recovery::Response& res) {
     done(ok, m);
-    if (res.offered) recovery_->setBusy(false);  // refused: still offered, to try again or discard
+    if (res.offered || !ok) recovery_->setBusy(false);  // refused, or no answer: still offered, to try again
     else recovery_->withdraw();
   });
 }
@@ -30,7 +30,7 @@ void PanelWidget::onRecoveryDiscard() {
   recovery_->setBusy(true);
   link_.recovery("discard", [this](bool ok, const std::string& m, const apex::Recovery::Response& res) {
     report(ok, m, "discarded the unsaved graph");
-    if (res.offered) recovery_->setBusy(false);
+    if (res.offered || !ok) recovery_->setBusy(false);
     else recovery_->withdraw();
   });
 }

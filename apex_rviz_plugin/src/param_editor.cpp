@@ -7,6 +7,7 @@
 #include <QAbstractSlider>
 #include <QCheckBox>
 #include <QColorDialog>
+#include <QPointer>
 #include <QComboBox>
 #include <QDial>
 #include <QDoubleSpinBox>
@@ -385,8 +386,9 @@ void ParamEditor::buildColor() {
   auto paint = [button](const QColor& c) { button->setStyleSheet("background-color: " + c.name()); };
   auto current = std::make_shared<QColor>();
   connect(button, &QPushButton::clicked, this, [this, current, paint] {
+    const QPointer<ParamEditor> self(this);  // the dialog's own event loop: the box may be rebuilt meanwhile
     const QColor c = QColorDialog::getColor(*current, dialogParent(this), QString::fromStdString(param_.name));
-    if (!c.isValid()) return;
+    if (!self || !c.isValid()) return;
     *current = c;
     paint(c);
     send(QString("[%1, %2, %3]").arg(c.red()).arg(c.green()).arg(c.blue()), false);

@@ -1,5 +1,7 @@
 #include "edit_requests.hpp"
 
+#include "apex/core/log.hpp"
+
 namespace apex {
 namespace detail {
 
@@ -38,7 +40,11 @@ void EditRequests::run() {
     auto node = r.node.lock();
     if (!node) continue;
     lock.unlock();  // the edit waits for thread groups, whose nodes may push meanwhile
-    apply_(node, r.param, r.value);
+    try {
+      apply_(node, r.param, r.value);
+    } catch (const std::exception& e) {  // out of memory, a system error: that request is lost, not the process
+      log(LogLevel::Error, "", "a node's request to set its parameter '" + r.param + "' failed: " + e.what());
+    }
     node.reset();
     lock.lock();
   }

@@ -49,7 +49,9 @@ Status Graph::Impl::presetParams(NodeState& s, const std::vector<std::pair<std::
       if (!iface) return iface.status();
       s.setInterface(iface.value());
     }
-    s.params[s.findParam(param)].requested = value.value();
+    const int i = s.findParam(param);
+    s.params[i].requested = value.value();
+    s.params[i].resend = s.manifest().params[i].every_set;  // as requestParam: a command, applied even if equal
   }
   return Status::ok();
 }

@@ -65,12 +65,12 @@ struct RuntimeHost::Impl {
   Inspection inspection;
   ParamMirror mirror;
   ros::Publisher graph_pub, status_pub;
+  std::unique_ptr<Recovery> recovery;  // unsaved edits kept on disk (recovery.hpp); outlives the services
   std::vector<ros::ServiceServer> services;
   ros::WallTimer change_timer, status_timer;
   std::unique_ptr<Reconfigure> reconfigure;  // after the graph: gone before it
   std::unique_ptr<Diagnostics> diagnostics;
   std::unique_ptr<MasterWatch> master_watch;  // last made, first gone
-  std::unique_ptr<Recovery> recovery;  // unsaved edits kept on disk (recovery.hpp)
   std::mutex publish_mutex;
   std::uint64_t published_revision = ~0ull;
 
