@@ -89,12 +89,7 @@ if start_x_and_master; then  # else `failure` says why
     layout_failure="no screenshot"
   fi
 fi
-errors=$(rviz_errors "$work/rviz.log")
-[ -z "$failure" ] && [ -n "$errors" ] && failure="rviz reported errors: $errors"
-
-cleanup
-trap - EXIT
-mkdir -p "$(dirname "$result")"
+end_session
 failures=$(( (${#failure} > 0) + (${#layout_failure} > 0) ))
 if [ -z "$failure" ]; then
   echo "rviz check: ok (screenshot $shot)"

@@ -19,6 +19,7 @@ from the .srv's text, and its MD5 is the wildcard roscpp accepts.
 import argparse
 import os
 import sys
+import threading
 import time
 import xmlrpc.client
 
@@ -118,15 +119,37 @@ def problems(rviz, save_path, wanted):
     return missing, lines
 
 
+class Changes:
+    """Something that can change what rviz has: a line rviz logs (the panel making a display) or a
+    message on a display's topic (rviz receiving it). wait_for() returns at the next one."""
+
+    def __init__(self, topics):
+        rospy.init_node("rviz_displays_check", anonymous=True, disable_signals=True)
+        self.cond, self.count = threading.Condition(), 0
+        self.subs = [rospy.Subscriber(t, rospy.AnyMsg, self.seen, queue_size=1) for t in ["/rosout"] + topics]
+
+    def seen(self, _):
+        with self.cond:
+            self.count += 1
+            self.cond.notify_all()
+
+    def wait_for(self, since, timeout):
+        with self.cond:
+            self.cond.wait_for(lambda: self.count != since, timeout=max(timeout, 0))
+            return self.count
+
+
 def wait(save_path, wanted, timeout):
     rviz, end = Rviz(), time.monotonic() + timeout
-    missing, lines = ["rviz has no save_config service"], []
+    # a display named "apex: node/port" shows the runtime's /apex/inspect/node/port
+    changes = Changes(["/apex/inspect/" + name.split(": ", 1)[-1] for name in wanted])
+    missing, lines, seen = ["rviz has no save_config service"], [], 0
     while time.monotonic() < end:
         if rviz.find():
             missing, lines = problems(rviz, save_path, wanted)
             if not missing:
                 break
-        time.sleep(0.2)
+        seen = changes.wait_for(seen, end - time.monotonic())
     for line in lines:
         print("rviz: " + line)
     for m in missing:

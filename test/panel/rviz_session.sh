@@ -53,3 +53,14 @@ testcase() {  # NAME FAILURE-OR-EMPTY
   else printf '<testcase classname="Rviz" name="%s"><failure message="%s"/></testcase>' "$1" "$(printf '%s' "$2" | esc)"
   fi
 }
+
+# Ends a check: rviz's errors are the failure if nothing else failed; everything started is
+# stopped; the folder of $result (the JUnit file) is made.
+end_session() {
+  local errors
+  errors=$(rviz_errors "$work/rviz.log")
+  if [ -z "$failure" ] && [ -n "$errors" ]; then failure="rviz reported errors: $errors"; fi
+  cleanup
+  trap - EXIT
+  mkdir -p "$(dirname "$result")"
+}

@@ -56,12 +56,7 @@ if start_x_and_master; then  # else `failure` says why
     fi
   fi
 fi
-errors=$(rviz_errors "$work/rviz.log")
-[ -z "$failure" ] && [ -n "$errors" ] && failure="rviz reported errors: $errors"
-
-cleanup
-trap - EXIT
-mkdir -p "$(dirname "$result")"
+end_session
 for f in "$failure" "$gone_failure"; do [ -z "$f" ] || echo "rviz show check: FAILED: $f"; done
 [ -z "$failure$gone_failure" ] && echo "rviz show check: ok"
 [ -z "$failure" ] || tail -20 "$work/rviz.log"

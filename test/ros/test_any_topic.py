@@ -53,6 +53,36 @@ class Received:
         self.sub = rospy.Subscriber(topic, kind, self.messages.append, queue_size=100)
 
 
+POINTS = [((k * 37 % 101) / 50.0 - 1, (k * 53 % 103) / 51.5 - 1, (k * 71 % 107) / 53.5 - 1) for k in range(3000)]
+
+
+def add_nodelet_voxels(rt):
+    """A cloud from /points into NodeletHost 'pcl_voxels' running pcl_ros's VoxelGrid at 0.1."""
+    rt.add_node('PointCloudSubscriber', 'cloud', params={'topic': '/points'})
+    rt.add_node('NodeletHost', 'pcl_voxels', params={
+        'nodelet': 'pcl/VoxelGrid', 'inputs': ['input:sensor_msgs/PointCloud2'],
+        'outputs': ['output:sensor_msgs/PointCloud2'], 'config': "{leaf_size: 0.1, filter_field_name: ''}"})
+
+
+def add_apex_voxels_and_publish(rt, leaf_size, nodelet_topic, apex_topic):
+    """APEX's VoxelGrid at `leaf_size` beside 'pcl_voxels', both fed by 'cloud'; their outputs
+    published on the two topics. Returns what the test receives there, once connected, and the
+    publisher of /points, once the runtime subscribes."""
+    rt.add_node('VoxelGrid', 'voxels', params={'leaf_size': leaf_size})
+    rt.add_node('PointCloudPublisher', 'pub_nodelet', params={'topic': nodelet_topic})
+    rt.add_node('PointCloudPublisher', 'pub_apex', params={'topic': apex_topic})
+    rt.connect('cloud', 'cloud', 'pcl_voxels', 'input')
+    rt.connect('cloud', 'cloud', 'voxels', 'cloud')
+    rt.connect('pcl_voxels', 'output', 'pub_nodelet', 'cloud')
+    rt.connect('voxels', 'cloud', 'pub_apex', 'cloud')
+    by_nodelet, by_apex = Received(nodelet_topic, PointCloud2), Received(apex_topic, PointCloud2)
+    wait_for(lambda: by_nodelet.sub.get_num_connections() > 0 and by_apex.sub.get_num_connections() > 0, 30,
+             'the publishers connect')
+    pub = rospy.Publisher('/points', PointCloud2, queue_size=10)
+    wait_for(lambda: pub.get_num_connections() > 0, 30, 'the runtime subscribes to /points')
+    return by_nodelet, by_apex, pub
+
+
 class AnyTopic(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -138,26 +168,11 @@ class AnyTopic(unittest.TestCase):
 
     def test_nodelet_host_runs_pcl_ros_voxel_grid_equal_to_apexs_own(self):
         rt = self.rt
-        rt.add_node('PointCloudSubscriber', 'cloud', params={'topic': '/points'})
-        rt.add_node('NodeletHost', 'pcl_voxels', params={
-            'nodelet': 'pcl/VoxelGrid', 'inputs': ['input:sensor_msgs/PointCloud2'],
-            'outputs': ['output:sensor_msgs/PointCloud2'], 'config': "{leaf_size: 0.1, filter_field_name: ''}"})
-        rt.add_node('VoxelGrid', 'voxels', params={'leaf_size': 0.1})
-        rt.add_node('PointCloudPublisher', 'pub_nodelet', params={'topic': '/voxels_nodelet'})
-        rt.add_node('PointCloudPublisher', 'pub_apex', params={'topic': '/voxels_apex'})
-        rt.connect('cloud', 'cloud', 'pcl_voxels', 'input')
-        rt.connect('cloud', 'cloud', 'voxels', 'cloud')
-        rt.connect('pcl_voxels', 'output', 'pub_nodelet', 'cloud')
-        rt.connect('voxels', 'cloud', 'pub_apex', 'cloud')
-        by_nodelet, by_apex = Received('/voxels_nodelet', PointCloud2), Received('/voxels_apex', PointCloud2)
-        wait_for(lambda: rt.node('pub_nodelet') is not None and by_nodelet.sub.get_num_connections() > 0
-                   and by_apex.sub.get_num_connections() > 0, 30, 'the publishers connect')
-        points = [((k * 37 % 101) / 50.0 - 1, (k * 53 % 103) / 51.5 - 1, (k * 71 % 107) / 53.5 - 1) for k in range(3000)]
+        add_nodelet_voxels(rt)
+        by_nodelet, by_apex, pub = add_apex_voxels_and_publish(rt, 0.1, '/voxels_nodelet', '/voxels_apex')
         header = rospy.Header(stamp=rospy.Time(2000, 7), frame_id='lidar')
-        pub = rospy.Publisher('/points', PointCloud2, queue_size=10)
-        wait_for(lambda: pub.get_num_connections() > 0, 30, 'the runtime subscribes to /points')
         try:
-            wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, points)),
+            wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, POINTS)),
                               by_nodelet.messages and by_apex.messages)[1], 30, 'both voxel clouds')
         except AssertionError as e:
             raise AssertionError('%s; %s' % (e, ' | '.join(' '.join(str(rt.status(n)).split())
@@ -172,20 +187,17 @@ class AnyTopic(unittest.TestCase):
         self.assertEqual(rt.node('pcl_voxels').error, '')
         # a nodelet nobody declares: an error naming it and the closest ones, the graph runs on
         rt.set_parameter('pcl_voxels', 'nodelet', 'pcl/VoxelGrd')
-        wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, points)), rt.node('pcl_voxels').error)[1],
+        wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, POINTS)), rt.node('pcl_voxels').error)[1],
                    30, 'the missing plugin reported')
         self.assertIn("'pcl/VoxelGrd'", rt.node('pcl_voxels').error)
         self.assertIn('pcl/VoxelGrid', rt.node('pcl_voxels').error)
         count = len(by_apex.messages)
-        wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, points)), len(by_apex.messages) > count)[1],
+        wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, POINTS)), len(by_apex.messages) > count)[1],
                    30, "APEX's VoxelGrid still sends")
 
     def test_a_hosted_nodelets_dynamic_reconfigure_parameters_are_its_nodes_own(self):
         rt = self.rt
-        rt.add_node('PointCloudSubscriber', 'cloud', params={'topic': '/points'})
-        rt.add_node('NodeletHost', 'pcl_voxels', params={
-            'nodelet': 'pcl/VoxelGrid', 'inputs': ['input:sensor_msgs/PointCloud2'],
-            'outputs': ['output:sensor_msgs/PointCloud2'], 'config': "{leaf_size: 0.1, filter_field_name: ''}"})
+        add_nodelet_voxels(rt)
         # what the nodelet offers becomes the node's parameters, with the values it loaded with
         wait_for(lambda: 'leaf_size' in rt.parameters('pcl_voxels'), 30, "the nodelet's leaf_size as a parameter")
         params = rt.parameters('pcl_voxels')
@@ -194,25 +206,13 @@ class AnyTopic(unittest.TestCase):
         self.assertIn('filter_limit_max', params)
         self.assertEqual(rt.node('pcl_voxels').error, '')
         # set like any parameter: the nodelet gets it live (its dynamic_reconfigure server), not reloaded
-        rt.add_node('VoxelGrid', 'voxels', params={'leaf_size': 0.25})
-        rt.add_node('PointCloudPublisher', 'pub_nodelet', params={'topic': '/offered_nodelet'})
-        rt.add_node('PointCloudPublisher', 'pub_apex', params={'topic': '/offered_apex'})
-        rt.connect('cloud', 'cloud', 'pcl_voxels', 'input')
-        rt.connect('cloud', 'cloud', 'voxels', 'cloud')
-        rt.connect('pcl_voxels', 'output', 'pub_nodelet', 'cloud')
-        rt.connect('voxels', 'cloud', 'pub_apex', 'cloud')
+        # topics of their own: rospy may keep a connection of another test's publisher of the same name
+        by_nodelet, by_apex, pub = add_apex_voxels_and_publish(rt, 0.25, '/offered_nodelet', '/offered_apex')
         rt.set_parameter('pcl_voxels', 'leaf_size', 0.25)
         wait_for(lambda: rospy.get_param('/apex/nodelets/pcl_voxels/leaf_size', 0) == 0.25, 30,
                  "the nodelet's own leaf_size to follow")
-        # topics of their own: rospy may keep a connection of another test's publisher of the same name
-        by_nodelet, by_apex = Received('/offered_nodelet', PointCloud2), Received('/offered_apex', PointCloud2)
-        wait_for(lambda: by_nodelet.sub.get_num_connections() > 0 and by_apex.sub.get_num_connections() > 0, 30,
-                 'the publishers connect')
-        points = [((k * 37 % 101) / 50.0 - 1, (k * 53 % 103) / 51.5 - 1, (k * 71 % 107) / 53.5 - 1) for k in range(3000)]
-        pub = rospy.Publisher('/points', PointCloud2, queue_size=10)
-        wait_for(lambda: pub.get_num_connections() > 0, 30, 'the runtime subscribes to /points')
         header = rospy.Header(stamp=rospy.Time(3000, 1), frame_id='lidar')
-        wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, points)),
+        wait_for(lambda: (pub.publish(point_cloud2.create_cloud_xyz32(header, POINTS)),
                           by_nodelet.messages and by_apex.messages)[1], 30, 'both voxel clouds')
         pa = sorted(point_cloud2.read_points(by_nodelet.messages[-1], ('x', 'y', 'z')))
         pb = sorted(point_cloud2.read_points(by_apex.messages[-1], ('x', 'y', 'z')))
