@@ -132,6 +132,7 @@ TEST_F(PanelWidgetTest, GroupIntoASubgraphOpenItWithADoubleClickGoUpAndUndo) {
   EXPECT_TRUE(find(runtimeGraph(), "subgraph_1/clock_3"));
 
   // a double-click on it opens it: its nodes and the connection between them
+  waitPlaced("subgraph_1");  // a new box is placed a moment after it shows
   NodeItem* sub = scene->node("subgraph_1");
   sub->setZValue(10);
   mouse(view, QEvent::MouseButtonDblClick, sub->scenePos() + QPointF(60, 10), Qt::LeftButton);
@@ -142,6 +143,7 @@ TEST_F(PanelWidgetTest, GroupIntoASubgraphOpenItWithADoubleClickGoUpAndUndo) {
   emit panel.editor()->groupIntoSubgraphRequested({"subgraph_1/clock_3"});
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("subgraph_1/subgraph_1") != nullptr; }, kWaitMs))
       << panel.editor()->message().toStdString();
+  waitPlaced("subgraph_1/subgraph_1");
   NodeItem* inner = scene->node("subgraph_1/subgraph_1");
   inner->setZValue(10);
   mouse(view, QEvent::MouseButtonDblClick, inner->scenePos() + QPointF(60, 10), Qt::LeftButton);
