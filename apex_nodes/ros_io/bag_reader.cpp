@@ -7,7 +7,8 @@
 // takes them) and never drops: the next frame waits until the graph has read
 // the last one. Seeks in O(log n) (bag_frames.hpp). While paused it holds its
 // frame and sends it again after any change downstream, so a parameter's
-// effect shows on that frame at once. After the last frame of a pass it sends the
+// effect shows on that frame at once; so does a player at the end of a pass that
+// does not loop (as `rosbag play`, it does not loop unless asked). After the last frame of a pass it sends the
 // end-of-sequence token, so nodes downstream (SequenceMean) know the pass is over.
 #include <algorithm>
 #include <chrono>
@@ -91,9 +92,9 @@ class BagReader : public apex::Node {
               "empty: image_topic and cloud_topic, on outputs image and cloud")
           .shapesInterface();
   static inline const apex::ParamDecl<std::string> kImageTopic =
-      param::text("image_topic").init("/camera/image_raw").describe("used when topics is empty").shapesInterface();
+      param::text("image_topic").init("/camera/image_raw").describe("used when topics is empty").shapesInterface().legacy();
   static inline const apex::ParamDecl<std::string> kCloudTopic =
-      param::text("cloud_topic").init("/camera/points").describe("used when topics is empty").shapesInterface();
+      param::text("cloud_topic").init("/camera/points").describe("used when topics is empty").shapesInterface().legacy();
   static inline const apex::ParamDecl<double> kSyncWindow =
       param::number("sync_window")
           .range(0.0, 10.0)
@@ -170,7 +171,12 @@ class BagReader : public apex::Node {
     }
   }
   void downstreamChanged() override {
-    if (!playing_.get() && current_ >= 0) request(current_);  // the held frame, once more
+    // Paused, or at the end of a pass that does not loop: the frame shown is held, and sent once
+    // more, so a node added or tuned after the pass sees it (it ends no pass: no second `finished`).
+    const bool held = !playing_.get() || (next_ > last_ && !loop_.get());
+    if (!held || current_ < 0) return;
+    request(current_);
+    again_ = true;
   }
 
   void process() override {
@@ -186,7 +192,8 @@ class BagReader : public apex::Node {
       return;
     }
     int k;
-    const bool requested = request_ >= 0;
+    const bool requested = request_ >= 0, again = requested && again_;
+    again_ = false;
     if (requested) {
       k = request_;
       request_ = -1;
@@ -196,7 +203,7 @@ class BagReader : public apex::Node {
       return;  // paused, past the end, or an early wake-up: the timer for the next frame is set
     }
     next_ = k + 1;
-    const bool pass_ends = k == last_ && (!requested || playing_.get());  // stepping by hand ends nothing
+    const bool pass_ends = k == last_ && !again && (!requested || playing_.get());  // stepping by hand ends nothing
     if (pass_ends && loop_.get()) next_ = first_;
     if (playing_.get() && next_ <= last_) schedule(k);
     if (pass_ends) {
@@ -283,6 +290,7 @@ class BagReader : public apex::Node {
   void request(int k) {
     if (k < 0 || !bag_) return;
     request_ = k;
+    again_ = false;
     notifyNewData();
   }
   void wake() {
@@ -338,6 +346,7 @@ class BagReader : public apex::Node {
   int current_ = -1;  // the frame sent last (held while paused)
   int next_ = 0;  // the frame playing sends next
   int request_ = -1;  // a frame asked for by a seek, a slot or a change downstream
+  bool again_ = false;  // request_ is the held frame sent again after a change downstream
   bool opened_ = false;
   std::string open_error_;  // why the file did not open ("" if it did, or there is none)
   bool seek_on_open_ = false;

@@ -139,6 +139,7 @@ inline void writeType(std::string& out, const apex::NodeType& type) {
       std::string notes;
       if (p.interactive) notes += "has ports by default";
       if (p.shapes_ports) notes += std::string(notes.empty() ? "" : "; ") + "changes the ports";
+      if (p.legacy) notes += std::string(notes.empty() ? "" : "; ") + "kept so older graphs load";
       if (!notes.empty()) description += std::string(description.empty() ? "" : " ") + "*(" + notes + ")*";
       shapes = shapes || p.shapes_ports;
       out += "| `" + cell(p.name) + "` | " + cell(p.kind) + " | " + limits(s, p) + " | " + code(p.default_value) + " | " +

@@ -112,6 +112,11 @@ void GraphEditor::fillParamMenu(QMenu& menu, const QString& node, const QString&
   QAction* reset = menu.addAction("Reset to default (" + QString::fromStdString(p->default_value) + ")", this,
                                   [this, node, param] { emit resetRequested(node, param); });
   reset->setEnabled(p->value != p->default_value);
+  const apex::NodeInfo* n = model_->node(node.toStdString());
+  const bool pinned = n && BoxView::of(n->ui).isPinned(param.toStdString());
+  QAction* pin = menu.addAction(pinned ? "Unpin from the compact box" : "Pin to the compact box", this,
+                                [this, node, param, pinned] { emit pinRequested(node, param, !pinned); });
+  pin->setObjectName("pin");
   if (p->type != "int" && p->type != "double") return;  // a number can be tuned
   QMenu* with = menu.addMenu("Optimise with");
   with->setObjectName("optimise_with");

@@ -4,6 +4,7 @@
 
 #include "apex/core/connection_rules.hpp"
 #include "apex/core/node_names.hpp"
+#include "apex_rviz_plugin/box_view.hpp"
 #include "calls.hpp"
 
 #include <algorithm>
@@ -209,7 +210,7 @@ std::optional<Edit> GraphModel::insert(const std::string& name, const apex::Conn
   }
   if (in.to_port.empty() || out.from_port.empty()) return std::nullopt;
   Edit e("Insert " + name + " into " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port, {}, {});
-  e.apply = {setUi(name, ui(x, y)), calls::connect("disconnect", c), calls::connect("connect", in),
+  e.apply = {setUi(name, withPosition(n->ui, x, y)), calls::connect("disconnect", c), calls::connect("connect", in),
              calls::connect("connect", out)};
   e.revert = {calls::connect("disconnect", out), calls::connect("disconnect", in), calls::connect("connect", c),
               setUi(name, n->ui.empty() ? ui(0, 0) : n->ui)};
@@ -284,7 +285,7 @@ std::optional<Edit> GraphModel::arrange(const std::map<std::string, std::pair<do
   for (const auto& [name, at] : positions) {
     const apex::NodeInfo* n = node(name);
     if (!n) continue;
-    e.apply.push_back(setUi(name, ui(at.first, at.second)));
+    e.apply.push_back(setUi(name, withPosition(n->ui, at.first, at.second)));
     e.revert.push_back(setUi(name, n->ui.empty() ? ui(0, 0) : n->ui));
   }
   if (e.apply.empty()) return std::nullopt;
@@ -294,7 +295,26 @@ std::optional<Edit> GraphModel::arrange(const std::map<std::string, std::pair<do
 std::optional<Edit> GraphModel::move(const std::string& node_name, double x, double y) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return std::nullopt;
-  return Edit{"Move " + node_name, {setUi(node_name, ui(x, y))}, {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+  return Edit{"Move " + node_name, {setUi(node_name, withPosition(n->ui, x, y))}, {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+}
+
+std::optional<Edit> GraphModel::setExpanded(const std::string& node_name, bool expanded) const {
+  const apex::NodeInfo* n = node(node_name);
+  if (!n) return std::nullopt;
+  return Edit{(expanded ? "Expand " : "Collapse ") + node_name, {setUi(node_name, withUiKey(n->ui, "expanded", expanded ? "true" : "false"))},
+              {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+}
+
+std::optional<Edit> GraphModel::setPinned(const std::string& node_name, const std::string& param, bool pinned) const {
+  const apex::NodeInfo* n = node(node_name);
+  if (!n || !parameter(node_name, param)) return std::nullopt;
+  std::vector<std::string> now = BoxView::of(n->ui).pinned;
+  now.erase(std::remove(now.begin(), now.end(), param), now.end());
+  if (pinned) now.push_back(param);
+  std::string list = "[";
+  for (const auto& p : now) list += (list.size() > 1 ? ", " : "") + p;
+  return Edit{(pinned ? "Pin " : "Unpin ") + node_name + "/" + param, {setUi(node_name, withUiKey(n->ui, "pinned", list + "]"))},
+              {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
 }
 
 std::string GraphModel::freshName(const std::string& type, const std::string& parent,

@@ -27,11 +27,7 @@ QPainterPath curve(QPointF a, QPointF b) {
 
 /** Whether `pos` is on the link's curve, within a few pixels: its shape is the area the curve
  *  encloses, which is not the link. */
-bool onCurve(const ConnectionItem* c, QPointF pos) {
-  QPainterPathStroker near;
-  near.setWidth(8);
-  return near.createStroke(c->path()).contains(pos);
-}
+bool onCurve(const ConnectionItem* c, QPointF pos) { return c->shape().contains(pos); }
 
 }  // namespace
 
@@ -51,6 +47,14 @@ ConnectionItem::ConnectionItem(const apex::Connection& c, PortItem* from, PortIt
 }
 
 void ConnectionItem::reroute() { setPath(curve(from_->scenePos(), to_->scenePos())); }
+
+QPainterPath ConnectionItem::shape() const {
+  QPainterPathStroker near;  // the drawn line is 2 wide: at a small zoom a click would rarely land on it
+  near.setWidth(8);
+  return near.createStroke(path());
+}
+
+QRectF ConnectionItem::boundingRect() const { return shape().boundingRect(); }
 
 // ---------------------------------------------------------------- GraphScene
 
@@ -87,6 +91,7 @@ void GraphScene::show(const GraphModel& model) {
       connect(item, &NodeItem::moved, this, &GraphScene::dropped);
       connect(item, &NodeItem::slotFired, this, &GraphScene::slotFired);
       connect(item, &NodeItem::paramMenuRequested, this, &GraphScene::paramMenuRequested);
+      connect(item, &NodeItem::expandToggled, this, &GraphScene::expandToggled);
       connect(item, &QGraphicsObject::xChanged, this, &GraphScene::reroute);
       connect(item, &QGraphicsObject::yChanged, this, &GraphScene::reroute);
     } else {

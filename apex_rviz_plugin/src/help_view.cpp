@@ -43,6 +43,7 @@ QString parameterTable(const apex::NodeTypeInfo& type) {
     QStringList notes;
     if (p.interactive) notes << "has ports by default";
     if (p.shapes_ports) notes << "changes the ports";
+    if (p.legacy) notes << "kept so older graphs load";
     shapes = shapes || p.shapes_ports;
     QString about = esc(p.description);
     if (!notes.isEmpty()) about += (about.isEmpty() ? "<i>(" : " <i>(") + notes.join("; ") + ")</i>";

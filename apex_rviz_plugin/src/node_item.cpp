@@ -5,9 +5,11 @@
 #include <QGraphicsSceneMouseEvent>
 #include <QFontMetricsF>
 #include <QPainter>
+#include <QToolButton>
 #include <QVBoxLayout>
 #include <QWidget>
 
+#include "apex_rviz_plugin/box_view.hpp"
 #include "apex_rviz_plugin/graph_scene.hpp"
 #include "apex_rviz_plugin/param_editor.hpp"
 #include "apex_rviz_plugin/transport_bar.hpp"
@@ -126,6 +128,7 @@ void NodeItem::update(const apex::NodeInfo& node) {
   for (const auto& p : info_.parameters)
     if (auto* e = editor(p.name)) e->showApplied(p);
   const bool typing = params_ && params_->widget()->focusWidget();  // not rebuilt under the keyboard
+  if (!typing && paramsKey() != params_key_) return build();  // expanded, collapsed, pinned, or a value set
   if (!typing && wantedWidth() != width_) return build();  // a longer path, group or type: wider
   if (transport_) transport_->show(info_);
   setToolTip(QString::fromStdString(info_.error));
@@ -140,6 +143,8 @@ void NodeItem::build() {
   params_ = nullptr;
   editors_.clear();
   transport_ = nullptr;
+  toggle_ = nullptr;
+  params_key_ = paramsKey();
   QWidget* box = info_.parameters.empty() ? nullptr : buildParams();
   width_ = wantedWidth(box);
   double left = kTitle + kRow / 2, right = left;
@@ -182,7 +187,10 @@ QWidget* NodeItem::buildParams() {
             [this, node](const QString& n, const QString& v) { emit parameterEdited(node, n, v); });
     connect(transport_, &TransportBar::slotFired, this, [this, node](const QString& slot) { emit slotFired(node, slot); });
   }
+  const BoxView view = boxView();
+  const std::vector<std::string> shown = view.shown(info_);
   for (const auto& p : info_.parameters) {
+    if (std::find(shown.begin(), shown.end(), p.name) == shown.end()) continue;
     auto* e = new ParamEditor(p);
     editors_[p.name] = e;
     column->addWidget(e);
@@ -193,10 +201,37 @@ QWidget* NodeItem::buildParams() {
     connect(e, &ParamEditor::menuRequested, this,
             [this, node](const QString& n, QPoint at) { emit paramMenuRequested(node, n, at); });
   }
+  BoxView compact = view;
+  compact.expanded = false;
+  const std::size_t hidden = view.hidden(info_);
+  // a box of few parameters shows them all with no toggle; one that would leave none out has none
+  if (hidden > 0 || (view.isExpanded(info_) && view.collapsible(info_) && compact.hidden(info_) > 0)) {
+    toggle_ = new QToolButton;
+    toggle_->setObjectName("expand");
+    toggle_->setAutoRaise(true);
+    toggle_->setText(hidden > 0 ? QString("▸ %1 more parameter%2").arg(hidden).arg(hidden == 1 ? "" : "s")
+                                : QString("▴ fewer parameters"));
+    toggle_->setToolTip(hidden > 0 ? "show every parameter" : "show only the pinned parameters and those set away from their defaults");
+    column->addWidget(toggle_, 0, Qt::AlignLeft);
+    connect(toggle_, &QToolButton::clicked, this, [this, node, expand = hidden > 0] { emit expandToggled(node, expand); });
+  }
   QFont small = box->font();  // as the node's own text: rviz's default font is larger
   small.setPointSizeF(8);
   box->setFont(small);
   return box;
+}
+
+BoxView NodeItem::boxView() const {
+  BoxView view = BoxView::of(info_.ui);
+  if (TransportBar::isPlayer(info_)) view.always = {"frame"}, view.elsewhere = {"playing", "time"};
+  return view;
+}
+
+std::string NodeItem::paramsKey() const {
+  const BoxView view = boxView();
+  std::string key = view.isExpanded(info_) ? "+" : "-";
+  for (const auto& name : view.shown(info_)) key += name + ",";
+  return key;
 }
 
 QString NodeItem::shortName() const {  // inside a subgraph: its own name

@@ -167,6 +167,14 @@ void PanelWidget::onInteractiveToggled(const QString& node, const QString& param
 
 void PanelWidget::onNodeMoved(const QString& node, QPointF at) { perform(model_.move(node.toStdString(), at.x(), at.y())); }
 
+void PanelWidget::onExpandToggled(const QString& node, bool expanded) {
+  perform(model_.setExpanded(node.toStdString(), expanded));
+}
+
+void PanelWidget::onPinRequested(const QString& node, const QString& param, bool pinned) {
+  perform(model_.setPinned(node.toStdString(), param.toStdString(), pinned));
+}
+
 void PanelWidget::onInsertRequested(const QString& node, const apex::Connection& c, QPointF at) {
   perform(model_.insert(node.toStdString(), c, at.x(), at.y()));
 }

@@ -79,6 +79,8 @@ void PanelWidget::connectEditor() {
   connect(s, &GraphScene::parameterEdited, this, &PanelWidget::onParameterEdited);
   connect(s, &GraphScene::interactiveToggled, this, &PanelWidget::onInteractiveToggled);
   connect(s, &GraphScene::nodeMoved, this, &PanelWidget::onNodeMoved);
+  connect(s, &GraphScene::expandToggled, this, &PanelWidget::onExpandToggled);
+  connect(e, &GraphEditor::pinRequested, this, &PanelWidget::onPinRequested);
   connect(s, &GraphScene::insertRequested, this, &PanelWidget::onInsertRequested);
   connect(e, &GraphEditor::optimiseRequested, this, &PanelWidget::onOptimiseRequested);
   connect(e, &GraphEditor::applyBestRequested, this, &PanelWidget::onApplyBestRequested);

@@ -185,6 +185,28 @@ TEST(BagReader, AHeldFrameIsSentAgainWhenSomethingDownstreamChanges) {
   for (double t : p.stamps()) EXPECT_EQ(t, frameTime(7).toSec());
 }
 
+TEST(BagReader, AtTheEndOfAPassTheLastFrameIsHeldAndANodeConnectedAfterGetsIt) {
+  Player p(5);  // plays once (no loop, as rosbag play) and stops on frame 4
+  ASSERT_TRUE(p.sink("stamps").waitFor(5));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  ASSERT_EQ(object<Counter>(p.graph(), "passes")->resets, 1);
+  // a node added after the pass: it gets the held frame, not "waiting for a frame"
+  add(p.graph(), "test/Gain", "gain");
+  add(p.graph(), "test/Collector", "gained");
+  link(p.graph(), "gain", "out", "gained", "in");
+  link(p.graph(), "bag", "frame", "gain", "in");
+  ASSERT_TRUE(object<Collector>(p.graph(), "gained")->waitFor(1));
+  EXPECT_EQ(object<Collector>(p.graph(), "gained")->ints().back(), 4);
+  ASSERT_TRUE(p.graph().setParameter("gain", "gain", "3"));  // tuned after the pass: the same frame again
+  auto& gained = *object<Collector>(p.graph(), "gained");
+  while (gained.ints().back() != 12 && gained.waitFor(gained.size() + 1)) {
+  }
+  EXPECT_EQ(gained.ints().back(), 12);
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  for (std::size_t i = 5; i < p.stamps().size(); ++i) EXPECT_EQ(p.stamps()[i], frameTime(4).toSec());
+  EXPECT_EQ(object<Counter>(p.graph(), "passes")->resets, 1);  // re-sending ends no pass
+}
+
 TEST(BagReader, GraphsWithTheOlderParametersStillLoad) {
   Graph g(pluginRegistry());
   NodeDescription d;

@@ -159,7 +159,11 @@ TEST_F(PanelWidgetTest, GroupIntoASubgraphOpenItWithADoubleClickGoUpAndUndo) {
   QTest::mouseClick(panel.editor()->findChild<QToolButton*>("up"), Qt::LeftButton);  // Up: the top
   EXPECT_EQ(scene->level(), "");
   EXPECT_FALSE(crumb("")->isVisible());  // the bar is hidden at the top
+  // each level's boxes are made anew when it is shown: the ones to click on top again (the
+  // grouped box may lie under print_1's: the group took clock_3's place)
+  scene->node("subgraph_1")->setZValue(10);
   mouse(view, QEvent::MouseButtonDblClick, scene->node("subgraph_1")->scenePos() + QPointF(60, 10), Qt::LeftButton);
+  scene->node("subgraph_1/subgraph_1")->setZValue(10);
   mouse(view, QEvent::MouseButtonDblClick, scene->node("subgraph_1/subgraph_1")->scenePos() + QPointF(60, 10), Qt::LeftButton);
   ASSERT_EQ(scene->level(), "subgraph_1/subgraph_1");
   QTest::mouseClick(crumb(""), Qt::LeftButton);  // "graph": straight to the top

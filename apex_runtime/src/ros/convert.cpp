@@ -43,6 +43,7 @@ ParamInfo param(const ParamSpec& s, const std::string& value, bool interactive) 
   if (s.kind == ParamKind::Path) p.path_mode = pathMode(s.path_mode);
   p.interactive = interactive;
   p.shapes_ports = s.shapes_interface;
+  p.legacy = s.legacy;
   p.description = s.description;
   return p;
 }

@@ -131,6 +131,8 @@ class GraphEditor : public QWidget {
   void renameRequested(const QString& node, const QString& new_name);
   /** Parameters back to their defaults: `param`, or all of the node's if empty. */
   void resetRequested(const QString& node, const QString& param);
+  /** A parameter pinned to (or unpinned from) its node's compact box. */
+  void pinRequested(const QString& node, const QString& param, bool pinned);
   void enabledRequested(const QString& node, bool enabled);
   void groupRequested(const QString& node, const QString& group);
   void fireSlotRequested(const QString& node, const QString& slot);

@@ -171,7 +171,12 @@ class GraphModel {
   std::optional<Edit> resetToDefault(const std::string& node, const std::string& param = "") const;
   /** @brief A new name for a node in its place (a name, not a path), one edit. */
   std::optional<Edit> rename(const std::string& node, const std::string& new_name) const;
+  /** @brief The node's box moved; its other ui metadata (compact or expanded, pins) kept. */
   std::optional<Edit> move(const std::string& node, double x, double y) const;
+  /** @brief The node's box expanded (every parameter) or compact (BoxView), one edit. */
+  std::optional<Edit> setExpanded(const std::string& node, bool expanded) const;
+  /** @brief A parameter pinned to (or unpinned from) the node's compact box, one edit. */
+  std::optional<Edit> setPinned(const std::string& node, const std::string& param, bool pinned) const;
   /** @brief Nodes moved to new positions (name -> x, y) as one edit, e.g. "Tidy". */
   std::optional<Edit> arrange(const std::map<std::string, std::pair<double, double>>& positions, const std::string& label) const;
   /** @brief `nodes` (of one level) as graph file text, for the clipboard: types, parameters,

@@ -13,10 +13,12 @@
 
 #include <map>
 
+#include "apex_rviz_plugin/box_view.hpp"
 #include "apex_rviz_plugin/graph_model.hpp"
 #include "apex_rviz_plugin/layout.hpp"
 
 class QGraphicsProxyWidget;
+class QToolButton;
 
 namespace apex_rviz_plugin {
 
@@ -88,7 +90,10 @@ class NodeItem : public QGraphicsObject {
   QString portTip(const apex::PortInfo& port) const;
   PortItem* port(const std::string& name, bool source) const;
   const std::vector<PortItem*>& ports() const { return ports_; }
+  /** @brief The editor of a parameter the box shows, nullptr for one it does not (BoxView). */
   ParamEditor* editor(const std::string& param) const;
+  /** @brief The toggle between the compact and the expanded box, nullptr if it has none. */
+  QToolButton* expandToggle() const { return toggle_; }
   /** @brief What the box shows from ~status, e.g. "0.12 ms (max 0.50) · 10.0 Hz · 42 firings". */
   const QString& timing() const { return timing_; }
   const QString& waiting() const { return waiting_; }
@@ -112,6 +117,8 @@ class NodeItem : public QGraphicsObject {
   void moved(const QString& node, QPointF pos);
   void slotFired(const QString& node, const QString& slot);
   void paramMenuRequested(const QString& node, const QString& param, QPoint screen_pos);
+  /** The box's toggle: every parameter, or the compact box (BoxView). */
+  void expandToggled(const QString& node, bool expanded);
 
  protected:
   void mouseReleaseEvent(QGraphicsSceneMouseEvent* e) override;
@@ -119,8 +126,13 @@ class NodeItem : public QGraphicsObject {
 
  private:
   void build();
-  /** The parameters' editors (and a player's transport bar) in one widget, not yet placed. */
+  /** The editors of the parameters shown (BoxView), a player's transport bar and the toggle
+   *  between compact and expanded, in one widget, not yet placed. */
   QWidget* buildParams();
+  /** What the ui metadata says of the box, with a player's frame slider and transport bar. */
+  BoxView boxView() const;
+  /** What the parameters' part of the box shows: rebuilt when it changes. */
+  std::string paramsKey() const;
   QString shortName() const;
   QString title() const;
   /** The line under the title: the type and thread group, or what subgraph it is. */
@@ -138,6 +150,8 @@ class NodeItem : public QGraphicsObject {
   std::vector<PortItem*> ports_;
   std::map<std::string, ParamEditor*> editors_;
   TransportBar* transport_ = nullptr;  // in params_, for players
+  QToolButton* toggle_ = nullptr;  // in params_: compact or expanded
+  std::string params_key_;  // paramsKey() when built
   QGraphicsProxyWidget* params_ = nullptr;
   QString timing_, values_;
   QString waiting_;  // what a stalled node waits for (the runtime says)
@@ -162,6 +176,9 @@ class ConnectionItem : public QGraphicsPathItem {
   ConnectionItem(const apex::Connection& c, PortItem* from, PortItem* to);
   const apex::Connection& connection() const { return c_; }
   void reroute();
+  /** A band 8 units wide along the curve: a click that near it is on it (hit tests, menus). */
+  QPainterPath shape() const override;
+  QRectF boundingRect() const override;
 
  private:
   apex::Connection c_;
@@ -229,6 +246,7 @@ class GraphScene : public QGraphicsScene {
   void inspectRequested(const QString& node, const QString& port);
   void slotFired(const QString& node, const QString& slot);
   void paramMenuRequested(const QString& node, const QString& param, QPoint screen_pos);
+  void expandToggled(const QString& node, bool expanded);
   void levelChanged(const QString& path);
 
  protected:

@@ -147,6 +147,8 @@ class PanelWidget : public QWidget {
   void onInsertRequested(const QString& node, const apex::Connection& c, QPointF at);
   /** Tunes node/param with `optimizer`, or a new one below the node (its names from types_). */
   void onOptimiseRequested(const QString& node, const QString& param, const QString& optimizer);
+  void onExpandToggled(const QString& node, bool expanded);
+  void onPinRequested(const QString& node, const QString& param, bool pinned);
   void onApplyBestRequested(const QString& optimizer);
   /** Where the boxes are shown, placed or not yet saved: positions for a copy. */
   std::map<std::string, std::pair<double, double>> shownPositions() const;

@@ -128,6 +128,13 @@ class ParamDecl {
     return std::move(*this);
   }
 
+  /** @brief Replaced by another parameter but kept, so graphs saved before still load and run as
+   *  they did (ParamSpec::legacy): the panel shows it only when it is set away from its default. */
+  ParamDecl legacy() && {
+    spec_.legacy = true;
+    return std::move(*this);
+  }
+
   const ParamSpec& spec() const { return spec_; }
   const std::string& name() const { return spec_.name; }
   operator const ParamSpec&() const { return spec_; }  // NOLINT: what Manifest::param takes

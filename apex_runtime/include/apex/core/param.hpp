@@ -64,6 +64,7 @@ struct ParamSpec {
   bool file_name = false;  ///< strings: a single file name, never a path (no '/', not "." or "..")
   bool shapes_interface = false;  ///< a change may change the node's ports (Manifest::shapedBy)
   bool every_set = false;  ///< parameterChanged() on every set, even to the same value
+  bool legacy = false;  ///< kept so graphs saved before its replacement load: front ends hide it at its default
 
   ParamSpec& describe(std::string text) {
     description = std::move(text);
