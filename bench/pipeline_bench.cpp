@@ -1,14 +1,20 @@
 // The demo pipeline (the paper's Fig. 2 chain) in APEX with 1 and 2 thread
 // groups, against the same OpenCV calls hand-written in one loop, measured in
 // the same run, with OpenCV's own thread count fixed (1, then its default).
+// Then balance (apex/core/balance.hpp): the demo placed by it against one group and
+// the hand placement, and generated chains of unequal busy stages placed by it
+// against the best of every placement, each run.
 //   apex_bench_pipeline [--quick]   (with the devel space sourced: node types come from pluginlib)
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
+#include <map>
+#include <random>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "apex/core/balance.hpp"
 #include "apex/core/graph.hpp"
 #include "apex_nodes/types.hpp"
 #include "plugin_registry.hpp"
@@ -92,16 +98,34 @@ class FrameSink : public Node {
     std::unique_lock<std::mutex> l(m);
     cv.wait(l, [&] { return count >= n; });
   }
+  long seen() {
+    std::lock_guard<std::mutex> l(m);
+    return count;
+  }
   std::mutex m;
   std::condition_variable cv;
   long count = 0;
   Clock::time_point last;
 };
 
+/** A stage of a generated chain: `us` microseconds of busy work, then the frame passed on. */
+class Work : public Node {
+ public:
+  static Manifest manifest() { return Manifest().input<Any>("in").output<Any>("out"); }
+  void process() override {
+    const auto end = Clock::now() + std::chrono::microseconds(us);
+    while (Clock::now() < end) {
+    }
+    publishMessage("out", inputMessage("in"));
+  }
+  int us = 0;
+};
+
 NodeRegistry& registry() {
   return apex_bench::pluginRegistry([](NodeRegistry& r) {
     (void)r.add<FrameSource>("bench/FrameSource");
     (void)r.add<FrameSink>("bench/FrameSink");
+    (void)r.add<Work>("bench/Work");
   });
 }
 
@@ -173,6 +197,166 @@ Figures loopRun(const std::vector<cv::Mat>& input, int n) {
   return {1000 * s / n, n / s};
 }
 
+// ------------------------------------------------------------------ balance
+
+/** Frames per second with the source always ready: n frames at the sink, after 5 to fill the pipeline. */
+double freeRunFps(FrameSource* src, FrameSink* sink, int n) {
+  const long at = sink->seen();
+  src->free_running = true;
+  src->notifyNewData();
+  sink->waitFor(at + 5);
+  const auto t0 = Clock::now();
+  sink->waitFor(at + 5 + n);
+  const double fps = n / std::chrono::duration<double>(Clock::now() - t0).count();
+  src->free_running = false;
+  return fps;
+}
+
+using Groups = std::map<std::string, std::string>;  // node -> thread group
+
+/** What balance proposes for two cores after n frames in the groups the graph has now. */
+Groups balanced(Graph& g, FrameSource* src, FrameSink* sink, int n, std::string* text = nullptr) {
+  const auto before = g.nodeStats();
+  (void)freeRunFps(src, sink, n);
+  (void)g.waitIdle(5);
+  const BalanceInput in = balanceInput(g, measuredTimes(before, g.nodeStats()));
+  BalanceOptions options;
+  options.groups = 2;
+  const auto p = balance(in, options);
+  if (!p) std::fprintf(stderr, "balance: %s\n", p.message().c_str());
+  if (!p) return {};
+  Groups current;
+  for (const auto& d : g.describe().nodes) current[d.name] = d.thread_group;
+  std::vector<std::string> now;
+  for (const auto& node : in.nodes) now.push_back(current[node.name]);
+  const auto names = stageGroupNames(p.value(), now);
+  Groups out;
+  for (std::size_t i = 0; i < in.nodes.size(); ++i) out[in.nodes[i].name] = names[p->stage[i]];
+  if (text) *text = describeProposal(p.value(), in, names);
+  for (const auto& note : p->notes)
+    if (text) *text += "; " + note;
+  return out;
+}
+
+void place(Graph& g, const Groups& groups) {
+  for (const auto& [node, group] : groups)
+    if (auto st = g.setThreadGroup(node, group); !st) std::fprintf(stderr, "%s\n", st.message().c_str());
+}
+
+/** The demo chain's frames/s: in one group, placed by hand (`hand`), or by balance (measured first in one group). */
+double demoFps(const std::vector<cv::Mat>& input, int n, bool hand, bool by_balance, std::string* text = nullptr) {
+  Graph g(registry());
+  build(g, hand);
+  auto* src = static_cast<FrameSource*>(g.nodeObject("src"));
+  auto* sink = static_cast<FrameSink*>(g.nodeObject("sink"));
+  src->frames = &input;
+  g.start();
+  (void)g.waitIdle(5);
+  if (by_balance) place(g, balanced(g, src, sink, n, text));
+  const double fps = freeRunFps(src, sink, n);
+  g.stop();
+  return fps;
+}
+
+/** src -> one Work per entry of `us` -> sink; node names in chain order. */
+std::vector<std::string> buildChain(Graph& g, const std::vector<int>& us) {
+  std::vector<std::string> names{"src"};
+  (void)g.addNode("bench/FrameSource", "src");
+  for (std::size_t i = 0; i < us.size(); ++i) {
+    names.push_back("w" + std::to_string(i));
+    (void)g.addNode("bench/Work", names.back());
+    static_cast<Work*>(g.nodeObject(names.back()))->us = us[i];
+  }
+  names.push_back("sink");
+  (void)g.addNode("bench/FrameSink", "sink");
+  for (std::size_t i = 1; i < names.size(); ++i)
+    if (auto st = g.connect(names[i - 1], i == 1 ? "image" : "out", names[i], i + 1 == names.size() ? "image" : "in"); !st)
+      std::fprintf(stderr, "%s\n", st.message().c_str());
+  return names;
+}
+
+/** A generated chain's frames/s with `groups` (none: measure, and place it as balance proposes, into *proposed). */
+double chainFps(const std::vector<int>& us, const Groups& groups, const std::vector<cv::Mat>& input, int n,
+                Groups* proposed = nullptr) {
+  Graph g(registry());
+  buildChain(g, us);
+  auto* src = static_cast<FrameSource*>(g.nodeObject("src"));
+  auto* sink = static_cast<FrameSink*>(g.nodeObject("sink"));
+  src->frames = &input;
+  place(g, groups);
+  g.start();
+  (void)g.waitIdle(5);
+  if (proposed) place(g, *proposed = balanced(g, src, sink, n));
+  const double fps = freeRunFps(src, sink, n);
+  g.stop();
+  return fps;
+}
+
+/** Where a two-group placement cuts the chain: "after w2", or "none" for one group. */
+std::string cutOf(const Groups& groups, const std::vector<std::string>& names) {
+  for (std::size_t i = 0; i + 1 < names.size(); ++i)
+    if (groups.count(names[i]) && groups.count(names[i + 1]) && groups.at(names[i]) != groups.at(names[i + 1]))
+      return "after " + names[i];
+  return "none";
+}
+
+void demoBalanceTable(const std::vector<cv::Mat>& input, int n, int reps) {
+  cv::setNumThreads(1);
+  Spread one, hand, bal;
+  std::string text;
+  for (int r = 0; r < reps; ++r) {
+    one.add(demoFps(input, n, false, false));
+    hand.add(demoFps(input, n, true, false));
+    bal.add(demoFps(input, n, false, true, &text));
+  }
+  std::printf("\n## Balance: the demo chain placed by it\n\n");
+  std::printf("The demo chain above with OpenCV at 1 thread: in one group, in two placed by hand (the second from the\n");
+  std::printf("morphology), and in the groups `balance` proposes for 2 cores after %d frames in one group. Interleaved,\n", n);
+  std::printf("%d repetitions: median (min–max) frames/s; ratios of the medians.\n\n", reps);
+  std::printf("| placement | frames/s | vs 1 group |\n|---|---|---|\n");
+  std::printf("| 1 group | %s | 1.00x |\n", one.text("%.1f").c_str());
+  std::printf("| by hand | %s | %.2fx |\n", hand.text("%.1f").c_str(), hand.median() / one.median());
+  std::printf("| balance | %s | %.2fx |\n", bal.text("%.1f").c_str(), bal.median() / one.median());
+  std::printf("\nTarget: balance at least 1.85x one group. Its last proposal: %s.\n", text.c_str());
+}
+
+void chainBalanceTable(const std::vector<cv::Mat>& input, int n, int reps, int chains) {
+  std::printf("\n## Balance: generated chains of unequal stages\n\n");
+  std::printf("Source → 6 stages of busy work (200–2000 µs each, drawn from seeds 1, 2, ...) → sink. Every placement in\n");
+  std::printf("at most 2 groups (one group, and a cut after each node) is run, and so is balance's (measured over %d\n", n);
+  std::printf("frames in one group first); interleaved, %d repetitions, medians. Best: the placement of the highest median.\n\n", reps);
+  std::printf("| chain µs | balance's cut | best cut | balance frames/s | best frames/s | balance / best |\n|---|---|---|---|---|---|\n");
+  for (int seed = 1; seed <= chains; ++seed) {
+    std::mt19937 rng(static_cast<unsigned>(seed));
+    std::uniform_int_distribution<int> draw(200, 2000);
+    std::vector<int> us(6);
+    for (int& u : us) u = draw(rng);
+    Graph names_only(registry());
+    const auto names = buildChain(names_only, us);
+    std::vector<Groups> tries{{}};  // one group, then a cut after each node but the sink
+    for (std::size_t c = 0; c + 1 < names.size(); ++c) {
+      Groups g;
+      for (std::size_t i = 0; i < names.size(); ++i) g[names[i]] = i <= c ? "default" : "second";
+      tries.push_back(g);
+    }
+    std::vector<Spread> fps(tries.size());
+    Spread bal;
+    Groups proposed;
+    for (int r = 0; r < reps; ++r) {
+      for (std::size_t t = 0; t < tries.size(); ++t) fps[t].add(chainFps(us, tries[t], input, n));
+      bal.add(chainFps(us, {}, input, n, &proposed));
+    }
+    std::size_t best = 0;
+    for (std::size_t t = 1; t < tries.size(); ++t)
+      if (fps[t].median() > fps[best].median()) best = t;
+    std::string chain;
+    for (int u : us) chain += (chain.empty() ? "" : " ") + std::to_string(u);
+    std::printf("| %s | %s | %s | %s | %s | %.3f |\n", chain.c_str(), cutOf(proposed, names).c_str(), cutOf(tries[best], names).c_str(),
+                bal.text("%.1f").c_str(), fps[best].text("%.1f").c_str(), bal.median() / fps[best].median());
+  }
+  std::printf("\nTarget: balance / best at least 0.95.\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -226,5 +410,7 @@ int main(int argc, char** argv) {
       std::printf("| %s | %.3f | %.3f | %.3f |\n", i == 0 ? "1" : std::to_string(default_threads).c_str(), std::atof(nodelet[i]),
                   apex_latency[i], apex_latency[i] / std::atof(nodelet[i]));
   }
+  demoBalanceTable(input, n, reps);
+  chainBalanceTable(input, quick ? 60 : 150, quick ? 1 : 3, quick ? 1 : 3);
   return 0;
 }

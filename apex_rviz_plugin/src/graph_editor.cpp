@@ -152,6 +152,10 @@ QWidget* GraphEditor::buildToolBar() {
   connect(fit, &QToolButton::clicked, this, &GraphEditor::fitGraph);
   auto* tidy = button("tidy", "Tidy", "lay the nodes out in layers, sources left, sinks right (one undo step)");
   connect(tidy, &QToolButton::clicked, this, &GraphEditor::tidyRequested);
+  auto* balance = button("balance", "Balance",
+                         "thread groups that make the graph a pipeline over the cores, from each node's time "
+                         "(one undo step; the status line says what to expect)");
+  connect(balance, &QToolButton::clicked, this, &GraphEditor::balanceRequested);
   auto* previews = button("previews", "Previews",
                           "thumbnails of images and sparklines of numbers on the nodes in view "
                           "(at most 5 a second; nodes out of view cost nothing)");
@@ -185,7 +189,7 @@ QWidget* GraphEditor::buildToolBar() {
   auto* buttons = new QToolBar;
   buttons->setObjectName("buttons");
   buttons->setToolButtonStyle(Qt::ToolButtonTextOnly);
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, previews, presets, fresh, save, load}) buttons->addWidget(b);
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews, presets, fresh, save, load}) buttons->addWidget(b);
   rows->addWidget(buttons);
   return bar;
 }

@@ -371,6 +371,22 @@ std::optional<Edit> GraphModel::setThreadGroup(const std::string& name, const st
   return Edit{"Move " + name + " to group " + group, {{"set_thread_group", set}}, {{"set_thread_group", back}}};
 }
 
+std::optional<Edit> GraphModel::setThreadGroups(const std::vector<std::pair<std::string, std::string>>& moves,
+                                                const std::string& label) const {
+  Edit e(label, {}, {});
+  for (const auto& [name, group] : moves) {
+    const apex::NodeInfo* n = node(name);
+    if (!n || n->thread_group == group) continue;
+    apex::SetThreadGroup::Request set, back;
+    set.node = back.node = name;
+    set.group = group, back.group = n->thread_group;
+    e.apply.push_back({"set_thread_group", set});
+    e.revert.insert(e.revert.begin(), Call{"set_thread_group", back});  // the last moved goes back first
+  }
+  if (e.apply.empty()) return std::nullopt;
+  return e;
+}
+
 std::optional<Edit> GraphModel::setInteractive(const std::string& name, const std::string& param, bool interactive) const {
   const apex::ParamInfo* p = parameter(name, param);
   if (!p) return std::nullopt;

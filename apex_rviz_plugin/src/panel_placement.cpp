@@ -1,6 +1,7 @@
 // PanelWidget, where boxes go: new nodes on free places, a loaded graph laid out
 // (graphviz), boxes that grew pushed off the ones below; positions are sent as
-// set_ui outside the history, and reserved until the graph shows them.
+// set_ui outside the history, and reserved until the graph shows them. And where
+// nodes run: Balance's thread groups, one edit.
 #include "apex_rviz_plugin/panel_widget.hpp"
 
 #include <variant>
@@ -15,6 +16,21 @@ void PanelWidget::tidy() {
   auto at = layeredLayout(boxes, editor_->scene()->edges());
   for (auto& [name, p] : at) p.first += left, p.second += top;
   perform(model_.arrange(at, "Tidy"));
+}
+
+void PanelWidget::balance() {
+  editor_->showMessage("Balance: asking the runtime for thread groups...", false);
+  // The times measured so far (frames 0): the answer comes at once, and the call never waits for frames.
+  link_.balance(0, 0, [this](bool ok, const std::string& m, const apex::Balance::Response& res) {
+    if (!ok) return report(false, m, "Balance");
+    std::vector<std::pair<std::string, std::string>> moves;
+    for (std::size_t i = 0; i < res.nodes.size() && i < res.groups.size(); ++i) moves.emplace_back(res.nodes[i], res.groups[i]);
+    std::string text = res.message;
+    for (const auto& note : res.notes) text += "; " + note;
+    auto edit = model_.setThreadGroups(moves, "Balance: " + text);  // perform() shows the label once applied
+    if (!edit) return editor_->showMessage(QString::fromStdString("Balance: the groups are so already. " + text), !res.notes.empty());
+    perform(edit);
+  });
 }
 
 void PanelWidget::placeUnplaced() {

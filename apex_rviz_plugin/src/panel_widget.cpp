@@ -85,6 +85,7 @@ void PanelWidget::connectEditor() {
   connect(e, &GraphEditor::optimiseRequested, this, &PanelWidget::onOptimiseRequested);
   connect(e, &GraphEditor::applyBestRequested, this, &PanelWidget::onApplyBestRequested);
   connect(e, &GraphEditor::tidyRequested, this, &PanelWidget::tidy);  // panel_placement.cpp
+  connect(e, &GraphEditor::balanceRequested, this, &PanelWidget::balance);  // panel_placement.cpp
   // the namespace, the history, the runtime's controls and files
   connect(e, &GraphEditor::namespaceChanged, this, &PanelWidget::onNamespaceEdited);
   connect(e, &GraphEditor::undoRequested, this, &PanelWidget::onUndoRequested);

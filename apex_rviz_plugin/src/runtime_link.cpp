@@ -275,6 +275,21 @@ void RuntimeLink::recovery(const std::string& action,
       [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
 }
 
+void RuntimeLink::balance(int frames, int groups,
+                          std::function<void(bool, const std::string&, const apex::Balance::Response&)> done) {
+  apex::Balance::Request req;
+  req.frames = frames, req.groups = groups, req.apply = false;
+  const std::string name = service("balance");
+  using Out = std::tuple<bool, std::string, apex::Balance::Response>;
+  async<Out>(
+      [name, req] {
+        std::string m;
+        auto [ok, res] = callService<apex::Balance>(name, req, &m);
+        return Out{ok, m, res};
+      },
+      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
+}
+
 void RuntimeLink::inspect(const std::string& node, const std::string& port,
                           std::function<void(bool, const std::string&, const std::string&, const std::string&)> done,
                           bool preview) {

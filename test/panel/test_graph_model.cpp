@@ -303,6 +303,22 @@ TEST(GraphModel, EnableGroupAndInteractiveEditsAreUndoneToTheOldState) {
   EXPECT_FALSE(m.setInteractive("clock", "nothing", true));
 }
 
+TEST(GraphModel, BalancesMovesAreOneEditUndoneToTheGroupsBefore) {
+  GraphModel m;
+  m.update(graph(1));  // clock in default, relay in vision, count in ""
+  auto e = m.setThreadGroups({{"clock", "default"}, {"relay", "stage2"}, {"count", "stage2"}, {"gone", "x"}}, "Balance");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->label, "Balance");
+  ASSERT_EQ(e->apply.size(), 2u);  // the clock is in its group already; "gone" is not in the graph
+  EXPECT_EQ(std::get<apex::SetThreadGroup::Request>(e->apply[0].request).node, "relay");
+  EXPECT_EQ(std::get<apex::SetThreadGroup::Request>(e->apply[1].request).group, "stage2");
+  ASSERT_EQ(e->revert.size(), 2u);  // the last moved goes back first
+  EXPECT_EQ(std::get<apex::SetThreadGroup::Request>(e->revert[0].request).node, "count");
+  EXPECT_EQ(std::get<apex::SetThreadGroup::Request>(e->revert[1].request).node, "relay");
+  EXPECT_EQ(std::get<apex::SetThreadGroup::Request>(e->revert[1].request).group, "vision");
+  EXPECT_FALSE(m.setThreadGroups({{"clock", "default"}}, "Balance"));  // nothing to move: no edit
+}
+
 TEST(GraphModel, UndoOfAParameterThatShapesPortsConnectsWhatItDropped) {
   auto g = graph(1);
   g.nodes[0].parameters.push_back(param("outputs", "2"));

@@ -31,6 +31,7 @@
 #include "apex/core/file_roots.hpp"
 #include "apex/core/graph_file.hpp"
 #include "apex/core/log.hpp"
+#include "balance_service.hpp"
 #include "convert.hpp"
 #include "diagnostics.hpp"
 #include "inspection.hpp"
@@ -356,6 +357,7 @@ struct RuntimeHost::Impl {
     serve("set_interactive", &Impl::setInteractive);
     serve("set_enabled", &Impl::setEnabled);
     serve("set_thread_group", &Impl::setThreadGroup);
+    services.push_back(serveBalance(pnh, graph, [this](auto& req, auto& res) { return setThreadGroup(req, res); }));
     serve("set_ui", &Impl::setUi);
     serve("fire_slot", &Impl::fireSlot);
     serve("group", &Impl::group);

@@ -150,6 +150,8 @@ class GraphEditor : public QWidget {
   void typesRequested();
   /** Lay the nodes shown out in layers, left to right. */
   void tidyRequested();
+  /** Thread groups that make the graph a pipeline filling the cores, from the nodes' times. */
+  void balanceRequested();
   /** Save the parameters of `nodes` (all if empty) as preset `name`. */
   void presetSaveRequested(const QString& name, const QStringList& nodes);
   void presetRestoreRequested(const QString& name);

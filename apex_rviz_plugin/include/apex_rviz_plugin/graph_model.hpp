@@ -206,6 +206,11 @@ class GraphModel {
   std::optional<Edit> ungroup(const std::string& subgraph) const;
   std::optional<Edit> setEnabled(const std::string& node, bool enabled) const;
   std::optional<Edit> setThreadGroup(const std::string& node, const std::string& group) const;
+  /** @brief Nodes moved to thread groups (node -> group, in order) as one edit named `label`, e.g.
+   *  what Balance proposes; undone to the groups they are in now. Nodes not in the graph, or in
+   *  that group already, are left out; nothing if none is left. */
+  std::optional<Edit> setThreadGroups(const std::vector<std::pair<std::string, std::string>>& moves,
+                                      const std::string& label) const;
   std::optional<Edit> setInteractive(const std::string& node, const std::string& param, bool interactive) const;
   /** @brief Tunes a number parameter with an Optimizer (`optimizer`, or a new one at (x, y) if
    *  empty): the parameter gets ports, the Optimizer a dimension named after it (its range and

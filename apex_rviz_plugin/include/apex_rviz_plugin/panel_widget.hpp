@@ -83,6 +83,9 @@ class PanelWidget : public QWidget {
   std::string readPreset(const QString& name);
   /** Tidy: the nodes shown in layers, where their top-left corner was; one edit. */
   void tidy();
+  /** Balance: the runtime proposes thread groups from the nodes' times (~balance), applied as one
+   *  edit; the status line says what to expect (and which links would need a Relay). */
+  void balance();
   /** Gives nodes shown without a position one (a graph written by hand, a node added by a
    *  script): laid out in layers beside the others, never on top of one. Not an edit of the
    *  person's: not in the history. */
@@ -144,11 +147,11 @@ class PanelWidget : public QWidget {
   void onParameterEdited(const QString& node, const QString& param, const QString& yaml, bool dragging);
   void onInteractiveToggled(const QString& node, const QString& param, bool interactive);
   void onNodeMoved(const QString& node, QPointF at);
+  void onExpandToggled(const QString& node, bool expanded);
+  void onPinRequested(const QString& node, const QString& param, bool pinned);
   void onInsertRequested(const QString& node, const apex::Connection& c, QPointF at);
   /** Tunes node/param with `optimizer`, or a new one below the node (its names from types_). */
   void onOptimiseRequested(const QString& node, const QString& param, const QString& optimizer);
-  void onExpandToggled(const QString& node, bool expanded);
-  void onPinRequested(const QString& node, const QString& param, bool pinned);
   void onApplyBestRequested(const QString& optimizer);
   /** Where the boxes are shown, placed or not yet saved: positions for a copy. */
   std::map<std::string, std::pair<double, double>> shownPositions() const;

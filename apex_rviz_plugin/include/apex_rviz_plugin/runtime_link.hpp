@@ -9,6 +9,7 @@
 #include <QObject>
 #include <QTimer>
 
+#include <apex/Balance.h>
 #include <apex/GraphState.h>
 #include <apex/NodeTypeInfo.h>
 #include <apex/Recovery.h>
@@ -60,6 +61,10 @@ class RuntimeLink : public QObject {
   /** @brief ~recovery with `action` (keep, restore, discard): `done` gets the unsaved graph a
    *  previous run left, as the runtime reports it after the action. */
   void recovery(const std::string& action, std::function<void(bool, const std::string&, const apex::Recovery::Response&)> done);
+  /** @brief ~balance: thread groups proposed for a pipeline over `groups` cores (0: the runtime's
+   *  cores) from the node times measured so far (`frames` 0) or over `frames` new frames; `done`
+   *  gets the proposal. Only proposes: the panel applies it as an edit of its own. */
+  void balance(int frames, int groups, std::function<void(bool, const std::string&, const apex::Balance::Response&)> done);
   /** @brief Asks the runtime to publish a port; `done` gets the topic and its message type. */
   void inspect(const std::string& node, const std::string& port,
                std::function<void(bool, const std::string& message, const std::string& topic, const std::string& type)> done,

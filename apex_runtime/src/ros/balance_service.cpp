@@ -1,0 +1,126 @@
+#include "balance_service.hpp"
+
+#include <apex/Balance.h>
+#include <ros/ros.h>
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "apex/core/balance.hpp"
+#include "convert.hpp"
+
+namespace apex {
+namespace ros_host {
+namespace {
+
+/** How long ~balance waits for its frames: a slow graph's N frames, and not forever. */
+constexpr double kMeasureTimeoutS = 30;
+
+/** The node stats once every node that runs has fired `frames` more times than in `before`; or
+ *  which did not within the timeout. A node that runs: enabled, without an error (a placeholder
+ *  has one), and not stalled or cut off from every source in `before` (its waiting_for says so).
+ *  The graph has no event to wait on: the counts are read every 20 ms. */
+Result<std::vector<NodeStats>> waitForFrames(const Graph& graph, const std::vector<NodeStats>& before, int frames) {
+  std::map<std::string, std::uint64_t> target;
+  for (const auto& s : before)
+    if (s.enabled && s.error.empty() && s.waiting_for.empty()) target[s.name] = s.firings + std::uint64_t(frames);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kMeasureTimeoutS);
+  while (true) {
+    auto now = graph.nodeStats(1e12);  // no stall check: only the counts are wanted
+    std::string behind;
+    for (const auto& s : now) {
+      const auto t = target.find(s.name);
+      if (t != target.end() && s.firings < t->second)
+        behind += (behind.empty() ? "" : ", ") + s.name + " (" + std::to_string(s.firings + frames - t->second) + ")";
+    }
+    if (behind.empty()) return now;
+    if (std::chrono::steady_clock::now() > deadline || !ros::ok())
+      return Status::error("cannot measure: within " + std::to_string(int(kMeasureTimeoutS)) + " s these nodes did not fire " +
+                           std::to_string(frames) + " more frames (the frames each did fire): " + behind +
+                           "; ask with frames 0 to use the times measured so far");
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+/** Each node's time per frame: over `frames` new frames, or (0) as measured so far. */
+Result<std::vector<BalanceNode>> nodeTimes(const Graph& graph, int frames) {
+  const auto before = graph.nodeStats(1.0);  // stalled for a second: not waited for
+  if (frames == 0) return measuredTimes({}, before);
+  if (graph.paused()) return Status::error("the graph is paused: resume it to measure, or ask with frames 0 for the times measured so far");
+  auto after = waitForFrames(graph, before, frames);
+  if (!after) return after.status();
+  return measuredTimes(before, after.value());
+}
+
+/** Moves each node whose group differs; all or nothing: a refused move moves the others back. */
+Status applyGroups(const Balance::Response& res, const std::map<std::string, std::string>& now,
+                   const std::function<bool(SetThreadGroup::Request&, SetThreadGroup::Response&)>& set_group) {
+  std::vector<std::pair<std::string, std::string>> moved;  // node, its old group
+  auto move = [&](const std::string& node, const std::string& group) {
+    SetThreadGroup::Request req;
+    SetThreadGroup::Response out;
+    req.node = node, req.group = group;
+    set_group(req, out);
+    return out.success ? Status::ok() : Status::error("cannot move " + node + " to group " + group + ": " + out.message);
+  };
+  for (std::size_t i = 0; i < res.nodes.size(); ++i) {
+    const auto old = now.find(res.nodes[i]);
+    const std::string was = old == now.end() ? "default" : old->second;
+    if (was == res.groups[i]) continue;
+    if (auto st = move(res.nodes[i], res.groups[i]); !st) {
+      for (auto it = moved.rbegin(); it != moved.rend(); ++it) (void)move(it->first, it->second);
+      return Status::error(st.message() + " (the nodes moved before it are back in their groups)");
+    }
+    moved.emplace_back(res.nodes[i], was);
+  }
+  return Status::ok();
+}
+
+Status answerBalance(Graph& graph, const Balance::Request& req, Balance::Response& res,
+                     const std::function<bool(SetThreadGroup::Request&, SetThreadGroup::Response&)>& set_group) {
+  if (req.frames < 0) return Status::error("frames must be 0 (the times measured so far) or more");
+  if (req.groups < 0) return Status::error("groups must be 0 (the number of cores) or more");
+  BalanceOptions options;
+  options.groups = req.groups > 0 ? std::size_t(req.groups) : std::max(1u, std::thread::hardware_concurrency());
+  auto times = nodeTimes(graph, req.frames);
+  if (!times) return times.status();
+  const BalanceInput input = balanceInput(graph, times.value());
+  auto proposal = balance(input, options);
+  if (!proposal) return Status::error("cannot balance: " + proposal.message());
+  std::map<std::string, std::string> now;  // node path -> its group, as ~graph shows it
+  for (const auto& n : toGraphState(graph, 0).nodes) now[n.name] = n.thread_group;
+  std::vector<std::string> current;
+  for (const auto& n : input.nodes) current.push_back(now.count(n.name) ? now[n.name] : "default");
+  const Proposal& p = proposal.value();
+  res.stage_groups = stageGroupNames(p, current);
+  for (std::size_t i = 0; i < input.nodes.size(); ++i) {
+    res.nodes.push_back(input.nodes[i].name);
+    res.groups.push_back(res.stage_groups[p.stage[i]]);
+  }
+  for (double ns : p.stage_ns) res.stage_ms.push_back(ns * 1e-6);
+  res.expected_speedup = p.speedup;
+  res.notes = p.notes;
+  res.message = describeProposal(p, input, res.stage_groups);
+  return req.apply ? applyGroups(res, now, set_group) : Status::ok();
+}
+
+}  // namespace
+
+ros::ServiceServer serveBalance(ros::NodeHandle& pnh, Graph& graph,
+                                std::function<bool(SetThreadGroup::Request&, SetThreadGroup::Response&)> set_group) {
+  auto busy = std::make_shared<std::mutex>();  // one at a time: two applies would undo each other's moves
+  auto handle = [&graph, set_group, busy](Balance::Request& req, Balance::Response& res) {
+    std::lock_guard<std::mutex> lock(*busy);
+    const Status st = answerBalance(graph, req, res, set_group);
+    res.success = st.isOk();
+    if (!st) res.message = st.message();
+    return true;  // the call itself worked; `success` says whether balancing did
+  };
+  return pnh.advertiseService<Balance::Request, Balance::Response>("balance", handle);
+}
+
+}  // namespace ros_host
+}  // namespace apex

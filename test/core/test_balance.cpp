@@ -1,0 +1,201 @@
+// Balance (apex/core/balance.hpp): the thread groups it proposes give a chain the shortest frame
+// period any placement of contiguous stages gives, and it names the edges that a cut would make
+// hold their senders back.
+#include <gmock/gmock.h>
+
+#include <random>
+#include <set>
+
+#include "apex/core/balance.hpp"
+#include "apex_test/test_nodes.hpp"
+
+using namespace apex_test;
+using ::testing::AllOf;
+using ::testing::Contains;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+namespace {
+
+constexpr double kMs = 1e6;
+
+BalanceInput chain(const std::vector<double>& ms) {
+  BalanceInput in;
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    in.nodes.push_back({"n" + std::to_string(i), ms[i] * kMs});
+    if (i > 0) in.edges.push_back({i - 1, i});
+  }
+  return in;
+}
+
+BalanceOptions groups(std::size_t g, double hop_ns = 0) {
+  BalanceOptions o;
+  o.groups = g, o.hop_ns = hop_ns;
+  return o;
+}
+
+/** Each stage is one run of the order, the stages in order, at most `g` of them. */
+void expectContiguous(const Proposal& p, std::size_t g) {
+  ASSERT_LE(p.stage_ns.size(), g);
+  std::size_t s = 0;
+  for (std::size_t x : p.order) {
+    ASSERT_GE(p.stage[x], s);
+    ASSERT_LE(p.stage[x], s + 1);
+    s = p.stage[x];
+  }
+  EXPECT_EQ(s + 1, p.stage_ns.size());
+}
+
+/** A random chain of unequal stages (some free), with random forward edges if `dag`. */
+BalanceInput generated(std::mt19937& rng, bool dag) {
+  std::uniform_int_distribution<int> count(1, 11), tenths(0, 100), coin(0, 5);
+  std::vector<double> ms(static_cast<std::size_t>(count(rng)));
+  for (double& t : ms) t = coin(rng) == 0 ? 0.0 : tenths(rng) / 10.0;
+  BalanceInput in = chain(ms);
+  if (dag)
+    for (std::size_t a = 0; a < ms.size(); ++a)
+      for (std::size_t b = a + 2; b < ms.size(); ++b)
+        if (coin(rng) == 0) in.edges.push_back({a, b});
+  return in;
+}
+
+void expectAsGoodAsEveryPlacement(bool dag) {
+  std::mt19937 rng(37);
+  for (int round = 0; round < 300; ++round) {
+    const BalanceInput in = generated(rng, dag);
+    const BalanceOptions o = groups(1 + round % 4, (round % 3) * 0.2 * kMs);
+    const auto fast = balance(in, o);
+    const auto every = balanceExhaustive(in, o);
+    ASSERT_TRUE(fast) << fast.message();
+    ASSERT_TRUE(every) << every.message();
+    SCOPED_TRACE("round " + std::to_string(round) + ": " + describeProposal(fast.value(), in, {}));
+    expectContiguous(fast.value(), o.groups);
+    // the user's figure: frames/s at least 0.95x the best placement's; for a chain it is the best
+    EXPECT_GE(fast->speedup, 0.95 * every->speedup);
+    EXPECT_LE(fast->period_ns, every->period_ns * (1 + 1e-9));
+  }
+}
+
+TEST(Balance, GeneratedChainsOfUnequalStagesGetTheBestPlacement) { expectAsGoodAsEveryPlacement(false); }
+
+TEST(Balance, GeneratedGraphsWithSkippingEdgesGetTheBestPlacement) { expectAsGoodAsEveryPlacement(true); }
+
+TEST(Balance, TwoCoresSplitAnUnequalChainAtItsBalancePoint) {
+  const auto p = balance(chain({1, 3, 1, 1, 2}), groups(2));  // 1+3 | 1+1+2
+  ASSERT_TRUE(p) << p.message();
+  EXPECT_THAT(p->stage, ElementsAre(0, 0, 1, 1, 1));
+  EXPECT_DOUBLE_EQ(p->period_ns, 4 * kMs);
+  EXPECT_DOUBLE_EQ(p->speedup, 2.0);
+  EXPECT_TRUE(p->notes.empty());
+}
+
+TEST(Balance, TheHopCostKeepsCheapWorkInOneGroup) {
+  const auto p = balance(chain({0.01, 0.01}), groups(2, 0.021 * kMs));  // a hop costs more than it saves
+  ASSERT_TRUE(p) << p.message();
+  EXPECT_EQ(p->stage_ns.size(), 1u);
+  EXPECT_DOUBLE_EQ(p->speedup, 1.0);
+}
+
+TEST(Balance, OneNodeIsOneGroup) {
+  const auto p = balance(chain({5}), groups(4));
+  ASSERT_TRUE(p) << p.message();
+  EXPECT_THAT(p->stage, ElementsAre(0));
+  EXPECT_DOUBLE_EQ(p->speedup, 1.0);
+}
+
+TEST(Balance, MoreGroupsThanNodesGiveEachNodeItsOwn) {
+  const auto p = balance(chain({2, 3, 1}), groups(8));
+  ASSERT_TRUE(p) << p.message();
+  EXPECT_THAT(p->stage, ElementsAre(0, 1, 2));
+  EXPECT_DOUBLE_EQ(p->period_ns, 3 * kMs);
+}
+
+TEST(Balance, NodesThatTakeNoTimeStayInOneGroup) {
+  const auto p = balance(chain({0, 0, 0}), groups(2, 0.021 * kMs));
+  ASSERT_TRUE(p) << p.message();
+  EXPECT_EQ(p->stage_ns.size(), 1u);
+  EXPECT_DOUBLE_EQ(p->period_ns, 0);
+  EXPECT_DOUBLE_EQ(p->speedup, 1.0);
+}
+
+TEST(Balance, AnEdgeBesideALongerPathIsReportedWithTheRelayItNeeds) {
+  BalanceInput in = chain({1, 1, 1, 1});  // n0 -> n1 -> n2 -> n3, and n0 -> n3 (as rotate -> overlay in the demo)
+  in.edges.push_back({0, 3});
+  const auto p = balance(in, groups(2));
+  ASSERT_TRUE(p) << p.message();
+  // any cut makes n0 wait each frame for n3 to take its message: n0..n2 in series, 3 ms
+  EXPECT_DOUBLE_EQ(p->period_ns, 3 * kMs);
+  ASSERT_EQ(p->skips.size(), 1u);
+  EXPECT_EQ(p->skips[0].from, 0u);
+  EXPECT_EQ(p->skips[0].to, 3u);
+  EXPECT_DOUBLE_EQ(p->skips[0].span_ns, 3 * kMs);
+  EXPECT_THAT(p->notes, Contains(AllOf(HasSubstr("'n0' -> 'n3'"), HasSubstr("Relay"))));
+  EXPECT_THAT(p->notes, Contains(HasSubstr("could give up to 2.00x")));  // 2 ms stages, with a Relay
+}
+
+TEST(Balance, ARelayOnTheSkippingEdgeFreesTheCut) {
+  BalanceInput in = chain({1, 1, 1, 1});
+  in.nodes.push_back({"relay", 0});  // n0 -> relay -> n3
+  in.edges.push_back({0, 4});
+  in.edges.push_back({4, 3});
+  const auto p = balance(in, groups(2));
+  ASSERT_TRUE(p) << p.message();
+  EXPECT_DOUBLE_EQ(p->period_ns, 2 * kMs);
+  EXPECT_DOUBLE_EQ(p->speedup, 2.0);
+  EXPECT_TRUE(p->skips.empty());
+  EXPECT_TRUE(p->notes.empty());
+}
+
+TEST(Balance, BadInputIsRefusedWithAReason) {
+  BalanceInput cycle = chain({1, 1});
+  cycle.edges.push_back({1, 0});
+  EXPECT_THAT(balance(cycle, groups(2)).message(), HasSubstr("cycle"));
+  BalanceInput stray = chain({1});
+  stray.edges.push_back({0, 5});
+  EXPECT_THAT(balance(stray, groups(2)).message(), HasSubstr("not in the list"));
+  EXPECT_THAT(balance(chain({1}), groups(0)).message(), HasSubstr("at least one group"));
+  EXPECT_TRUE(balance(BalanceInput(), groups(2)));  // nothing to place: nothing to do
+}
+
+TEST(Balance, StagesKeepTheGroupMostOfTheirNodesAreIn) {
+  const auto p = balance(chain({1, 1, 1, 1}), groups(2));
+  ASSERT_TRUE(p) << p.message();
+  EXPECT_THAT(stageGroupNames(p.value(), {"default", "default", "default", "default"}), ElementsAre("default", "stage2"));
+  EXPECT_THAT(stageGroupNames(p.value(), {"default", "default", "second", "second"}), ElementsAre("default", "second"));
+  EXPECT_THAT(stageGroupNames(p.value(), {"stage2", "stage2", "stage2", "x"}), ElementsAre("stage2", "x"));
+}
+
+TEST(Balance, TimesAreMeasuredOverTheNewFiringsOnly) {
+  NodeStats a_before, a_after, b_after;
+  a_before.name = a_after.name = "a";
+  a_before.firings = 10, a_before.mean_ns = 100;
+  a_after.firings = 20, a_after.mean_ns = 150;  // 10 new firings of 200 ns each
+  b_after.name = "b", b_after.firings = 5, b_after.mean_ns = 70;  // new: its mean so far
+  const auto t = measuredTimes({a_before}, {a_after, b_after});
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_DOUBLE_EQ(t[0].time_ns, 200);
+  EXPECT_EQ(t[1].name, "b");
+  EXPECT_DOUBLE_EQ(t[1].time_ns, 70);
+}
+
+TEST(Balance, AGraphsDataConnectionsAreItsEdges) {
+  Graph g(testRegistry());
+  add(g, "test/Ticker", "source");
+  add(g, "test/Gain", "gain");
+  add(g, "test/Ticker", "knob");
+  add(g, "test/Collector", "sink");
+  link(g, "source", "out", "gain", "in");
+  link(g, "gain", "out", "sink", "in");
+  ASSERT_TRUE(g.setInteractive("gain", "gain", true));
+  link(g, "knob", "out", "gain", "gain");  // a parameter: through the mailbox, holds nobody back
+  const BalanceInput in = balanceInput(g, {{"gain", 5}});
+  ASSERT_EQ(in.nodes.size(), 4u);
+  EXPECT_EQ(in.nodes[1].name, "gain");
+  EXPECT_DOUBLE_EQ(in.nodes[1].time_ns, 5);
+  EXPECT_DOUBLE_EQ(in.nodes[0].time_ns, 0);
+  std::set<std::pair<std::size_t, std::size_t>> edges;
+  for (const auto& e : in.edges) edges.insert({e.from, e.to});
+  EXPECT_THAT(edges, ElementsAre(std::make_pair(0u, 1u), std::make_pair(1u, 3u)));  // source -> gain -> sink
+}
+
+}  // namespace

@@ -1,0 +1,92 @@
+// ~balance (issue #37): thread groups proposed from each node's measured time, and applied on
+// request through set_thread_group (one binary with test_ros_services.cpp, one services.test).
+#include <apex/Balance.h>
+
+#include <map>
+
+#include "services_fixture.hpp"
+
+using namespace services_test;
+
+namespace {
+
+/** clock (in group "a") -> first -> second (in "b"), and `idle`, a Relay fed by nothing. */
+void addChain() {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock", "{rate: 500}", "a").success);
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "first", "", "b").success);
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "second", "", "b").success);
+  ASSERT_TRUE(addNode("apex_nodes/Relay", "idle", "", "b").success);
+  ASSERT_TRUE(connectPorts("connect", "clock", "count", "first", "in").success);
+  ASSERT_TRUE(connectPorts("connect", "first", "out", "second", "in").success);
+}
+
+/** Waits until ~status says `node` is cut off (what balance does not wait for). */
+bool reportedCutOff(ros::NodeHandle& nh, const std::string& node) {
+  for (int i = 0; i < 20; ++i) {
+    apex::RuntimeStatus status;
+    if (!receive(nh, "/apex/status", status)) return false;
+    for (const auto& n : status.nodes)
+      if (n.name == node && n.waiting_for.rfind("cut off", 0) == 0) return true;
+  }
+  return false;
+}
+
+std::map<std::string, std::string> groupsNow() {
+  std::map<std::string, std::string> out;
+  for (const auto& n : call<apex::GetGraph>("get_graph").graph.nodes) out[n.name] = n.thread_group;
+  return out;
+}
+
+TEST_F(Services, BalanceMeasuresFramesAndProposesAGroupForEveryNode) {
+  addChain();
+  ros::NodeHandle nh;
+  ASSERT_TRUE(reportedCutOff(nh, "idle"));  // it never fires: measuring must not wait for it
+  const std::string before = graphText();
+  apex::Balance::Request req;
+  req.frames = 20, req.groups = 2;
+  const auto res = call<apex::Balance>("balance", req);
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_EQ(graphText(), before);  // only proposed
+  EXPECT_THAT(res.nodes, ::testing::UnorderedElementsAre("clock", "first", "second", "idle"));
+  ASSERT_EQ(res.groups.size(), res.nodes.size());
+  ASSERT_EQ(res.stage_ms.size(), res.stage_groups.size());
+  EXPECT_LE(res.stage_groups.size(), 2u);
+  EXPECT_GE(res.expected_speedup, 1.0);
+  EXPECT_THAT(res.message, HasSubstr("expect"));
+  EXPECT_THAT(res.message, HasSubstr(res.stage_groups.front()));
+}
+
+TEST_F(Services, BalanceAppliedMovesEveryNodeToItsProposedGroup) {
+  addChain();
+  apex::Balance::Request req;
+  req.frames = 0, req.groups = 2, req.apply = true;  // the times measured so far
+  const auto res = call<apex::Balance>("balance", req);
+  ASSERT_TRUE(res.success) << res.message;
+  const auto now = groupsNow();
+  for (std::size_t i = 0; i < res.nodes.size(); ++i) EXPECT_EQ(now.at(res.nodes[i]), res.groups[i]) << res.nodes[i];
+  // the nodes were in two groups ("a": the clock, "b": the relays): one stage (relays take
+  // microseconds, less than a group boundary costs) keeps its majority's
+  if (res.stage_groups.size() == 1) EXPECT_EQ(res.stage_groups.front(), "b");
+}
+
+TEST_F(Services, BalanceRefusesWhatItCannotDoAndSaysWhy) {
+  addChain();
+  const std::string before = graphText();
+  apex::Balance::Request req;
+  req.groups = -1;
+  auto res = call<apex::Balance>("balance", req);
+  EXPECT_FALSE(res.success);
+  EXPECT_THAT(res.message, HasSubstr("groups must be 0"));
+  apex::Control::Request pause;
+  pause.command = "pause";
+  ASSERT_TRUE(call<apex::Control>("control", pause).paused);
+  req.groups = 2, req.frames = 10, req.apply = true;
+  res = call<apex::Balance>("balance", req);
+  EXPECT_FALSE(res.success);
+  EXPECT_THAT(res.message, HasSubstr("paused"));
+  EXPECT_EQ(graphText(), before);
+  pause.command = "resume";
+  EXPECT_FALSE(call<apex::Control>("control", pause).paused);
+}
+
+}  // namespace
