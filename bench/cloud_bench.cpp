@@ -1,7 +1,8 @@
 // Clouds with their fields: a 300k-point XYZRGB cloud as a subscriber receives it (its message's
 // bytes), through an APEX node, to what a publisher sends (bytes), against the same PCL calls
 // in a loop as a pcl_conversions user writes them (sensor_msgs -> typed cloud -> filter ->
-// sensor_msgs). Also each cloud node's own cost against its PCL call on a typed cloud.
+// sensor_msgs). Also each cloud node's own cost against its PCL call on a typed cloud; then every
+// cloud node type against its PCL call (cloud_bench_nodes.cpp).
 //   apex_bench_clouds [--quick]   (with the devel space sourced: node types come from pluginlib)
 #include <pcl/filters/crop_box.h>
 #include <pcl/filters/passthrough.h>
@@ -166,6 +167,10 @@ struct Case {
 
 }  // namespace
 
+namespace apex_bench {
+void cloudNodeTable(bool quick);  // cloud_bench_nodes.cpp
+}
+
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::string(argv[1]) == "--quick";
   const int points = 300000, reps = quick ? 5 : 15;
@@ -230,5 +235,7 @@ int main(int argc, char** argv) {
                 apex.median() / loop.median(), call.text("%.1f").c_str(), node.text("%.1f").c_str(),
                 node.median() / call.median());
   }
+  std::printf("\n");
+  apex_bench::cloudNodeTable(quick);
   return 0;
 }

@@ -1,0 +1,97 @@
+// What apex_bench_images' case files share: the input images (made once from opencv-doc's) and
+// the ways to make a case of them. Each image_bench_*.cpp adds the cases of some categories.
+#pragma once
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "apex_nodes/types.hpp"
+#include "node_vs_call.hpp"
+
+namespace apex_bench {
+
+using apex_nodes::Image;
+using ImagePtr = std::shared_ptr<const Image>;
+
+const std::string kData = "/usr/share/doc/opencv-doc/examples/data";  // scripts/install_deps installs opencv-doc
+
+/** The bench's input images, 640x480, made once (image_bench.cpp says how). */
+struct Inputs {
+  ImagePtr bgr, gray, edges, binary, bayer, circles;
+  std::vector<ImagePtr> moving;  ///< 8 bgr8 frames of a fixed camera, a patch moving across
+};
+
+inline ImagePtr image(cv::Mat mat, const std::string& encoding) {
+  auto i = std::make_shared<Image>();
+  i->header.frame_id = "camera";
+  i->header.seq = 1;
+  i->encoding = encoding;
+  i->mat = std::move(mat);
+  return i;
+}
+
+template <class T>
+apex::Message msg(std::shared_ptr<T> payload) {
+  return apex::Message::share<std::remove_const_t<T>>(std::move(payload));
+}
+
+/** A number as YAML text that reads back as the same double. */
+inline std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+/** A node of one image input ("image") and one output, fed `frames` in turn, against `call` on
+ *  the same frame's pixels. */
+inline NodeCase imageCase(std::string label, std::string type, std::string input, std::vector<ImagePtr> frames, Params params,
+                          std::string out_port, std::string sink, std::string call_text,
+                          std::function<void(const cv::Mat&)> call) {
+  NodeCase c;
+  c.label = std::move(label);
+  c.type = std::move(type);
+  c.input = std::move(input);
+  c.feed = feedType<Image>();
+  c.in_ports = {"image"};
+  for (const auto& f : frames) c.frames.push_back({msg(f)});
+  c.params = std::move(params);
+  c.out_port = std::move(out_port);
+  c.sink = std::move(sink);
+  c.call_text = std::move(call_text);
+  c.call = [frames = std::move(frames), call = std::move(call)](std::size_t i) { call(frames[i]->mat); };
+  return c;
+}
+
+/** A node of several inputs fed the same messages each frame: `in_ports` name the node's input
+ *  for each message; `feed` is feedType<...>() of their types. */
+inline NodeCase fixedCase(std::string label, std::string type, std::string input, std::string feed,
+                          std::vector<std::string> in_ports, std::vector<apex::Message> messages, Params params,
+                          std::string out_port, std::string sink, std::string call_text, std::function<void()> call) {
+  NodeCase c;
+  c.label = std::move(label);
+  c.type = std::move(type);
+  c.input = std::move(input);
+  c.feed = std::move(feed);
+  c.in_ports = std::move(in_ports);
+  c.frames = {std::move(messages)};
+  c.params = std::move(params);
+  c.out_port = std::move(out_port);
+  c.sink = std::move(sink);
+  c.call_text = std::move(call_text);
+  c.call = [call = std::move(call)](std::size_t) { call(); };
+  return c;
+}
+
+// The case files: each gives its categories' cases on the inputs.
+std::vector<NodeCase> filterCases(const Inputs& in);  // image_bench.cpp: image filters, colour, the first detectors
+std::vector<NodeCase> shapeCases(const Inputs& in);  // image_bench_shapes.cpp: two-input filters, channels, contours, drawing
+std::vector<NodeCase> featureCases(const Inputs& in);  // image_bench_features.cpp: features, motion, detection
+std::vector<NodeCase> cameraCases(const Inputs& in);  // image_bench_cameras.cpp: cameras and stereo, learning
+
+}  // namespace apex_bench
