@@ -27,19 +27,9 @@ using TypedPtr = Typed::ConstPtr;
 NodeCase fixed(std::string type, std::string input, std::string feed, std::vector<std::string> ports,
                std::vector<apex::Message> messages, Params params, std::string out_port, std::string sink,
                std::string call_text, std::function<void()> call, std::string label = "") {
-  NodeCase c;
-  c.label = label.empty() ? type : label;
-  c.type = "apex_nodes/" + type;
-  c.input = std::move(input);
-  c.feed = std::move(feed);
-  c.in_ports = std::move(ports);
-  c.frames = {std::move(messages)};
-  c.params = std::move(params);
-  c.out_port = std::move(out_port);
-  c.sink = std::move(sink);
-  c.call_text = std::move(call_text);
-  c.call = [call = std::move(call)](std::size_t) { call(); };
-  return c;
+  return fixedCase(label.empty() ? type : label, "apex_nodes/" + type, std::move(input), std::move(feed), std::move(ports),
+                   std::move(messages), std::move(params), std::move(out_port), std::move(sink), std::move(call_text),
+                   std::move(call));
 }
 
 /** The scene's boxes: its points above the plane (z < 1.45), clustered at 5 cm, typed. */

@@ -68,25 +68,6 @@ inline NodeCase imageCase(std::string label, std::string type, std::string input
   return c;
 }
 
-/** A node of several inputs fed the same messages each frame: `in_ports` name the node's input
- *  for each message; `feed` is feedType<...>() of their types. */
-inline NodeCase fixedCase(std::string label, std::string type, std::string input, std::string feed,
-                          std::vector<std::string> in_ports, std::vector<apex::Message> messages, Params params,
-                          std::string out_port, std::string sink, std::string call_text, std::function<void()> call) {
-  NodeCase c;
-  c.label = std::move(label);
-  c.type = std::move(type);
-  c.input = std::move(input);
-  c.feed = std::move(feed);
-  c.in_ports = std::move(in_ports);
-  c.frames = {std::move(messages)};
-  c.params = std::move(params);
-  c.out_port = std::move(out_port);
-  c.sink = std::move(sink);
-  c.call_text = std::move(call_text);
-  c.call = [call = std::move(call)](std::size_t) { call(); };
-  return c;
-}
 
 // The case files: each gives its categories' cases on the inputs.
 std::vector<NodeCase> filterCases(const Inputs& in);  // image_bench.cpp: image filters, colour, the first detectors

@@ -116,6 +116,26 @@ struct NodeCase {
   std::string why_not;  ///< set: no figures, this reason instead
 };
 
+/** A node of several inputs fed the same messages each frame: `in_ports` name the node's input
+ *  for each message; `feed` is feedType<...>() of their types. */
+inline NodeCase fixedCase(std::string label, std::string type, std::string input, std::string feed,
+                          std::vector<std::string> in_ports, std::vector<apex::Message> messages, Params params,
+                          std::string out_port, std::string sink, std::string call_text, std::function<void()> call) {
+  NodeCase c;
+  c.label = std::move(label);
+  c.type = std::move(type);
+  c.input = std::move(input);
+  c.feed = std::move(feed);
+  c.in_ports = std::move(in_ports);
+  c.frames = {std::move(messages)};
+  c.params = std::move(params);
+  c.out_port = std::move(out_port);
+  c.sink = std::move(sink);
+  c.call_text = std::move(call_text);
+  c.call = [call = std::move(call)](std::size_t) { call(); };
+  return c;
+}
+
 /** A case that is not measured: a row with the reason. */
 inline NodeCase notMeasured(std::string label, std::string input, std::string call_text, std::string why) {
   NodeCase c;
