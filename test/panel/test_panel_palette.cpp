@@ -1,8 +1,11 @@
-// The palette of a library of 100+ node types: headings by category in the runtime's order, search
+// The palette of a library of 100+ node types (and of 150, with another package's type under its own
+// heading): headings by category in the runtime's order, search
 // over ids, categories and descriptions, tooltips with ports and parameters, adding by keyboard.
 #include "panel_test_support.hpp"
 
 #include <QTreeWidget>
+
+#include "apex_rviz_plugin/palette.hpp"
 
 #include "apex/core/categories.hpp"
 
@@ -94,6 +97,63 @@ TEST_F(PanelWidgetTest, ThePaletteListsTheTypesByCategoryAndSearchFindsThem) {
     EXPECT_FALSE(tree->topLevelItem(i)->isHidden()) << headings[i];
     EXPECT_FALSE(tree->topLevelItem(i)->isExpanded()) << headings[i];
   }
+}
+
+/** The example package's type (test/example_package/gain.cpp) as list_node_types describes it. */
+apex::NodeTypeInfo exampleGain() {
+  apex::NodeTypeInfo t;
+  t.id = "demo/Gain";
+  t.description = "Multiplies its input by a gain";
+  auto port = [](const std::string& name, const std::string& kind, const std::string& type, const std::string& about) {
+    apex::PortInfo p;
+    p.name = name, p.kind = kind, p.type = type, p.description = about;
+    return p;
+  };
+  t.ports = {port("in", "input", "int", "the value"), port("out", "output", "int", "in times gain"),
+             port("overflow", "trigger", "", "fires when the result passes 1000"),
+             port("reset", "slot", "", "forgets what it learned")};
+  apex::ParamInfo gain;
+  gain.name = "gain", gain.kind = "int range", gain.type = "int", gain.default_value = gain.value = "2";
+  gain.min = -100, gain.max = 100, gain.description = "the factor";
+  t.parameters = {gain};
+  return t;
+}
+
+TEST_F(PanelWidgetTest, APaletteOf150TypesListsAnotherPackagesTypeUnderItsNameAndSearchFindsIt) {
+  apex::ListNodeTypes list;
+  ASSERT_TRUE(ros::service::call("/apex/list_node_types", list));
+  std::vector<apex::NodeTypeInfo> types = list.response.types;  // the library's, from their manifests
+  const std::size_t library = types.size();
+  types.push_back(exampleGain());
+  for (std::size_t i = 0; types.size() < 150; ++i) {  // the library as it grows: more of its kinds
+    apex::NodeTypeInfo more = list.response.types[i % library];
+    more.id += "Variant" + std::to_string(i);
+    types.push_back(more);
+  }
+  Palette palette;
+  palette.resize(400, 800);
+  palette.show();
+  palette.showTypes(types);
+  auto* tree = palette.findChild<QTreeWidget*>("palette");
+  auto* find = palette.findChild<QLineEdit*>("search");
+  ASSERT_TRUE(tree && find);
+  int listed = 0;
+  for (int i = 0; i < tree->topLevelItemCount(); ++i) listed += tree->topLevelItem(i)->childCount();
+  EXPECT_EQ(listed, 150);
+  QTreeWidgetItem* last = tree->topLevelItem(tree->topLevelItemCount() - 1);  // other packages after APEX's headings
+  ASSERT_TRUE(last);
+  EXPECT_EQ(last->text(0).toStdString(), "demo");
+  ASSERT_EQ(last->childCount(), 1);
+  EXPECT_EQ(last->child(0)->text(0).toStdString(), "Gain");
+  EXPECT_TRUE(last->child(0)->toolTip(0).contains("gain (int range)")) << last->child(0)->toolTip(0).toStdString();
+  // a search by its description finds it among 150, and Enter would add it
+  find->setFocus();
+  QTest::keyClicks(find, "multiplies gain");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return palette.current() == "demo/Gain"; }, kWaitMs)) << palette.current().toStdString();
+  int shown = 0;
+  for (int i = 0; i < tree->topLevelItemCount(); ++i)
+    for (int j = 0; j < tree->topLevelItem(i)->childCount(); ++j) shown += !tree->topLevelItem(i)->child(j)->isHidden();
+  EXPECT_EQ(shown, 1);
 }
 
 }  // namespace
