@@ -179,6 +179,33 @@ TEST(Firing, ADrivenSourceDropsFramesInsteadOfQueueing) {
   EXPECT_LE(got.size(), 3u);  // 1, maybe 2, and the newest: never all 50
 }
 
+/** A free-running source that (wrongly) calls notifyNewData(), which is for driven sources. */
+struct NotifyingTicker : Node {
+  static Manifest manifest() { return Manifest().output<int>("out"); }
+  void process() override {
+    notifyNewData();
+    publish("out", n_++);
+  }
+  int n_ = 0;
+};
+
+// notifyNewData() on a node that is not driven once released a condition its firing had
+// reserved: the source fired again before its receiver read, and a message was lost.
+TEST(Firing, NotifyNewDataOnAFreeRunningSourceChangesNothing) {
+  Graph g(testRegistry());
+  ASSERT_TRUE(g.registry().add<NotifyingTicker>("test/NotifyingTicker"));
+  add(g, "test/NotifyingTicker", "src");
+  add(g, "test/Relay", "r");
+  add(g, "test/Collector", "sink");
+  link(g, "src", "out", "r", "in");
+  link(g, "r", "out", "sink", "in");
+  g.start();
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(1000));
+  g.stop();
+  const auto got = object<Collector>(g, "sink")->ints();
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(got[i], i);
+}
+
 TEST(Firing, ProfilingCountsFirings) {
   Graph g(testRegistry());
   add(g, "test/Feeder", "src");

@@ -36,6 +36,8 @@ const TypeInfo* internType(const std::type_info& type, const std::string& name) 
   return it->second;
 }
 
+const TypeInfo* const kEndOfSequenceType = typeOf<EndOfSequence>();
+
 }  // namespace detail
 
 Message Message::endOfSequence() {

@@ -59,10 +59,11 @@ void Node::publishMessage(std::string_view output, Message message) {
   publishAt(i, std::move(message));
 }
 
-void Node::publishAt(int index, Message message) {
+void Node::publishAt(int index, Message&& message) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const TypeInfo* want = s.manifest().outputs[index].type;
-  if (!message.isNothing() && !message.isEndOfSequence() && !compatible(message.type(), want)) {
+  // the port's own type first: the common case, one comparison
+  if (message.type() != want && !message.isNothing() && !message.isEndOfSequence() && !compatible(message.type(), want)) {
     throw std::invalid_argument(nodeLabel(s.name) + " published a " + message.typeName() + " on output '" +
                                 s.manifest().outputs[index].name + "', which carries " + want->name);
   }

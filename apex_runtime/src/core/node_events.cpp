@@ -20,7 +20,8 @@ void NodeState::runSlot(int slot) {
   if (slot >= static_cast<int>(manifest().slots.size())) return;  // posted before an interface change
   const std::string& slot_name = manifest().slots[slot].name;
   in_handler_ = true;
-  const bool ok = guarded("slot '" + slot_name + "'", [&] { manifest().slots[slot].handler(*node); });
+  const std::string what = "slot '" + slot_name + "'";
+  const bool ok = guarded(what.c_str(), [&] { manifest().slots[slot].handler(*node); });
   in_handler_ = false;
   reported_ = false;
   if (ok && !sendFromSlot(slot_name)) held_triggers_.clear();  // its events would act on values that did not go out

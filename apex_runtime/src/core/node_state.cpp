@@ -118,15 +118,6 @@ std::string NodeState::waitingFor() const {
   return "";
 }
 
-void NodeState::unblock(int k, ThreadGroup* here) {
-  if (!readiness.release(k)) return;
-  if (here == group) {
-    here->runNext(this);  // made ready by a firing on its own group's thread: runs next, no queue
-  } else {
-    group->push(this);
-  }
-}
-
 void NodeState::adjust(int delta) {
   if (delta > 0) readiness.block(delta);
   if (delta < 0) unblock(-delta);
@@ -134,20 +125,18 @@ void NodeState::adjust(int delta) {
 
 // ---------------------------------------------------------------- firing
 
-void NodeState::take(InputState& in, bool optional, bool& skip) {
+[[gnu::always_inline]] inline void NodeState::take(InputState& in, bool optional, bool& skip) {
   Edge* e = in.edge.get();
   if (!e || !e->live) {  // unconnected or cut off: Nothing
     in.current = Message();
   } else if (e->counted()) {  // exclusive by the firing rule: no lock
-    in.current = std::move(in.msg);
-    in.msg = Message();
+    in.current = std::move(in.msg);  // leaves Nothing behind
     in.full.store(false, std::memory_order_release);
     e->unread.store(false, std::memory_order_release);  // a slot of the sender reads it (sendFromSlot)
     e->from->unblock(1, group);  // the source may fire again while we work
   } else {
     std::lock_guard<std::mutex> lock(in.m);
     in.current = std::move(in.msg);
-    in.msg = Message();
     in.full.store(false, std::memory_order_relaxed);
   }
   if (in.current.isNothing() && !optional) skip = true;
@@ -159,8 +148,9 @@ void NodeState::take(InputState& in, bool optional, bool& skip) {
   // arriving meanwhile then counts for the next firing (its release finds nothing to release
   // yet and drives the count below zero; the reservation then lands on zero exactly when that
   // release was the only thing missing).
-  if (driven()) has_data.store(false, std::memory_order_release);
-  if (readiness.reserve(driven())) group->runNext(this);  // new data came between the two lines
+  if (!driven()) return readiness.reserveAtZero();  // nothing else can release it now
+  has_data.store(false, std::memory_order_release);
+  if (readiness.reserve(true)) group->runNext(this);  // new data came between the two lines
 }
 
 [[gnu::always_inline]] inline NodeState::Firing NodeState::takeInputs() {
@@ -168,7 +158,9 @@ void NodeState::take(InputState& in, bool optional, bool& skip) {
   f.skip = !active_enabled_;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     take(*inputs[i], manifest().inputs[i].optional, f.skip);
-    f.end = f.end || inputs[i]->current.isEndOfSequence();
+    const Message& m = inputs[i]->current;
+    f.end = f.end || m.isEndOfSequence();
+    f.data = f.data || (!m.isNothing() && !m.isEndOfSequence());
   }
   return f;
 }
@@ -177,13 +169,11 @@ void NodeState::take(InputState& in, bool optional, bool& skip) {
   bool ok = true;
   in_handler_ = true;
   if (f.end && active_enabled_) {
-    static const std::string kAtEnd = "at the end of a sequence";
-    ok = guarded(kAtEnd, [this] { node->endOfSequence(); });
+    ok = guarded("at the end of a sequence", [this] { node->endOfSequence(); });
   } else if (f.end) {
     for (auto& out : outputs) out.pending = Message::endOfSequence();  // a disabled node passes the end on
   } else if (!f.skip) {
-    static const std::string kProcess;
-    ok = guarded(kProcess, [this] { node->process(); });
+    ok = guarded("", [this] { node->process(); });
     if (ok && !reported_ && has_error_.load(std::memory_order_relaxed)) clearError();
   }
   in_handler_ = false;
@@ -192,19 +182,31 @@ void NodeState::take(InputState& in, bool optional, bool& skip) {
     for (auto& out : outputs) out.pending = f.end ? Message::endOfSequence() : Message();
 }
 
-[[gnu::always_inline]] inline void NodeState::deliverOutputs() {
-  bool data = false;  // consumed or produced a frame (not Nothing, not the end token): for rates
-  auto frame = [](const Message& m) { return !m.isNothing() && !m.isEndOfSequence(); };
-  for (auto& in : inputs) data = data || frame(in->current);
-  for (auto& out : outputs) data = data || frame(out.pending);
-  last_had_data_ = data;
+[[gnu::always_inline]] inline void NodeState::deliverTo(const std::shared_ptr<Edge>& edge, Message&& m, ThreadGroup* here) {
+  Edge& e = *edge;
+  if (e.to_param || !e.counted()) return deliverSlow(edge, std::move(m), here);
+  // A counted data edge (the common case, inlined): the receiver took the last one, the slot is ours.
+  NodeState* to = e.to;
+  InputState& in = *to->inputs[e.to_index];
+  in.msg = std::move(m);
+  in.full.store(true, std::memory_order_relaxed);
+  e.unread.store(true, std::memory_order_relaxed);
+  to->unblock(1, here);  // releases the writes above to whoever fires `to`
+}
+
+[[gnu::always_inline]] inline void NodeState::deliverOutputs(bool data) {
   for (auto& out : outputs) {
+    data = data || (!out.pending.isNothing() && !out.pending.isEndOfSequence());
     if (out.tap) out.tap(out.pending);
     const std::size_t n = out.edges.size();
-    for (std::size_t k = 0; k + 1 < n; ++k) deliver(out.edges[k], out.pending, group);
-    if (n > 0) deliver(out.edges[n - 1], std::move(out.pending), group);
-    out.pending = Message();
+    if (n == 0) {
+      out.pending = Message();
+      continue;
+    }
+    for (std::size_t k = 0; k + 1 < n; ++k) deliverTo(out.edges[k], Message(out.pending), group);
+    deliverTo(out.edges[n - 1], std::move(out.pending), group);  // leaves Nothing behind
   }
+  last_had_data_ = data;
   for (std::size_t i = 0; i < params.size(); ++i)
     if (!params[i].out_edges.empty() || params[i].tap) publishParam(static_cast<int>(i), group);
 }
@@ -217,22 +219,23 @@ bool NodeState::fireIfReady() {
   reserve();
   Firing f = takeInputs();
   run(f);
-  deliverOutputs();
+  deliverOutputs(f.data);
   for (auto& in : inputs) in->current = Message();
-  releaseTriggers();
-  if (!f.skip && !f.end) fireTrigger(kProcessedIndex);
+  if (!held_triggers_.empty()) releaseTriggers();  // checked here: most firings need neither call
+  if (!f.skip && !f.end && !trigger_edges[kProcessedIndex].empty()) fireTrigger(kProcessedIndex);
   return true;
 }
 
-void NodeState::recordFiring(std::int64_t t, std::int64_t end) {
-  // One writer (the group thread): plain loads and stores, no locked instructions.
+void NodeState::recordTimedOrNothing(bool timed, std::int64_t t) {
   const auto relaxed = std::memory_order_relaxed;
-  last_fired_.store(end, relaxed);
+  if (!timed) --untimed_left_;
   if (!last_had_data_) {  // only Nothing in and out: counted apart, not in the rate or the times
     nothing_firings_.store(nothing_firings_.load(relaxed) + 1, relaxed);
     return;
   }
   firings_.store(firings_.load(relaxed) + 1, relaxed);
+  untimed_left_ = t >= kSlowTicks ? 0 : kTimeEvery - 1;
+  timed_firings_.store(timed_firings_.load(relaxed) + 1, relaxed);
   last_t_.store(t, relaxed);
   total_t_.store(total_t_.load(relaxed) + t, relaxed);
   if (t > max_t_.load(relaxed)) max_t_.store(t, relaxed);
@@ -245,16 +248,19 @@ NodeStats NodeState::stats() const {
   s.nothing_firings = nothing_firings_.load(std::memory_order_relaxed);
   s.last_ns = ticksToNs(last_t_.load(std::memory_order_relaxed));
   s.max_ns = ticksToNs(max_t_.load(std::memory_order_relaxed));
-  s.mean_ns = s.firings ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / s.firings : 0;
+  const std::uint64_t timed = timed_firings_.load(std::memory_order_relaxed);
+  s.mean_ns = timed ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / timed : 0;
   std::lock_guard<std::mutex> lock(state_mutex);
   s.error = error_;
   s.enabled = enabled && outer_enabled;
   return s;
 }
 
-void NodeState::setOutput(int index, Message m) { outputs[index].pending = std::move(m); }
-
 void NodeState::deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGroup* here) {
+  deliverTo(edge, std::move(m), here);
+}
+
+void NodeState::deliverSlow(const std::shared_ptr<Edge>& edge, Message&& m, ThreadGroup* here) {
   Edge& e = *edge;
   NodeState* to = e.to;
   if (e.to_param) {  // the mail holds the edge: a disconnect marks it dead, never frees it under us
@@ -267,13 +273,6 @@ void NodeState::deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGrou
     return;
   }
   InputState& in = *to->inputs[e.to_index];
-  if (e.counted()) {  // the receiver took the last one: the slot is ours
-    in.msg = std::move(m);
-    in.full.store(true, std::memory_order_relaxed);
-    e.unread.store(true, std::memory_order_relaxed);
-    to->unblock(1, here);  // releases the writes above to whoever fires `to`
-    return;
-  }
   bool was_full;
   {
     std::lock_guard<std::mutex> lock(in.m);
@@ -319,6 +318,7 @@ void NodeState::clearError() {
 void NodeState::post(std::function<void(NodeState&)> fn) { group->post(Mail{shared_from_this(), std::move(fn)}); }
 
 void NodeState::notifyNewData() {
+  if (!driven()) return;  // only a driven source waits for data (reserveAtZero relies on it)
   std::lock_guard<std::mutex> lock(group_mutex);
   if (removed || !group) return;
   if (!has_data.exchange(true, std::memory_order_acq_rel)) unblock(1);

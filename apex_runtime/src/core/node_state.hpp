@@ -70,11 +70,11 @@ struct EventEdge {
 };
 
 struct InputState {
-  std::mutex m;  // on the data path only for edges that are not counted; edits take it too
   Message msg;  // delivered, not yet taken
   std::atomic<bool> full{false};
   std::shared_ptr<Edge> edge;
   Message current;  // taken for this firing
+  std::mutex m;  // on the data path only for edges that are not counted; edits take it too (last: cache lines)
 };
 
 /** Sees every message of a port (inspection); runs on the node's group thread. */
@@ -113,8 +113,6 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   const std::uint64_t seq;
   std::shared_ptr<std::atomic<std::uint64_t>> revision;  // the graph's: bumped on every visible change
   std::unique_ptr<Node> node;
-  std::shared_ptr<const Host> host;  // the graph's, when the node was made
-  std::shared_ptr<EditRequests> edits;  // the graph's: where Node::requestEdit asks
   void attach(std::unique_ptr<Node> object) {
     node = std::move(object);
     (void)resolveHandles(*node, manifest());  // checked at registration against the default interface
@@ -125,7 +123,6 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::vector<OutputState> outputs;
   std::vector<ParamState> params;
   std::vector<std::vector<std::shared_ptr<EventEdge>>> trigger_edges;  // per trigger
-  std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;  // per slot, incoming
   /** Can fire at all (edits only): a source, or fed by a live input. A node cut
    *  off from every source never fires and holds no other path hostage. */
   bool live = false;
@@ -138,22 +135,29 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   bool queued_from_outside = false;  // group mutex: by push(), not by this group's own firing
   std::atomic<bool> has_data{false};
   ThreadGroup* group = nullptr;
-  std::mutex group_mutex;  // for readers of `group` outside edits (notifyNewData)
   bool removed = false;
 
   // shared with other threads
-  mutable std::mutex state_mutex;
   bool enabled = true;  // requested
   bool outer_enabled = true;  // every subgraph it lies in is enabled (edits only)
-  std::string ui;
-  NodeDescription placeholder;  // for placeholders: the description, kept verbatim
+  // host, edits, slot_edges, group_mutex, state_mutex, ui, placeholder: declared last (cache lines)
   std::string error() const;
 
   // --- group thread ---
   /** Fires if nothing blocks it (an edit may have blocked it since it was queued). */
   bool fireIfReady();
-  /** A firing took `t` ticks and ended at tick `end`; one that only passed Nothing is counted apart. */
-  void recordFiring(std::int64_t t, std::int64_t end);
+  /** Whether the next firing should be timed: the first, every one of a node that took at least
+   *  kSlowTicks, else one in kTimeEvery (a clock read costs ~10 ns here, a trivial hop ~40). */
+  bool timeNext() const { return untimed_left_ == 0; }
+  /** A firing took `t` ticks (if `timed`) and ended at tick `end` (if untimed: the group's
+   *  newest clock read, a little earlier); one that only passed Nothing is counted apart. */
+  void recordFiring(bool timed, std::int64_t t, std::int64_t end) {  // inline: every firing
+    const auto relaxed = std::memory_order_relaxed;  // one writer: no locked instructions
+    last_fired_.store(end, relaxed);
+    if (timed || !last_had_data_) return recordTimedOrNothing(timed, t);
+    --untimed_left_;
+    firings_.store(firings_.load(relaxed) + 1, relaxed);
+  }
   void applyParams();
   /** Node::setup(), once; a throw is the node's error. */
   void runSetup();
@@ -167,7 +171,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Sends an event; from process() or a slot handler it waits until the messages published
    *  there have left (releaseTriggers), so a receiver of both sees the data first. */
   void fireTrigger(int trigger);
-  void setOutput(int index, Message m);
+  void setOutput(int index, Message m) { outputs[index].pending = std::move(m); }
   /** Node::reportError: the node's error, kept past the end of this firing. */
   void reportError(const std::string& text);
   /** The parameter inputs output `index` feeds (Node::parameterTargets). */
@@ -176,7 +180,14 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // --- any thread ---
   /** Releases k blockers; at zero the node is queued. `here`: the group whose thread is
    *  firing now (nullptr elsewhere); a node of that group then runs next on it. */
-  void unblock(int k, ThreadGroup* here = nullptr);
+  void unblock(int k, ThreadGroup* here = nullptr) {  // inline: twice per hop
+    if (!readiness.release(k)) return;
+    if (here != nullptr && here == group) {
+      here->runNext(this);  // made ready by a firing on its own group's thread: runs next, no queue
+    } else {
+      group->push(this);
+    }
+  }
   void post(std::function<void(NodeState&)> fn);
   void notifyNewData();
   void notifyAfter(double seconds);
@@ -213,13 +224,16 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   int gates() const;
   void adjust(int delta);
   void deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGroup* here = nullptr);
+  inline void deliverTo(const std::shared_ptr<Edge>& edge, Message&& m, ThreadGroup* here);  // deliver's body
+  /** deliver() to a parameter input or on an edge that is not counted. */
+  void deliverSlow(const std::shared_ptr<Edge>& edge, Message&& m, ThreadGroup* here);
   void publishParam(int index, ThreadGroup* here = nullptr);
   void setError(std::string text);
   void clearError();
   /** Runs node code (process(), endOfSequence(), a slot); a throw becomes the node's error,
    *  "node 'n' (type) <what> threw: ...". False if it threw. */
   template <class F>
-  bool guarded(const std::string& what, F&& fn);
+  bool guarded(const char* what, F&& fn);
   /** Sends what a slot handler published, where every receiver has read the last message;
    *  false if something was refused (the node reports it). */
   bool sendFromSlot(const std::string& slot);
@@ -233,30 +247,49 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::atomic<bool> params_dirty_{false};
   bool apply_posted_ = false;  // state_mutex
   bool resend_due_ = false;  // state_mutex: a downstreamChanged() is set on a timer
-  std::chrono::steady_clock::time_point last_resend_;  // state_mutex
   std::atomic<bool> has_error_{false};
-  std::string error_;  // state_mutex
-  std::chrono::steady_clock::time_point error_logged_;  // state_mutex
   static constexpr std::chrono::seconds kErrorLogInterval{5};
   // written by the group thread only (load + store, no read-modify-write), read by anyone
-  std::atomic<std::uint64_t> firings_{0}, nothing_firings_{0};
+  std::atomic<std::uint64_t> firings_{0}, nothing_firings_{0}, timed_firings_{0};
   bool last_had_data_ = false;  // group thread: the firing recorded next moved a message
+  void recordTimedOrNothing(bool timed, std::int64_t t);  // recordFiring's other cases
+  std::uint8_t untimed_left_ = 0;  // group thread: firings before the next timed one
+  static constexpr int kTimeEvery = 8;
+  static constexpr std::int64_t kSlowTicks = 4096;  // ~1-4 µs at a TSC of 1-4 GHz (ticks.hpp)
   std::atomic<std::int64_t> last_t_{0}, total_t_{0}, max_t_{0}, last_fired_{0};  // in ticks (ticks.hpp)
-  void take(InputState& in, bool optional, bool& skip);
+  inline void take(InputState& in, bool optional, bool& skip);
   // fireIfReady's steps, in order
   struct Firing {
     bool skip = false;  // disabled, or a mandatory input holds Nothing: process() is not run
     bool end = false;  // an input holds the end of a sequence
+    bool data = false;  // an input holds a frame (not Nothing, not the end token): for rates
   };
   inline void reserve();
   inline Firing takeInputs();
   inline void run(const Firing& f);
-  inline void deliverOutputs();
+  /** `data`: the firing consumed a frame; with what it sends, that is last_had_data_. */
+  inline void deliverOutputs(bool data);
+
+ public:
+  // Cold and large: after everything a firing reads, so that fits in fewer cache lines
+  // (with these in the middle, a hop in a chain of 64 relays cost ~2 ns more, measured).
+  std::shared_ptr<const Host> host;  // the graph's, when the node was made
+  std::shared_ptr<EditRequests> edits;  // the graph's: where Node::requestEdit asks
+  std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;  // per slot, incoming
+  std::mutex group_mutex;  // for readers of `group` outside edits (notifyNewData)
+  mutable std::mutex state_mutex;
+  std::string ui;  // state_mutex
+  NodeDescription placeholder;  // for placeholders: the description, kept verbatim
+
+ private:
+  std::chrono::steady_clock::time_point last_resend_;  // state_mutex
+  std::string error_;  // state_mutex
+  std::chrono::steady_clock::time_point error_logged_;  // state_mutex
 };
 
 template <class F>
-inline bool NodeState::guarded(const std::string& what, F&& fn) {
-  auto where = [&] { return nodeLabel(name, type->id) + (what.empty() ? "" : " " + what); };
+inline bool NodeState::guarded(const char* what, F&& fn) {
+  auto where = [&] { return nodeLabel(name, type->id) + (*what ? std::string(" ") + what : std::string()); };
   try {
     fn();
     return true;

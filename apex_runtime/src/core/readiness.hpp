@@ -54,6 +54,14 @@ class Readiness {
     const int k = live_inputs_ + counted_out_ + (driven ? 1 : 0);
     return blockers_.fetch_add(k, std::memory_order_acq_rel) + k == 0;
   }
+  /** reserve() for a node that is not driven, without a locked instruction (one per hop less).
+   *  Its counter is zero, and nothing but this thread can change it now: every release answers
+   *  a condition a firing reserved (none is left at zero), notifyNewData() counts only for a
+   *  driven source, and edits pause the group. A release that the firing makes possible (a
+   *  receiver reads, a sender delivers) comes after the handoff that this store precedes. */
+  void reserveAtZero() {
+    blockers_.store(live_inputs_ + counted_out_, std::memory_order_relaxed);
+  }
 
  private:
   std::atomic<int> blockers_{0};

@@ -2,10 +2,13 @@
 // Ownership: the group's mutex guards the queue, the mailbox, the pause and
 // hold state and every NodeState::queued flag of nodes in this group. A node's
 // own state is only touched by this thread, or by an editor while this group
-// is paused (see graph.cpp). `inline_next_` belongs to the thread alone: a node
-// that one of its firings made ready runs next without a trip through the
-// queue (taskflow's executor does the same); it is back in the queue before
-// the thread parks, so an editor never sees it.
+// is paused (see graph.cpp). `inline_next_` and `inline_later_` belong to the thread
+// alone: a node that one of its firings made ready runs next without a trip through
+// the queue (taskflow's executor does the same), and one made ready earlier in that
+// firing waits in `inline_later_` until the chain ends (no lock: a source freed by
+// the first relay of a chain runs again after the chain, as from the queue). Both
+// are back in the queue before the thread leaves runFirings, so an editor never
+// sees them.
 #pragma once
 
 #include <atomic>
@@ -49,7 +52,10 @@ class ThreadGroup {
   /** @brief A node became ready; wakes the thread only if it sleeps. */
   void push(NodeState* node);
   /** @brief From a firing on this group's thread: `node` (of this group) became ready and runs next. */
-  void runNext(NodeState* node);
+  void runNext(NodeState* node) {  // inline: every hop within a group passes here
+    if (inline_next_) inline_later_.push_back(inline_next_);  // the last one made ready runs next
+    inline_next_ = node;
+  }
   /** @brief Removes a node from the ready queue (the group must be paused). */
   void unqueue(NodeState* node);
   /** @brief Work for a node, run between firings. */
@@ -87,6 +93,9 @@ class ThreadGroup {
   /** Fires `node`, then the successors it made ready here, while nothing else needs the thread. */
   void runFirings(NodeState* node);
   void queueLocked(NodeState* node);
+  /** Puts `node` and everything in inline_later_ in the queue (firings end: something else
+   *  needs the thread). */
+  void queueInline(NodeState* node);
   /** Something besides the inline chain needs the thread: a pause, mail, a hold, stop, or a
    *  node another thread made ready (often one that frees a sender in another group: it must
    *  not wait behind this group's whole chain, or two groups stop overlapping). Under m_. */
@@ -121,8 +130,10 @@ class ThreadGroup {
   std::thread thread_;
   std::atomic<bool> attention_{false};
   NodeState* inline_next_ = nullptr;  // made ready by that firing, runs next (thread only)
+  std::deque<NodeState*> inline_later_;  // made ready before it, run after the chain (thread only)
   int queued_from_outside_ = 0;  // nodes in ready_ that push() put there (m_)
   static constexpr int kInlineRun = 256;  // then the queue gets a turn
+  static constexpr std::int64_t kInlineTicks = 1 << 18;  // ~65-260 µs: then timers get a turn
 
   std::atomic<std::uint64_t> firings_{0}, wakeups_{0};
   std::atomic<std::int64_t> busy_t_{0};  // ticks (ticks.hpp)

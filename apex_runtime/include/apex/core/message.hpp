@@ -34,6 +34,9 @@ std::string demangle(const char* mangled);
 /** Interns (type, name) in a process-wide table so types compare by pointer
  *  even across plugin libraries. */
 const TypeInfo* internType(const std::type_info& type, const std::string& name);
+/** typeOf<EndOfSequence>(), read once when the core library loads: isEndOfSequence() is asked
+ *  several times per firing, and a function-local static costs a guard check and a call. */
+extern const TypeInfo* const kEndOfSequenceType;
 }  // namespace detail
 
 template <class T>
@@ -59,6 +62,16 @@ class Message {
   /** @brief The Nothing token: "this output sent nothing this time". */
   Message() = default;
   static Message nothing() { return Message(); }
+  Message(const Message&) = default;
+  Message& operator=(const Message&) = default;
+  /** @brief A moved-from message is Nothing. */
+  Message(Message&& o) noexcept : data_(std::move(o.data_)), type_(o.type_) { o.type_ = nullptr; }
+  Message& operator=(Message&& o) noexcept {
+    data_ = std::move(o.data_);
+    type_ = o.type_;
+    if (&o != this) o.type_ = nullptr;
+    return *this;
+  }
 
   template <class T>
   static Message share(std::shared_ptr<const T> payload) {
@@ -113,4 +126,6 @@ APEX_TYPE_NAME(std::vector<double>, "list<double>");
 APEX_TYPE_NAME(apex::Any, "any");
 APEX_TYPE_NAME(apex::EndOfSequence, "end of sequence");
 
-inline bool apex::Message::isEndOfSequence() const { return type_ == typeOf<EndOfSequence>(); }
+// kEndOfSequenceType is null only before the core library's static initialisation: Nothing (a
+// null type_) must not match it then.
+inline bool apex::Message::isEndOfSequence() const { return type_ != nullptr && type_ == detail::kEndOfSequenceType; }

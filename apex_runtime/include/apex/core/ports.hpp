@@ -49,7 +49,7 @@ class Handle {
     return index_;
   }
   const Message& inputAt(int i) const { return node_->inputAt(i); }
-  void publishAt(int i, Message m) const { node_->publishAt(i, std::move(m)); }
+  void publishAt(int i, Message&& m) const { node_->publishAt(i, std::move(m)); }
   const ParamValue& paramAt(int i) const { return node_->paramAt(i); }
   void triggerAt(int i) const { node_->triggerAt(i); }
   [[noreturn]] void throwWrongType(const Message& m) const;
@@ -57,12 +57,12 @@ class Handle {
  private:
   [[noreturn]] void throwGone() const;
   Node* node_;
+  int index_ = -1;  // beside node_: the two a firing reads (one cache line)
   Of of_;
   std::string name_;
   const TypeInfo* type_;
   bool (*holds_)(const ParamValue&);
   std::string cpp_;  // "Input<int>": for messages
-  int index_ = -1;
 };
 
 /** @brief An input of type T. */
