@@ -22,6 +22,14 @@ const pcl::PCLPointField* findField(const Blob& points, const std::string& name)
   return nullptr;
 }
 
+/** The points at `indices` of unpadded rows of `Step` bytes a point, one after another at `to`. */
+template <std::size_t Step>
+void gather(const Blob& points, const pcl::Indices& indices, std::uint8_t* to) {
+  const std::uint8_t* from = points.data.data();
+  for (std::size_t k = 0; k < indices.size(); ++k, to += Step)
+    std::memcpy(to, from + static_cast<std::size_t>(indices[k]) * Step, Step);
+}
+
 }  // namespace
 
 std::uint32_t valueBytes(std::uint8_t datatype) {
@@ -102,15 +110,44 @@ void requirePoints(const Cloud& cloud) {
   throw std::invalid_argument("received a cloud of " + std::to_string(pointCount(cloud)) + " points, none of them finite");
 }
 
-std::shared_ptr<const XyzCloud> xyzOf(const Cloud& cloud) {
+std::shared_ptr<const XyzCloud> xyzOf(const Cloud& cloud, std::shared_ptr<XyzCloud> into) {
   requirePoints(cloud);
-  auto out = std::make_shared<XyzCloud>();
-  pcl::fromPCLPointCloud2(*cloud.points, *out);
+  auto out = into ? std::move(into) : std::make_shared<XyzCloud>();
+  copyXyz(*cloud.points, *out);
   return out;
 }
 
-std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indices) {
-  auto out = std::make_shared<Blob>();
+void copyXyz(const Blob& p, XyzCloud& out) {
+  // What pcl::fromPCLPointCloud2 gives (header, size, density; each point's fourth float 1), read
+  // here with one copy per point: its loop over a field map per point is the slower one.
+  out.header = p.header;
+  out.width = p.width;
+  out.height = p.height;
+  out.is_dense = p.is_dense == 1;
+  out.sensor_origin_ = Eigen::Vector4f::Zero();
+  out.sensor_orientation_ = Eigen::Quaternionf::Identity();
+  out.points.resize(std::size_t(p.width) * p.height);
+  const std::uint32_t x = findField(p, "x")->offset, y = findField(p, "y")->offset, z = findField(p, "z")->offset;
+  const bool packed = y == x + 4 && z == x + 8;  // as nearly every sensor and PCL lay them out
+  if (out.points.empty()) return;
+  pcl::PointXYZ* to = out.points.data();
+  for (std::size_t row = 0; row < p.height; ++row) {
+    const std::uint8_t* from = &p.data[row * p.row_step];
+    for (std::size_t col = 0; col < p.width; ++col, from += p.point_step, ++to) {
+      if (packed) {
+        std::memcpy(to->data, from + x, 3 * sizeof(float));
+      } else {
+        std::memcpy(&to->x, from + x, sizeof(float));
+        std::memcpy(&to->y, from + y, sizeof(float));
+        std::memcpy(&to->z, from + z, sizeof(float));
+      }
+      to->data[3] = 1.f;
+    }
+  }
+}
+
+std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indices, std::shared_ptr<Blob> into) {
+  auto out = into ? std::move(into) : std::make_shared<Blob>();
   out->header = points.header;
   out->fields = points.fields;
   out->is_bigendian = points.is_bigendian;
@@ -121,10 +158,23 @@ std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indic
   out->is_dense = points.is_dense;
   out->data.resize(std::size_t(out->row_step));
   const std::size_t step = points.point_step;
-  for (std::size_t k = 0; k < indices.size(); ++k) {  // organised clouds: rows may be padded
+  std::uint8_t* to = out->data.data();
+  if (std::size_t(points.row_step) == points.width * step || points.height == 1) {  // rows unpadded: no division
+    switch (step) {  // PCL's point sizes: each copy inlined, not a call to memcpy per point
+      case 16: gather<16>(points, indices, to); break;
+      case 32: gather<32>(points, indices, to); break;
+      case 48: gather<48>(points, indices, to); break;
+      case 64: gather<64>(points, indices, to); break;
+      default:
+        for (std::size_t k = 0; k < indices.size(); ++k, to += step)
+          std::memcpy(to, &points.data[static_cast<std::size_t>(indices[k]) * step], step);
+    }
+    return out;
+  }
+  for (std::size_t k = 0; k < indices.size(); ++k, to += step) {  // organised clouds: rows may be padded
     const std::size_t i = static_cast<std::size_t>(indices[k]);
     const std::size_t row = i / points.width, column = i % points.width;
-    std::memcpy(&out->data[k * step], &points.data[row * points.row_step + column * step], step);
+    std::memcpy(to, &points.data[row * points.row_step + column * step], step);
   }
   return out;
 }

@@ -15,8 +15,10 @@ using Offsets = std::array<std::uint32_t, 3>;
  *  be unaligned). */
 template <class F>
 void eachTriple(Blob& points, const Offsets& offsets, std::size_t begin, std::size_t end, F f) {
-  for (std::size_t i = begin; i < end; ++i) {
-    std::uint8_t* p = &points.data[(i / points.width) * points.row_step + (i % points.width) * points.point_step];
+  const std::size_t step = points.point_step;
+  const bool unpadded = points.height == 1 || std::size_t(points.row_step) == points.width * step;
+  for (std::size_t i = begin; i < end; ++i) {  // organised clouds: rows may be padded
+    std::uint8_t* p = &points.data[unpadded ? i * step : (i / points.width) * points.row_step + (i % points.width) * step];
     Eigen::Vector3f v;
     for (int k = 0; k < 3; ++k) std::memcpy(&v[k], p + offsets[k], sizeof(float));
     v = f(v);
@@ -90,13 +92,14 @@ geometry_msgs::Transform toTransform(const Eigen::Matrix4f& m) {
   return t;
 }
 
-std::shared_ptr<Blob> transformPoints(const Blob& in, const Eigen::Affine3f& m) {
-  auto out = std::make_shared<Blob>(in);
+std::shared_ptr<Blob> transformPoints(const Blob& in, const Eigen::Affine3f& m, std::shared_ptr<Blob> into) {
+  auto out = into ? std::move(into) : std::make_shared<Blob>();
+  *out = in;  // into reused points: their bytes' memory too
   moveRange(*out, m, 0, std::size_t(in.width) * in.height);
   return out;
 }
 
-std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds) {
+std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds, std::shared_ptr<Blob> into) {
   if (clouds.empty()) throw std::invalid_argument("no clouds to merge");
   for (std::size_t i = 0; i < clouds.size(); ++i)
     if (!clouds[i].points || !triple(*clouds[i].points, {"x", "y", "z"}))
@@ -105,10 +108,11 @@ std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds) {
   const Blob& first = *clouds.front().points;
   const bool same =
       std::all_of(clouds.begin(), clouds.end(), [&](const PlacedPoints& c) { return sameLayout(*c.points, first); });
-  auto out = std::make_shared<Blob>();
+  auto out = into ? std::move(into) : std::make_shared<Blob>();
   out->header = first.header;
   out->is_bigendian = first.is_bigendian;
   out->is_dense = true;
+  out->fields.clear();
   if (same) {
     out->fields = first.fields;
     out->point_step = first.point_step;
@@ -143,10 +147,14 @@ std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds) {
     else
       for (const auto& f : out->fields) copies.push_back({sameField(p, f)->offset, f.offset, fieldBytes(f)});
     const std::size_t n = std::size_t(p.width) * p.height;
-    for (std::size_t i = 0; i < n; ++i) {  // organised clouds: rows may be padded
-      const std::uint8_t* from = &p.data[(i / p.width) * p.row_step + (i % p.width) * p.point_step];
-      std::uint8_t* to = &out->data[(at + i) * step];
-      for (const auto& k : copies) std::memcpy(to + k.to, from + k.from, k.bytes);
+    if (same && std::size_t(p.row_step) == p.width * step) {  // whole points, rows unpadded: one block
+      if (n) std::memcpy(&out->data[at * step], p.data.data(), n * step);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {  // organised clouds: rows may be padded
+        const std::uint8_t* from = &p.data[(i / p.width) * p.row_step + (i % p.width) * p.point_step];
+        std::uint8_t* to = &out->data[(at + i) * step];
+        for (const auto& k : copies) std::memcpy(to + k.to, from + k.from, k.bytes);
+      }
     }
     if (c.pose.matrix() != Eigen::Matrix4f::Identity()) moveRange(*out, c.pose, at, at + n);
     out->is_dense = out->is_dense && p.is_dense;
@@ -156,7 +164,7 @@ std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds) {
 }
 
 std::shared_ptr<Cloud> mergeClouds(const std::vector<std::shared_ptr<const Cloud>>& clouds, const std::string& frame,
-                                   const TransformLookup& lookup) {
+                                   const TransformLookup& lookup, std::shared_ptr<Blob> into) {
   if (clouds.empty()) throw std::invalid_argument("no clouds to merge");
   auto name = [](std::size_t i) { return "cloud_" + std::to_string(i); };
   auto out = std::make_shared<Cloud>();
@@ -185,7 +193,7 @@ std::shared_ptr<Cloud> mergeClouds(const std::vector<std::shared_ptr<const Cloud
     placed.push_back(std::move(p));
   }
   if (placed.empty()) throw std::invalid_argument("all " + std::to_string(clouds.size()) + " clouds are empty");
-  out->points = mergePoints(placed);
+  out->points = mergePoints(placed, std::move(into));
   return out;
 }
 

@@ -106,7 +106,8 @@ class ClusterFeaturesNode : public apex::Node {
       } catch (const std::invalid_argument& e) {
         throw std::invalid_argument("cluster " + std::to_string(i) + ": " + e.what());
       }
-      out->clusters.push_back(measure(typedPoints<pcl::PointXYZ>(cluster), static_cast<int>(i)));
+      copyXyz(*cluster.points, xyz_);  // into the same memory each time
+      out->clusters.push_back(measure(xyz_, static_cast<int>(i)));
     }
     auto poses = std::make_shared<geometry_msgs::PoseArray>();
     poses->header = in->header;
@@ -127,6 +128,7 @@ class ClusterFeaturesNode : public apex::Node {
   apex::Output<ClusterFeatures> features_{this, kFeatures};
   apex::Output<int> count_{this, kCount};
   apex::Output<geometry_msgs::PoseArray> poses_{this, kPoses};
+  XyzCloud xyz_;  // one cluster's x, y, z at a time
 };
 
 }  // namespace apex_nodes

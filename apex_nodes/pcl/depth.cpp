@@ -5,6 +5,7 @@
 // same units (16UC1/mono16: millimetres, 32FC1: metres) and a NaN point for a missing depth.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -74,37 +75,37 @@ struct Depth<float> {
   static float toMeters(float d) { return d; }
 };
 
-/** x, y, z of every pixel into the organised `points` (its size: the image's), as
- *  depth_image_proc's convert<T>() computes them. */
-template <class T, class Point>
-void project(const cv::Mat& depth, const Intrinsics& k, pcl::PointCloud<Point>& points) {
+/** x, y, z of every pixel into the organised `points` (laid out as `Point`, sized to the image),
+ *  as depth_image_proc's convert<T>() computes them; each point's fourth float 1, as PCL's points
+ *  have it. Written into the bytes: no typed cloud to copy again. */
+template <class T>
+void project(const cv::Mat& depth, const Intrinsics& k, Blob& points) {
   const float center_x = float(k.cx), center_y = float(k.cy);
   const double unit_scaling = Depth<T>::toMeters(T(1));  // unit and 1/f folded into one float
   const float constant_x = float(unit_scaling / k.fx), constant_y = float(unit_scaling / k.fy);
+  std::uint8_t* to = points.data.data();
   for (int v = 0; v < depth.rows; ++v) {
     const T* row = depth.ptr<T>(v);
-    for (int u = 0; u < depth.cols; ++u) {
-      Point& p = points.at(u, v);
+    for (int u = 0; u < depth.cols; ++u, to += points.point_step) {
       const T d = row[u];
-      if (!Depth<T>::valid(d)) {
-        p.x = p.y = p.z = kBad;
-        continue;
+      float p[4] = {kBad, kBad, kBad, 1.f};
+      if (Depth<T>::valid(d)) {
+        p[0] = (u - center_x) * d * constant_x;
+        p[1] = (v - center_y) * d * constant_y;
+        p[2] = Depth<T>::toMeters(d);
       }
-      p.x = (u - center_x) * d * constant_x;
-      p.y = (v - center_y) * d * constant_y;
-      p.z = Depth<T>::toMeters(d);
+      std::memcpy(to, p, sizeof p);
     }
   }
 }
 
-/** The organised cloud of `depth` through `info` (x, y, z; any other field left as Point makes it). */
+/** The organised cloud of `depth` through `info` into `points`, laid out as PCL's `Point` (x, y, z
+ *  set; any other field as it was: zero in new points). */
 template <class Point>
-pcl::PointCloud<Point> depthPoints(const Image& depth, const sensor_msgs::CameraInfo& info) {
+void depthPoints(const Image& depth, const sensor_msgs::CameraInfo& info, Blob& points) {
   if (depth.mat.empty()) throw std::invalid_argument("received an empty depth image");
   const Intrinsics k = intrinsicsOf(info, "the depth image", depth.header.frame_id);
   requireSize(k, info, depth.mat, "the depth image");
-  pcl::PointCloud<Point> points(std::uint32_t(depth.mat.cols), std::uint32_t(depth.mat.rows));
-  points.is_dense = false;
   const std::string& e = depth.encoding;
   const bool millimetres = e == "16UC1" || e == "mono16";
   if (!millimetres && e != "32FC1")
@@ -113,9 +114,23 @@ pcl::PointCloud<Point> depthPoints(const Image& depth, const sensor_msgs::Camera
   if (depth.mat.type() != type)
     throw std::invalid_argument("depth image '" + e + "' holds pixels of OpenCV type " + std::to_string(depth.mat.type()) +
                                 ", not " + std::to_string(type));
+  static const Blob kLayout = [] {  // what pcl::toPCLPointCloud2 makes of a pcl::PointCloud<Point>
+    Blob b;
+    pcl::toPCLPointCloud2(pcl::PointCloud<Point>(), b);
+    return b;
+  }();
+  static_assert(sizeof(Point) >= 4 * sizeof(float), "x, y, z and PCL's fourth float lead the point");
+  points.header = kLayout.header;
+  points.fields = kLayout.fields;
+  points.is_bigendian = false;
+  points.point_step = sizeof(Point);
+  points.width = std::uint32_t(depth.mat.cols);
+  points.height = std::uint32_t(depth.mat.rows);
+  points.row_step = points.point_step * points.width;
+  points.is_dense = false;
+  points.data.resize(std::size_t(points.row_step) * points.height);
   if (millimetres) project<std::uint16_t>(depth.mat, k, points);
   else project<float>(depth.mat, k, points);
-  return points;
 }
 
 }  // namespace
@@ -134,13 +149,19 @@ class DepthToCloud : public apex::Node {
   }
   void process() override {
     const auto depth = depth_.get();
-    cloud_.publish(makeCloud(depth->header, depthPoints<pcl::PointXYZ>(*depth, *camera_info_.get())));
+    const auto points = points_.next();
+    depthPoints<pcl::PointXYZ>(*depth, *camera_info_.get(), *points);
+    auto out = std::make_shared<Cloud>();
+    out->header = depth->header;
+    out->points = points;
+    cloud_.publish(out);
   }
 
  private:
   apex::Input<Image> depth_{this, kDepth};
   apex::Input<sensor_msgs::CameraInfo> camera_info_{this, kCameraInfo};
   apex::Output<Cloud> cloud_{this, kCloud};
+  Reused<Blob> points_;  // refilled once nobody holds the last ones: 4.9 MB at 640x480
 };
 
 class DepthColorToCloud : public apex::Node {
@@ -171,19 +192,27 @@ class DepthColorToCloud : public apex::Node {
     if (!color.header.frame_id.empty() && !depth->header.frame_id.empty() && color.header.frame_id != depth->header.frame_id)
       throw std::invalid_argument("the colour image is on frame '" + color.header.frame_id + "', the depth image on '" +
                                   depth->header.frame_id + "'");
-    auto points = depthPoints<pcl::PointXYZRGB>(*depth, *camera_info_.get());
+    const auto points = points_.next();
+    depthPoints<pcl::PointXYZRGB>(*depth, *camera_info_.get(), *points);
     // depth_image_proc's offsets of red, green and blue in a pixel of each encoding
     const bool bgr = e[0] == 'b';
     const int r = bgr ? 2 : 0, g = channels == 1 ? 0 : 1, b = channels == 1 || bgr ? 0 : 2;
+    const std::uint32_t rgb = std::find_if(points->fields.begin(), points->fields.end(), [](const auto& f) {
+                                return f.name == "rgb";
+                              })->offset;
+    std::uint8_t* to = points->data.data() + rgb;
     for (int v = 0; v < color.mat.rows; ++v) {
       const std::uint8_t* row = color.mat.ptr<std::uint8_t>(v);
-      for (int u = 0; u < color.mat.cols; ++u) {  // every pixel, with depth or not, as depth_image_proc
-        pcl::PointXYZRGB& p = points.at(u, v);
+      for (int u = 0; u < color.mat.cols; ++u, to += points->point_step) {  // every pixel, with depth or not
         const std::uint8_t* px = row + u * channels;
-        p.r = px[r], p.g = px[g], p.b = px[b], p.a = 255;
+        const std::uint8_t bgra[4] = {px[b], px[g], px[r], 255};  // PCL's rgba: b, g, r, a in memory
+        std::memcpy(to, bgra, sizeof bgra);
       }
     }
-    cloud_.publish(makeCloud(depth->header, points));
+    auto out = std::make_shared<Cloud>();
+    out->header = depth->header;
+    out->points = points;
+    cloud_.publish(out);
   }
 
  private:
@@ -191,6 +220,7 @@ class DepthColorToCloud : public apex::Node {
   apex::Input<Image> color_{this, kColor};
   apex::Input<sensor_msgs::CameraInfo> camera_info_{this, kCameraInfo};
   apex::Output<Cloud> cloud_{this, kCloud};
+  Reused<Blob> points_;  // refilled once nobody holds the last ones
 };
 
 class CloudToDepth : public apex::Node {

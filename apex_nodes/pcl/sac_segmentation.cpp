@@ -231,8 +231,9 @@ class ProjectInliers : public apex::Node {
     if (values.size() != model.coefficients)
       throw std::invalid_argument("a " + std::string(model.name) + " has " + std::to_string(model.coefficients) +
                                   " coefficients, the input has " + std::to_string(values.size()));
-    const auto xyz = xyzOf(*in);
-    XyzCloud projected;
+    const auto xyz = xyzOf(*in, xyz_.next());
+    XyzCloud& projected = projected_;
+    projected.clear();  // PCL leaves it as it was if it cannot start
     if (model.type == pcl::SACMODEL_CIRCLE3D) {  // pcl::ProjectInliers has no circle3d
       pcl::SampleConsensusModelCircle3D<pcl::PointXYZ> circle(xyz);
       pcl::Indices all(xyz->size());
@@ -253,22 +254,27 @@ class ProjectInliers : public apex::Node {
     if (projected.size() != xyz->size())
       throw std::invalid_argument("PCL could not project onto the " + std::string(model.name) +
                                   " (its coefficients are invalid)");
-    cloud_out_.publish(cloudResult(*in, withXyz(*in->points, projected)));
+    cloud_out_.publish(cloudResult(*in, withXyz(*in->points, projected, points_.next())));
   }
 
  private:
-  /** A copy of `points` with x, y, z from `xyz`. */
-  static std::shared_ptr<Blob> withXyz(const Blob& points, const XyzCloud& xyz) {
-    auto out = std::make_shared<Blob>(points);
+  /** A copy of `points` in `out` with x, y, z from `xyz` (organised as `points`). */
+  static std::shared_ptr<Blob> withXyz(const Blob& points, const XyzCloud& xyz, std::shared_ptr<Blob> out) {
+    *out = points;  // a reused Blob keeps its bytes' memory
     std::uint32_t offsets[3] = {0, 0, 0};  // xyzOf found all three
     for (const auto& f : points.fields)
       if (f.name.size() == 1 && f.name[0] >= 'x' && f.name[0] <= 'z') offsets[f.name[0] - 'x'] = f.offset;
-    for (std::size_t i = 0; i < xyz.size(); ++i) {
-      std::uint8_t* point = &out->data[(i / points.width) * points.row_step + (i % points.width) * points.point_step];
-      for (int k = 0; k < 3; ++k) std::memcpy(point + offsets[k], &xyz[i].data[k], sizeof(float));
+    std::size_t i = 0;
+    for (std::size_t row = 0; row < points.height; ++row) {
+      std::uint8_t* point = &out->data[row * points.row_step];
+      for (std::size_t col = 0; col < points.width; ++col, ++i, point += points.point_step)
+        for (int k = 0; k < 3; ++k) std::memcpy(point + offsets[k], &xyz[i].data[k], sizeof(float));
     }
     return out;
   }
+  Reused<XyzCloud> xyz_;  // the x, y, z view, its projection and the points sent: reused per frame
+  XyzCloud projected_;
+  Reused<Blob> points_;
   apex::Input<Cloud> cloud_in_{this, kCloudIn};
   apex::Input<std::vector<double>> coefficients_{this, kCoefficients};
   apex::Output<Cloud> cloud_out_{this, kCloudOut};

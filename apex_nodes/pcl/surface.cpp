@@ -73,7 +73,7 @@ class ConvexHull : public apex::Node {
   }
   void process() override {
     const auto in = cloud_.get();
-    const auto xyz = xyzOf(*in);
+    const auto xyz = xyzOf(*in, xyz_.next());
     pcl::ConvexHull<pcl::PointXYZ> hull;
     hull.setInputCloud(xyz);
     if (auto finite = finiteIndices(*xyz)) hull.setIndices(finite);
@@ -88,7 +88,7 @@ class ConvexHull : public apex::Node {
     pcl::PointIndices indices;
     hull.getHullPointIndices(indices);
     const auto [area, volume] = areaAndVolume(points, polygons, hull.getDimension() == 2);
-    hull_.publish(cloudResult(*in, selectPoints(*in->points, indices.indices)));
+    hull_.publish(cloudResult(*in, selectPoints(*in->points, indices.indices, points_.next())));
     area_.publish(area);
     volume_.publish(volume);
   }
@@ -99,6 +99,8 @@ class ConvexHull : public apex::Node {
   apex::Output<double> area_{this, kArea};
   apex::Output<double> volume_{this, kVolume};
   apex::Param<std::string> dimension_{this, kDimension};
+  Reused<XyzCloud> xyz_;  // the x, y, z view and the points sent: reused per frame
+  Reused<Blob> points_;
 };
 
 class ExtractPolygonalPrism : public apex::Node {
@@ -127,7 +129,7 @@ class ExtractPolygonalPrism : public apex::Node {
   }
   void process() override {
     const auto in = cloud_.get();
-    const auto xyz = xyzOf(*in);
+    const auto xyz = xyzOf(*in, xyz_.next());
     const auto polygon = xyzOf(*hull_.get());
     if (polygon->size() < 3)
       throw std::invalid_argument("the hull has " + std::to_string(polygon->size()) + " points: a polygon needs at least 3");
@@ -141,7 +143,7 @@ class ExtractPolygonalPrism : public apex::Node {
     pcl::PointIndices inside;
     prism.segment(inside);
     const pcl::Indices& kept = negative_.get() ? complement(inside.indices, xyz->size()) : inside.indices;
-    cloud_out_.publish(cloudResult(*in, selectPoints(*in->points, kept)));
+    cloud_out_.publish(cloudResult(*in, selectPoints(*in->points, kept, points_.next())));
   }
 
  private:
@@ -151,6 +153,8 @@ class ExtractPolygonalPrism : public apex::Node {
   apex::Param<apex::Interval> height_{this, kHeight};
   apex::Param<std::vector<double>> viewpoint_{this, kViewpoint};
   apex::Param<bool> negative_{this, kNegative};
+  Reused<XyzCloud> xyz_;  // the x, y, z view and the points sent: reused per frame
+  Reused<Blob> points_;
 };
 
 }  // namespace apex_nodes

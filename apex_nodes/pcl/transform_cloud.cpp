@@ -25,7 +25,7 @@ class TransformCloud : public apex::Node {
     if (!t.child_frame_id.empty() && t.child_frame_id != in->header.frame_id)
       throw std::invalid_argument("the transform maps frame '" + t.child_frame_id + "', the cloud is in '" + in->header.frame_id +
                                   "'");
-    auto out = cloudResult(*in, transformPoints(*in->points, toEigen(t.transform)));
+    auto out = cloudResult(*in, transformPoints(*in->points, toEigen(t.transform), points_.next()));
     out->header.frame_id = t.header.frame_id;
     cloud_out_.publish(out);
   }
@@ -34,6 +34,7 @@ class TransformCloud : public apex::Node {
   apex::Input<Cloud> cloud_in_{this, kCloudIn};
   apex::Input<geometry_msgs::TransformStamped> transform_{this, kTransform};
   apex::Output<Cloud> cloud_out_{this, kCloudOut};
+  Reused<Blob> points_;  // the moved points, refilled once nobody holds the last ones
 };
 
 }  // namespace apex_nodes

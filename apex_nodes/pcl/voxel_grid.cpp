@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <typeinfo>
 
 #include "apex/core/registry.hpp"
 #include "apex_nodes/cloud.hpp"
@@ -15,15 +16,36 @@ namespace apex_nodes {
 namespace param = apex::param;
 namespace {
 
+/** The typed cloud of the last firing's point type, kept for the next: a steady stream converts
+ *  into the same memory (a new megabyte per frame costs its page faults). */
+class TypedScratch {
+ public:
+  template <class PointT>
+  std::shared_ptr<pcl::PointCloud<PointT>> get() {
+    if (type_ != &typeid(PointT) || !cloud_ || cloud_.use_count() > 1) {
+      cloud_ = std::make_shared<pcl::PointCloud<PointT>>();
+      type_ = &typeid(PointT);
+    }
+    return std::static_pointer_cast<pcl::PointCloud<PointT>>(cloud_);
+  }
+
+ private:
+  const std::type_info* type_ = nullptr;
+  std::shared_ptr<void> cloud_;
+};
+
 template <class PointT>
-std::shared_ptr<Blob> voxelTyped(const Cloud& in, float leaf) {
-  auto typed = std::make_shared<pcl::PointCloud<PointT>>(typedPoints<PointT>(in));
+std::shared_ptr<Blob> voxelTyped(const Cloud& in, float leaf, TypedScratch& scratch, std::shared_ptr<Blob> into) {
+  const auto typed = scratch.get<PointT>();
+  pcl::fromPCLPointCloud2(*in.points, *typed);
   pcl::VoxelGrid<PointT> filter;
   filter.setInputCloud(typed);
   filter.setLeafSize(leaf, leaf, leaf);
   pcl::PointCloud<PointT> out;
   filter.filter(out);
-  return toBlob(out);
+  pcl::toPCLPointCloud2(out, *into);  // sets every member but is_bigendian
+  into->is_bigendian = false;
+  return into;
 }
 
 std::shared_ptr<Blob> voxelAnyFields(const Cloud& in, float leaf) {
@@ -55,17 +77,18 @@ bool fieldsOf(const Blob& points) {
   return signature(points) == kFields;
 }
 
-/** Downsamples `in` (checked: x, y, z, a finite point) with voxels of edge `leaf`. */
-std::shared_ptr<Blob> voxelGrid(const Cloud& in, float leaf) {
+/** Downsamples `in` (checked: x, y, z, a finite point) with voxels of edge `leaf`; a cloud of a
+ *  PCL point type's fields into `into`. */
+std::shared_ptr<Blob> voxelGrid(const Cloud& in, float leaf, TypedScratch& s, std::shared_ptr<Blob> into) {
   requirePoints(in);
   const Blob& p = *in.points;
-  if (fieldsOf<pcl::PointXYZ>(p)) return voxelTyped<pcl::PointXYZ>(in, leaf);
-  if (fieldsOf<pcl::PointXYZI>(p)) return voxelTyped<pcl::PointXYZI>(in, leaf);
-  if (fieldsOf<pcl::PointXYZRGB>(p)) return voxelTyped<pcl::PointXYZRGB>(in, leaf);
-  if (fieldsOf<pcl::PointXYZRGBA>(p)) return voxelTyped<pcl::PointXYZRGBA>(in, leaf);
-  if (fieldsOf<pcl::PointNormal>(p)) return voxelTyped<pcl::PointNormal>(in, leaf);
-  if (fieldsOf<pcl::PointXYZRGBNormal>(p)) return voxelTyped<pcl::PointXYZRGBNormal>(in, leaf);
-  if (fieldsOf<pcl::PointXYZINormal>(p)) return voxelTyped<pcl::PointXYZINormal>(in, leaf);
+  if (fieldsOf<pcl::PointXYZ>(p)) return voxelTyped<pcl::PointXYZ>(in, leaf, s, into);
+  if (fieldsOf<pcl::PointXYZI>(p)) return voxelTyped<pcl::PointXYZI>(in, leaf, s, into);
+  if (fieldsOf<pcl::PointXYZRGB>(p)) return voxelTyped<pcl::PointXYZRGB>(in, leaf, s, into);
+  if (fieldsOf<pcl::PointXYZRGBA>(p)) return voxelTyped<pcl::PointXYZRGBA>(in, leaf, s, into);
+  if (fieldsOf<pcl::PointNormal>(p)) return voxelTyped<pcl::PointNormal>(in, leaf, s, into);
+  if (fieldsOf<pcl::PointXYZRGBNormal>(p)) return voxelTyped<pcl::PointXYZRGBNormal>(in, leaf, s, into);
+  if (fieldsOf<pcl::PointXYZINormal>(p)) return voxelTyped<pcl::PointXYZINormal>(in, leaf, s, into);
   return voxelAnyFields(in, leaf);  // e.g. a lidar's ring and time
 }
 
@@ -80,13 +103,15 @@ class VoxelGrid : public apex::Node, public CloudFilterPorts {
   }
   void process() override {
     const auto in = in_.get();
-    out_.publish(cloudResult(*in, voxelGrid(*in, static_cast<float>(leaf_size_.get()))));
+    out_.publish(cloudResult(*in, voxelGrid(*in, static_cast<float>(leaf_size_.get()), typed_, points_.next())));
   }
 
  private:
   apex::Input<Cloud> in_{this, kCloudIn};
   apex::Output<Cloud> out_{this, kCloudOut};
   apex::Param<double> leaf_size_{this, kLeafSize};
+  TypedScratch typed_;  // the input as its point type and the points sent: reused per frame
+  Reused<Blob> points_;
 };
 
 }  // namespace apex_nodes

@@ -56,7 +56,8 @@ class MergeClouds : public apex::Node {
                     [&](const std::string& target, const std::string& source, const ros::Time& stamp) -> Eigen::Affine3f {
                       if (!buffer_) throw std::runtime_error("no tf2 listener: ROS is not initialised");
                       return toEigen(buffer_->lookupTransform(target, source, stamp, ros::Duration(timeout)).transform);
-                    }));
+                    },
+                    points_.next()));
   }
 
  private:
@@ -65,6 +66,7 @@ class MergeClouds : public apex::Node {
   apex::Param<double> timeout_{this, kTimeout};
   std::unique_ptr<tf2_ros::Buffer> buffer_;
   std::unique_ptr<tf2_ros::TransformListener> listener_;
+  Reused<Blob> points_;  // the merged points, refilled once nobody holds the last ones
 };
 
 }  // namespace apex_nodes

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "apex_nodes/output_buffer.hpp"
 #include "apex_nodes/types.hpp"
 
 namespace apex_nodes {
@@ -35,10 +36,16 @@ void checkCloud(const Cloud& cloud);
 /** @brief Throws std::invalid_argument if the cloud lacks x, y or z, is empty, or has no finite
  *  point (it reads up to the first finite one). For a node that needs points. */
 void requirePoints(const Cloud& cloud);
-/** @brief The points' x, y, z, organised as the cloud is, once requirePoints passes. */
-std::shared_ptr<const XyzCloud> xyzOf(const Cloud& cloud);
-/** @brief The points at `indices`, whole (every field), as one row. */
-std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indices);
+
+/** @brief The points' x, y, z, organised as the cloud is, once requirePoints passes; into `into`
+ *  if given (e.g. Reused::next()), else a new cloud. */
+std::shared_ptr<const XyzCloud> xyzOf(const Cloud& cloud, std::shared_ptr<XyzCloud> into = nullptr);
+/** @brief The points' x, y, z into `xyz`, as pcl::fromPCLPointCloud2 gives them (organised as the
+ *  points, each one's fourth float 1), reusing its memory; no check beyond requireField's for x, y, z. */
+void copyXyz(const Blob& points, XyzCloud& xyz);
+/** @brief The points at `indices`, whole (every field), as one row; into `into` if given (every
+ *  member set), else new points. */
+std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indices, std::shared_ptr<Blob> into = nullptr);
 /** @brief Every index below `count` that `indices` (ascending) lacks. */
 pcl::Indices complement(const pcl::Indices& indices, std::size_t count);
 /** @brief A result: `points` with the header of the cloud it came from. */

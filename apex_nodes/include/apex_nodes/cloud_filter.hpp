@@ -43,12 +43,15 @@ class CloudFilter : public apex::Node, public CloudFilterPorts {
   void process() final {
     const auto in = in_.get();
     Filter filter;
-    filter.setInputCloud(xyzOf(*in));
+    filter.setInputCloud(xyzOf(*in, xyz_.next()));
     configure(filter);
-    pcl::Indices kept;
-    filter.filter(kept);
-    out_.publish(cloudResult(*in, selectPoints(*in->points, kept)));
+    kept_.clear();  // PCL leaves it as it was if the filter cannot start
+    filter.filter(kept_);
+    out_.publish(cloudResult(*in, selectPoints(*in->points, kept_, points_.next())));
   }
+  Reused<XyzCloud> xyz_;  // the filter's input, the filter's output and the points sent: reused
+  pcl::Indices kept_;
+  Reused<Blob> points_;
   apex::Input<Cloud> in_{this, kCloudIn};
   apex::Output<Cloud> out_{this, kCloudOut};
 };

@@ -22,8 +22,9 @@ Eigen::Affine3f toEigen(const geometry_msgs::Transform& t);
 geometry_msgs::Transform toTransform(const Eigen::Matrix4f& m);
 
 /** @brief The points moved by `m`: x, y, z (float32, as requireField checks), and normal_x..z
- *  turned if the cloud has them as float32; every other field kept. */
-std::shared_ptr<Blob> transformPoints(const Blob& in, const Eigen::Affine3f& m);
+ *  turned if the cloud has them as float32; every other field kept. Into `into` if given (e.g.
+ *  Reused::next()), else new points. */
+std::shared_ptr<Blob> transformPoints(const Blob& in, const Eigen::Affine3f& m, std::shared_ptr<Blob> into = nullptr);
 
 /** @brief A cloud's points and the motion that takes them into the merged cloud's frame. */
 struct PlacedPoints {
@@ -35,8 +36,9 @@ struct PlacedPoints {
  *  if every cloud has the first's layout (the same fields at the same offsets, the same
  *  point_step), that layout, every field kept; else the fields of the first that every cloud has
  *  (same name, datatype and count), packed in the first's order (PCL's padding "_" left out). Each cloud needs x, y and z as
- *  float32 (requireField). Dense if all are. Throws std::invalid_argument if `clouds` is empty. */
-std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds);
+ *  float32 (requireField). Dense if all are. Into `into` if given, else new points. Throws
+ *  std::invalid_argument if `clouds` is empty. */
+std::shared_ptr<Blob> mergePoints(const std::vector<PlacedPoints>& clouds, std::shared_ptr<Blob> into = nullptr);
 
 /** @brief The motion that maps points of frame `source` into frame `target` at `stamp` (tf2's
  *  lookupTransform); throws if there is none. */
@@ -48,8 +50,9 @@ using TransformLookup =
  *  stamped as the newest. An empty `frame`: every cloud must be in the same frame, which the result
  *  keeps. Empty clouds add no points and do not count for the fields; the others need x, y, z.
  *  Throws std::invalid_argument (frames differ, all clouds empty, a field missing) or
- *  std::runtime_error naming both frames and the stamp when `lookup` throws. */
+ *  std::runtime_error naming both frames and the stamp when `lookup` throws. The points go into
+ *  `into` if given. */
 std::shared_ptr<Cloud> mergeClouds(const std::vector<std::shared_ptr<const Cloud>>& clouds, const std::string& frame,
-                                   const TransformLookup& lookup);
+                                   const TransformLookup& lookup, std::shared_ptr<Blob> into = nullptr);
 
 }  // namespace apex_nodes
