@@ -85,18 +85,20 @@ std::function<void(const TypedPtr&)> filtered(std::function<void(Filter&)> confi
 
 std::vector<NodeCase> filterCases(const Shared& s) {
   std::vector<NodeCase> c;
-  c.push_back(cloudCase(s, "VoxelGrid", {{"leaf_size", "0.05"}}, "cloud", "VoxelGrid 5 cm",
-                        filtered<pcl::VoxelGrid<Point>>([](auto& f) { f.setLeafSize(0.05f, 0.05f, 0.05f); })));
+  c.push_back(over(cloudCase(s, "VoxelGrid", {{"leaf_size", "0.05"}}, "cloud", "VoxelGrid 5 cm",
+                             filtered<pcl::VoxelGrid<Point>>([](auto& f) { f.setLeafSize(0.05f, 0.05f, 0.05f); })),
+                   "every field kept: the points go to a typed XYZRGB cloud and back, which PCL copies field by field"));
   c.push_back(cloudCase(s, "PassThrough", {{"field", "z"}, {"limits", "[1.45, 2.0]"}}, "cloud", "PassThrough z 1.45..2",
                         filtered<pcl::PassThrough<Point>>([](auto& f) {
                           f.setFilterFieldName("z");
                           f.setFilterLimits(1.45f, 2.f);
                         })));
-  c.push_back(cloudCase(s, "CropBox", {{"x", "[-0.5, 0.5]"}, {"y", "[-0.5, 0.5]"}, {"z", "[1, 2]"}}, "cloud",
-                        "CropBox 1 x 1 x 1 m", filtered<pcl::CropBox<Point>>([](auto& f) {
-                          f.setMin(Eigen::Vector4f(-0.5, -0.5, 1, 1));
-                          f.setMax(Eigen::Vector4f(0.5, 0.5, 2, 1));
-                        })));
+  c.push_back(over(cloudCase(s, "CropBox", {{"x", "[-0.5, 0.5]"}, {"y", "[-0.5, 0.5]"}, {"z", "[1, 2]"}}, "cloud",
+                             "CropBox 1 x 1 x 1 m", filtered<pcl::CropBox<Point>>([](auto& f) {
+                               f.setMin(Eigen::Vector4f(-0.5, -0.5, 1, 1));
+                               f.setMax(Eigen::Vector4f(0.5, 0.5, 2, 1));
+                             })),
+                   "every field kept: an x, y, z view of every point, then the kept points copied whole"));
   c.push_back(cloudCase(s, "StatisticalOutlierRemoval", {{"mean_k", "20"}, {"stddev", "1"}}, "cloud",
                         "StatisticalOutlierRemoval 20, 1", filtered<pcl::StatisticalOutlierRemoval<Point>>([](auto& f) {
                           f.setMeanK(20);
@@ -236,7 +238,7 @@ std::vector<NodeCase> surfaceCases(const Shared& s) {
   prism.in_ports = {"cloud", "hull"};
   prism.input += ", its plane's hull";
   prism.frames[0].push_back(apex::Message::share<Cloud>(apex_nodes::makeCloud(s.cloud->header, *polygon)));
-  c.push_back(std::move(prism));
+  c.push_back(over(std::move(prism), "every field kept: an x, y, z view of every point, then the kept points copied whole"));
 
   auto coefficients = pcl::make_shared<pcl::ModelCoefficients>();
   coefficients->values.assign(plane.coefficients.begin(), plane.coefficients.end());
@@ -249,7 +251,7 @@ std::vector<NodeCase> surfaceCases(const Shared& s) {
   project.in_ports = {"cloud", "coefficients"};
   project.input += ", its plane's coefficients";
   project.frames[0].push_back(apex::Message::make<std::vector<double>>(plane.coefficients));
-  c.push_back(std::move(project));
+  c.push_back(over(std::move(project), "every field kept: all the points copied, the x, y, z view projected into them"));
   return c;
 }
 

@@ -114,7 +114,14 @@ struct NodeCase {
   std::string call_text;  ///< the call in words
   std::function<void(std::size_t)> call;  ///< the call on frame i's data, keeping its outputs between frames
   std::string why_not;  ///< set: no figures, this reason instead
+  std::string over;  ///< why it may miss the goal: work the call does not do (said in the row if it does)
 };
+
+/** The case with the reason it may miss the goal. */
+inline NodeCase over(NodeCase c, std::string why) {
+  c.over = std::move(why);
+  return c;
+}
 
 /** A node of several inputs fed the same messages each frame: `in_ports` name the node's input
  *  for each message; `feed` is feedType<...>() of their types. */
@@ -255,7 +262,7 @@ inline void measureRow(const NodeCase& c, const Budget& b, std::vector<std::stri
   const char* fmt = call.median() < 100 ? "%.1f" : "%.0f";
   std::printf("| %s | %s | %s | %d × %d | %s | %s | %.2fx (%.2f–%.2f) | %s |\n", c.label.c_str(), c.input.c_str(),
               c.call_text.c_str(), n, b.rounds, call.text(fmt).c_str(), nodes.text(fmt).c_str(), ratio.median(), ratio.min(),
-              ratio.max(), within ? "yes" : "no");
+              ratio.max(), within ? "yes" : c.over.empty() ? "no" : ("no: " + c.over).c_str());
   std::fflush(stdout);
 }
 
