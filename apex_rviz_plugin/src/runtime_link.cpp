@@ -260,34 +260,31 @@ void RuntimeLink::fireSlot(const std::string& node, const std::string& slot, Don
   callOne<apex::FireSlot>("fire_slot", req, std::move(done));
 }
 
+template <class Srv>
+void RuntimeLink::callWithAnswer(const std::string& service_name, typename Srv::Request req,
+                                 std::function<void(bool, const std::string&, const typename Srv::Response&)> done) {
+  using Out = std::tuple<bool, std::string, typename Srv::Response>;
+  async<Out>(
+      [name = service(service_name), req] {
+        std::string m;
+        auto [ok, res] = callService<Srv>(name, req, &m);
+        return Out{ok, m, res};
+      },
+      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
+}
+
 void RuntimeLink::recovery(const std::string& action,
                            std::function<void(bool, const std::string&, const apex::Recovery::Response&)> done) {
   apex::Recovery::Request req;
   req.action = action;
-  const std::string name = service("recovery");
-  using Out = std::tuple<bool, std::string, apex::Recovery::Response>;
-  async<Out>(
-      [name, req] {
-        std::string m;
-        auto [ok, res] = callService<apex::Recovery>(name, req, &m);
-        return Out{ok, m, res};
-      },
-      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
+  callWithAnswer<apex::Recovery>("recovery", req, std::move(done));
 }
 
 void RuntimeLink::balance(int frames, int groups,
                           std::function<void(bool, const std::string&, const apex::Balance::Response&)> done) {
   apex::Balance::Request req;
   req.frames = frames, req.groups = groups, req.apply = false;
-  const std::string name = service("balance");
-  using Out = std::tuple<bool, std::string, apex::Balance::Response>;
-  async<Out>(
-      [name, req] {
-        std::string m;
-        auto [ok, res] = callService<apex::Balance>(name, req, &m);
-        return Out{ok, m, res};
-      },
-      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
+  callWithAnswer<apex::Balance>("balance", req, std::move(done));
 }
 
 void RuntimeLink::inspect(const std::string& node, const std::string& port,

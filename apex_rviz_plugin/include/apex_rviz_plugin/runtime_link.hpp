@@ -105,6 +105,10 @@ class RuntimeLink : public QObject {
   /** Runs `work` on the job thread and `then` with its result on the GUI thread. */
   template <class T>
   void async(std::function<T()> work, std::function<void(const T&)> then);
+  /** A call of service `Srv` on the worker thread; `done` gets success, the message and the answer. */
+  template <class Srv>
+  void callWithAnswer(const std::string& service_name, typename Srv::Request req,
+                      std::function<void(bool, const std::string&, const typename Srv::Response&)> done);
   /** Calls one service off the GUI thread; `done` gets success and message. */
   template <class Srv>
   void callOne(const std::string& name, const typename Srv::Request& req, Done done);
