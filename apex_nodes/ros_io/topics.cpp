@@ -47,8 +47,8 @@ class ImagePublisher : public TopicSink<Image, image_transport::Publisher> {
   ImagePublisher() : TopicSink(kImage) {}
 
  private:
-  image_transport::Publisher advertise(ros::NodeHandle nh, const std::string& topic) override {
-    return advertiseImage(nh, topic, 1);
+  image_transport::Publisher advertise(ros::NodeHandle nh, const std::string& topic, std::uint32_t queue_size) override {
+    return advertiseImage(nh, topic, queue_size);
   }
 };
 
@@ -84,7 +84,9 @@ class PointCloudPublisher : public TopicSink<Cloud, ros::Publisher> {
   PointCloudPublisher() : TopicSink(kCloud) {}
 
  private:
-  ros::Publisher advertise(ros::NodeHandle nh, const std::string& topic) override { return nh.advertise<Cloud>(topic, 1); }
+  ros::Publisher advertise(ros::NodeHandle nh, const std::string& topic, std::uint32_t queue_size) override {
+    return nh.advertise<Cloud>(topic, queue_size);
+  }
 };
 
 }  // namespace apex_nodes
