@@ -55,7 +55,7 @@ std::vector<NodeCase> clusterCases(const TypedPtr& scene, const std::shared_ptr<
   clusters->header = cloud->header;
   for (const Typed& b : *boxes) clusters->clusters.push_back(apex_nodes::toBlob(b));
   const std::string words = std::to_string(boxes->size()) + " clusters, the scene's boxes";
-  c.push_back(over(fixed("ClusterFeatures", words, feedType<Clusters>(), {"clusters"}, {apex::Message::share<Clusters>(clusters)}, {},
+  c.push_back(fixed("ClusterFeatures", words, feedType<Clusters>(), {"clusters"}, {apex::Message::share<Clusters>(clusters)}, {},
                     "features", sinkType<apex_nodes::ClusterFeatures>(),
                     "per cluster: compute3DCentroid, covariance, its eigenvectors, getMinMax3D, the oriented extent",
                     [boxes] {
@@ -73,8 +73,7 @@ std::vector<NodeCase> clusterCases(const TypedPtr& scene, const std::shared_ptr<
                           low = low.cwiseMin(local), high = high.cwiseMax(local);
                         }
                       }
-                    }),
-                   "not established: it also sends a count and a PoseArray and works in doubles; not yet profiled"));
+                    }));
   c.push_back(fixed("ClustersToCloud", words, feedType<Clusters>(), {"clusters"}, {apex::Message::share<Clusters>(clusters)}, {},
                     "cloud", sinkType<Cloud>(), "each cluster's points into one PointXYZRGBL cloud, labelled",
                     [boxes, out = pcl::PointCloud<pcl::PointXYZRGBL>()]() mutable {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -270,7 +271,11 @@ inline void measureRow(const NodeCase& c, const Budget& b, std::vector<std::stri
 inline void measureTable(const std::vector<NodeCase>& cases, const Budget& b) {
   std::printf("%s", kTableHead);
   std::vector<std::string> outside, failed, skipped;
-  for (const NodeCase& c : cases) measureRow(c, b, outside, failed, skipped);
+  // APEX_BENCH_ONLY=Name[,Name...]: only these rows (to profile one node alone)
+  const char* only = std::getenv("APEX_BENCH_ONLY");
+  const std::string wanted = only ? "," + std::string(only) + "," : "";
+  for (const NodeCase& c : cases)
+    if (wanted.empty() || wanted.find("," + c.label + ",") != std::string::npos) measureRow(c, b, outside, failed, skipped);
   auto list = [](const std::vector<std::string>& names) {
     std::string s;
     for (std::size_t i = 0; i < names.size(); ++i) s += (i ? ", " : "") + names[i];

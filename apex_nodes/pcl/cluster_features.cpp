@@ -28,33 +28,39 @@ Eigen::Vector3d canonical(const Eigen::Vector3d& v) {
 }
 
 /** The features of one cluster's finite points (in double: clouds far from their origin keep their
- *  millimetres). */
+ *  millimetres). Two passes over the points: the count, the box and the moments, then the extent
+ *  along the principal axes. */
 ClusterFeature measure(const XyzCloud& points, int label) {
   ClusterFeature f;
   f.label = label;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   f.min = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   f.max = -f.min;
+  // The sums are of each point less the first finite one: so shifted, the covariance from them
+  // (E[dd'] - E[d]E[d]') keeps its precision far from the origin, as a second pass over the
+  // points less their mean would, without that pass.
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero(), sum = Eigen::Vector3d::Zero();
+  double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
   for (const auto& p : points) {
     if (!finite(p)) continue;
     const Eigen::Vector3d q = at(p);
-    sum += q, f.min = f.min.cwiseMin(q), f.max = f.max.cwiseMax(q);
-    ++f.points;
+    if (f.points++ == 0) origin = q;
+    f.min = f.min.cwiseMin(q), f.max = f.max.cwiseMax(q);
+    const Eigen::Vector3d d = q - origin;
+    sum += d;
+    xx += d.x() * d.x(), xy += d.x() * d.y(), xz += d.x() * d.z();
+    yy += d.y() * d.y(), yz += d.y() * d.z(), zz += d.z() * d.z();
   }
   if (f.points == 0) {
     f.min = f.max = Eigen::Vector3d::Zero();
     return f;
   }
-  f.centroid = sum / double(f.points);
+  const double n = double(f.points);
+  const Eigen::Vector3d mean = sum / n;
+  f.centroid = origin + mean;
   f.extent = f.max - f.min;
-
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& p : points) {
-    if (!finite(p)) continue;
-    const Eigen::Vector3d d = at(p) - f.centroid;
-    covariance += d * d.transpose();
-  }
-  covariance /= double(f.points);
+  Eigen::Matrix3d covariance;
+  covariance << xx / n, xy / n, xz / n, xy / n, yy / n, yz / n, xz / n, yz / n, zz / n;
+  covariance -= mean * mean.transpose();
   // Eigenvalues ascending: the last vector spreads the points most. z = x × y, so the axes are a
   // rotation (not a reflection) and make a valid quaternion.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(covariance);

@@ -149,6 +149,20 @@ TEST(ClusterFeatures, OrientedBoxIsTheTurnedBoxsTrueSize) {
   EXPECT_NEAR(std::abs(axes.col(2).z()), 1.0, 1e-6);
 }
 
+// A box 5 km from the cloud's origin (a map frame, GPS): its float points lie on a grid of half a
+// millimetre there; the features, in double from sums shifted to the first point, stay within a
+// millimetre of the true size and centre.
+TEST(ClusterFeatures, FarFromTheOriginKeepsMillimetres) {
+  const Eigen::Vector3f far(5000.f, -3000.f, 100.f);
+  NodeHarness h("apex_nodes/ClusterFeatures", {"clusters"}, "features");
+  const ClusterFeatures& got = features(h.run(clusters({box(kTurnedSize, kYaw, far)})));
+  ASSERT_EQ(got.clusters.size(), 1u);
+  const ClusterFeature& f = got.clusters[0];
+  expectNear(f.oriented.extent, kTurnedSize.cast<double>(), 1e-3, "oriented extent");
+  expectNear(f.oriented.centre, far.cast<double>(), 1e-3, "oriented centre");
+  expectNear(f.centroid, far.cast<double>(), 1e-3, "centroid");
+}
+
 TEST(ClusterFeatures, EachOrientedBoxIsAlsoAPoseForRviz) {
   NodeHarness h("apex_nodes/ClusterFeatures", {"clusters"}, "poses");
   const auto poses = h.run(clusters(boxes())).as<geometry_msgs::PoseArray>();
