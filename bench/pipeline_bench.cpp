@@ -214,7 +214,8 @@ double freeRunFps(FrameSource* src, FrameSink* sink, int n) {
 
 using Groups = std::map<std::string, std::string>;  // node -> thread group
 
-/** What balance proposes for two cores after n frames in the groups the graph has now. */
+/** What balance proposes for two cores after n frames in the groups the graph has now, with trials
+ *  of its closest proposals (n frames each). */
 Groups balanced(Graph& g, FrameSource* src, FrameSink* sink, int n, std::string* text = nullptr) {
   const auto before = g.nodeStats();
   (void)freeRunFps(src, sink, n);
@@ -222,9 +223,18 @@ Groups balanced(Graph& g, FrameSource* src, FrameSink* sink, int n, std::string*
   const BalanceInput in = balanceInput(g, measuredTimes(before, g.nodeStats()));
   BalanceOptions options;
   options.groups = 2;
-  const auto p = balance(in, options);
+  auto p = balance(in, options);
   if (!p) std::fprintf(stderr, "balance: %s\n", p.message().c_str());
   if (!p) return {};
+  // as ~balance with trials: the closest proposals run n frames each, the fastest kept
+  auto candidates = balanceCandidates(in, options, 3);
+  TrialOptions trial;
+  trial.frames = n;
+  if (candidates.size() > 1) {
+    auto fps = tryPlacements(g, in, candidates, trial);
+    if (!fps) std::fprintf(stderr, "balance trials: %s\n", fps.message().c_str());
+    if (fps) p = std::move(candidates[std::size_t(std::max_element(fps->begin(), fps->end()) - fps->begin())]);
+  }
   Groups current;
   for (const auto& d : g.describe().nodes) current[d.name] = d.thread_group;
   std::vector<std::string> now;
@@ -243,16 +253,23 @@ void place(Graph& g, const Groups& groups) {
     if (auto st = g.setThreadGroup(node, group); !st) std::fprintf(stderr, "%s\n", st.message().c_str());
 }
 
-/** The demo chain's frames/s: in one group, placed by hand (`hand`), or by balance (measured first in one group). */
-double demoFps(const std::vector<cv::Mat>& input, int n, bool hand, bool by_balance, std::string* text = nullptr) {
+/** The demo chain's frames/s in `groups` (node -> group; none: one group), or, with `by_balance`,
+ *  in what balance proposes after n frames in one group (its description into *text). */
+double demoFps(const std::vector<cv::Mat>& input, int n, const Groups& groups, bool by_balance, std::string* text = nullptr,
+               Groups* proposed = nullptr) {
   Graph g(registry());
-  build(g, hand);
+  build(g, false);
   auto* src = static_cast<FrameSource*>(g.nodeObject("src"));
   auto* sink = static_cast<FrameSink*>(g.nodeObject("sink"));
   src->frames = &input;
+  place(g, groups);
   g.start();
   (void)g.waitIdle(5);
-  if (by_balance) place(g, balanced(g, src, sink, n, text));
+  if (by_balance) {
+    const Groups chosen = balanced(g, src, sink, n, text);
+    place(g, chosen);
+    if (proposed) *proposed = chosen;
+  }
   const double fps = freeRunFps(src, sink, n);
   g.stop();
   return fps;
@@ -300,24 +317,53 @@ std::string cutOf(const Groups& groups, const std::vector<std::string>& names) {
   return "none";
 }
 
+/** The demo's nodes in the order balance cuts them (its topological order: the Relay after blobs). */
+const std::vector<std::string> kDemoOrder{"src", "rotate", "gray", "threshold", "morphology", "blobs", "hold", "overlay", "sink"};
+
+/** Two groups: the nodes after `last` in the second. */
+Groups cutAfter(const std::string& last) {
+  Groups g;
+  bool second = false;
+  for (const auto& name : kDemoOrder) {
+    g[name] = second ? "second" : "default";
+    second = second || name == last;
+  }
+  return g;
+}
+
 void demoBalanceTable(const std::vector<cv::Mat>& input, int n, int reps) {
   cv::setNumThreads(1);
-  Spread one, hand, bal;
+  // one group, then every cut of the order (the hand placement is the cut after threshold)
+  std::vector<std::string> cuts{"none"};
+  for (std::size_t i = 0; i + 1 < kDemoOrder.size(); ++i) cuts.push_back(kDemoOrder[i]);
+  std::vector<Spread> fps(cuts.size());
+  Spread bal;
   std::string text;
+  Groups proposed;
   for (int r = 0; r < reps; ++r) {
-    one.add(demoFps(input, n, false, false));
-    hand.add(demoFps(input, n, true, false));
-    bal.add(demoFps(input, n, false, true, &text));
+    for (std::size_t c = 0; c < cuts.size(); ++c) fps[c].add(demoFps(input, n, c == 0 ? Groups{} : cutAfter(cuts[c]), false));
+    bal.add(demoFps(input, n, {}, true, &text, &proposed));
   }
+  std::size_t best = 1;
+  for (std::size_t c = 2; c < cuts.size(); ++c)
+    if (fps[c].median() > fps[best].median()) best = c;
+  std::string bal_cut = "none";
+  for (std::size_t i = 0; i + 1 < kDemoOrder.size(); ++i)
+    if (proposed.count(kDemoOrder[i]) && proposed.count(kDemoOrder[i + 1]) && proposed[kDemoOrder[i]] != proposed[kDemoOrder[i + 1]])
+      bal_cut = kDemoOrder[i];
+  const double one = fps[0].median();
   std::printf("\n## Balance: the demo chain placed by it\n\n");
-  std::printf("The demo chain above with OpenCV at 1 thread: in one group, in two placed by hand (the second from the\n");
-  std::printf("morphology), and in the groups `balance` proposes for 2 cores after %d frames in one group. Interleaved,\n", n);
-  std::printf("%d repetitions: median (min–max) frames/s; ratios of the medians.\n\n", reps);
+  std::printf("The demo chain above with OpenCV at 1 thread (the Relay `hold` takes the rotated frame for the overlay), in\n");
+  std::printf("one group, cut into two groups after each node of the order balance uses (the cut by hand is the one after\n");
+  std::printf("threshold), and in the groups `balance` proposes for 2 cores after %d frames in one group.\n", n);
+  std::printf("Interleaved, %d repetitions: median (min–max) frames/s; ratios of the medians.\n\n", reps);
   std::printf("| placement | frames/s | vs 1 group |\n|---|---|---|\n");
-  std::printf("| 1 group | %s | 1.00x |\n", one.text("%.1f").c_str());
-  std::printf("| by hand | %s | %.2fx |\n", hand.text("%.1f").c_str(), hand.median() / one.median());
-  std::printf("| balance | %s | %.2fx |\n", bal.text("%.1f").c_str(), bal.median() / one.median());
-  std::printf("\nTarget: balance at least 1.85x one group. Its last proposal: %s.\n", text.c_str());
+  for (std::size_t c = 0; c < cuts.size(); ++c)
+    std::printf("| %s%s | %s | %.2fx |\n", c == 0 ? "1 group" : ("cut after " + cuts[c]).c_str(), c == best ? " (best)" : "",
+                fps[c].text("%.1f").c_str(), fps[c].median() / one);
+  std::printf("| balance: cut after %s | %s | %.2fx |\n", bal_cut.c_str(), bal.text("%.1f").c_str(), bal.median() / one);
+  std::printf("\nTarget: balance at least 1.85x one group. Balance / best cut: %.3f. Its last proposal: %s.\n",
+              bal.median() / fps[best].median(), text.c_str());
 }
 
 void chainBalanceTable(const std::vector<cv::Mat>& input, int n, int reps, int chains) {

@@ -3,6 +3,7 @@
 // hold their senders back.
 #include <gmock/gmock.h>
 
+#include <map>
 #include <random>
 #include <set>
 
@@ -196,6 +197,80 @@ TEST(Balance, AGraphsDataConnectionsAreItsEdges) {
   std::set<std::pair<std::size_t, std::size_t>> edges;
   for (const auto& e : in.edges) edges.insert({e.from, e.to});
   EXPECT_THAT(edges, ElementsAre(std::make_pair(0u, 1u), std::make_pair(1u, 3u)));  // source -> gain -> sink
+}
+
+TEST(BalanceTrials, CandidatesAreTheBestThenItsCutsMovedOnePlace) {
+  // 4, 1, 1, 4: the best cut lies after the second node (5 | 5); one place either way gives 4 | 6
+  // and 6 | 4, 20% slower, and no other placement is one cut away.
+  const auto c = balanceCandidates(chain({4, 1, 1, 4}), groups(2), 5, 0.25);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_DOUBLE_EQ(c[0].period_ns, 5 * kMs);
+  EXPECT_THAT(c[0].stage, ElementsAre(0u, 0u, 1u, 1u));
+  EXPECT_DOUBLE_EQ(c[1].period_ns, 6 * kMs);
+  EXPECT_DOUBLE_EQ(c[2].period_ns, 6 * kMs);
+  std::set<std::vector<std::size_t>> stages{c[1].stage, c[2].stage};
+  EXPECT_THAT(stages, ElementsAre(ElementsAre(0u, 0u, 0u, 1u), ElementsAre(0u, 1u, 1u, 1u)));
+  EXPECT_EQ(balanceCandidates(chain({4, 1, 1, 4}), groups(2), 5, 0.1).size(), 1u);  // 20% is past 10%
+  EXPECT_EQ(balanceCandidates(chain({4, 1, 1, 4}), groups(2), 2, 0.25).size(), 2u);
+  EXPECT_EQ(balanceCandidates(chain({3}), groups(2)).size(), 1u);  // one node: one group, nothing to move
+  EXPECT_TRUE(balanceCandidates(chain({1, 1}), groups(0)).empty());  // refused input: none
+}
+
+TEST(BalanceTrials, EachCandidateRunsAndTheGroupsAreAsBeforeAfter) {
+  Graph g(testRegistry());
+  add(g, "test/Ticker", "source");
+  for (const char* name : {"a", "b", "c"}) add(g, "test/Relay", name);
+  link(g, "source", "out", "a", "in");
+  link(g, "a", "out", "b", "in");
+  link(g, "b", "out", "c", "in");
+  ASSERT_TRUE(g.setThreadGroup("c", "mine"));
+  g.start();
+  const BalanceInput in = balanceInput(g, {{"source", 1e3}, {"a", 4e3}, {"b", 4e3}, {"c", 1e3}});
+  const auto candidates = balanceCandidates(in, groups(2), 3, 1.0);
+  ASSERT_GE(candidates.size(), 2u);
+  TrialOptions trial;
+  trial.frames = 50;
+  const auto fps = tryPlacements(g, in, candidates, trial);
+  ASSERT_TRUE(fps) << fps.message();
+  ASSERT_EQ(fps->size(), candidates.size());
+  for (double f : fps.value()) EXPECT_GT(f, 0);
+  std::map<std::string, std::string> now;
+  for (const auto& d : g.describe().nodes) now[d.name] = d.thread_group;
+  EXPECT_EQ(now["source"], "default");
+  EXPECT_EQ(now["b"], "default");
+  EXPECT_EQ(now["c"], "mine");
+  EXPECT_THAT(g.describe().thread_groups, ElementsAre("mine"));  // the trials' own groups are gone again
+  g.stop();
+}
+
+TEST(BalanceTrials, AThreadGroupIsRemovedOnlyWhenEmpty) {
+  Graph g(testRegistry());
+  add(g, "test/Ticker", "source");
+  ASSERT_TRUE(g.setThreadGroup("source", "mine"));
+  g.start();
+  EXPECT_THAT(g.removeThreadGroup("mine").message(), HasSubstr("still has node 'source'"));
+  EXPECT_THAT(g.removeThreadGroup("default").message(), HasSubstr("cannot be removed"));
+  EXPECT_THAT(g.removeThreadGroup("none").message(), HasSubstr("no thread group 'none'"));
+  ASSERT_TRUE(g.setThreadGroup("source", "default"));
+  EXPECT_TRUE(g.removeThreadGroup("mine"));
+  EXPECT_TRUE(g.describe().thread_groups.empty());
+  g.stop();
+}
+
+TEST(BalanceTrials, AGraphThatDoesNotRunNamesTheNodesBehind) {
+  Graph g(testRegistry());
+  add(g, "test/Feeder", "feed");  // driven: fires only when fed, and it is not
+  add(g, "test/Relay", "a");
+  link(g, "feed", "out", "a", "in");
+  g.start();
+  std::vector<NodeStats> before = g.nodeStats(1e12);
+  for (auto& s : before) s.waiting_for.clear();  // as if both ran
+  TrialOptions trial;
+  trial.timeout_s = 0.05;
+  const auto r = waitForFirings(g, before, 1, trial);
+  ASSERT_FALSE(r);
+  EXPECT_THAT(r.message(), AllOf(HasSubstr("did not fire 1 more frames"), HasSubstr("feed (0)"), HasSubstr("a (0)")));
+  g.stop();
 }
 
 }  // namespace

@@ -69,6 +69,26 @@ TEST_F(Services, BalanceAppliedMovesEveryNodeToItsProposedGroup) {
   if (res.stage_groups.size() == 1) EXPECT_EQ(res.stage_groups.front(), "b");
 }
 
+// clock -> three nodes of 20 ms each (apex_test/Busy: waits, so the stages overlap on any machine):
+// cut after the first or after the second, the period is 40 ms either way, so both are tried.
+TEST_F(Services, BalanceWithTrialsRunsTheClosestPlacementsAndLeavesTheGroups) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "clock", "{rate: 100}").success);
+  std::string prev = "clock", port = "count";
+  for (const char* name : {"b1", "b2", "b3"}) {
+    ASSERT_TRUE(addNode("apex_test/Busy", name, "{seconds: 0.02}").success);
+    ASSERT_TRUE(connectPorts("connect", prev, port, name, "in").success);
+    prev = name, port = "out";
+  }
+  const std::string before = graphText();
+  apex::Balance::Request req;
+  req.frames = 3, req.groups = 2, req.trials = 3;
+  const auto res = call<apex::Balance>("balance", req);
+  ASSERT_TRUE(res.success) << res.message;
+  EXPECT_THAT(res.message, HasSubstr("tried the 2 closest placements for 3 frames each"));
+  EXPECT_EQ(res.stage_groups.size(), 2u);
+  EXPECT_EQ(graphText(), before);  // the trials' groups are undone; only proposed
+}
+
 TEST_F(Services, BalanceRefusesWhatItCannotDoAndSaysWhy) {
   addChain();
   const std::string before = graphText();

@@ -232,6 +232,30 @@ Result<Proposal> balanceExhaustive(const BalanceInput& input, const BalanceOptio
   return *best;
 }
 
+std::vector<Proposal> balanceCandidates(const BalanceInput& input, const BalanceOptions& options, std::size_t count,
+                                        double within) {
+  auto prepared = prepare(input, options);
+  if (!prepared || count == 0) return {};
+  const Prepared& p = prepared.value();
+  const Cuts best = bestCuts(p, input, options, true);
+  std::set<Cuts> seen{best};
+  std::vector<Proposal> out{evaluate(p, input, options, best)};
+  for (std::size_t k = 0; k < best.size(); ++k)
+    for (int step : {-1, 1}) {
+      Cuts c = best;
+      const long at = long(c[k]) + step;
+      if (at < 0 || at + 1 >= long(p.order.size())) continue;  // a cut after the last node is none
+      if ((k > 0 && at <= long(c[k - 1])) || (k + 1 < c.size() && at >= long(c[k + 1]))) continue;
+      c[k] = std::size_t(at);
+      if (!seen.insert(c).second) continue;
+      Proposal r = evaluate(p, input, options, c);
+      if (r.period_ns <= out.front().period_ns * (1 + within)) out.push_back(std::move(r));
+    }
+  std::stable_sort(out.begin() + 1, out.end(), [](const Proposal& a, const Proposal& b) { return a.period_ns < b.period_ns; });
+  if (out.size() > count) out.resize(count);
+  return out;
+}
+
 std::vector<std::string> stageGroupNames(const Proposal& proposal, const std::vector<std::string>& current) {
   std::vector<std::map<std::string, std::size_t>> votes(proposal.stage_ns.size());
   for (std::size_t i = 0; i < proposal.stage.size() && i < current.size(); ++i) ++votes[proposal.stage[i]][current[i]];

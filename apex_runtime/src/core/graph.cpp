@@ -325,6 +325,20 @@ Status Graph::Impl::setThreadGroup(const std::string& node, const std::string& g
   return Status::ok();
 }
 
+Status Graph::Impl::removeThreadGroup(const std::string& name) {
+  auto lock = lockEdits();
+  if (name == "default") return Status::error("the thread group 'default' cannot be removed");
+  auto it = groups_.find(name);
+  if (it == groups_.end()) return Status::error("no thread group '" + name + "'");
+  for (auto& [seq, n] : order_)
+    if (n->group == it->second.get()) return Status::error("thread group '" + name + "' still has node '" + n->name + "'");
+  if (!it->second->unused()) return Status::error("thread group '" + name + "' still has work posted (a timer or mail)");
+  it->second->stop();
+  groups_.erase(it);
+  bump();
+  return Status::ok();
+}
+
 Status Graph::Impl::fireSlot(const std::string& outer, const std::string& outer_slot) {
   auto lock = lockEdits();
   if (subgraphs_.find(outer)) {  // every slot it stands for

@@ -40,6 +40,7 @@ Status Graph::setInteractive(const std::string& node, const std::string& param, 
 }
 Status Graph::setEnabled(const std::string& node, bool enabled) { return impl_->setEnabled(node, enabled); }
 Status Graph::setThreadGroup(const std::string& node, const std::string& group) { return impl_->setThreadGroup(node, group); }
+Status Graph::removeThreadGroup(const std::string& group) { return impl_->removeThreadGroup(group); }
 Status Graph::fireSlot(const std::string& node, const std::string& slot) { return impl_->fireSlot(node, slot); }
 Status Graph::setUi(const std::string& node, const std::string& ui_yaml) { return impl_->setUi(node, ui_yaml); }
 Status Graph::setTap(const std::string& node, const std::string& port, PortTap tap) {

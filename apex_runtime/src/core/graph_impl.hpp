@@ -49,6 +49,7 @@ struct Graph::Impl {
   Status setInteractive(const std::string& node, const std::string& param, bool interactive);
   Status setEnabled(const std::string& node, bool enabled);
   Status setThreadGroup(const std::string& node, const std::string& group);
+  Status removeThreadGroup(const std::string& group);
   Status fireSlot(const std::string& node, const std::string& slot);
   Status setUi(const std::string& node, const std::string& ui_yaml);
   Status setTap(const std::string& node, const std::string& port, PortTap tap);

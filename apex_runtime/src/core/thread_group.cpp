@@ -26,6 +26,11 @@ void ThreadGroup::start() {
   thread_ = std::thread([this] { run(); });
 }
 
+bool ThreadGroup::unused() const {
+  std::lock_guard<std::mutex> lock(m_);
+  return ready_.empty() && mail_.empty() && timers_.empty() && !busy_;
+}
+
 void ThreadGroup::stop() {
   {
     std::lock_guard<std::mutex> lock(m_);

@@ -48,6 +48,8 @@ class ThreadGroup {
   static const ThreadGroup* current();
   void start();
   void stop();
+  /** @brief Nothing queued, posted or timed here, and not firing: it may go (no node is in it). */
+  bool unused() const;
 
   /** @brief A node became ready; wakes the thread only if it sleeps. */
   void push(NodeState* node);

@@ -4,9 +4,11 @@
 #include <ros/ros.h>
 
 #include <chrono>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "apex/core/balance.hpp"
@@ -19,30 +21,12 @@ namespace {
 /** How long ~balance waits for its frames: a slow graph's N frames, and not forever. */
 constexpr double kMeasureTimeoutS = 30;
 
-/** The node stats once every node that runs has fired `frames` more times than in `before`; or
- *  which did not within the timeout. A node that runs: enabled, without an error (a placeholder
- *  has one), and not stalled or cut off from every source in `before` (its waiting_for says so).
- *  The graph has no event to wait on: the counts are read every 20 ms. */
-Result<std::vector<NodeStats>> waitForFrames(const Graph& graph, const std::vector<NodeStats>& before, int frames) {
-  std::map<std::string, std::uint64_t> target;
-  for (const auto& s : before)
-    if (s.enabled && s.error.empty() && s.waiting_for.empty()) target[s.name] = s.firings + std::uint64_t(frames);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kMeasureTimeoutS);
-  while (true) {
-    auto now = graph.nodeStats(1e12);  // no stall check: only the counts are wanted
-    std::string behind;
-    for (const auto& s : now) {
-      const auto t = target.find(s.name);
-      if (t != target.end() && s.firings < t->second)
-        behind += (behind.empty() ? "" : ", ") + s.name + " (" + std::to_string(s.firings + frames - t->second) + ")";
-    }
-    if (behind.empty()) return now;
-    if (std::chrono::steady_clock::now() > deadline || !ros::ok())
-      return Status::error("cannot measure: within " + std::to_string(int(kMeasureTimeoutS)) + " s these nodes did not fire " +
-                           std::to_string(frames) + " more frames (the frames each did fire): " + behind +
-                           "; ask with frames 0 to use the times measured so far");
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+TrialOptions trialOptions(int frames) {
+  TrialOptions o;
+  o.frames = frames;
+  o.timeout_s = kMeasureTimeoutS;
+  o.keep_going = [] { return ros::ok(); };
+  return o;
 }
 
 /** Each node's time per frame: over `frames` new frames, or (0) as measured so far. */
@@ -50,9 +34,26 @@ Result<std::vector<BalanceNode>> nodeTimes(const Graph& graph, int frames) {
   const auto before = graph.nodeStats(1.0);  // stalled for a second: not waited for
   if (frames == 0) return measuredTimes({}, before);
   if (graph.paused()) return Status::error("the graph is paused: resume it to measure, or ask with frames 0 for the times measured so far");
-  auto after = waitForFrames(graph, before, frames);
-  if (!after) return after.status();
+  auto after = waitForFirings(graph, before, frames, trialOptions(frames));
+  if (!after) return Status::error(after.message() + "; ask with frames 0 to use the times measured so far");
   return measuredTimes(before, after.value());
+}
+
+/** Of balance's close proposals, the one that ran the most frames/s over `frames` frames each
+ *  (none: the first, balance's own), and the trials in words for the message. */
+Result<std::pair<std::optional<Proposal>, std::string>> fastest(Graph& graph, const BalanceInput& input,
+                                                                const BalanceOptions& options, const Balance::Request& req) {
+  auto candidates = balanceCandidates(input, options, std::size_t(req.trials));
+  if (candidates.size() < 2) return std::make_pair(std::optional<Proposal>(), std::string());
+  auto fps = tryPlacements(graph, input, candidates, trialOptions(req.frames));
+  if (!fps) return Status::error("cannot try the proposals: " + fps.message());
+  const auto best = std::size_t(std::max_element(fps->begin(), fps->end()) - fps->begin());
+  char text[160];
+  std::snprintf(text, sizeof text, "; tried the %zu closest placements for %d frames each: %.1f to %.1f frames/s, kept the fastest",
+                candidates.size(), req.frames, *std::min_element(fps->begin(), fps->end()), fps->at(best));
+  std::optional<Proposal> chosen;
+  if (best > 0) chosen = std::move(candidates[best]);
+  return std::make_pair(std::move(chosen), std::string(text));
 }
 
 /** Moves each node whose group differs; all or nothing: a refused move moves the others back. */
@@ -90,6 +91,13 @@ Status answerBalance(Graph& graph, const Balance::Request& req, Balance::Respons
   const BalanceInput input = balanceInput(graph, times.value());
   auto proposal = balance(input, options);
   if (!proposal) return Status::error("cannot balance: " + proposal.message());
+  std::string tried;
+  if (req.trials > 1 && req.frames > 0) {  // the close proposals run, the fastest kept
+    auto chosen = fastest(graph, input, options, req);
+    if (!chosen) return chosen.status();
+    if (chosen->first) proposal = std::move(*chosen->first);
+    tried = chosen->second;
+  }
   std::map<std::string, std::string> now;  // node path -> its group, as ~graph shows it
   for (const auto& n : toGraphState(graph, 0).nodes) now[n.name] = n.thread_group;
   std::vector<std::string> current;
@@ -103,7 +111,7 @@ Status answerBalance(Graph& graph, const Balance::Request& req, Balance::Respons
   for (double ns : p.stage_ns) res.stage_ms.push_back(ns * 1e-6);
   res.expected_speedup = p.speedup;
   res.notes = p.notes;
-  res.message = describeProposal(p, input, res.stage_groups);
+  res.message = describeProposal(p, input, res.stage_groups) + tried;
   return req.apply ? applyGroups(res, now, set_group) : Status::ok();
 }
 

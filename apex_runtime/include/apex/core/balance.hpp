@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -88,5 +89,38 @@ std::vector<BalanceNode> measuredTimes(const std::vector<NodeStats>& before, con
 /** @brief The graph's nodes (with `times`, by name; 0 for a node not in it) and its data edges:
  *  connections from an output into an input of the nodes that run (subgraph ports resolved). */
 BalanceInput balanceInput(const Graph& graph, const std::vector<BalanceNode>& times);
+
+// ---------------------------------------------------------------- trials
+// The expected period comes from each node's time measured in the groups of the moment; a node
+// that reads a frame another core made, or two stages that share the memory bus, can take longer
+// than that. So the proposals that come close are run, a few frames each, and the fastest kept
+// (docs/benchmarks.md, "Balance: the demo chain placed by it": there the best expected cut was
+// 5% slower than the cut one node later).
+
+/** @brief Proposals worth a trial: the best, then the placements with one of its cuts moved by
+ *  one place, by expected period; at most `count`, none expected slower than the best by more
+ *  than the fraction `within`. */
+std::vector<Proposal> balanceCandidates(const BalanceInput& input, const BalanceOptions& options, std::size_t count = 3,
+                                        double within = 0.15);
+
+struct TrialOptions {
+  int frames = 100;  ///< measured per placement, after `warmup` frames in it
+  int warmup = 5;
+  double timeout_s = 30;  ///< per wait for frames
+  std::function<bool()> keep_going;  ///< false stops a wait (e.g. ROS shuts down); empty: never
+};
+
+/** @brief Waits until every node that runs (enabled, no error, not waiting for anything in
+ *  `before`) has fired `frames` more times than in `before`; the stats then. An error names the
+ *  nodes behind, with the frames each did fire. Reads the counts every 5 ms. */
+Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vector<NodeStats>& before, int frames,
+                                              const TrialOptions& options);
+
+/** @brief Runs the graph in each candidate's thread groups in turn (its stages named by
+ *  stageGroupNames from the groups now) and measures its frames/s: the fewest new firings of a
+ *  node that runs, per second, over `options.frames` frames after `options.warmup`. The groups are
+ *  as they were afterwards, also on an error. */
+Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& input, const std::vector<Proposal>& candidates,
+                                          const TrialOptions& options);
 
 }  // namespace apex

@@ -83,6 +83,9 @@ class Graph {
   Status setEnabled(const std::string& node, bool enabled);
   /** @brief Moves a node to a thread group, creating the group if new. */
   Status setThreadGroup(const std::string& node, const std::string& group);
+  /** @brief Removes a thread group no node is in (its thread ends): refused for "default" and
+   *  for a group with work still posted (a timer or mail a node left there), named. */
+  Status removeThreadGroup(const std::string& group);
   /** @brief Sends an event to a node's slot, as if a trigger fired. */
   Status fireSlot(const std::string& node, const std::string& slot);
   /** @brief Stores front-end metadata (YAML flow text, e.g. "{x: 10, y: 20}") with the node. */

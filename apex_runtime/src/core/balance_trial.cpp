@@ -1,0 +1,105 @@
+// Balance's trials: the close proposals run a few frames each, the fastest kept (balance.hpp).
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <set>
+#include <thread>
+
+#include "apex/core/balance.hpp"
+#include "apex/core/graph.hpp"
+
+namespace apex {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/** The nodes that run, by name: enabled, without an error, not waiting for anything. */
+std::map<std::string, std::uint64_t> runningFirings(const std::vector<NodeStats>& stats) {
+  std::map<std::string, std::uint64_t> out;
+  for (const auto& s : stats)
+    if (s.enabled && s.error.empty() && s.waiting_for.empty()) out[s.name] = s.firings;
+  return out;
+}
+
+/** The fewest firings a node of `from` made since then, in `now`. */
+std::uint64_t fewestSince(const std::map<std::string, std::uint64_t>& from, const std::vector<NodeStats>& now) {
+  std::uint64_t fewest = ~std::uint64_t(0);
+  for (const auto& s : now)
+    if (auto it = from.find(s.name); it != from.end()) fewest = std::min(fewest, s.firings - std::min(s.firings, it->second));
+  return from.empty() ? 0 : fewest;
+}
+
+/** Moves each node to its group in `groups` (node name -> group); the first refusal is the error. */
+Status place(Graph& graph, const std::map<std::string, std::string>& groups) {
+  for (const auto& [node, group] : groups)
+    if (auto st = graph.setThreadGroup(node, group); !st) return st;
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vector<NodeStats>& before, int frames,
+                                              const TrialOptions& options) {
+  const auto from = runningFirings(before);
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.timeout_s));
+  while (true) {
+    auto now = graph.nodeStats(1e12);  // no stall check: only the counts are wanted
+    if (fewestSince(from, now) >= std::uint64_t(frames)) return now;
+    if (Clock::now() > deadline || (options.keep_going && !options.keep_going())) {
+      std::string behind;
+      for (const auto& s : now)
+        if (auto it = from.find(s.name); it != from.end() && s.firings < it->second + std::uint64_t(frames))
+          behind += (behind.empty() ? "" : ", ") + s.name + " (" + std::to_string(s.firings - it->second) + ")";
+      char within[32];
+      std::snprintf(within, sizeof within, "%g", options.timeout_s);
+      return Status::error("cannot measure: within " + std::string(within) + " s these nodes did not fire " +
+                           std::to_string(frames) + " more frames (the frames each did fire): " + behind);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the graph has no event to wait on
+  }
+}
+
+Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& input, const std::vector<Proposal>& candidates,
+                                          const TrialOptions& options) {
+  std::map<std::string, std::string> was;  // node -> its group now
+  for (const auto& d : graph.describe().nodes) was[d.name] = d.thread_group;
+  std::vector<std::string> current;
+  for (const auto& n : input.nodes) current.push_back(was.count(n.name) ? was[n.name] : "default");
+  const std::vector<std::string> groups_before = graph.describe().thread_groups;
+  std::set<std::string> trial_groups;
+  std::vector<double> fps;
+  Status failed = Status::ok();
+  for (const Proposal& p : candidates) {
+    const auto names = stageGroupNames(p, current);
+    trial_groups.insert(names.begin(), names.end());
+    std::map<std::string, std::string> groups;
+    for (std::size_t i = 0; i < input.nodes.size(); ++i) groups[input.nodes[i].name] = names[p.stage[i]];
+    if (failed = place(graph, groups); !failed) break;
+    auto warm = waitForFirings(graph, graph.nodeStats(1.0), options.warmup, options);
+    if (!warm) {
+      failed = warm.status();
+      break;
+    }
+    const auto t0 = Clock::now();
+    auto done = waitForFirings(graph, warm.value(), options.frames, options);
+    if (!done) {
+      failed = done.status();
+      break;
+    }
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    fps.push_back(s > 0 ? double(fewestSince(runningFirings(warm.value()), done.value())) / s : 0.0);
+  }
+  std::map<std::string, std::string> back;
+  for (const auto& n : input.nodes)
+    if (was.count(n.name)) back[n.name] = was[n.name];
+  const Status restored = place(graph, back);
+  // The groups the trials made go again (one a node left a timer in stays, empty: refused then).
+  for (const auto& name : trial_groups)
+    if (restored && name != "default" && std::find(groups_before.begin(), groups_before.end(), name) == groups_before.end())
+      (void)graph.removeThreadGroup(name);
+  if (!failed) return failed;
+  if (!restored) return Status::error("cannot put the nodes back in their groups after the trials: " + restored.message());
+  return fps;
+}
+
+}  // namespace apex
