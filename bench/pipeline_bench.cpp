@@ -228,12 +228,26 @@ Groups balanced(Graph& g, FrameSource* src, FrameSink* sink, int n, std::string*
   if (!p) return {};
   // as ~balance with trials: the closest proposals run n frames each, the fastest kept
   auto candidates = balanceCandidates(in, options, 3);
+  std::string trials;
   TrialOptions trial;
   trial.frames = n;
   if (candidates.size() > 1) {
+    src->free_running = true;  // frames always available, as in the measurement
+    src->notifyNewData();
     auto fps = tryPlacements(g, in, candidates, trial);
+    src->free_running = false;
     if (!fps) std::fprintf(stderr, "balance trials: %s\n", fps.message().c_str());
-    if (fps) p = std::move(candidates[std::size_t(std::max_element(fps->begin(), fps->end()) - fps->begin())]);
+    if (fps) {
+      for (std::size_t k = 0; k < candidates.size() && text; ++k) {
+        std::string last;  // the last node of the first stage: where it cuts
+        for (std::size_t x : candidates[k].order)
+          if (candidates[k].stage[x] == 0) last = in.nodes[x].name;
+        char b[96];
+        std::snprintf(b, sizeof b, "%s after %s %.1f", k ? "," : "; trials (frames/s):", last.c_str(), fps->at(k));
+        trials += b;
+      }
+      p = std::move(candidates[std::size_t(std::max_element(fps->begin(), fps->end()) - fps->begin())]);
+    }
   }
   Groups current;
   for (const auto& d : g.describe().nodes) current[d.name] = d.thread_group;
@@ -242,7 +256,7 @@ Groups balanced(Graph& g, FrameSource* src, FrameSink* sink, int n, std::string*
   const auto names = stageGroupNames(p.value(), now);
   Groups out;
   for (std::size_t i = 0; i < in.nodes.size(); ++i) out[in.nodes[i].name] = names[p->stage[i]];
-  if (text) *text = describeProposal(p.value(), in, names);
+  if (text) *text = describeProposal(p.value(), in, names) + trials;
   for (const auto& note : p->notes)
     if (text) *text += "; " + note;
   return out;
