@@ -28,7 +28,7 @@ void ThreadGroup::start() {
 
 bool ThreadGroup::unused() const {
   std::lock_guard<std::mutex> lock(m_);
-  return ready_.empty() && mail_.empty() && timers_.empty() && !busy_;
+  return ready_.empty() && mail_.empty() && timers_.empty();
 }
 
 void ThreadGroup::stop() {

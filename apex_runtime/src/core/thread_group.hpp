@@ -48,7 +48,7 @@ class ThreadGroup {
   static const ThreadGroup* current();
   void start();
   void stop();
-  /** @brief Nothing queued, posted or timed here, and not firing: it may go (no node is in it). */
+  /** @brief Nothing queued, posted or timed here: it may go (no node is in it; call it paused). */
   bool unused() const;
 
   /** @brief A node became ready; wakes the thread only if it sleeps. */
