@@ -1,8 +1,10 @@
 // Balance's trials: the close proposals run a few frames each, the fastest kept (balance.hpp).
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <map>
 #include <set>
+#include <string>
 #include <thread>
 
 #include "apex/core/balance.hpp"
@@ -61,11 +63,12 @@ Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vec
 
 Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& input, const std::vector<Proposal>& candidates,
                                           const TrialOptions& options) {
+  const GraphDescription now = graph.describe();
   std::map<std::string, std::string> was;  // node -> its group now
-  for (const auto& d : graph.describe().nodes) was[d.name] = d.thread_group;
+  for (const auto& d : now.nodes) was[d.name] = d.thread_group;
   std::vector<std::string> current;
   for (const auto& n : input.nodes) current.push_back(was.count(n.name) ? was[n.name] : "default");
-  const std::vector<std::string> groups_before = graph.describe().thread_groups;
+  const std::vector<std::string>& groups_before = now.thread_groups;
   std::set<std::string> trial_groups;
   std::vector<double> fps;
   Status failed = Status::ok();
