@@ -9,7 +9,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <vector>
 
+#include "apex_nodes/output_buffer.hpp"
 #include "apex_nodes/types.hpp"
 #include "apex_test/real_images.hpp"
 
@@ -272,6 +274,28 @@ TEST(ImageFilters, SettingsThatChangeNothingSendTheFrameItself) {
   const auto gray = imageOf(readGrayData("fruits.jpg"), "mono8");
   NodeHarness split("apex_nodes/SplitChannels", {"image"}, "channel_0");
   EXPECT_EQ(sent(split, gray), gray);  // a single channel: the image itself
+}
+
+TEST(ImageFilters, AnOutputStillHeldDownstreamIsNotReusedButTheOneBeforeIsAgain) {
+  // As in a pipeline of two thread groups: frame i is still downstream while the node makes
+  // i + 1; when i is let go, i + 2 reuses its pixels (one output kept: a new image every frame).
+  apex_nodes::Reused<apex_nodes::Image> outputs;
+  auto a = outputs.next();
+  a->mat.create(480, 640, CV_8UC3);
+  const uchar* pixels_a = a->mat.data;
+  std::shared_ptr<const apex_nodes::Image> frame_i = std::move(a);
+  auto b = outputs.next();
+  EXPECT_NE(b.get(), frame_i.get());  // never written while a receiver holds it
+  std::shared_ptr<const apex_nodes::Image> frame_i1 = std::move(b);
+  frame_i.reset();
+  auto c = outputs.next();
+  EXPECT_EQ(c->mat.data, pixels_a);
+  EXPECT_NE(c.get(), frame_i1.get());
+  std::vector<std::shared_ptr<const apex_nodes::Image>> held{frame_i1, c};
+  for (int k = 0; k < 5; ++k) {  // all held: new ones, none of them handed out twice
+    held.push_back(outputs.next());
+    for (std::size_t j = 0; j + 1 < held.size(); ++j) EXPECT_NE(held.back(), held[j]);
+  }
 }
 
 TEST(ImageFilters, DistanceTransformMatchesOpenCVAndSends32F) {
