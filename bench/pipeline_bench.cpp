@@ -227,7 +227,7 @@ Groups balanced(Graph& g, FrameSource* src, FrameSink* sink, int n, std::string*
   if (!p) std::fprintf(stderr, "balance: %s\n", p.message().c_str());
   if (!p) return {};
   // as ~balance with trials: the closest proposals run n frames each, the fastest kept
-  auto candidates = balanceCandidates(in, options, 3);
+  auto candidates = balanceCandidates(in, options, 4);
   std::string trials;
   TrialOptions trial;
   trial.frames = n;
@@ -242,8 +242,9 @@ Groups balanced(Graph& g, FrameSource* src, FrameSink* sink, int n, std::string*
         std::string last;  // the last node of the first stage: where it cuts
         for (std::size_t x : candidates[k].order)
           if (candidates[k].stage[x] == 0) last = in.nodes[x].name;
-        char b[96];
-        std::snprintf(b, sizeof b, "%s after %s %.1f", k ? "," : "; trials (frames/s):", last.c_str(), fps->at(k));
+        char b[128];
+        std::snprintf(b, sizeof b, "%s after %s %.1f (expected %.2f ms per frame)", k ? "," : "; trials (frames/s):",
+                      last.c_str(), fps->at(k), candidates[k].period_ns * 1e-6);
         trials += b;
       }
       p = std::move(candidates[std::size_t(std::max_element(fps->begin(), fps->end()) - fps->begin())]);

@@ -218,6 +218,18 @@ TEST(BalanceTrials, CandidatesAreTheBestThenItsCutsMovedOnePlace) {
   EXPECT_TRUE(balanceCandidates(chain({1, 1}), groups(0)).empty());  // refused input: none
 }
 
+TEST(BalanceTrials, CandidatesMoveACutTwoPlacesToo) {
+  // 4, 1, 1, 1, 1, 4: best 6 | 6; one place either way 5 | 7 and 7 | 5 (+17%); two places 4 | 8
+  // and 8 | 4 (+33%). On the demo a cut two places from the best expected one ran fastest.
+  const auto c = balanceCandidates(chain({4, 1, 1, 1, 1, 4}), groups(2), 5, 0.5);
+  ASSERT_EQ(c.size(), 5u);
+  EXPECT_THAT(c[0].stage, ElementsAre(0u, 0u, 0u, 1u, 1u, 1u));
+  std::vector<double> periods;
+  for (const auto& p : c) periods.push_back(p.period_ns / kMs);
+  EXPECT_THAT(periods, ElementsAre(6, 7, 7, 8, 8));
+  EXPECT_EQ(balanceCandidates(chain({4, 1, 1, 1, 1, 4}), groups(2), 5).size(), 3u);  // by default within 25%
+}
+
 TEST(BalanceTrials, EachCandidateRunsAndTheGroupsAreAsBeforeAfter) {
   Graph g(testRegistry());
   add(g, "test/Ticker", "source");

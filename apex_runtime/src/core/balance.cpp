@@ -241,7 +241,7 @@ std::vector<Proposal> balanceCandidates(const BalanceInput& input, const Balance
   std::set<Cuts> seen{best};
   std::vector<Proposal> out{evaluate(p, input, options, best)};
   for (std::size_t k = 0; k < best.size(); ++k)
-    for (int step : {-1, 1}) {
+    for (int step : {-2, -1, 1, 2}) {
       Cuts c = best;
       const long at = long(c[k]) + step;
       if (at < 0 || at + 1 >= long(p.order.size())) continue;  // a cut after the last node is none
