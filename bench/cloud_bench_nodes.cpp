@@ -88,11 +88,12 @@ std::vector<NodeCase> filterCases(const Shared& s) {
   c.push_back(over(cloudCase(s, "VoxelGrid", {{"leaf_size", "0.05"}}, "cloud", "VoxelGrid 5 cm",
                              filtered<pcl::VoxelGrid<Point>>([](auto& f) { f.setLeafSize(0.05f, 0.05f, 0.05f); })),
                    "every field kept: the points go to a typed XYZRGB cloud and back, which PCL copies field by field"));
-  c.push_back(cloudCase(s, "PassThrough", {{"field", "z"}, {"limits", "[1.45, 2.0]"}}, "cloud", "PassThrough z 1.45..2",
-                        filtered<pcl::PassThrough<Point>>([](auto& f) {
-                          f.setFilterFieldName("z");
-                          f.setFilterLimits(1.45f, 2.f);
-                        })));
+  c.push_back(over(cloudCase(s, "PassThrough", {{"field", "z"}, {"limits", "[1.45, 2.0]"}}, "cloud", "PassThrough z 1.45..2",
+                             filtered<pcl::PassThrough<Point>>([](auto& f) {
+                               f.setFilterFieldName("z");
+                               f.setFilterLimits(1.45f, 2.f);
+                             })),
+                   "every field kept: an x, y, z view of every point, then the kept points copied whole"));
   c.push_back(over(cloudCase(s, "CropBox", {{"x", "[-0.5, 0.5]"}, {"y", "[-0.5, 0.5]"}, {"z", "[1, 2]"}}, "cloud",
                              "CropBox 1 x 1 x 1 m", filtered<pcl::CropBox<Point>>([](auto& f) {
                                f.setMin(Eigen::Vector4f(-0.5, -0.5, 1, 1));
@@ -214,7 +215,8 @@ std::vector<NodeCase> surfaceCases(const Shared& s) {
     h.setDimension(2);
     h.reconstruct(out);
   };
-  c.push_back(std::move(hull));
+  c.push_back(over(std::move(hull), "every field kept: an x, y, z view of every point and their finite ones' indices, the "
+                                    "hull's points copied whole; and the area and volume it also sends"));
 
   auto polygon = pcl::make_shared<Typed>();
   {
