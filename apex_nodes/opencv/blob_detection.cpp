@@ -3,6 +3,7 @@
 
 #include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
+#include "apex_nodes/output_buffer.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
@@ -33,9 +34,10 @@ class BlobDetection : public apex::Node {
     if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit binary image ('" + in.encoding + "')");
     const int n = cv::connectedComponentsWithStats(in.mat, labels_, stats_, centroids_, connectivity_.get() == "4" ? 4 : 8,
                                                    CV_32S, cv::CCL_DEFAULT);
-    auto out = std::make_shared<Regions>();
+    auto out = regions_buf_.next();  // the last one when nobody holds it: its vector keeps its memory
     out->header = in.header;
     out->image_size = in.mat.size();
+    out->regions.clear();
     const int lo = min_area_.get(), hi = max_area_.get();
     for (int i = 1; i < n; ++i) {  // 0 is the background
       const int area = stats_.at<int>(i, cv::CC_STAT_AREA);
@@ -59,6 +61,7 @@ class BlobDetection : public apex::Node {
   apex::Param<int> max_area_{this, kMaxArea};
   apex::Param<std::string> connectivity_{this, kConnectivity};
   cv::Mat labels_, stats_, centroids_;  // reused between frames
+  Reused<Regions> regions_buf_;
 };
 
 }  // namespace apex_nodes
