@@ -227,40 +227,32 @@ Groups balanced(Graph& g, FrameSource* src, FrameSink* sink, int n, std::string*
   if (!p) std::fprintf(stderr, "balance: %s\n", p.message().c_str());
   if (!p) return {};
   // as ~balance with trials: the closest proposals run n frames each, the fastest kept
-  auto candidates = balanceCandidates(in, options, 4);
-  std::string trials;
   TrialOptions trial;
   trial.frames = n;
-  if (candidates.size() > 1) {
-    src->free_running = true;  // frames always available, as in the measurement
-    src->notifyNewData();
-    auto fps = tryPlacements(g, in, candidates, trial);
-    src->free_running = false;
-    if (!fps) std::fprintf(stderr, "balance trials: %s\n", fps.message().c_str());
-    if (fps) {
-      for (std::size_t k = 0; k < candidates.size() && text; ++k) {
-        std::string last;  // the last node of the first stage: where it cuts
-        for (std::size_t x : candidates[k].order)
-          if (candidates[k].stage[x] == 0) last = in.nodes[x].name;
-        char b[128];
-        std::snprintf(b, sizeof b, "%s after %s %.1f (expected %.2f ms per frame)", k ? "," : "; trials (frames/s):",
-                      last.c_str(), fps->at(k), candidates[k].period_ns * 1e-6);
-        trials += b;
-      }
-      p = std::move(candidates[std::size_t(std::max_element(fps->begin(), fps->end()) - fps->begin())]);
+  src->free_running = true;  // frames always available, as in the measurement
+  src->notifyNewData();
+  auto trials = tryCandidates(g, in, options, 4, trial);
+  src->free_running = false;
+  if (!trials) std::fprintf(stderr, "balance trials: %s\n", trials.message().c_str());
+  std::string tried;
+  if (trials && !trials->fps.empty()) {
+    for (std::size_t k = 0; k < trials->fps.size(); ++k) {
+      const Proposal& c = trials->candidates[k];
+      std::string last;  // the last node of the first stage: where it cuts
+      for (std::size_t x : c.order)
+        if (c.stage[x] == 0) last = in.nodes[x].name;
+      char b[128];
+      std::snprintf(b, sizeof b, "%s after %s %.1f (expected %.2f ms per frame)", k ? "," : "; trials (frames/s):", last.c_str(),
+                    trials->fps[k], c.period_ns * 1e-6);
+      tried += b;
     }
+    p = std::move(trials->candidates[trials->fastest]);
   }
-  Groups current;
-  for (const auto& d : g.describe().nodes) current[d.name] = d.thread_group;
-  std::vector<std::string> now;
-  for (const auto& node : in.nodes) now.push_back(current[node.name]);
-  const auto names = stageGroupNames(p.value(), now);
-  Groups out;
-  for (std::size_t i = 0; i < in.nodes.size(); ++i) out[in.nodes[i].name] = names[p->stage[i]];
-  if (text) *text = describeProposal(p.value(), in, names) + trials;
+  const auto names = stageGroupNames(p.value(), currentGroups(g, in));
+  if (text) *text = describeProposal(p.value(), in, names) + tried;
   for (const auto& note : p->notes)
     if (text) *text += "; " + note;
-  return out;
+  return placementOf(p.value(), in, names);
 }
 
 void place(Graph& g, const Groups& groups) {

@@ -230,8 +230,8 @@ TEST(BalanceTrials, CandidatesMoveACutTwoPlacesToo) {
   EXPECT_EQ(balanceCandidates(chain({4, 1, 1, 1, 1, 4}), groups(2), 5).size(), 3u);  // by default within 25%
 }
 
-TEST(BalanceTrials, EachCandidateRunsAndTheGroupsAreAsBeforeAfter) {
-  Graph g(testRegistry());
+/** source -> a -> b -> c (Relays), c in thread group "mine", started. */
+static void startChainWithCInMine(Graph& g) {
   add(g, "test/Ticker", "source");
   for (const char* name : {"a", "b", "c"}) add(g, "test/Relay", name);
   link(g, "source", "out", "a", "in");
@@ -239,6 +239,11 @@ TEST(BalanceTrials, EachCandidateRunsAndTheGroupsAreAsBeforeAfter) {
   link(g, "b", "out", "c", "in");
   ASSERT_TRUE(g.setThreadGroup("c", "mine"));
   g.start();
+}
+
+TEST(BalanceTrials, EachCandidateRunsAndTheGroupsAreAsBeforeAfter) {
+  Graph g(testRegistry());
+  ASSERT_NO_FATAL_FAILURE(startChainWithCInMine(g));
   const BalanceInput in = balanceInput(g, {{"source", 1e3}, {"a", 4e3}, {"b", 4e3}, {"c", 1e3}});
   const auto candidates = balanceCandidates(in, groups(2), 3, 1.0);
   ASSERT_GE(candidates.size(), 2u);
@@ -254,6 +259,32 @@ TEST(BalanceTrials, EachCandidateRunsAndTheGroupsAreAsBeforeAfter) {
   EXPECT_EQ(now["b"], "default");
   EXPECT_EQ(now["c"], "mine");
   EXPECT_THAT(g.describe().thread_groups, ElementsAre("mine"));  // the trials' own groups are gone again
+  g.stop();
+}
+
+TEST(BalanceTrials, TryCandidatesKeepsTheFastestAndNamesTheGroupsFromThoseNow) {
+  Graph g(testRegistry());
+  ASSERT_NO_FATAL_FAILURE(startChainWithCInMine(g));
+  const BalanceInput in = balanceInput(g, {{"source", 1e5}, {"a", 2e6}, {"b", 2e6}, {"c", 2e6}});
+  EXPECT_THAT(currentGroups(g, in), ElementsAre("default", "default", "default", "mine"));
+  TrialOptions trial;
+  trial.frames = 20;
+  BalanceOptions options = groups(2);
+  const auto t = tryCandidates(g, in, options, 3, trial);
+  ASSERT_TRUE(t) << t.message();
+  ASSERT_GE(t->candidates.size(), 2u);  // after a, and after b (4.1 ms against 4 ms)
+  ASSERT_EQ(t->fps.size(), t->candidates.size());
+  EXPECT_EQ(t->fps[t->fastest], *std::max_element(t->fps.begin(), t->fps.end()));
+  const Proposal& p = t->candidates[0];
+  const auto names = stageGroupNames(p, currentGroups(g, in));
+  const auto placed = placementOf(p, in, names);
+  ASSERT_EQ(placed.size(), 4u);
+  for (std::size_t i = 0; i < in.nodes.size(); ++i) EXPECT_EQ(placed.at(in.nodes[i].name), names[p.stage[i]]);
+  options.groups = 1;  // one candidate: nothing to try
+  const auto one = tryCandidates(g, in, options, 3, trial);
+  ASSERT_TRUE(one) << one.message();
+  EXPECT_EQ(one->candidates.size(), 1u);
+  EXPECT_TRUE(one->fps.empty());
   g.stop();
 }
 

@@ -61,23 +61,32 @@ Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vec
   }
 }
 
+std::vector<std::string> currentGroups(const Graph& graph, const BalanceInput& input) {
+  std::map<std::string, std::string> now;  // node -> its group
+  for (const auto& d : graph.describe().nodes) now[d.name] = d.thread_group;
+  std::vector<std::string> out;
+  for (const auto& n : input.nodes) out.push_back(now.count(n.name) ? now[n.name] : "default");
+  return out;
+}
+
+std::map<std::string, std::string> placementOf(const Proposal& proposal, const BalanceInput& input,
+                                               const std::vector<std::string>& group_names) {
+  std::map<std::string, std::string> out;
+  for (std::size_t i = 0; i < input.nodes.size(); ++i) out[input.nodes[i].name] = group_names[proposal.stage[i]];
+  return out;
+}
+
 Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& input, const std::vector<Proposal>& candidates,
                                           const TrialOptions& options) {
-  const GraphDescription now = graph.describe();
-  std::map<std::string, std::string> was;  // node -> its group now
-  for (const auto& d : now.nodes) was[d.name] = d.thread_group;
-  std::vector<std::string> current;
-  for (const auto& n : input.nodes) current.push_back(was.count(n.name) ? was[n.name] : "default");
-  const std::vector<std::string>& groups_before = now.thread_groups;
+  const std::vector<std::string> groups_before = graph.describe().thread_groups;
+  const std::vector<std::string> current = currentGroups(graph, input);
   std::set<std::string> trial_groups;
   std::vector<double> fps;
   Status failed = Status::ok();
   for (const Proposal& p : candidates) {
     const auto names = stageGroupNames(p, current);
     trial_groups.insert(names.begin(), names.end());
-    std::map<std::string, std::string> groups;
-    for (std::size_t i = 0; i < input.nodes.size(); ++i) groups[input.nodes[i].name] = names[p.stage[i]];
-    if (failed = place(graph, groups); !failed) break;
+    if (failed = place(graph, placementOf(p, input, names)); !failed) break;
     auto warm = waitForFirings(graph, graph.nodeStats(1.0), options.warmup, options);
     if (!warm) {
       failed = warm.status();
@@ -93,8 +102,7 @@ Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& inpu
     fps.push_back(s > 0 ? double(fewestSince(runningFirings(warm.value()), done.value())) / s : 0.0);
   }
   std::map<std::string, std::string> back;
-  for (const auto& n : input.nodes)
-    if (was.count(n.name)) back[n.name] = was[n.name];
+  for (std::size_t i = 0; i < input.nodes.size(); ++i) back[input.nodes[i].name] = current[i];
   const Status restored = place(graph, back);
   // The groups the trials made go again (one a node left a timer in stays, empty: refused then).
   for (const auto& name : trial_groups)
@@ -103,6 +111,18 @@ Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& inpu
   if (!failed) return failed;
   if (!restored) return Status::error("cannot put the nodes back in their groups after the trials: " + restored.message());
   return fps;
+}
+
+Result<Trials> tryCandidates(Graph& graph, const BalanceInput& input, const BalanceOptions& options, std::size_t count,
+                             const TrialOptions& options_trial) {
+  Trials out;
+  out.candidates = balanceCandidates(input, options, count);
+  if (out.candidates.size() < 2) return out;
+  auto fps = tryPlacements(graph, input, out.candidates, options_trial);
+  if (!fps) return fps.status();
+  out.fps = std::move(fps.value());
+  out.fastest = std::size_t(std::max_element(out.fps.begin(), out.fps.end()) - out.fps.begin());
+  return out;
 }
 
 }  // namespace apex

@@ -12,7 +12,6 @@
 #include <thread>
 
 #include "apex/core/balance.hpp"
-#include "convert.hpp"
 
 namespace apex {
 namespace ros_host {
@@ -43,21 +42,21 @@ Result<std::vector<BalanceNode>> nodeTimes(const Graph& graph, int frames) {
  *  (none: the first, balance's own), and the trials in words for the message. */
 Result<std::pair<std::optional<Proposal>, std::string>> fastest(Graph& graph, const BalanceInput& input,
                                                                 const BalanceOptions& options, const Balance::Request& req) {
-  auto candidates = balanceCandidates(input, options, std::size_t(req.trials));
-  if (candidates.size() < 2) return std::make_pair(std::optional<Proposal>(), std::string());
-  auto fps = tryPlacements(graph, input, candidates, trialOptions(req.frames));
-  if (!fps) return Status::error("cannot try the proposals: " + fps.message());
-  const auto best = std::size_t(std::max_element(fps->begin(), fps->end()) - fps->begin());
+  auto trials = tryCandidates(graph, input, options, std::size_t(req.trials), trialOptions(req.frames));
+  if (!trials) return Status::error("cannot try the proposals: " + trials.message());
+  const auto& fps = trials->fps;
+  if (fps.empty()) return std::make_pair(std::optional<Proposal>(), std::string());
   char text[160];
   std::snprintf(text, sizeof text, "; tried the %zu closest placements for %d frames each: %.1f to %.1f frames/s, kept the fastest",
-                candidates.size(), req.frames, *std::min_element(fps->begin(), fps->end()), fps->at(best));
+                fps.size(), req.frames, *std::min_element(fps.begin(), fps.end()), fps[trials->fastest]);
   std::optional<Proposal> chosen;
-  if (best > 0) chosen = std::move(candidates[best]);
+  if (trials->fastest > 0) chosen = std::move(trials->candidates[trials->fastest]);
   return std::make_pair(std::move(chosen), std::string(text));
 }
 
-/** Moves each node whose group differs; all or nothing: a refused move moves the others back. */
-Status applyGroups(const Balance::Response& res, const std::map<std::string, std::string>& now,
+/** Moves each node whose group differs from `now` (by index, as res.nodes); all or nothing: a
+ *  refused move moves the others back. */
+Status applyGroups(const Balance::Response& res, const std::vector<std::string>& now,
                    const std::function<bool(SetThreadGroup::Request&, SetThreadGroup::Response&)>& set_group) {
   std::vector<std::pair<std::string, std::string>> moved;  // node, its old group
   auto move = [&](const std::string& node, const std::string& group) {
@@ -68,8 +67,7 @@ Status applyGroups(const Balance::Response& res, const std::map<std::string, std
     return out.success ? Status::ok() : Status::error("cannot move " + node + " to group " + group + ": " + out.message);
   };
   for (std::size_t i = 0; i < res.nodes.size(); ++i) {
-    const auto old = now.find(res.nodes[i]);
-    const std::string was = old == now.end() ? "default" : old->second;
+    const std::string& was = now[i];
     if (was == res.groups[i]) continue;
     if (auto st = move(res.nodes[i], res.groups[i]); !st) {
       for (auto it = moved.rbegin(); it != moved.rend(); ++it) (void)move(it->first, it->second);
@@ -98,10 +96,7 @@ Status answerBalance(Graph& graph, const Balance::Request& req, Balance::Respons
     if (chosen->first) proposal = std::move(*chosen->first);
     tried = chosen->second;
   }
-  std::map<std::string, std::string> now;  // node path -> its group, as ~graph shows it
-  for (const auto& n : toGraphState(graph, 0).nodes) now[n.name] = n.thread_group;
-  std::vector<std::string> current;
-  for (const auto& n : input.nodes) current.push_back(now.count(n.name) ? now[n.name] : "default");
+  const std::vector<std::string> current = currentGroups(graph, input);
   const Proposal& p = proposal.value();
   res.stage_groups = stageGroupNames(p, current);
   for (std::size_t i = 0; i < input.nodes.size(); ++i) {
@@ -112,7 +107,7 @@ Status answerBalance(Graph& graph, const Balance::Request& req, Balance::Respons
   res.expected_speedup = p.speedup;
   res.notes = p.notes;
   res.message = describeProposal(p, input, res.stage_groups) + tried;
-  return req.apply ? applyGroups(res, now, set_group) : Status::ok();
+  return req.apply ? applyGroups(res, current, set_group) : Status::ok();
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -117,11 +118,30 @@ struct TrialOptions {
 Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vector<NodeStats>& before, int frames,
                                               const TrialOptions& options);
 
+/** @brief Each node of `input`'s thread group now, by node index ("default" for one not in the graph). */
+std::vector<std::string> currentGroups(const Graph& graph, const BalanceInput& input);
+
+/** @brief Node name -> thread group for `proposal`, its stages named `group_names` (stageGroupNames). */
+std::map<std::string, std::string> placementOf(const Proposal& proposal, const BalanceInput& input,
+                                               const std::vector<std::string>& group_names);
+
 /** @brief Runs the graph in each candidate's thread groups in turn (its stages named by
  *  stageGroupNames from the groups now) and measures its frames/s: the fewest new firings of a
  *  node that runs, per second, over `options.frames` frames after `options.warmup`. The groups are
  *  as they were afterwards, also on an error. */
 Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& input, const std::vector<Proposal>& candidates,
                                           const TrialOptions& options);
+
+/** @brief Balance's close proposals and what each ran in a trial. */
+struct Trials {
+  std::vector<Proposal> candidates;  ///< balanceCandidates: the first is balance's own
+  std::vector<double> fps;  ///< per candidate, by tryPlacements; empty when fewer than two (nothing to choose)
+  std::size_t fastest = 0;  ///< the index of the most frames/s (0 when none ran)
+};
+
+/** @brief balanceCandidates (at most `count`), each run by tryPlacements when there are two or
+ *  more, and the fastest of them. */
+Result<Trials> tryCandidates(Graph& graph, const BalanceInput& input, const BalanceOptions& options, std::size_t count,
+                             const TrialOptions& options_trial);
 
 }  // namespace apex
