@@ -1,4 +1,4 @@
-// Parameter values to and from YAML text. With graph_file.cpp the only code
+// Parameter values to and from YAML text. With graph_text.cpp the only code
 // that includes yaml-cpp.
 #include <yaml-cpp/yaml.h>
 
