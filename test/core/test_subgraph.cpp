@@ -7,68 +7,13 @@
 #include <vector>
 
 #include "apex/core/file_roots.hpp"
-#include "apex/core/graph.hpp"
-#include "apex/core/graph_file.hpp"
-#include "apex_test/graph_file_helpers.hpp"
-#include "apex_test/test_nodes.hpp"
+#include "apex_test/subgraph_helpers.hpp"
 
 namespace {
 
 using namespace apex;
-using apex_test::Collector;
-using apex_test::Contains;
-using apex_test::Feeder;
-using apex_test::object;
-using apex_test::TempDir;
-using apex_test::testRegistry;
-using apex_test::writeFile;
-
-// in × a × b, as a file other graphs use
-const char* kScale =
-    "apex_graph: 2\n"
-    "exports:\n"
-    "  - {input: in, to: first/in}\n"
-    "  - {output: out, from: second/out}\n"
-    "  - {parameter: factor, to: second/gain, description: the second factor}\n"
-    "nodes:\n"
-    "  - {name: first, type: test/Gain, parameters: {gain: 3}}\n"
-    "  - {name: second, type: test/Gain, parameters: {gain: 2}}\n"
-    "connections:\n"
-    "  - {from: first/out, to: second/in}\n";
-
-std::string twoInstances(const std::string& ref) {
-  return "apex_graph: 2\n"
-         "nodes:\n"
-         "  - {name: feeder, type: test/Feeder}\n"
-         "  - {name: a, subgraph: " +
-         ref +
-         ", parameters: {factor: 5}}\n"
-         "  - {name: b, subgraph: " +
-         ref +
-         "}\n"
-         "  - {name: sink_a, type: test/Collector}\n"
-         "  - {name: sink_b, type: test/Collector}\n"
-         "connections:\n"
-         "  - {from: feeder/out, to: a/in}\n"
-         "  - {from: feeder/out, to: b/in}\n"
-         "  - {from: a/out, to: sink_a/in}\n"
-         "  - {from: b/out, to: sink_b/in}\n";
-}
-
-/** Feeds 1..n and returns what `sink` got. */
-std::vector<int> run(Graph& g, const std::string& sink, int n = 4) {
-  g.start();
-  for (int i = 1; i <= n; ++i) object<Feeder>(g, "feeder")->feed(i);
-  EXPECT_TRUE(object<Collector>(g, sink)->waitFor(n));
-  EXPECT_TRUE(g.waitIdle(apex_test::kWait));
-  g.stop();
-  return object<Collector>(g, sink)->ints();
-}
-
-Result<LoadReport> loadText(Graph& g, TempDir& dir, const std::string& name, const std::string& text) {
-  writeFile(dir.file(name), text);
-  return loadGraphFile(g, dir.file(name));
-}
+using namespace apex_test;
+using namespace apex_test::subgraphs;
 
 TEST(Subgraph, InlineSubgraphRunsLikeTheFlatChain) {
   const std::string nested =
@@ -120,9 +65,8 @@ TEST(Subgraph, InlineSubgraphRunsLikeTheFlatChain) {
 
 TEST(Subgraph, InnerNodesAreAddressedByPathByEveryEdit) {
   TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
   Graph g(testRegistry());
-  auto loaded = loadText(g, dir, "main.yaml", twoInstances("scale.yaml"));
+  auto loaded = loadTwoScales(g, dir);
   ASSERT_TRUE(loaded) << loaded.message();
 
   // the exported parameter and the inner one are the same value
@@ -161,9 +105,8 @@ TEST(Subgraph, InnerNodesAreAddressedByPathByEveryEdit) {
 
 TEST(Subgraph, TwoInstancesOfOneFileKeepTheirOwnParameters) {
   TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
   Graph g(testRegistry());
-  auto loaded = loadText(g, dir, "main.yaml", twoInstances("scale.yaml"));
+  auto loaded = loadTwoScales(g, dir);
   ASSERT_TRUE(loaded) << loaded.message();
   g.start();
   for (int i = 1; i <= 3; ++i) object<Feeder>(g, "feeder")->feed(i);
@@ -246,9 +189,8 @@ TEST(Subgraph, APackageReferenceIsOpenedThroughTheHostsRootsAndKeptAsWritten) {
 
 TEST(Subgraph, AnEditInsideAFileBackedSubgraphIsSavedInline) {
   TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
   Graph g(testRegistry());
-  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  ASSERT_TRUE(loadTwoScales(g, dir));
   ASSERT_TRUE(g.setParameter("b/first", "gain", "7"));  // not exported: the file no longer says it
   const std::string text = formatGraphText(g.describe());
   EXPECT_TRUE(Contains(text, {"subgraph: scale.yaml", "gain: 7", "{input: in, to: first/in}"})) << text;
@@ -349,9 +291,8 @@ TEST(Subgraph, AFileThatIncludesItselfIsRefused) {
 
 TEST(Subgraph, DisablingASubgraphDisablesItsNodesAndKeepsTheirOwnSetting) {
   TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
   Graph g(testRegistry());
-  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  ASSERT_TRUE(loadTwoScales(g, dir));
   ASSERT_TRUE(g.setEnabled("b/first", false));
   ASSERT_TRUE(g.setEnabled("b", false));
   auto enabled = [&](const std::string& name) {
@@ -369,9 +310,8 @@ TEST(Subgraph, DisablingASubgraphDisablesItsNodesAndKeepsTheirOwnSetting) {
 
 TEST(Subgraph, RemovingASubgraphRemovesItsNodesAndConnections) {
   TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
   Graph g(testRegistry());
-  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
+  ASSERT_TRUE(loadTwoScales(g, dir));
   ASSERT_TRUE(g.removeNode("a"));
   EXPECT_EQ(g.size(), 5u);  // feeder, two sinks, b's two nodes
   EXPECT_FALSE(findNode(g.describe(), "a"));
@@ -382,195 +322,4 @@ TEST(Subgraph, RemovingASubgraphRemovesItsNodesAndConnections) {
   EXPECT_FALSE(g.nodeInterface("b")->findOutput("out"));
 }
 
-TEST(Subgraph, GroupingWithRestoreUndoesAnUngroupExactly) {
-  TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
-  Graph g(testRegistry());
-  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
-  ASSERT_TRUE(g.setEnabled("a", false));
-  ASSERT_TRUE(g.setUi("a", "{x: 40, y: 80}"));
-  const std::string before = formatGraphText(g.describe());  // a file reference, factor 5, disabled
-  ASSERT_TRUE(g.ungroup("a"));
-  auto enabled = [&](const std::string& name) {
-    for (const auto& st : g.nodeStats())
-      if (st.name == name) return st.enabled;
-    return false;
-  };
-  EXPECT_TRUE(enabled("first"));  // no longer inside a disabled subgraph
-  ASSERT_TRUE(g.group({"first", "second"}, "a", /*restore=*/true));
-  EXPECT_EQ(formatGraphText(g.describe()), before);  // its file, exported parameter, state and place
-  EXPECT_FALSE(enabled("a/first"));
-  EXPECT_EQ(run(g, "sink_b", 2), (std::vector<int>{6, 12}));
-  for (int got : object<Collector>(g, "sink_a")->ints()) EXPECT_EQ(got, -999) << "the restored subgraph is disabled: Nothing";
-
-  // Without restore (a new grouping), or once the nodes differ: exports from the crossing links only
-  ASSERT_TRUE(g.ungroup("a"));
-  ASSERT_TRUE(g.group({"first", "second"}, "a"));
-  EXPECT_NE(formatGraphText(g.describe()), before);
-  EXPECT_FALSE(g.nodeInterface("a")->findParam("factor"));
-  ASSERT_TRUE(g.ungroup("a"));
-  ASSERT_TRUE(g.group({"first"}, "a", /*restore=*/true));
-  EXPECT_FALSE(g.nodeInterface("a")->findParam("factor"));
-}
-
-TEST(Subgraph, GroupAndUngroupWhileRunningKeepTheOutputsAndGiveTheFlatGraphBack) {
-  Graph g(testRegistry());
-  apex_test::add(g, "test/Feeder", "feeder");
-  apex_test::add(g, "test/Gain", "first");
-  apex_test::add(g, "test/Gain", "second");
-  apex_test::add(g, "test/Collector", "sink");
-  apex_test::add(g, "test/Collector", "tap");
-  ASSERT_TRUE(g.setParameter("first", "gain", "3"));
-  ASSERT_TRUE(g.setParameter("second", "gain", "2"));
-  apex_test::link(g, "feeder", "out", "first", "in");
-  apex_test::link(g, "first", "out", "second", "in");
-  apex_test::link(g, "second", "out", "sink", "in");
-  apex_test::link(g, "first", "out", "tap", "in");  // an inner sender also feeds outside
-  const std::string flat = formatGraphText(g.describe());
-  g.start();
-  auto* feeder = object<Feeder>(g, "feeder");
-  auto* sink = object<Collector>(g, "sink");
-  feeder->feed(1);
-  ASSERT_TRUE(sink->waitFor(1));
-
-  auto grouped = g.group({"first", "second"}, "scale");
-  ASSERT_TRUE(grouped) << grouped.message();
-  feeder->feed(2);  // data flows on through the same edges: nothing was rebuilt
-  ASSERT_TRUE(sink->waitFor(2));
-  const std::string text = formatGraphText(g.describe());
-  // exports named after the inner ports, the node's name added where two share one
-  EXPECT_TRUE(Contains(
-      text, {"name: scale", "{input: in, to: first/in}", "{output: out, from: first/out}",
-             "{output: second_out, from: second/out}", "{from: feeder/out, to: scale/in}",
-             "{from: scale/second_out, to: sink/in}", "{from: scale/out, to: tap/in}", "{from: first/out, to: second/in}"}))
-      << text;
-  EXPECT_TRUE(g.setParameter("scale/first", "gain", "3"));
-  EXPECT_TRUE(g.nodeInterface("scale")->findInput("in"));
-  // the grouped graph, saved and loaded, runs the same
-  Graph again(testRegistry());
-  ASSERT_TRUE(again.load(parseGraphText(text).value()));
-  EXPECT_EQ(formatGraphText(again.describe()), text);
-  EXPECT_EQ(run(again, "sink", 2), (std::vector<int>{6, 12}));
-
-  auto ungrouped = g.ungroup("scale");
-  ASSERT_TRUE(ungrouped) << ungrouped.message();
-  feeder->feed(3);
-  ASSERT_TRUE(sink->waitFor(3));
-  ASSERT_TRUE(g.waitIdle(apex_test::kWait));
-  g.stop();
-  EXPECT_EQ(sink->ints(), (std::vector<int>{6, 12, 18}));
-  EXPECT_EQ(formatGraphText(g.describe()), flat);  // the round trip gives the flat graph back
-
-  auto apart = g.group({"first", "nope"}, "x");
-  EXPECT_TRUE(Contains(apart.message(), {"cannot group into 'x'", "no node named 'nope'"})) << apart.message();
-  auto taken = g.group({"first"}, "sink");
-  EXPECT_TRUE(Contains(taken.message(), {"a node named 'sink' already exists"})) << taken.message();
-  EXPECT_TRUE(Contains(g.ungroup("first").message(), {"not a subgraph"}));
-}
-
-TEST(Subgraph, GroupingInsideASubgraphAndUngroupingKeepTheExportsWorking) {
-  TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
-  Graph g(testRegistry());
-  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
-  ASSERT_TRUE(g.group({"a/second"}, "stage"));  // a level down: a's exports now pass through 'stage'
-  EXPECT_EQ(std::get<int>(g.parameterValue("a", "factor").value()), 5);
-  EXPECT_TRUE(g.nodeInterface("a")->findOutput("out"));
-  ASSERT_TRUE(g.ungroup("a/stage"));
-  EXPECT_TRUE(g.nodeInterface("a")->findOutput("out"));
-  EXPECT_EQ(run(g, "sink_a", 1), (std::vector<int>{15}));
-}
-
-TEST(Subgraph, RenamingANodeOrASubgraphWhileRunningKeepsItsConnectionsAndExports) {
-  TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
-  Graph g(testRegistry());
-  ASSERT_TRUE(loadText(g, dir, "main.yaml", twoInstances("scale.yaml")));
-  g.start();
-  auto* feeder = object<Feeder>(g, "feeder");
-  auto* sink = object<Collector>(g, "sink_a");
-  feeder->feed(1);
-  ASSERT_TRUE(sink->waitFor(1));
-
-  auto inner = g.rename("a/second", "last");  // named by a's exports 'out' and 'factor'
-  ASSERT_TRUE(inner) << inner.message();
-  auto outer = g.rename("a", "five");
-  ASSERT_TRUE(outer) << outer.message();
-  ASSERT_TRUE(g.rename("sink_a", "sink"));
-  feeder->feed(2);  // the same edges: nothing was rebuilt
-  ASSERT_TRUE(sink->waitFor(2));
-  EXPECT_EQ(std::get<int>(g.parameterValue("five", "factor").value()), 5);
-  EXPECT_EQ(std::get<int>(g.parameterValue("five/last", "gain").value()), 5);
-  const std::string text = formatGraphText(g.describe());
-  EXPECT_TRUE(Contains(text, {"name: five", "{output: out, from: last/out}", "{parameter: factor, to: last/gain",
-                              "{from: first/out, to: last/in}", "{from: five/out, to: sink/in}"}))
-      << text;
-  EXPECT_FALSE(Contains(text, {"name: a,"})) << text;
-
-  EXPECT_TRUE(Contains(g.rename("b", "five").message(), {"cannot rename 'b'", "a node named 'five' already exists"}));
-  EXPECT_TRUE(Contains(g.rename("nope", "x").message(), {"no node named 'nope'"}));
-  EXPECT_TRUE(Contains(g.rename("b", "x/y").message(), {"a name, not a path"}));
-  EXPECT_TRUE(Contains(g.rename("b", "two words").message(), {"node name 'two words'"}));
-  ASSERT_TRUE(g.waitIdle(apex_test::kWait));
-  g.stop();
-  EXPECT_EQ(sink->ints(), (std::vector<int>{15, 30}));
-}
-
-TEST(Subgraph, LiveEditsInsideARunningSubgraphNeverStallTheGraph) {
-  TempDir dir;
-  writeFile(dir.file("scale.yaml"), kScale);
-  std::string main = twoInstances("scale.yaml");
-  main.replace(main.find("test/Feeder"), 11, "test/Ticker");  // free-running: data always flows
-  Graph g(testRegistry());
-  auto loaded = loadText(g, dir, "main.yaml", main);
-  ASSERT_TRUE(loaded) << loaded.message();
-  auto* sink_b = object<Collector>(g, "sink_b");
-  auto flows = [&] {
-    const std::size_t before = sink_b->size();
-    return sink_b->waitFor(before + 5);
-  };
-  g.start();
-  ASSERT_TRUE(flows());
-  for (int round = 0; round < 20; ++round) {  // each edit while the other instance and the feeder run on
-    ASSERT_TRUE(g.disconnect("a/first", "out", "a/second", "in"));
-    ASSERT_TRUE(flows()) << "round " << round << ": a cut inside 'a' stalled 'b'";
-    ASSERT_TRUE(g.connect("a/first", "out", "a/second", "in"));
-    ASSERT_TRUE(g.removeNode("a/second"));
-    ASSERT_TRUE(flows()) << "round " << round << ": removing a node inside 'a' stalled 'b'";
-    ASSERT_TRUE(g.addNode("test/Gain", "a/second"));
-    ASSERT_TRUE(g.connect("a/first", "out", "a/second", "in"));
-    ASSERT_TRUE(g.connect("a/second", "out", "sink_a", "in"));
-    ASSERT_TRUE(g.setEnabled("a", round % 2 == 0));
-    ASSERT_TRUE(g.setParameter("b", "factor", std::to_string(round % 5 + 1)));
-    ASSERT_TRUE(flows()) << "round " << round;
-  }
-  ASSERT_TRUE(g.setEnabled("a", true));
-  auto* sink_a = object<Collector>(g, "sink_a");
-  const std::size_t before = sink_a->size();
-  EXPECT_TRUE(sink_a->waitFor(before + 5)) << "the edited subgraph runs again once whole";
-  g.stop();
-}
-
 }  // namespace
-
-TEST(Subgraph, GroupingInsideUnderTheParentsOwnNameKeepsEveryNode) {
-  // s/s begins where s begins (at its first node): both used to take one place in the
-  // description, and the outer one with all its nodes was left out of ~get_graph and saves
-  Graph g(testRegistry());
-  apex_test::add(g, "test/Feeder", "feeder");
-  apex_test::add(g, "test/Gain", "first");
-  apex_test::add(g, "test/Collector", "sink");
-  ASSERT_TRUE(g.setParameter("first", "gain", "3"));
-  apex_test::link(g, "feeder", "out", "first", "in");
-  apex_test::link(g, "first", "out", "sink", "in");
-  ASSERT_TRUE(g.group({"first", "sink"}, "s"));
-  auto inner = g.group({"s/first"}, "s");  // s/s: the name is free one level down
-  ASSERT_TRUE(inner) << inner.message();
-  const std::string text = formatGraphText(g.describe());
-  EXPECT_TRUE(Contains(text, {"name: s", "name: first", "name: sink"})) << text;
-  Graph again(testRegistry());  // saved and loaded: the same graph, and it runs
-  auto loaded = again.load(parseGraphText(text).value());
-  ASSERT_TRUE(loaded) << loaded.message() << "\n" << text;
-  EXPECT_EQ(formatGraphText(again.describe()), text);
-  EXPECT_EQ(run(again, "s/sink", 2), (std::vector<int>{3, 6}));
-}
