@@ -98,6 +98,12 @@ class HostedNodelet {
   /** Until `done()` or `timeout` seconds: spins its queue, or waits while its own thread does
    *  (spinInThread). False at the timeout. */
   bool spinUntil(const std::function<bool()>& done, double timeout);
+  /** Runs `call` on a thread of its own while this one spins the queue, for a call the nodelet
+   *  answers through its queue (a service of its own): true when `call` returned within `timeout`.
+   *  One at a time: while an earlier call has not returned (the nodelet never answered it),
+   *  throws std::runtime_error saying so. The thread is joined at the latest when the nodelet
+   *  unloads (its services go, so the call returns). */
+  bool callAside(std::function<void()> call, double timeout);
   /** A handle whose callbacks run in its queue (with its own). */
   ros::NodeHandle handle();
 
@@ -137,6 +143,8 @@ class HostedNodelet {
   std::function<void()> arrived_;
   std::atomic<bool> spinning_{false};
   std::thread spinner_;
+  std::shared_ptr<std::atomic<bool>> aside_done_;  // the call aside, while its thread lives
+  std::thread aside_;
 };
 
 }  // namespace nodelet_host

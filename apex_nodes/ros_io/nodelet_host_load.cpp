@@ -174,6 +174,7 @@ void HostedNodelet::unload() {
   std::lock_guard<std::mutex> lock(plugins().m);
   nodelet_.reset();  // ...while the nodelet goes: its handles shut its topics, services and timers down
   queue_.clear();
+  if (aside_.joinable()) aside_.join();  // a call to its services returns once they are gone
   if (name_.empty()) return;
   if (ros::isStarted() && !ros::isShuttingDown()) ros::param::del(name_);
   plugins().names.erase(name_);
@@ -222,6 +223,20 @@ bool HostedNodelet::spinUntil(const std::function<bool()>& done, double timeout)
     else spin(std::min(left, 0.01));
   }
   return true;
+}
+
+bool HostedNodelet::callAside(std::function<void()> call, double timeout) {
+  if (aside_.joinable()) {
+    if (!aside_done_->load()) throw std::runtime_error(describe() + " has still not answered an earlier call that timed out: it is not called again until it does");
+    aside_.join();
+  }
+  auto done = std::make_shared<std::atomic<bool>>(false);
+  aside_done_ = done;
+  aside_ = std::thread([call = std::move(call), done] {
+    call();
+    done->store(true);
+  });
+  return spinUntil([&] { return done->load(); }, timeout);
 }
 
 ros::NodeHandle HostedNodelet::handle() {

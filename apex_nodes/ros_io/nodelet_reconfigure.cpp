@@ -7,12 +7,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "apex/core/param.hpp"
 
@@ -273,15 +271,14 @@ void reconfigure(HostedNodelet& nodelet, const Offered& o, const apex::ParamValu
     default:
       c.strs.emplace_back().name = o.name, c.strs.back().value = static_cast<std::string>(v);
   }
-  // The server answers on the nodelet's queue, which this thread may be the one to spin: the
-  // call waits on a thread of its own (left to finish if the nodelet never answers).
-  auto result = std::make_shared<std::atomic<int>>(0);  // 0 waiting, 1 answered, 2 failed
-  std::thread([service = nodelet.name() + "/set_parameters", call, result]() mutable {
-    result->store(ros::service::call(service, call) ? 1 : 2);
-  }).detach();
-  if (!nodelet.spinUntil([&] { return result->load() != 0; }, timeout))
+  // The server answers on the nodelet's queue, which this thread may be the one to spin.
+  auto answered = std::make_shared<bool>(false);
+  const auto aside = [service = nodelet.name() + "/set_parameters", call, answered]() mutable {
+    *answered = ros::service::call(service, call);
+  };
+  if (!nodelet.callAside(aside, timeout))
     throw std::runtime_error(nodelet.describe() + " did not answer setting '" + o.name + "' within " + seconds(timeout));
-  if (result->load() == 2)
+  if (!*answered)
     throw std::runtime_error(nodelet.describe() + ": setting '" + o.name + "' failed (its " + nodelet.name() +
                              "/set_parameters service did not answer)");
 }
