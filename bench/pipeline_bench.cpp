@@ -11,7 +11,6 @@
 #include <deque>
 #include <map>
 #include <random>
-#include <thread>
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -86,8 +85,8 @@ class FrameSource : public Node {
   std::size_t i_ = 0;
 };
 
-/** Counts frames; wakes a waiter only at the count it waits for: a wake per frame would put the
- *  bench's thread on a core the graph's groups use, every frame (two groups on two cores). */
+/** Counts frames; wakes its waiter (one at a time) only at the count it waits for: a wake per frame
+ *  would put the bench's thread on a core the graph's groups use, every frame (two groups on two cores). */
 class FrameSink : public Node {
  public:
   static Manifest manifest() { return Manifest().input<Image>("image"); }
@@ -344,24 +343,27 @@ double twoCopiesFps(const std::vector<cv::Mat>& input, int n) {
   std::vector<cv::Mat> own;
   for (const cv::Mat& m : input) own.push_back(m.clone());
   Graph a(registry()), b(registry());
-  double fps[2] = {0, 0};
   Graph* graphs[2] = {&a, &b};
-  const std::vector<cv::Mat>* frames[2] = {&input, &own};
+  FrameSource* src[2];
+  FrameSink* sink[2];
   for (int k = 0; k < 2; ++k) {
     build(*graphs[k], false);
-    static_cast<FrameSource*>(graphs[k]->nodeObject("src"))->frames = frames[k];
+    src[k] = static_cast<FrameSource*>(graphs[k]->nodeObject("src"));
+    sink[k] = static_cast<FrameSink*>(graphs[k]->nodeObject("sink"));
+    src[k]->frames = k ? &own : &input;
     graphs[k]->start();
     (void)graphs[k]->waitIdle(5);
   }
-  auto run = [&](int k) {
-    fps[k] = freeRunFps(static_cast<FrameSource*>(graphs[k]->nodeObject("src")),
-                        static_cast<FrameSink*>(graphs[k]->nodeObject("sink")), n);
-  };
-  std::thread other(run, 1);
-  run(0);
-  other.join();
+  for (int k = 0; k < 2; ++k) src[k]->free_running = true, src[k]->notifyNewData();
+  for (int k = 0; k < 2; ++k) sink[k]->waitFor(5);  // both running
+  const long from[2] = {sink[0]->seen(), sink[1]->seen()};
+  const auto t0 = Clock::now();
+  sink[0]->waitFor(from[0] + n);  // one window for both: the frames each made in it
+  const long frames = sink[0]->seen() - from[0] + sink[1]->seen() - from[1];
+  const double fps = double(frames) / std::chrono::duration<double>(Clock::now() - t0).count();
+  for (int k = 0; k < 2; ++k) src[k]->free_running = false;
   a.stop(), b.stop();
-  return fps[0] + fps[1];
+  return fps;
 }
 
 void demoBalanceTable(const std::vector<cv::Mat>& input, int n, int reps) {

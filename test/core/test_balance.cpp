@@ -275,16 +275,28 @@ TEST(BalanceTrials, TryCandidatesKeepsTheFastestAndNamesTheGroupsFromThoseNow) {
   ASSERT_GE(t->candidates.size(), 2u);  // after a, and after b (4.1 ms against 4 ms)
   ASSERT_EQ(t->fps.size(), t->candidates.size());
   EXPECT_EQ(t->fps[t->fastest], *std::max_element(t->fps.begin(), t->fps.end()));
+  EXPECT_THAT(currentGroups(g, in), ElementsAre("default", "default", "default", "mine"));  // as before the trials
+  // balance's own (the first): cut after a (2.1 ms, 4 ms); the second stage keeps c's group
   const Proposal& p = t->candidates[0];
-  const auto names = stageGroupNames(p, currentGroups(g, in));
-  const auto placed = placementOf(p, in, names);
-  ASSERT_EQ(placed.size(), 4u);
-  for (std::size_t i = 0; i < in.nodes.size(); ++i) EXPECT_EQ(placed.at(in.nodes[i].name), names[p.stage[i]]);
+  const std::map<std::string, std::string> want{{"source", "default"}, {"a", "default"}, {"b", "mine"}, {"c", "mine"}};
+  EXPECT_EQ(placementOf(p, in, stageGroupNames(p, currentGroups(g, in))), want);
   options.groups = 1;  // one candidate: nothing to try
   const auto one = tryCandidates(g, in, options, 3, trial);
   ASSERT_TRUE(one) << one.message();
   EXPECT_EQ(one->candidates.size(), 1u);
   EXPECT_TRUE(one->fps.empty());
+  g.stop();
+}
+
+TEST(BalanceTrials, ANodeInASubgraphIsInItsOwnGroupByItsPath) {
+  Graph g(testRegistry());
+  ASSERT_NO_FATAL_FAILURE(startChainWithCInMine(g));
+  ASSERT_TRUE(g.group({"b", "c"}, "sub"));
+  const BalanceInput in = balanceInput(g, {});
+  std::vector<std::string> names;
+  for (const auto& n : in.nodes) names.push_back(n.name);
+  ASSERT_THAT(names, ElementsAre("source", "a", "sub/b", "sub/c"));
+  EXPECT_THAT(currentGroups(g, in), ElementsAre("default", "default", "default", "mine"));
   g.stop();
 }
 

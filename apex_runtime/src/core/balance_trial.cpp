@@ -61,12 +61,29 @@ Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vec
   }
 }
 
-std::vector<std::string> currentGroups(const Graph& graph, const BalanceInput& input) {
-  std::map<std::string, std::string> now;  // node -> its group
-  for (const auto& d : graph.describe().nodes) now[d.name] = d.thread_group;
+namespace {
+
+/** Each node's thread group by its path ("sub/inner" inside a subgraph), into `out`. */
+void groupsByPath(const GraphDescription& d, const std::string& prefix, std::map<std::string, std::string>& out) {
+  for (const auto& n : d.nodes) {
+    const std::string path = prefix.empty() ? n.name : prefix + "/" + n.name;
+    out[path] = n.thread_group;
+    if (n.subgraph) groupsByPath(*n.subgraph, path, out);
+  }
+}
+
+std::vector<std::string> groupsOf(const GraphDescription& d, const BalanceInput& input) {
+  std::map<std::string, std::string> now;
+  groupsByPath(d, "", now);
   std::vector<std::string> out;
   for (const auto& n : input.nodes) out.push_back(now.count(n.name) ? now[n.name] : "default");
   return out;
+}
+
+}  // namespace
+
+std::vector<std::string> currentGroups(const Graph& graph, const BalanceInput& input) {
+  return groupsOf(graph.describe(), input);
 }
 
 std::map<std::string, std::string> placementOf(const Proposal& proposal, const BalanceInput& input,
@@ -78,8 +95,9 @@ std::map<std::string, std::string> placementOf(const Proposal& proposal, const B
 
 Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& input, const std::vector<Proposal>& candidates,
                                           const TrialOptions& options) {
-  const std::vector<std::string> groups_before = graph.describe().thread_groups;
-  const std::vector<std::string> current = currentGroups(graph, input);
+  const GraphDescription before = graph.describe();
+  const std::vector<std::string>& groups_before = before.thread_groups;
+  const std::vector<std::string> current = groupsOf(before, input);
   std::set<std::string> trial_groups;
   std::vector<double> fps;
   Status failed = Status::ok();

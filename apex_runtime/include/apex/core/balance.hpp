@@ -118,7 +118,8 @@ struct TrialOptions {
 Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vector<NodeStats>& before, int frames,
                                               const TrialOptions& options);
 
-/** @brief Each node of `input`'s thread group now, by node index ("default" for one not in the graph). */
+/** @brief Each node of `input`'s thread group now, by node index, nodes in subgraphs too (by path, as
+ *  balanceInput names them); "default" for one not in the graph. */
 std::vector<std::string> currentGroups(const Graph& graph, const BalanceInput& input);
 
 /** @brief Node name -> thread group for `proposal`, its stages named `group_names` (stageGroupNames). */
