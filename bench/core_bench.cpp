@@ -58,6 +58,13 @@ struct HandleRelay : Node {  // the same, through typed handles (ports.hpp)
   Output<int> out_{this, "out"};
 };
 
+struct TakeRelay : Node {  // the same, moving the message on (Input::take)
+  static Manifest manifest() { return Manifest().input<int>("in").output<int>("out"); }
+  void process() override { out_.publishMessage(in_.take()); }
+  Input<int> in_{this, "in"};
+  Output<int> out_{this, "out"};
+};
+
 struct Work : Node {  // ~2 ms of busy work, a stand-in for an image filter
   static Manifest manifest() { return Manifest().input<int>("in").output<int>("out"); }
   void process() override {
@@ -95,6 +102,7 @@ NodeRegistry registry() {
   (void)r.add<Feed>("bench/Feed");
   (void)r.add<Relay>("bench/Relay");
   (void)r.add<HandleRelay>("bench/HandleRelay");
+  (void)r.add<TakeRelay>("bench/TakeRelay");
   (void)r.add<Work>("bench/Work");
   (void)r.add<Sink>("bench/Sink");
   return r;
@@ -314,13 +322,15 @@ int main(int argc, char** argv) {
   std::printf("(input_node, k serial function_nodes, a sink; one thread, like one group). The variants run\n");
   std::printf("interleaved, %d repetitions each: median (min–max) ns per hop; ratios of the medians.\n", reps);
   std::printf("APEX relays read and write by name (`publishMessage(\"out\", inputMessage(\"in\"))`), or through\n");
-  std::printf("typed handles resolved once (`out_.publishMessage(in_.message())`, ports.hpp).\n\n");
+  std::printf("typed handles resolved once (`out_.publishMessage(in_.message())`, ports.hpp), or moving the\n");
+  std::printf("message on (`out_.publishMessage(in_.take())`: no reference count rise and fall, as the library's\n");
+  std::printf("Relay, Switch, Throttle and filters that pass a frame through do).\n\n");
   std::printf(
-      "| k | APEX, names | APEX, handles | TBB flow_graph | std::function | names / TBB | handles / TBB | handles / names "
-      "|\n|---|---|---|---|---|---|---|---|\n");
+      "| k | APEX, names | APEX, handles | APEX, take | TBB flow_graph | std::function | names / TBB | handles / TBB | "
+      "take / TBB |\n|---|---|---|---|---|---|---|---|---|\n");
   for (int k : {1, 4, 16, 64}) {
     const long m = std::max<long>(2000, hop_messages / k);
-    Spread base, tbb, apex_ns, handles_ns;
+    Spread base, tbb, apex_ns, handles_ns, take_ns;
     for (int r = 0; r < reps; ++r) {
       base.add(baselineHopNs(k, m * 10));
 #ifdef APEX_BENCH_TBB
@@ -328,11 +338,13 @@ int main(int argc, char** argv) {
 #endif
       apex_ns.add(apexHopNs(k, m));
       handles_ns.add(apexHopNs(k, m, "bench/HandleRelay"));
+      take_ns.add(apexHopNs(k, m, "bench/TakeRelay"));
     }
     const double t = tbb.empty() ? 0.0 : tbb.median();
-    std::printf("| %d | %s | %s | %s | %s | %.2fx | %.2fx | %.2fx |\n", k, apex_ns.text().c_str(), handles_ns.text().c_str(),
-                tbb.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(), t > 0 ? apex_ns.median() / t : 0.0,
-                t > 0 ? handles_ns.median() / t : 0.0, handles_ns.median() / apex_ns.median());
+    auto ratio = [t](const Spread& s) { return t > 0 ? s.median() / t : 0.0; };
+    std::printf("| %d | %s | %s | %s | %s | %s | %.2fx | %.2fx | %.2fx |\n", k, apex_ns.text().c_str(), handles_ns.text().c_str(),
+                take_ns.text().c_str(), tbb.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(), ratio(apex_ns),
+                ratio(handles_ns), ratio(take_ns));
   }
   if (hop_only) return 0;
 

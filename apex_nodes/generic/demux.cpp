@@ -34,7 +34,7 @@ class Demux : public apex::Node {
     if (choice >= static_cast<int>(ports.size()))
       throw std::invalid_argument("choice " + std::to_string(choice) + " but only " + std::to_string(ports.size()) +
                                   " outputs (out_0 to out_" + std::to_string(ports.size() - 1) + ")");
-    publishMessage(ports[choice].name, in_.message());
+    publishMessage(ports[choice].name, in_.take());
   }
 
  private:

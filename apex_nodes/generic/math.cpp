@@ -44,7 +44,7 @@ class Throttle : public apex::Node {
     if (passed_once_ && std::chrono::duration<double>(now - last_).count() < 1.0 / rate_.get()) return;
     passed_once_ = true;
     last_ = now;
-    out_.publishMessage(in_.message());
+    out_.publishMessage(in_.take());
   }
 
  private:

@@ -10,7 +10,7 @@ class Relay : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Passes any message through unchanged").inCategory("flow").input(kIn).output(kOut);
   }
-  void process() override { out_.publishMessage(in_.message()); }
+  void process() override { out_.publishMessage(in_.take()); }
 
  private:
   apex::Input<apex::Any> in_{this, kIn};

@@ -19,7 +19,7 @@ class Switch : public apex::Node {
         .output(kOut);
   }
   void process() override {
-    if (*condition_.get()) out_.publishMessage(in_.message());
+    if (*condition_.get()) out_.publishMessage(in_.take());
   }
 
  private:

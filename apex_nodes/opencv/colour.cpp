@@ -80,7 +80,7 @@ class SplitChannels : public apex::Node {
     const Image& in = *in_.get();
     requireImage(in, "1234");
     if (in.mat.channels() == 1) {  // channel_0 is the image itself: its message as it came, no copy
-      outs_[0].publishMessage(in_.message());
+      outs_[0].publishMessage(in_.take());
       return;
     }
     // One cv::split into the reused buffers (extractChannel per channel was 8x the split call:

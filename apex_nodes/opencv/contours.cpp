@@ -104,7 +104,7 @@ class ContourFilter : public apex::Node {
     for (std::size_t i = 0; i < in->contours.size(); ++i)
       if (keep(in->contours[i])) kept.push_back(static_cast<int>(i));
     if (kept.size() == in->contours.size()) {  // all of them: the message as it came
-      out_.publishMessage(in_.message());
+      out_.publishMessage(in_.take());
       return;
     }
     auto out = std::make_shared<Contours>();

@@ -35,6 +35,24 @@ class HandleGain : public Node {
   Trigger overflow_{this, "overflow"};
 };
 
+/** Passes its input on by moving it (Input::take); notes whether the input still held it after. */
+class TakingRelay : public Node {
+ public:
+  static Manifest manifest() { return Manifest().input<int>("in").output<int>("out"); }
+  void process() override {
+    const auto payload = in_.get().get();
+    Message m = in_.take();
+    moved_whole = m.as<int>().get() == payload;
+    held_after = in_.has();
+    out_.publishMessage(std::move(m));
+  }
+  std::atomic<bool> held_after{true}, moved_whole{false};
+
+ private:
+  Input<int> in_{this, "in"};
+  Output<int> out_{this, "out"};
+};
+
 /** Has a times10 output only while `wide` is on; its handle throws while the port is gone. */
 class Narrowing : public Node {
  public:
@@ -154,3 +172,21 @@ TEST(Ports, HandlesFollowAnInterfaceThatChangesWhileRunning) {
 }
 
 }  // namespace
+
+TEST(Ports, TakeMovesTheMessageOnAndLeavesTheInputEmptyForTheRestOfTheFiring) {
+  NodeRegistry r = testRegistry();
+  ASSERT_TRUE(r.add<TakingRelay>("test/TakingRelay"));
+  Graph g(std::move(r));
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: src, type: test/Feeder}
+      - {name: relay, type: test/TakingRelay}
+      - {name: sink, type: test/Collector}
+    connections: [{from: src/out, to: relay/in}, {from: relay/out, to: sink/in}])"));
+  g.start();
+  for (int v : {7, 8}) object<Feeder>(g, "src")->feed(v);
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(2));
+  EXPECT_THAT(object<Collector>(g, "sink")->ints(), ElementsAre(7, 8));
+  EXPECT_TRUE(object<TakingRelay>(g, "relay")->moved_whole) << "the same payload, not a copy";
+  EXPECT_FALSE(object<TakingRelay>(g, "relay")->held_after) << "the input is Nothing once taken";
+}

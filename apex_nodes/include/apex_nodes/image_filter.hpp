@@ -63,7 +63,7 @@ class ImageFilter : public apex::Node {
     requireImage(in, channels_);
     if (depth8_ && in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image ('" + in.encoding + "')");
     if (passesThrough(in)) {  // the frame as it came: no copy
-      out_.publishMessage(in_.message());
+      out_.publishMessage(in_.take());
       return;
     }
     auto out = buffer_.next(in);

@@ -51,6 +51,7 @@ const Message& Node::inputMessage(std::string_view input) const {
 }
 
 const Message& Node::inputAt(int index) const { return stateOf(state_.load(std::memory_order_acquire)).inputs[index]->current; }
+Message Node::takeInputAt(int index) { return std::move(stateOf(state_.load(std::memory_order_acquire)).inputs[index]->current); }
 
 void Node::publishMessage(std::string_view output, Message message) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));

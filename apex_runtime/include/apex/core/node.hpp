@@ -164,6 +164,7 @@ class Node {
   friend Status detail::resolveHandles(Node& node, const Manifest& iface);
   // By index in the current interface: for typed handles (ports.hpp).
   const Message& inputAt(int index) const;
+  Message takeInputAt(int index);
   void publishAt(int index, Message&& message);
   const ParamValue& paramAt(int index) const;
   void triggerAt(int index);

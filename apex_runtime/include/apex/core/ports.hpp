@@ -49,6 +49,7 @@ class Handle {
     return index_;
   }
   const Message& inputAt(int i) const { return node_->inputAt(i); }
+  Message takeInputAt(int i) const { return node_->takeInputAt(i); }
   void publishAt(int i, Message&& m) const { node_->publishAt(i, std::move(m)); }
   const ParamValue& paramAt(int i) const { return node_->paramAt(i); }
   void triggerAt(int i) const { node_->triggerAt(i); }
@@ -84,6 +85,10 @@ class Input : public Handle {
   /** @brief True when the input holds a message (not Nothing) this firing. */
   bool has() const { return !message().isNothing(); }
   const Message& message() const { return inputAt(index()); }
+  /** @brief This firing's message, moved out: the input holds Nothing for the rest of the firing.
+   *  A node that passes its input on unchanged (`out_.publishMessage(in_.take())`) so spares the
+   *  message's reference count a rise and a fall: two atomic operations per message. */
+  Message take() { return takeInputAt(index()); }
 };
 
 /** @brief An output of type T; an output not published in a firing sends Nothing. */
