@@ -171,10 +171,14 @@ void HostedNodelet::unload() {
   for (auto& p : inputs_) p.shutdown();
   for (auto& s : outputs_) s.shutdown();
   queue_.clear();
-  std::lock_guard<std::mutex> lock(plugins().m);
+  std::unique_lock<std::mutex> lock(plugins().m);
   nodelet_.reset();  // ...while the nodelet goes: its handles shut its topics, services and timers down
   queue_.clear();
-  if (aside_.joinable()) aside_.join();  // a call to its services returns once they are gone
+  if (aside_.joinable()) {  // a call to its services returns once they are gone (no other load waits meanwhile)
+    lock.unlock();
+    aside_.join();
+    lock.lock();
+  }
   if (name_.empty()) return;
   if (ros::isStarted() && !ros::isShuttingDown()) ros::param::del(name_);
   plugins().names.erase(name_);
@@ -227,7 +231,8 @@ bool HostedNodelet::spinUntil(const std::function<bool()>& done, double timeout)
 
 bool HostedNodelet::callAside(std::function<void()> call, double timeout) {
   if (aside_.joinable()) {
-    if (!aside_done_->load()) throw std::runtime_error(describe() + " has still not answered an earlier call that timed out: it is not called again until it does");
+    if (!aside_done_->load())
+      throw std::runtime_error(describe() + " has still not answered an earlier call that timed out: not called again until it does");
     aside_.join();
   }
   auto done = std::make_shared<std::atomic<bool>>(false);
