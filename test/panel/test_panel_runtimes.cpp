@@ -1,5 +1,5 @@
 // Panel tests with runtimes of their own: one that goes away and comes back, a
-// slow one, a hung one, and two at once (copy in one, paste in the other).
+// slow one, a hung one, two at once (copy in one, paste in the other), and many calls at once.
 #include "panel_test_support.hpp"
 
 namespace panel_test {
@@ -232,6 +232,36 @@ TEST(PanelWidgetHungRuntime, AnotherRuntimeIsServedAndClosingThePanelDoesNotWait
   panel.reset();
   EXPECT_LT(clock.elapsed(), 1000) << "closing the panel waited for the hung runtime";
   hung.release();  // the calls end; their answers go nowhere
+}
+
+// Two panels' calls and a script's, all at once, to one runtime: every one is answered. With
+// one-off calls (ros::service::call) on each job thread, about one in a few thousand failed,
+// shown as "no answer from /apex/get_graph: is the runtime running?" (ros_comm#1976).
+TEST(PanelWidgetManyCalls, TwoPanelsAndAScriptCallingAtOnceAreAllAnswered) {
+  constexpr int kCalls = 1500;
+  RuntimeLink first, second;
+  first.setNamespace("/apex"), second.setNamespace("/apex");
+  int answered = 0, unanswered = 0;
+  for (int i = 0; i < kCalls; ++i)
+    for (RuntimeLink* link : {&first, &second})
+      link->runThenRead({}, [&](bool, const std::string&, const apex::GraphState& after) {
+        ++(after.revision > 0 ? answered : unanswered);
+      });
+  std::atomic<bool> done{false};
+  std::atomic<int> script_calls{0}, script_failures{0};
+  std::thread script([&] {  // a script's one-off calls meanwhile
+    while (!done) {
+      apex::GetGraph srv;
+      ++script_calls;
+      if (!ros::service::call("/apex/get_graph", srv)) ++script_failures;
+    }
+  });
+  const bool all = QTest::qWaitFor([&] { return answered + unanswered == 2 * kCalls; }, 4 * kWaitMs);
+  done = true;
+  script.join();
+  ASSERT_TRUE(all) << answered + unanswered << " of " << 2 * kCalls << " calls came back";
+  EXPECT_EQ(unanswered, 0) << "of " << 2 * kCalls << " panel calls";
+  EXPECT_EQ(script_failures, 0) << "of " << script_calls << " script calls";
 }
 
 }  // namespace
