@@ -29,9 +29,25 @@ struct WhereAmI : Node {
   std::vector<std::thread::id> threads;
 };
 
+/** A slot that works 50 us (busy, as a node computing). */
+struct SlowSlot : Node {
+  static Manifest manifest() { return Manifest().slot("work", &SlowSlot::work); }
+  void process() override {}
+  void work() {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(50);
+    while (std::chrono::steady_clock::now() < until) {
+    }
+    ++runs;
+  }
+  std::atomic<int> runs{0};
+};
+
 struct Threads : ::testing::Test {
   Graph g{testRegistry()};
-  void SetUp() override { ASSERT_TRUE(g.registry().add<WhereAmI>("test/WhereAmI")); }
+  void SetUp() override {
+    ASSERT_TRUE(g.registry().add<WhereAmI>("test/WhereAmI"));
+    ASSERT_TRUE(g.registry().add<SlowSlot>("test/SlowSlot"));
+  }
   Feeder* src() { return object<Feeder>(g, "src"); }
   Collector* sink() { return object<Collector>(g, "sink"); }
 };
@@ -189,6 +205,48 @@ TEST_F(Threads, OneWakeUpPerMessageCrossingIntoAnIdleGroup) {
     // once; the read acknowledgement goes back without waking anyone
     EXPECT_EQ(s.wakeups, 20u) << s.name;
   }
+}
+
+// A fast node in one group sends its parameter and an event to nodes of another group at every
+// firing (a million times a second): that group's own data keeps flowing. Before, each value and
+// each event was a mail of its own: the slower group ran mail only, its mailbox grew without bound
+// and its nodes never fired again (the soak's "k2 got no data", one run in about twenty).
+TEST_F(Threads, AFastNodesParameterAndEventsDoNotStopASlowerGroup) {
+  ASSERT_TRUE(buildFromText(g, R"(
+    nodes:
+      - {name: tick, type: test/Ticker, thread_group: fast}
+      - {name: fast, type: test/Gain, thread_group: fast}
+      - {name: count, type: test/Counter, thread_group: fast}
+      - {name: src, type: test/Feeder, thread_group: slow}
+      - {name: gain, type: test/Gain, thread_group: slow}
+      - {name: worker, type: test/SlowSlot, thread_group: slow}
+      - {name: sink, type: test/Collector, thread_group: slow}
+    connections: [{from: tick/out, to: fast/in}, {from: fast/out, to: count/in},
+                  {from: src/out, to: gain/in}, {from: gain/out, to: sink/in}])"));
+  ASSERT_TRUE(g.setInteractive("fast", "gain", true));
+  ASSERT_TRUE(g.setInteractive("gain", "gain", true));
+  link(g, "fast", "gain", "gain", "gain");  // sent at every firing of `fast`
+  link(g, "fast", "processed", "worker", "work");  // an event at every firing, 50 us of work each
+  std::mutex m;
+  std::vector<std::string> warnings;
+  setLogSink([&](LogLevel level, const std::string&, const std::string& text) {
+    std::lock_guard<std::mutex> l(m);
+    if (level == LogLevel::Warn) warnings.push_back(text);
+  });
+  g.start();
+  ASSERT_TRUE(waitUntil([&] { return object<Counter>(g, "count")->count > 1000000; })) << "the fast group is slow";
+  for (int i = 0; i < 20; ++i) src()->feed(i);
+  const bool all = sink()->waitFor(20, 5.0);
+  const int fast = object<Counter>(g, "count")->count;
+  g.stop();
+  setLogSink(nullptr);
+  EXPECT_TRUE(all) << "the slower group stopped: " << sink()->size() << " of 20 frames";
+  const int worked = object<SlowSlot>(g, "worker")->runs;
+  EXPECT_GT(worked, 0);
+  EXPECT_LT(worked, fast / 10) << "the events of " << fast << " firings";
+  std::lock_guard<std::mutex> l(m);
+  ASSERT_EQ(warnings.size(), 1u) << "one warning per connection";
+  EXPECT_THAT(warnings.front(), ::testing::HasSubstr("node 'worker' slot 'work' runs slower than node 'fast' fires 'processed'"));
 }
 
 TEST_F(Threads, StopJoinsAndCanRestart) {

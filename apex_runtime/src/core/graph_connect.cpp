@@ -184,7 +184,8 @@ Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
     EditScope scope;
     scope.involve(from.get());
     scope.involve(to.get());
-    auto e = std::make_shared<EventEdge>(EventEdge{from.get(), s.index, to.get(), d.index});
+    auto e = std::make_shared<EventEdge>();
+    e->from = from.get(), e->trigger = s.index, e->to = to.get(), e->slot = d.index;
     from->trigger_edges[s.index].push_back(e);
     to->slot_edges[d.index].push_back(e);
     ++links_;

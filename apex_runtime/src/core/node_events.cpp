@@ -92,8 +92,19 @@ void NodeState::fireTrigger(int trigger) {
     return;
   }
   for (auto& e : trigger_edges[trigger]) {
-    const int slot = e->slot;
-    e->to->post([slot](NodeState& n) { n.runSlot(slot); });
+    if (e->pending.fetch_add(1, std::memory_order_relaxed) >= kMaxPendingEvents) {  // the slot is far behind
+      e->pending.fetch_sub(1, std::memory_order_relaxed);
+      if (e->dropped.fetch_add(1, std::memory_order_relaxed) == 0)
+        log(LogLevel::Warn, e->to->name,
+            nodeLabel(e->to->name) + " slot '" + e->to->manifest().slots[e->slot].name + "' runs slower than " +
+                nodeLabel(name) + " fires '" + manifest().triggers[trigger].name + "': with " +
+                std::to_string(kMaxPendingEvents) + " events waiting, further ones are dropped until it catches up");
+      continue;
+    }
+    e->to->post([e](NodeState& n) {
+      e->pending.fetch_sub(1, std::memory_order_relaxed);
+      n.runSlot(e->slot);
+    });
   }
 }
 

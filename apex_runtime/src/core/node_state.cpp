@@ -268,8 +268,28 @@ void NodeState::deliverSlow(const std::shared_ptr<Edge>& edge, Message&& m, Thre
       if (e.counted()) unblock(1, here);
       return;
     }
-    if (e.counted()) e.unread.store(true, std::memory_order_release);
-    to->post([edge, m = std::move(m)](NodeState& n) { n.receiveParam(*edge, m); });
+    if (e.counted()) {  // the sender waits until it is read: one mail at a time
+      e.unread.store(true, std::memory_order_release);
+      to->post([edge, m = std::move(m)](NodeState& n) { n.receiveParam(*edge, m); });
+      return;
+    }
+    // From a parameter output, which never waits and may send at every firing of a fast node:
+    // the newest value waits on the edge and one mail applies it. A mail per value would fill a
+    // slower group's mailbox without bound and keep its nodes from firing.
+    {
+      std::lock_guard<std::mutex> lock(e.newest_m);
+      const bool mail_pending = !e.newest.isNothing();
+      e.newest = std::move(m);
+      if (mail_pending) return;
+    }
+    to->post([edge](NodeState& n) {
+      Message newest;
+      {
+        std::lock_guard<std::mutex> lock(edge->newest_m);
+        newest = std::move(edge->newest);  // leaves Nothing: the next value posts again
+      }
+      n.receiveParam(*edge, newest);
+    });
     return;
   }
   InputState& in = *to->inputs[e.to_index];

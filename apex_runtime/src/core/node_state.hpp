@@ -60,6 +60,10 @@ struct Edge {
   bool live = false;  // its sender can fire (edits only): a dead input is treated as Nothing
   /** Data outputs wait for their receivers; parameter outputs never hold a node back. */
   bool counted() const { return !from_param; }
+  /** From a parameter output into a parameter: the newest value not yet applied (Nothing when
+   *  none). One mail carries it, whatever number of values came meanwhile (NodeState::deliverSlow). */
+  Message newest;
+  std::mutex newest_m;
 };
 
 struct EventEdge {
@@ -67,7 +71,16 @@ struct EventEdge {
   int trigger = 0;
   NodeState* to = nullptr;
   int slot = 0;
+  /** Events posted to the receiver and not yet run; beyond kMaxPendingEvents one is dropped
+   *  (NodeState::fireTrigger). `dropped` counts them for the warning. */
+  std::atomic<int> pending{0};
+  std::atomic<long> dropped{0};
 };
+
+/** Events one connection may have waiting for a slot that runs slower than its trigger fires:
+ *  more wait unbounded, and a fast sender fills the receiver group's mailbox faster than it
+ *  empties. */
+constexpr int kMaxPendingEvents = 64;
 
 struct InputState {
   Message msg;  // delivered, not yet taken
@@ -133,6 +146,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   Readiness readiness;  // the firing rule's counters (readiness.hpp)
   bool queued = false;  // group mutex
   bool queued_from_outside = false;  // group mutex: by push(), not by this group's own firing
+  std::uint64_t ready_mark = 0;  // group mutex: how much mail its group had been sent when it was queued
   std::atomic<bool> has_data{false};
   ThreadGroup* group = nullptr;
   bool removed = false;

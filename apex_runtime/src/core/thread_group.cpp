@@ -49,6 +49,7 @@ void ThreadGroup::stop() {
 void ThreadGroup::queueLocked(NodeState* node) {
   if (node->queued) return;
   node->queued = true;
+  node->ready_mark = posted_;
   ready_.push_back(node);
   ++activity_;
 }
@@ -89,6 +90,7 @@ void ThreadGroup::unqueue(NodeState* node) {
 void ThreadGroup::post(Mail mail) {
   std::lock_guard<std::mutex> lock(m_);
   mail_.push_back(std::move(mail));
+  ++posted_;
   updateAttention();
   ++activity_;
   if (waiting_ && pause_requests_ == 0) {
@@ -159,6 +161,11 @@ int ThreadGroup::firable() const {
   for (std::size_t i = 0; i < ready_.size(); ++i)
     if (!ready_[i]->isSource() || !stepped_sources_.count(ready_[i])) return static_cast<int>(i);
   return -1;
+}
+
+bool ThreadGroup::mailFirst() const {
+  const int next = firable();
+  return next < 0 || ready_[next]->ready_mark > taken_;
 }
 
 void ThreadGroup::waitStep() {
@@ -249,8 +256,9 @@ void ThreadGroup::run() {
   std::unique_lock<std::mutex> lock(m_);
   std::vector<Mail> batch;
   while (!stop_) {
-    if (pause_requests_ == 0 && !mail_.empty()) {
+    if (pause_requests_ == 0 && !mail_.empty() && mailFirst()) {
       batch.swap(mail_);
+      taken_ = posted_;
       updateAttention();
       busy_ = true;
       lock.unlock();

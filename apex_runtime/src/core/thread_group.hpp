@@ -106,6 +106,11 @@ class ThreadGroup {
                      std::memory_order_relaxed);
   }
   bool canFire() const { return firable() >= 0; }
+  /** Whether the mail runs before the next firing: always when some of it was posted before
+   *  that node was queued (a value or an event sent ahead of its data stays ahead: the tuning
+   *  loop relies on it); mail posted since may wait for one firing, so that mail arriving
+   *  faster than it runs cannot keep this group's nodes from ever firing. Under m_. */
+  bool mailFirst() const;
   /** The position in ready_ of the next node allowed to fire, -1 if none. */
   int firable() const;
   // a stopped group counts as idle: nothing will run there until it starts again
@@ -134,6 +139,8 @@ class ThreadGroup {
   NodeState* inline_next_ = nullptr;  // made ready by that firing, runs next (thread only)
   std::deque<NodeState*> inline_later_;  // made ready before it, run after the chain (thread only)
   int queued_from_outside_ = 0;  // nodes in ready_ that push() put there (m_)
+  std::uint64_t posted_ = 0;  // mail posted here so far (m_)
+  std::uint64_t taken_ = 0;  // ... of which run() has taken into a batch (m_)
   static constexpr int kInlineRun = 256;  // then the queue gets a turn
   static constexpr std::int64_t kInlineTicks = 1 << 18;  // ~65-260 µs: then timers get a turn
 
