@@ -92,7 +92,9 @@ void NodeState::fireTrigger(int trigger) {
     return;
   }
   for (auto& e : trigger_edges[trigger]) {
-    if (e->pending.fetch_add(1, std::memory_order_relaxed) >= kMaxPendingEvents) {  // the slot is far behind
+    // enable/disable set a state: one dropped would leave the node in the wrong one for good
+    const bool sets_state = e->slot == kEnableIndex || e->slot == kDisableIndex;
+    if (e->pending.fetch_add(1, std::memory_order_relaxed) >= kMaxPendingEvents && !sets_state) {  // the slot is far behind
       e->pending.fetch_sub(1, std::memory_order_relaxed);
       if (e->dropped.fetch_add(1, std::memory_order_relaxed) == 0)
         log(LogLevel::Warn, e->to->name,

@@ -77,9 +77,9 @@ struct EventEdge {
   std::atomic<long> dropped{0};
 };
 
-/** Events one connection may have waiting for a slot that runs slower than its trigger fires:
- *  more wait unbounded, and a fast sender fills the receiver group's mailbox faster than it
- *  empties. */
+/** Events one connection may have waiting for a slot that runs slower than its trigger fires
+ *  (enable/disable excepted: they set a state): without a bound a fast sender fills the
+ *  receiver group's mailbox faster than it empties. */
 constexpr int kMaxPendingEvents = 64;
 
 struct InputState {
