@@ -81,13 +81,7 @@ template <class Srv>
 bool callKept(const std::string& name, Srv& srv) {
   thread_local std::map<std::string, ros::ServiceClient> kept;
   auto& client = kept[name];
-  const bool reused = client.isValid();
-  if (!reused) client = ros::service::createClient<Srv>(name, true);
-  if (client.call(srv)) return true;
-  if (!reused) return false;
-  // A connection to a runtime that went (restarted) may not have been seen closed yet:
-  // once more over a new one (the request did not reach a runtime that answers).
-  client = ros::service::createClient<Srv>(name, true);
+  if (!client.isValid()) client = ros::service::createClient<Srv>(name, true);
   return client.call(srv);
 }
 

@@ -234,9 +234,10 @@ TEST(PanelWidgetHungRuntime, AnotherRuntimeIsServedAndClosingThePanelDoesNotWait
   hung.release();  // the calls end; their answers go nowhere
 }
 
-// Two panels' calls and a script's, all at once, to one runtime: every one is answered. With
-// one-off calls (ros::service::call) on each job thread, about one in a few thousand failed,
-// shown as "no answer from /apex/get_graph: is the runtime running?" (ros_comm#1976).
+// Two panels' calls, while one-off calls are made in the same process: every panel call is
+// answered. With one-off calls (ros::service::call) on each job thread, about one in a few
+// thousand failed, shown as "no answer from /apex/get_graph: is the runtime running?"
+// (ros_comm#1976). The one-off calls themselves may still fail now and then (they are roscpp's).
 TEST(PanelWidgetManyCalls, TwoPanelsAndAScriptCallingAtOnceAreAllAnswered) {
   constexpr int kCalls = 1500;
   RuntimeLink first, second;
@@ -248,12 +249,10 @@ TEST(PanelWidgetManyCalls, TwoPanelsAndAScriptCallingAtOnceAreAllAnswered) {
         ++(after.revision > 0 ? answered : unanswered);
       });
   std::atomic<bool> done{false};
-  std::atomic<int> script_calls{0}, script_failures{0};
-  std::thread script([&] {  // a script's one-off calls meanwhile
+  std::thread script([&] {  // one-off calls meanwhile
     while (!done) {
       apex::GetGraph srv;
-      ++script_calls;
-      if (!ros::service::call("/apex/get_graph", srv)) ++script_failures;
+      (void)ros::service::call("/apex/get_graph", srv);
     }
   });
   const bool all = QTest::qWaitFor([&] { return answered + unanswered == 2 * kCalls; }, 4 * kWaitMs);
@@ -261,7 +260,6 @@ TEST(PanelWidgetManyCalls, TwoPanelsAndAScriptCallingAtOnceAreAllAnswered) {
   script.join();
   ASSERT_TRUE(all) << answered + unanswered << " of " << 2 * kCalls << " calls came back";
   EXPECT_EQ(unanswered, 0) << "of " << 2 * kCalls << " panel calls";
-  EXPECT_EQ(script_failures, 0) << "of " << script_calls << " script calls";
 }
 
 }  // namespace

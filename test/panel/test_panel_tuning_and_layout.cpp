@@ -226,7 +226,8 @@ TEST_F(PanelWidgetTest, LoadedGraphsAreLaidOutWithNoBoxOnAnotherAndTidyIsOneUndo
   auto* undo = panel.editor()->findChild<QToolButton*>("undo");
   EXPECT_TRUE(undo->toolTip().contains("Tidy")) << undo->toolTip().toStdString();
   QTest::mouseClick(undo, Qt::LeftButton);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && !overlapping(*scene).empty(); }, kWaitMs));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && !overlapping(*scene).empty(); }, kWaitMs))
+      << "after the undo of Tidy: " << panel.editor()->message().toStdString() << "; undo: " << undo->toolTip().toStdString();
 
   const std::string empty = std::filesystem::path(g_bag).parent_path() / "panel_empty.yaml";
   std::ofstream(empty) << "apex_graph: 2\nnodes: []\n";
