@@ -108,8 +108,8 @@ class ThreadGroup {
   bool canFire() const { return firable() >= 0; }
   /** Whether the mail runs before the next firing: always when some of it was posted before
    *  that node was queued (a value or an event sent ahead of its data stays ahead: the tuning
-   *  loop relies on it); mail posted since may wait for one firing, so that mail arriving
-   *  faster than it runs cannot keep this group's nodes from ever firing. Under m_. */
+   *  loop relies on it); mail posted since may wait until the nodes queued before it have fired,
+   *  so that mail arriving faster than it runs cannot keep this group's nodes from ever firing. Under m_. */
   bool mailFirst() const;
   /** The position in ready_ of the next node allowed to fire, -1 if none. */
   int firable() const;
