@@ -25,8 +25,8 @@ using TypedPtr = Typed::ConstPtr;
 
 /** A node fed the same messages each time, against `call`. */
 NodeCase fixed(std::string type, std::string input, std::string feed, std::vector<std::string> ports,
-               std::vector<apex::Message> messages, Params params, std::string out_port, std::string sink,
-               std::string call_text, std::function<void()> call, std::string label = "") {
+               std::vector<apex::Message> messages, Params params, std::string out_port, std::string sink, std::string call_text,
+               std::function<void()> call, std::string label = "") {
   return fixedCase(label.empty() ? type : label, "apex_nodes/" + type, std::move(input), std::move(feed), std::move(ports),
                    std::move(messages), std::move(params), std::move(out_port), std::move(sink), std::move(call_text),
                    std::move(call));
@@ -57,8 +57,7 @@ std::vector<NodeCase> clusterCases(const TypedPtr& scene, const std::shared_ptr<
   const std::string words = std::to_string(boxes->size()) + " clusters, the scene's boxes";
   c.push_back(fixed("ClusterFeatures", words, feedType<Clusters>(), {"clusters"}, {apex::Message::share<Clusters>(clusters)}, {},
                     "features", sinkType<apex_nodes::ClusterFeatures>(),
-                    "per cluster: compute3DCentroid, covariance, its eigenvectors, getMinMax3D, the oriented extent",
-                    [boxes] {
+                    "per cluster: compute3DCentroid, covariance, its eigenvectors, getMinMax3D, the oriented extent", [boxes] {
                       for (const Typed& b : *boxes) {
                         Eigen::Vector4f centroid;
                         Eigen::Matrix3f covariance;
@@ -69,7 +68,8 @@ std::vector<NodeCase> clusterCases(const TypedPtr& scene, const std::shared_ptr<
                         pcl::getMinMax3D(b, lo, hi);
                         Eigen::Vector3f low = Eigen::Vector3f::Constant(1e9f), high = -low;
                         for (const Point& p : b) {
-                          const Eigen::Vector3f local = pca.eigenvectors().transpose() * (p.getVector3fMap() - centroid.head<3>());
+                          const Eigen::Vector3f local =
+                              pca.eigenvectors().transpose() * (p.getVector3fMap() - centroid.head<3>());
                           low = low.cwiseMin(local), high = high.cwiseMax(local);
                         }
                       }
@@ -101,7 +101,9 @@ std::vector<NodeCase> registrationCases(const TypedPtr& scene, const std::shared
                                         apex::Message::share<Cloud>(apex_nodes::makeCloud(cloud->header, *target))};
   const std::string words = "the scene at 5 cm (" + std::to_string(source->size()) + " points), moved 5 cm, 0.05 rad";
   c.push_back(fixed("ICP", words, feedType<Cloud, Cloud>(), {"source", "target"}, pair,
-                    {{"max_iterations", "50"}, {"max_correspondence_distance", "0.5"}, {"transformation_epsilon", "1e-08"},
+                    {{"max_iterations", "50"},
+                     {"max_correspondence_distance", "0.5"},
+                     {"transformation_epsilon", "1e-08"},
                      {"euclidean_fitness_epsilon", "0"}},
                     "aligned", sinkType<Cloud>(), "IterativeClosestPoint 50, 0.5 m, 1e-8: align",
                     [source, target, out = Typed()]() mutable {
@@ -114,21 +116,22 @@ std::vector<NodeCase> registrationCases(const TypedPtr& scene, const std::shared
                       icp.setInputTarget(target);
                       icp.align(out);
                     }));
-  c.push_back(over(fixed("NDT", words, feedType<Cloud, Cloud>(), {"source", "target"}, pair,
-                    {{"resolution", "1.0"}, {"step_size", "0.1"}, {"transformation_epsilon", "0.01"}, {"max_iterations", "35"}},
-                    "aligned", sinkType<Cloud>(), "NormalDistributionsTransform 1 m, 0.1, 0.01, 35: align",
-                    [source, target, out = Typed()]() mutable {
-                      pcl::NormalDistributionsTransform<Point, Point> ndt;
-                      ndt.setResolution(1.0f);
-                      ndt.setStepSize(0.1);
-                      ndt.setTransformationEpsilon(0.01);
-                      ndt.setMaximumIterations(35);
-                      ndt.setInputSource(source);
-                      ndt.setInputTarget(target);
-                      ndt.align(out);
-                    }),
-                   "probably the fitness score it sends (a nearest-neighbour search of every point), which the call "
-                   "does not compute; not timed apart"));
+  c.push_back(
+      over(fixed("NDT", words, feedType<Cloud, Cloud>(), {"source", "target"}, pair,
+                 {{"resolution", "1.0"}, {"step_size", "0.1"}, {"transformation_epsilon", "0.01"}, {"max_iterations", "35"}},
+                 "aligned", sinkType<Cloud>(), "NormalDistributionsTransform 1 m, 0.1, 0.01, 35: align",
+                 [source, target, out = Typed()]() mutable {
+                   pcl::NormalDistributionsTransform<Point, Point> ndt;
+                   ndt.setResolution(1.0f);
+                   ndt.setStepSize(0.1);
+                   ndt.setTransformationEpsilon(0.01);
+                   ndt.setMaximumIterations(35);
+                   ndt.setInputSource(source);
+                   ndt.setInputTarget(target);
+                   ndt.align(out);
+                 }),
+           "probably the fitness score it sends (a nearest-neighbour search of every point), which the call "
+           "does not compute; not timed apart"));
   return c;
 }
 
@@ -179,9 +182,8 @@ std::vector<NodeCase> depthCases(const TypedPtr& scene, const std::shared_ptr<co
                           "link (package laser_geometry)"));
   const auto& scene_cloud = cloud;
   c.push_back(fixed("MergeClouds", "the table scene twice, one frame", feedType<Cloud, Cloud>(), {"cloud_0", "cloud_1"},
-                    {apex::Message::share<Cloud>(scene_cloud), apex::Message::share<Cloud>(scene_cloud)},
-                    {{"inputs", "2"}}, "cloud", sinkType<Cloud>(), "concatenate two typed clouds",
-                    [scene, out = Typed()]() mutable {
+                    {apex::Message::share<Cloud>(scene_cloud), apex::Message::share<Cloud>(scene_cloud)}, {{"inputs", "2"}},
+                    "cloud", sinkType<Cloud>(), "concatenate two typed clouds", [scene, out = Typed()]() mutable {
                       out = *scene;
                       out += *scene;
                     }));

@@ -168,16 +168,16 @@ std::vector<NodeCase> segmentationCases(const Shared& s) {
                           for (std::size_t i = 0; i < found.size(); ++i) pcl::copyPointCloud(*in, found[i], clusters[i]);
                         }));
   c.back().sink = sinkType<apex_nodes::Clusters>();
-  c.push_back(cloudCase(s, "NormalEstimation", {{"search", "radius"}, {"radius", "0.03"}, {"threads", "1"}}, "cloud",
-                        "NormalEstimationOMP radius 3 cm, 1 thread; concatenateFields",
-                        [normals = pcl::PointCloud<pcl::Normal>(),
-                         out = pcl::PointCloud<pcl::PointXYZRGBNormal>()](const TypedPtr& in) mutable {
-                          pcl::NormalEstimationOMP<Point, pcl::Normal> ne(1);
-                          ne.setInputCloud(in);
-                          ne.setRadiusSearch(0.03);
-                          ne.compute(normals);
-                          pcl::concatenateFields(*in, normals, out);
-                        }));
+  c.push_back(cloudCase(
+      s, "NormalEstimation", {{"search", "radius"}, {"radius", "0.03"}, {"threads", "1"}}, "cloud",
+      "NormalEstimationOMP radius 3 cm, 1 thread; concatenateFields",
+      [normals = pcl::PointCloud<pcl::Normal>(), out = pcl::PointCloud<pcl::PointXYZRGBNormal>()](const TypedPtr& in) mutable {
+        pcl::NormalEstimationOMP<Point, pcl::Normal> ne(1);
+        ne.setInputCloud(in);
+        ne.setRadiusSearch(0.03);
+        ne.compute(normals);
+        pcl::concatenateFields(*in, normals, out);
+      }));
   return c;
 }
 
@@ -200,13 +200,13 @@ std::vector<NodeCase> surfaceCases(const Shared& s) {
   std::vector<NodeCase> c;
   const Plane plane = planeOf(s.scene);
   const auto plane_cloud = apex_nodes::makeCloud(s.cloud->header, *plane.points);
-  NodeCase hull = cloudCase(s, "ConvexHull", {{"dimension", "2"}}, "hull", "ConvexHull 2D",
-                            [out = Typed()](const TypedPtr& in) mutable {
-                              pcl::ConvexHull<Point> h;
-                              h.setInputCloud(in);
-                              h.setDimension(2);
-                              h.reconstruct(out);
-                            });
+  NodeCase hull =
+      cloudCase(s, "ConvexHull", {{"dimension", "2"}}, "hull", "ConvexHull 2D", [out = Typed()](const TypedPtr& in) mutable {
+        pcl::ConvexHull<Point> h;
+        h.setInputCloud(in);
+        h.setDimension(2);
+        h.reconstruct(out);
+      });
   hull.input = "the scene's plane, " + std::to_string(plane.points->size()) + " points";
   hull.frames = {{apex::Message::share<Cloud>(plane_cloud)}};
   hull.call = [points = plane.points, out = Typed()](std::size_t) mutable {
@@ -215,8 +215,9 @@ std::vector<NodeCase> surfaceCases(const Shared& s) {
     h.setDimension(2);
     h.reconstruct(out);
   };
-  c.push_back(over(std::move(hull), "every field kept: an x, y, z view of every point and their finite ones' indices, the "
-                                    "hull's points copied whole; and the area and volume it also sends"));
+  c.push_back(over(std::move(hull),
+                   "every field kept: an x, y, z view of every point and their finite ones' indices, the "
+                   "hull's points copied whole; and the area and volume it also sends"));
 
   auto polygon = pcl::make_shared<Typed>();
   {
@@ -259,7 +260,8 @@ std::vector<NodeCase> surfaceCases(const Shared& s) {
 
 }  // namespace
 
-std::vector<NodeCase> cloudClusterCases(const TypedPtr& scene, const std::shared_ptr<const Cloud>& cloud);  // cloud_bench_more.cpp
+std::vector<NodeCase> cloudClusterCases(const TypedPtr& scene,
+                                        const std::shared_ptr<const Cloud>& cloud);  // cloud_bench_more.cpp
 std::vector<NodeCase> cloudOtherCases(const TypedPtr& scene, const std::shared_ptr<const Cloud>& cloud);  // cloud_bench_more.cpp
 
 /** The table of the cloud nodes against their PCL calls, on the table scene. */
@@ -282,8 +284,8 @@ void cloudNodeTable(bool quick) {
   std::printf("every field of the points it sends; the difference is what that and the message cost. Input: a\n");
   std::printf("generated table top, a 2 x 2 m plane of 24000 points and three boxes of 2000 points on it, x, y, z,\n");
   std::printf("rgb; what else a node takes is made of it and said in its row. Measured as the image nodes:\n");
-  std::printf("interleaved in %d rounds of N clouds per side (N from the call's time, %d to %d), medians of the\n",
-              b.rounds, b.min_frames, b.max_frames);
+  std::printf("interleaved in %d rounds of N clouds per side (N from the call's time, %d to %d), medians of the\n", b.rounds,
+              b.min_frames, b.max_frames);
   std::printf("rounds' medians (min–max), µs. Goal: node ≤ call × 1.05 + 20 µs.\n\n");
   measureTable(all, b);
 }

@@ -45,8 +45,12 @@ Inputs inputs(const cv::Mat& bgr_mat, const cv::Mat& round_mat) {
   cv::threshold(gray_mat, binary_mat, 0, 255, cv::THRESH_BINARY | cv::THRESH_OTSU);
   cv::cvtColor(round_mat, circles_mat, cv::COLOR_BGR2GRAY);
   cv::medianBlur(circles_mat, circles_mat, 5);  // as HoughCircles wants it
-  Inputs in{image(bgr_mat, "bgr8"),     image(gray_mat, "mono8"),          image(edges_mat, "mono8"),
-            image(binary_mat, "mono8"), image(mosaic(bgr_mat), "bayer_rggb8"), image(circles_mat, "mono8"),
+  Inputs in{image(bgr_mat, "bgr8"),
+            image(gray_mat, "mono8"),
+            image(edges_mat, "mono8"),
+            image(binary_mat, "mono8"),
+            image(mosaic(bgr_mat), "bayer_rggb8"),
+            image(circles_mat, "mono8"),
             {}};
   // A fixed camera: the background still, a patch of it moving across (8 frames, cycled).
   for (int i = 0; i < 8; ++i) {
@@ -60,8 +64,7 @@ Inputs inputs(const cv::Mat& bgr_mat, const cv::Mat& round_mat) {
 }  // namespace
 
 std::vector<NodeCase> filterCases(const Inputs& in) {
-  const ImagePtr &bgr = in.bgr, &gray = in.gray, &edges = in.edges, &binary = in.binary, &bayer = in.bayer,
-                 &circles = in.circles;
+  const ImagePtr &bgr = in.bgr, &gray = in.gray, &edges = in.edges, &binary = in.binary, &bayer = in.bayer, &circles = in.circles;
   const cv::Matx33d warp(1.0, 0.08, -20.0, 0.03, 1.0, -10.0, 0.0001, 0.0002, 1.0);
   const std::string warp_text = "[1.0, 0.08, -20.0, 0.03, 1.0, -10.0, 0.0001, 0.0002, 1.0]";
   const cv::Mat rotation = cv::getRotationMatrix2D(cv::Point2f(320, 240), kAngle * 180.0 / M_PI, 1.0);
@@ -70,8 +73,8 @@ std::vector<NodeCase> filterCases(const Inputs& in) {
   auto filter = [&](const char* name, const ImagePtr& frame, const char* input, Params p, const char* text,
                     std::function<void(const cv::Mat&, cv::Mat&)> f, const char* label = nullptr,
                     const char* out_port = "image") {
-    return imageCase(label ? label : name, std::string("apex_nodes/") + name, input, {frame}, std::move(p), out_port, sink,
-                     text, [f = std::move(f), out = cv::Mat()](const cv::Mat& m) mutable { f(m, out); });
+    return imageCase(label ? label : name, std::string("apex_nodes/") + name, input, {frame}, std::move(p), out_port, sink, text,
+                     [f = std::move(f), out = cv::Mat()](const cv::Mat& m) mutable { f(m, out); });
   };
   std::vector<NodeCase> c;
   c.push_back(filter("GaussianBlur", bgr, "bgr8", {{"kernel_size", "5"}, {"sigma", "0"}}, "GaussianBlur 5x5",
@@ -149,70 +152,44 @@ std::vector<NodeCase> filterCases(const Inputs& in) {
   c.push_back(filter("Debayer", bayer, "bayer_rggb8", {{"method", "bilinear"}}, "cvtColor BayerRGGB2BGR",
                      [](const cv::Mat& in, cv::Mat& out) { cv::cvtColor(in, out, cv::COLOR_BayerRGGB2BGR); }));
 
-  c.push_back(
-      imageCase("FindContours",
-           "apex_nodes/FindContours",
-           "Canny edges",
-           {edges},
-           {{"mode", "list"}, {"method", "simple"}},
-           "contours",
-           sinkType<apex_nodes::Contours>(),
-           "findContours list, simple",
-           [contours = std::vector<std::vector<cv::Point>>(), hierarchy = std::vector<cv::Vec4i>()](const cv::Mat& in) mutable {
-             cv::findContours(in, contours, hierarchy, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE);
-           }));
-  c.push_back(imageCase("HoughLines",
-                   "apex_nodes/HoughLines",
-                   "Canny edges",
-                   {edges},
-                   {{"rho", "1"}, {"theta", "1"}, {"threshold", "50"}, {"min_line_length", "50"}, {"max_line_gap", "10"}},
-                   "lines",
-                   sinkType<apex_nodes::Lines>(),
-                   "HoughLinesP 1, 1°, 50, 50, 10",
-                   [lines = std::vector<cv::Vec4i>()](const cv::Mat& in) mutable {
-                     cv::HoughLinesP(in, lines, 1, 1 * CV_PI / 180, 50, 50, 10);
-                   }));
-  c.push_back(imageCase("HoughCircles",
-                   "apex_nodes/HoughCircles",
-                   "smarties, gray, median 5",
-                   {circles},
-                   {{"method", "gradient"},
-                    {"dp", "1"},
-                    {"min_dist", "20"},
-                    {"param1", "100"},
-                    {"param2", "30"},
-                    {"min_radius", "0"},
-                    {"max_radius", "0"}},
-                   "circles",
-                   sinkType<apex_nodes::Circles>(),
-                   "HoughCircles gradient 1, 20, 100, 30",
-                   [found = std::vector<cv::Vec3f>()](const cv::Mat& in) mutable {
-                     cv::HoughCircles(in, found, cv::HOUGH_GRADIENT, 1, 20, 100, 30, 0, 0);
-                   }));
-  c.push_back(imageCase("Keypoints (orb)",
-                   "apex_nodes/Keypoints",
-                   "mono8",
-                   {gray},
-                   {{"method", "orb"}, {"max_features", "500"}, {"threshold", "0"}},
-                   "keypoints",
-                   sinkType<apex_nodes::Keypoints>(),
-                   "ORB 500: detectAndCompute",
-                   [orb = cv::ORB::create(500, 1.2f, 8, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, 20),
-                    keypoints = std::vector<cv::KeyPoint>(), descriptors = cv::Mat()](const cv::Mat& in) mutable {
-                     orb->detectAndCompute(in, cv::noArray(), keypoints, descriptors);
-                   }));
-  c.push_back(
-      imageCase("BackgroundSubtraction (mog2)",
-           "apex_nodes/BackgroundSubtraction",
-           "8 bgr8 frames, a patch moving",
-           in.moving,
-           {{"method", "mog2"}, {"history", "500"}, {"var_threshold", "16"}, {"detect_shadows", "true"}, {"learning_rate", "-1"}},
-           "mask",
-           sink,
-           "MOG2 500, 16, shadows: apply",
-           [mog = cv::createBackgroundSubtractorMOG2(500, 16, true), mask = cv::Mat()](const cv::Mat& in) mutable {
-             mog->apply(in, mask, -1);
-           }));
+  c.push_back(imageCase(
+      "FindContours", "apex_nodes/FindContours", "Canny edges", {edges}, {{"mode", "list"}, {"method", "simple"}}, "contours",
+      sinkType<apex_nodes::Contours>(), "findContours list, simple",
+      [contours = std::vector<std::vector<cv::Point>>(), hierarchy = std::vector<cv::Vec4i>()](const cv::Mat& in) mutable {
+        cv::findContours(in, contours, hierarchy, cv::RETR_LIST, cv::CHAIN_APPROX_SIMPLE);
+      }));
+  c.push_back(imageCase("HoughLines", "apex_nodes/HoughLines", "Canny edges", {edges},
+                        {{"rho", "1"}, {"theta", "1"}, {"threshold", "50"}, {"min_line_length", "50"}, {"max_line_gap", "10"}},
+                        "lines", sinkType<apex_nodes::Lines>(), "HoughLinesP 1, 1°, 50, 50, 10",
+                        [lines = std::vector<cv::Vec4i>()](const cv::Mat& in) mutable {
+                          cv::HoughLinesP(in, lines, 1, 1 * CV_PI / 180, 50, 50, 10);
+                        }));
+  c.push_back(imageCase("HoughCircles", "apex_nodes/HoughCircles", "smarties, gray, median 5", {circles},
+                        {{"method", "gradient"},
+                         {"dp", "1"},
+                         {"min_dist", "20"},
+                         {"param1", "100"},
+                         {"param2", "30"},
+                         {"min_radius", "0"},
+                         {"max_radius", "0"}},
+                        "circles", sinkType<apex_nodes::Circles>(), "HoughCircles gradient 1, 20, 100, 30",
+                        [found = std::vector<cv::Vec3f>()](const cv::Mat& in) mutable {
+                          cv::HoughCircles(in, found, cv::HOUGH_GRADIENT, 1, 20, 100, 30, 0, 0);
+                        }));
+  c.push_back(imageCase("Keypoints (orb)", "apex_nodes/Keypoints", "mono8", {gray},
+                        {{"method", "orb"}, {"max_features", "500"}, {"threshold", "0"}}, "keypoints",
+                        sinkType<apex_nodes::Keypoints>(), "ORB 500: detectAndCompute",
+                        [orb = cv::ORB::create(500, 1.2f, 8, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, 20),
+                         keypoints = std::vector<cv::KeyPoint>(), descriptors = cv::Mat()](const cv::Mat& in) mutable {
+                          orb->detectAndCompute(in, cv::noArray(), keypoints, descriptors);
+                        }));
+  c.push_back(imageCase(
+      "BackgroundSubtraction (mog2)", "apex_nodes/BackgroundSubtraction", "8 bgr8 frames, a patch moving", in.moving,
+      {{"method", "mog2"}, {"history", "500"}, {"var_threshold", "16"}, {"detect_shadows", "true"}, {"learning_rate", "-1"}},
+      "mask", sink, "MOG2 500, 16, shadows: apply",
+      [mog = cv::createBackgroundSubtractorMOG2(500, 16, true), mask = cv::Mat()](const cv::Mat& in) mutable {
+        mog->apply(in, mask, -1);
+      }));
   return c;
 }
 

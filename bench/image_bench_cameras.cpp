@@ -48,9 +48,8 @@ std::vector<NodeCase> cameraModelCases(const Inputs& in) {
   const ImagePtr frame = image(raw, "bgr8");
   c.push_back(fixedCase("Rectify", "apex_nodes/Rectify", "left01.jpg, bgr8, and its model", feedType<Image, CameraInfo>(),
                         {"image", "camera_info"}, {msg(frame), msg(info)}, {{"interpolation", "linear"}}, "image",
-                        sinkType<Image>(), "remap linear (maps made once)", [raw, map1, map2, out = cv::Mat()]() mutable {
-                          cv::remap(raw, out, map1, map2, cv::INTER_LINEAR);
-                        }));
+                        sinkType<Image>(), "remap linear (maps made once)",
+                        [raw, map1, map2, out = cv::Mat()]() mutable { cv::remap(raw, out, map1, map2, cv::INTER_LINEAR); }));
   auto blobs = std::make_shared<Regions>();
   blobs->header = in.binary->header;
   blobs->image_size = in.binary->mat.size();
@@ -94,21 +93,21 @@ std::vector<NodeCase> stereoCases() {
   cv::resize(left, left, cv::Size(640, 480), 0, 0, cv::INTER_AREA);  // both alike: still a rectified pair
   cv::resize(right, right, cv::Size(640, 480), 0, 0, cv::INTER_AREA);
   auto sgbm = cv::StereoSGBM::create(0, 64, 5, 8 * 25, 32 * 25, 1, 63, 10, 100, 32, cv::StereoSGBM::MODE_SGBM);
-  c.push_back(fixedCase(
-      "StereoMatcher (sgbm)", "apex_nodes/StereoMatcher", "aloeL/R.jpg scaled to 640x480, bgr8", feedType<Image, Image>(),
-      {"left", "right"}, {msg(image(left, "bgr8")), msg(image(right, "bgr8"))},
-      {{"algorithm", "sgbm"}, {"num_disparities", "64"}, {"block_size", "5"}, {"invalid", "opencv"}}, "disparity",
-      sinkType<Image>(), "cvtColor both gray, StereoSGBM 64, 5: compute, convertTo 32F / 16",
-      [left, right, sgbm, l = cv::Mat(), r = cv::Mat(), fixed = cv::Mat(), out = cv::Mat()]() mutable {
-        cv::cvtColor(left, l, cv::COLOR_BGR2GRAY);
-        cv::cvtColor(right, r, cv::COLOR_BGR2GRAY);
-        sgbm->compute(l, r, fixed);
-        fixed.convertTo(out, CV_32F, 1.0 / 16);
-      }));
+  c.push_back(fixedCase("StereoMatcher (sgbm)", "apex_nodes/StereoMatcher", "aloeL/R.jpg scaled to 640x480, bgr8",
+                        feedType<Image, Image>(), {"left", "right"}, {msg(image(left, "bgr8")), msg(image(right, "bgr8"))},
+                        {{"algorithm", "sgbm"}, {"num_disparities", "64"}, {"block_size", "5"}, {"invalid", "opencv"}},
+                        "disparity", sinkType<Image>(), "cvtColor both gray, StereoSGBM 64, 5: compute, convertTo 32F / 16",
+                        [left, right, sgbm, l = cv::Mat(), r = cv::Mat(), fixed = cv::Mat(), out = cv::Mat()]() mutable {
+                          cv::cvtColor(left, l, cv::COLOR_BGR2GRAY);
+                          cv::cvtColor(right, r, cv::COLOR_BGR2GRAY);
+                          sgbm->compute(l, r, fixed);
+                          fixed.convertTo(out, CV_32F, 1.0 / 16);
+                        }));
   return c;
 }
 
-/** A 3-class linear SVM trained on random 64-float rows, saved to a file in /tmp (Classifier reads it on its first frame): its path. */
+/** A 3-class linear SVM trained on random 64-float rows, saved to a file in /tmp (Classifier reads it on its first frame): its
+ * path. */
 std::string trainedSvm() {
   cv::Mat samples(300, 64, CV_32F), labels(300, 1, CV_32S);
   cv::RNG rng(1);

@@ -53,24 +53,24 @@ std::vector<NodeCase> matchingCases(const Inputs& in) {
                         "BFMatcher Hamming: match", [query, train, out = std::vector<cv::DMatch>()]() mutable {
                           cv::BFMatcher(cv::NORM_HAMMING).match(query->descriptors, train->descriptors, out);
                         }));
-  c.push_back(fixedCase("FindHomography", "apex_nodes/FindHomography", std::to_string(matches->matches.size()) + " matches of those",
-                        feedType<Matches>(), {"matches"}, {msg(matches)}, {{"method", "ransac"}, {"ransac_reproj_threshold", "3"}},
-                        "homography", sinkType<apex_nodes::Homography>(), "the matches' points, findHomography RANSAC 3",
-                        [matches, from = std::vector<cv::Point2f>(), to = std::vector<cv::Point2f>(),
-                         mask = std::vector<uchar>()]() mutable {
-                          from.clear(), to.clear();
-                          for (const auto& d : matches->matches) {
-                            from.push_back(matches->query->keypoints[d.queryIdx].pt);
-                            to.push_back(matches->train->keypoints[d.trainIdx].pt);
-                          }
-                          cv::Mat h = cv::findHomography(from, to, cv::RANSAC, 3, mask);
-                        }));
+  c.push_back(fixedCase(
+      "FindHomography", "apex_nodes/FindHomography", std::to_string(matches->matches.size()) + " matches of those",
+      feedType<Matches>(), {"matches"}, {msg(matches)}, {{"method", "ransac"}, {"ransac_reproj_threshold", "3"}}, "homography",
+      sinkType<apex_nodes::Homography>(), "the matches' points, findHomography RANSAC 3",
+      [matches, from = std::vector<cv::Point2f>(), to = std::vector<cv::Point2f>(), mask = std::vector<uchar>()]() mutable {
+        from.clear(), to.clear();
+        for (const auto& d : matches->matches) {
+          from.push_back(matches->query->keypoints[d.queryIdx].pt);
+          to.push_back(matches->train->keypoints[d.trainIdx].pt);
+        }
+        cv::Mat h = cv::findHomography(from, to, cv::RANSAC, 3, mask);
+      }));
   c.push_back(fixedCase("DrawMatches", "apex_nodes/DrawMatches", "the two images (mono8) and their matches",
                         feedType<Image, Image, Matches>(), {"query_image", "train_image", "matches"},
                         {msg(image(box, "mono8")), msg(image(scene, "mono8")), msg(matches)}, {}, "image", sinkType<Image>(),
                         "drawMatches", [box, scene, matches, out = cv::Mat()]() mutable {
-                          cv::drawMatches(box, matches->query->keypoints, scene, matches->train->keypoints, matches->matches,
-                                          out, cv::Scalar(0, 255, 0), cv::Scalar(255, 0, 0));
+                          cv::drawMatches(box, matches->query->keypoints, scene, matches->train->keypoints, matches->matches, out,
+                                          cv::Scalar(0, 255, 0), cv::Scalar(255, 0, 0));
                         }));
   const auto keypoints = orbOf(in.gray->mat);
   const cv::Mat bgr = in.bgr->mat;
@@ -101,16 +101,20 @@ std::vector<NodeCase> motionCases(const Inputs& in) {
                         onPairs([flow = cv::Mat()](const cv::Mat& a, const cv::Mat& b) mutable {
                           cv::calcOpticalFlowFarneback(a, b, flow, 0.5, 3, 15, 3, 5, 1.2, 0);
                         })));
-  c.push_back(imageCase(
-      "OpticalFlowLK", "apex_nodes/OpticalFlowLK", "8 bgr8 frames, a patch moving", in.moving,
-      {{"max_corners", "200"}, {"quality_level", "0.01"}, {"min_distance", "10"}, {"redetect", "every_frame"},
-       {"win_size", "21"}, {"max_level", "3"}},
-      "tracks", sinkType<apex_nodes::Tracks>(), "cvtColor gray, goodFeaturesToTrack 200, calcOpticalFlowPyrLK 21, 3",
-      onPairs([points = std::vector<cv::Point2f>(), next = std::vector<cv::Point2f>(), status = std::vector<uchar>(),
-               err = std::vector<float>()](const cv::Mat& a, const cv::Mat& b) mutable {
-        cv::goodFeaturesToTrack(a, points, 200, 0.01, 10);
-        if (!points.empty()) cv::calcOpticalFlowPyrLK(a, b, points, next, status, err, cv::Size(21, 21), 3);
-      })));
+  c.push_back(
+      imageCase("OpticalFlowLK", "apex_nodes/OpticalFlowLK", "8 bgr8 frames, a patch moving", in.moving,
+                {{"max_corners", "200"},
+                 {"quality_level", "0.01"},
+                 {"min_distance", "10"},
+                 {"redetect", "every_frame"},
+                 {"win_size", "21"},
+                 {"max_level", "3"}},
+                "tracks", sinkType<apex_nodes::Tracks>(), "cvtColor gray, goodFeaturesToTrack 200, calcOpticalFlowPyrLK 21, 3",
+                onPairs([points = std::vector<cv::Point2f>(), next = std::vector<cv::Point2f>(), status = std::vector<uchar>(),
+                         err = std::vector<float>()](const cv::Mat& a, const cv::Mat& b) mutable {
+                  cv::goodFeaturesToTrack(a, points, 200, 0.01, 10);
+                  if (!points.empty()) cv::calcOpticalFlowPyrLK(a, b, points, next, status, err, cv::Size(21, 21), 3);
+                })));
   return c;
 }
 
@@ -141,24 +145,24 @@ ImagePtr withQrCode(const cv::Mat& bgr) {
 std::vector<NodeCase> detectorCases(const Inputs& in) {
   std::vector<NodeCase> c;
   const ImagePtr markers = withMarkers(in.bgr->mat);
-  c.push_back(imageCase("ArucoDetector", "apex_nodes/ArucoDetector", "bgr8, four 4x4_50 markers drawn in", {markers},
-                        {{"dictionary", "4x4_50"}, {"corner_refinement", "none"}}, "markers", sinkType<apex_nodes::Markers>(),
-                        "cvtColor gray, aruco::detectMarkers 4x4_50",
-                        [dict = cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50),
-                         params = cv::aruco::DetectorParameters::create(), gray = cv::Mat(),
-                         corners = std::vector<std::vector<cv::Point2f>>(), ids = std::vector<int>()](const cv::Mat& m) mutable {
-                          cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
-                          cv::aruco::detectMarkers(gray, dict, corners, ids, params);
-                        }));
+  c.push_back(imageCase(
+      "ArucoDetector", "apex_nodes/ArucoDetector", "bgr8, four 4x4_50 markers drawn in", {markers},
+      {{"dictionary", "4x4_50"}, {"corner_refinement", "none"}}, "markers", sinkType<apex_nodes::Markers>(),
+      "cvtColor gray, aruco::detectMarkers 4x4_50",
+      [dict = cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50), params = cv::aruco::DetectorParameters::create(),
+       gray = cv::Mat(), corners = std::vector<std::vector<cv::Point2f>>(), ids = std::vector<int>()](const cv::Mat& m) mutable {
+        cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
+        cv::aruco::detectMarkers(gray, dict, corners, ids, params);
+      }));
   const ImagePtr qr = withQrCode(in.bgr->mat);
-  c.push_back(imageCase("QRCodeDetector", "apex_nodes/QRCodeDetector", "bgr8, a QR code drawn in", {qr}, {}, "regions",
-                        sinkType<Regions>(), "cvtColor gray, QRCodeDetector::detectAndDecode",
-                        [detector = cv::QRCodeDetector(), gray = cv::Mat(),
-                         corners = std::vector<cv::Point2f>()](const cv::Mat& m) mutable {
-                          cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
-                          volatile std::size_t n = detector.detectAndDecode(gray, corners).size();
-                          (void)n;
-                        }));
+  c.push_back(imageCase(
+      "QRCodeDetector", "apex_nodes/QRCodeDetector", "bgr8, a QR code drawn in", {qr}, {}, "regions", sinkType<Regions>(),
+      "cvtColor gray, QRCodeDetector::detectAndDecode",
+      [detector = cv::QRCodeDetector(), gray = cv::Mat(), corners = std::vector<cv::Point2f>()](const cv::Mat& m) mutable {
+        cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
+        volatile std::size_t n = detector.detectAndDecode(gray, corners).size();
+        (void)n;
+      }));
   const std::string cascade = "/usr/share/opencv4/haarcascades/haarcascade_frontalface_default.xml";
   auto classifier = std::make_shared<cv::CascadeClassifier>();
   const cv::Mat messi = cv::imread(kData + "/messi5.jpg");
@@ -168,40 +172,47 @@ std::vector<NodeCase> detectorCases(const Inputs& in) {
   } else {
     cv::Mat face;
     cv::resize(messi, face, cv::Size(640, 480));
-    c.push_back(imageCase("CascadeDetector", "apex_nodes/CascadeDetector", "messi5.jpg scaled to 640x480, bgr8",
-                          {image(face, "bgr8")},
-                          {{"cascade", cascade}, {"scale_factor", "1.1"}, {"min_neighbors", "3"}, {"equalize_hist", "true"}},
-                          "regions", sinkType<Regions>(), "cvtColor gray, equalizeHist, detectMultiScale 1.1, 3 (frontal face)",
-                          [classifier, gray = cv::Mat(), equalized = cv::Mat(),
-                           found = std::vector<cv::Rect>()](const cv::Mat& m) mutable {
-                            cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
-                            cv::equalizeHist(gray, equalized);
-                            classifier->detectMultiScale(equalized, found, 1.1, 3, 0, cv::Size(), cv::Size());
-                          }));
+    c.push_back(imageCase(
+        "CascadeDetector", "apex_nodes/CascadeDetector", "messi5.jpg scaled to 640x480, bgr8", {image(face, "bgr8")},
+        {{"cascade", cascade}, {"scale_factor", "1.1"}, {"min_neighbors", "3"}, {"equalize_hist", "true"}}, "regions",
+        sinkType<Regions>(), "cvtColor gray, equalizeHist, detectMultiScale 1.1, 3 (frontal face)",
+        [classifier, gray = cv::Mat(), equalized = cv::Mat(), found = std::vector<cv::Rect>()](const cv::Mat& m) mutable {
+          cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
+          cv::equalizeHist(gray, equalized);
+          classifier->detectMultiScale(equalized, found, 1.1, 3, 0, cv::Size(), cv::Size());
+        }));
   }
   auto hog = std::make_shared<cv::HOGDescriptor>();
   hog->setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
-  c.push_back(imageCase("HOGPeopleDetector", "apex_nodes/HOGPeopleDetector", "bgr8", {in.bgr},
-                        {{"hit_threshold", "0"}, {"win_stride", "8"}, {"padding", "0"}, {"scale", "1.05"}, {"group_threshold", "2"}},
-                        "regions", sinkType<Regions>(), "HOGDescriptor::detectMultiScale, default people SVM, 8, 1.05, 2",
-                        [hog, found = std::vector<cv::Rect>(), weights = std::vector<double>()](const cv::Mat& m) mutable {
-                          hog->detectMultiScale(m, found, weights, 0, cv::Size(8, 8), cv::Size(0, 0), 1.05, 2, false);
-                        }));
+  c.push_back(
+      imageCase("HOGPeopleDetector", "apex_nodes/HOGPeopleDetector", "bgr8", {in.bgr},
+                {{"hit_threshold", "0"}, {"win_stride", "8"}, {"padding", "0"}, {"scale", "1.05"}, {"group_threshold", "2"}},
+                "regions", sinkType<Regions>(), "HOGDescriptor::detectMultiScale, default people SVM, 8, 1.05, 2",
+                [hog, found = std::vector<cv::Rect>(), weights = std::vector<double>()](const cv::Mat& m) mutable {
+                  hog->detectMultiScale(m, found, weights, 0, cv::Size(8, 8), cv::Size(0, 0), 1.05, 2, false);
+                }));
   const cv::Mat board = cv::imread(kData + "/left01.jpg");
   if (board.empty()) {
-    c.push_back(notMeasured("ChessboardCorners", "left01.jpg", "findChessboardCorners", "left01.jpg (opencv-doc) cannot be read"));
+    c.push_back(
+        notMeasured("ChessboardCorners", "left01.jpg", "findChessboardCorners", "left01.jpg (opencv-doc) cannot be read"));
   } else {
-    c.push_back(imageCase(
-        "ChessboardCorners", "apex_nodes/ChessboardCorners", "left01.jpg, 9x6 board, bgr8", {image(board, "bgr8")},
-        {{"pattern_columns", "9"}, {"pattern_rows", "6"}, {"refine", "true"}, {"refine_window", "11"},
-         {"adaptive_thresh", "true"}, {"normalize_image", "true"}, {"fast_check", "false"}},
-        "corners", sinkType<apex_nodes::Corners>(), "cvtColor gray, findChessboardCorners 9x6, cornerSubPix 11",
-        [gray = cv::Mat(), corners = std::vector<cv::Point2f>()](const cv::Mat& m) mutable {
-          cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
-          if (cv::findChessboardCorners(gray, cv::Size(9, 6), corners, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
-            cv::cornerSubPix(gray, corners, cv::Size(11, 11), cv::Size(-1, -1),
-                             cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.001));
-        }));
+    c.push_back(imageCase("ChessboardCorners", "apex_nodes/ChessboardCorners", "left01.jpg, 9x6 board, bgr8",
+                          {image(board, "bgr8")},
+                          {{"pattern_columns", "9"},
+                           {"pattern_rows", "6"},
+                           {"refine", "true"},
+                           {"refine_window", "11"},
+                           {"adaptive_thresh", "true"},
+                           {"normalize_image", "true"},
+                           {"fast_check", "false"}},
+                          "corners", sinkType<apex_nodes::Corners>(), "cvtColor gray, findChessboardCorners 9x6, cornerSubPix 11",
+                          [gray = cv::Mat(), corners = std::vector<cv::Point2f>()](const cv::Mat& m) mutable {
+                            cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
+                            if (cv::findChessboardCorners(gray, cv::Size(9, 6), corners,
+                                                          cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE))
+                              cv::cornerSubPix(gray, corners, cv::Size(11, 11), cv::Size(-1, -1),
+                                               cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.001));
+                          }));
   }
   return c;
 }

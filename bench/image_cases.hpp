@@ -68,7 +68,6 @@ inline NodeCase imageCase(std::string label, std::string type, std::string input
   return c;
 }
 
-
 // The case files: each gives its categories' cases on the inputs.
 std::vector<NodeCase> filterCases(const Inputs& in);  // image_bench.cpp: image filters, colour, the first detectors
 std::vector<NodeCase> shapeCases(const Inputs& in);  // image_bench_shapes.cpp: two-input filters, channels, contours, drawing

@@ -264,7 +264,10 @@ inline void measureRow(const NodeCase& c, const Budget& b, std::vector<std::stri
   const char* fmt = call.median() < 100 ? "%.1f" : "%.0f";
   std::printf("| %s | %s | %s | %d × %d | %s | %s | %.2fx (%.2f–%.2f) | %s |\n", c.label.c_str(), c.input.c_str(),
               c.call_text.c_str(), n, b.rounds, call.text(fmt).c_str(), nodes.text(fmt).c_str(), ratio.median(), ratio.min(),
-              ratio.max(), within ? "yes" : c.over.empty() ? "no" : ("no: " + c.over).c_str());
+              ratio.max(),
+              within           ? "yes"
+              : c.over.empty() ? "no"
+                               : ("no: " + c.over).c_str());
   std::fflush(stdout);
 }
 
@@ -314,9 +317,10 @@ inline void measureTable(const std::vector<NodeCase>& cases, const Budget& b) {
   };
   if (outside.empty() && failed.empty()) std::printf("\nEvery node measured is within the goal in this run.");
   else std::printf("\nOutside the goal in this run: %s; failed: %s.", list(outside).c_str(), list(failed).c_str());
-  std::printf(" Not measured (the row says why): %s. Node and call ran on one core (the bench's thread and the\n"
-              "graph's pinned together), so both found the frame in the same caches.\n",
-              list(skipped).c_str());
+  std::printf(
+      " Not measured (the row says why): %s. Node and call ran on one core (the bench's thread and the\n"
+      "graph's pinned together), so both found the frame in the same caches.\n",
+      list(skipped).c_str());
 }
 
 }  // namespace apex_bench

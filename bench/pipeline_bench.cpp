@@ -395,9 +395,10 @@ void demoBalanceTable(const std::vector<cv::Mat>& input, int n, int reps) {
   for (std::size_t c = 0; c < cuts.size(); ++c)
     std::printf("| %s%s | %s | %.2fx |\n", c == 0 ? "1 group" : ("cut after " + cuts[c]).c_str(), c == best ? " (best)" : "",
                 fps[c].text("%.1f").c_str(), fps[c].median() / one);
-  std::printf("| balance: cut %s | %s | %.2fx |\n", cutOf(proposed, kDemoOrder).c_str(), bal.text("%.1f").c_str(), bal.median() / one);
-  std::printf("| two copies side by side, one group each (two cores, no pipeline) | %s | %.2fx |\n",
-              copies.text("%.1f").c_str(), copies.median() / one);
+  std::printf("| balance: cut %s | %s | %.2fx |\n", cutOf(proposed, kDemoOrder).c_str(), bal.text("%.1f").c_str(),
+              bal.median() / one);
+  std::printf("| two copies side by side, one group each (two cores, no pipeline) | %s | %.2fx |\n", copies.text("%.1f").c_str(),
+              copies.median() / one);
   std::printf("\nTarget: balance at least 1.85x one group. Balance / best cut: %.3f; balance / two copies: %.3f.\n",
               bal.median() / fps[best].median(), bal.median() / copies.median());
   std::printf("Its last proposal: %s.\n", text.c_str());
@@ -407,8 +408,10 @@ void chainBalanceTable(const std::vector<cv::Mat>& input, int n, int reps, int c
   std::printf("\n## Balance: generated chains of unequal stages\n\n");
   std::printf("Source → 6 stages of busy work (200–2000 µs each, drawn from seeds 1, 2, ...) → sink. Every placement in\n");
   std::printf("at most 2 groups (one group, and a cut after each node) is run, and so is balance's (measured over %d\n", n);
-  std::printf("frames in one group first); interleaved, %d repetitions, medians. Best: the placement of the highest median.\n\n", reps);
-  std::printf("| chain µs | balance's cut | best cut | balance frames/s | best frames/s | balance / best |\n|---|---|---|---|---|---|\n");
+  std::printf("frames in one group first); interleaved, %d repetitions, medians. Best: the placement of the highest median.\n\n",
+              reps);
+  std::printf(
+      "| chain µs | balance's cut | best cut | balance frames/s | best frames/s | balance / best |\n|---|---|---|---|---|---|\n");
   for (int seed = 1; seed <= chains; ++seed) {
     std::mt19937 rng(static_cast<unsigned>(seed));
     std::uniform_int_distribution<int> draw(200, 2000);
@@ -434,8 +437,9 @@ void chainBalanceTable(const std::vector<cv::Mat>& input, int n, int reps, int c
       if (fps[t].median() > fps[best].median()) best = t;
     std::string chain;
     for (int u : us) chain += (chain.empty() ? "" : " ") + std::to_string(u);
-    std::printf("| %s | %s | %s | %s | %s | %.3f |\n", chain.c_str(), cutOf(proposed, names).c_str(), cutOf(tries[best], names).c_str(),
-                bal.text("%.1f").c_str(), fps[best].text("%.1f").c_str(), bal.median() / fps[best].median());
+    std::printf("| %s | %s | %s | %s | %s | %.3f |\n", chain.c_str(), cutOf(proposed, names).c_str(),
+                cutOf(tries[best], names).c_str(), bal.text("%.1f").c_str(), fps[best].text("%.1f").c_str(),
+                bal.median() / fps[best].median());
   }
   std::printf("\nTarget: balance / best at least 0.95.\n");
 }

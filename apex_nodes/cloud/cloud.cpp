@@ -161,10 +161,18 @@ std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indic
   std::uint8_t* to = out->data.data();
   if (std::size_t(points.row_step) == points.width * step || points.height == 1) {  // rows unpadded: no division
     switch (step) {  // PCL's point sizes: each copy inlined, not a call to memcpy per point
-      case 16: gather<16>(points, indices, to); break;
-      case 32: gather<32>(points, indices, to); break;
-      case 48: gather<48>(points, indices, to); break;
-      case 64: gather<64>(points, indices, to); break;
+      case 16:
+        gather<16>(points, indices, to);
+        break;
+      case 32:
+        gather<32>(points, indices, to);
+        break;
+      case 48:
+        gather<48>(points, indices, to);
+        break;
+      case 64:
+        gather<64>(points, indices, to);
+        break;
       default:
         for (std::size_t k = 0; k < indices.size(); ++k, to += step)
           std::memcpy(to, &points.data[static_cast<std::size_t>(indices[k]) * step], step);

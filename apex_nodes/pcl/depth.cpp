@@ -197,9 +197,8 @@ class DepthColorToCloud : public apex::Node {
     // depth_image_proc's offsets of red, green and blue in a pixel of each encoding
     const bool bgr = e[0] == 'b';
     const int r = bgr ? 2 : 0, g = channels == 1 ? 0 : 1, b = channels == 1 || bgr ? 0 : 2;
-    const std::uint32_t rgb = std::find_if(points->fields.begin(), points->fields.end(), [](const auto& f) {
-                                return f.name == "rgb";
-                              })->offset;
+    const std::uint32_t rgb =
+        std::find_if(points->fields.begin(), points->fields.end(), [](const auto& f) { return f.name == "rgb"; })->offset;
     std::uint8_t* to = points->data.data() + rgb;
     for (int v = 0; v < color.mat.rows; ++v) {
       const std::uint8_t* row = color.mat.ptr<std::uint8_t>(v);

@@ -51,13 +51,13 @@ class MergeClouds : public apex::Node {
     std::vector<std::shared_ptr<const Cloud>> clouds;
     for (const auto& port : interface().inputs) clouds.push_back(input<Cloud>(port.name));
     const double timeout = timeout_.get();
-    cloud_.publish(
-        mergeClouds(clouds, frame_.get(),
-                    [&](const std::string& target, const std::string& source, const ros::Time& stamp) -> Eigen::Affine3f {
-                      if (!buffer_) throw std::runtime_error("no tf2 listener: ROS is not initialised");
-                      return toEigen(buffer_->lookupTransform(target, source, stamp, ros::Duration(timeout)).transform);
-                    },
-                    points_.next()));
+    cloud_.publish(mergeClouds(
+        clouds, frame_.get(),
+        [&](const std::string& target, const std::string& source, const ros::Time& stamp) -> Eigen::Affine3f {
+          if (!buffer_) throw std::runtime_error("no tf2 listener: ROS is not initialised");
+          return toEigen(buffer_->lookupTransform(target, source, stamp, ros::Duration(timeout)).transform);
+        },
+        points_.next()));
   }
 
  private:

@@ -34,15 +34,15 @@ class NodeletNode : public apex::Node {
           .init({"image_rect:sensor_msgs/Image"})
           .describe("topics the nodelet advertises, topic:type, one output each (left/image: output left_image)")
           .shapesInterface();
-  static inline const apex::ParamDecl<std::string> kConfig =
-      param::text("config").describe(
-          "its private parameters, a YAML map set before it loads (its dynamic_reconfigure server and param() read "
-          "them), e.g. {leaf_size: 0.05}; a change reloads it. What it offers through dynamic_reconfigure becomes "
-          "parameters of this node: their values win over these, except when this changes");
+  static inline const apex::ParamDecl<std::string> kConfig = param::text("config").describe(
+      "its private parameters, a YAML map set before it loads (its dynamic_reconfigure server and param() read "
+      "them), e.g. {leaf_size: 0.05}; a change reloads it. What it offers through dynamic_reconfigure becomes "
+      "parameters of this node: their values win over these, except when this changes");
   static inline const apex::ParamDecl<Texts> kReconfigure =
       param::textList("reconfigure")
-          .describe("what the nodelet offers through dynamic_reconfigure, one YAML entry per parameter: filled in by "
-                    "this node when the nodelet loads (each becomes a parameter of this node, set live)")
+          .describe(
+              "what the nodelet offers through dynamic_reconfigure, one YAML entry per parameter: filled in by "
+              "this node when the nodelet loads (each becomes a parameter of this node, set live)")
           .shapesInterface();
 
   void setup() override {
@@ -185,10 +185,13 @@ class NodeletHost : public NodeletNode {
           .describe("topics the nodelet subscribes to, topic:type, one input each; types: " + nodelet_host::rosTypeNames())
           .shapesInterface();
   static inline const apex::ParamDecl<double> kTimeout =
-      param::number("timeout").range(0.001, 60.0).step(0.001).init(1.0).describe(
-          "seconds to wait for every output of a frame; after it the node sends Nothing and says which is missing");
-  static inline const apex::ParamDecl<Texts> kRemap =
-      param::textList("remap").describe("its other topics, from:=to as `nodelet load` takes them (to: in the runtime's namespace)");
+      param::number("timeout")
+          .range(0.001, 60.0)
+          .step(0.001)
+          .init(1.0)
+          .describe("seconds to wait for every output of a frame; after it the node sends Nothing and says which is missing");
+  static inline const apex::ParamDecl<Texts> kRemap = param::textList("remap").describe(
+      "its other topics, from:=to as `nodelet load` takes them (to: in the runtime's namespace)");
   static apex::Manifest manifest() {
     return withDefaultPorts(apex::Manifest("Runs a nodelet plugin on each frame: the inputs are published to it, its "
                                            "answers stamped as the frame are the outputs (image_proc/rectify, pcl/VoxelGrid...)")
@@ -209,8 +212,8 @@ class NodeletHost : public NodeletNode {
     const auto deadline = ros::WallTime::now() + ros::WallDuration(timeout_.get());
     n.spin();  // what waits there: a lazy nodelet subscribes to its inputs once its outputs are read
     if (!spinUntil(n, deadline, [&] { return n.unsubscribedInputs().empty(); }))
-      throw std::runtime_error(n.describe() + " did not subscribe to " + join(n.unsubscribedInputs()) + " within " +
-                               seconds() + "; " + n.topics());
+      throw std::runtime_error(n.describe() + " did not subscribe to " + join(n.unsubscribedInputs()) + " within " + seconds() +
+                               "; " + n.topics());
     std::vector<apex::Message> frame;
     for (const auto& in : iface.inputs) frame.push_back(inputMessage(in.name));
     n.send(frame);
@@ -261,16 +264,17 @@ class NodeletSource : public NodeletNode {
           .init({"image_mono:=camera/image_raw"})
           .describe("the topics it reads, from:=to as `nodelet load` takes them (to: in the runtime's namespace)");
   static apex::Manifest manifest() {
-    return withDefaultPorts(apex::Manifest("Runs a nodelet plugin that publishes on its own (fed by ROS topics, any number "
-                                           "of outputs per input): each firing sends the newest message of each output")
-                                .inCategory("ROS I/O")
-                                .param(kNodelet)
-                                .param(kOutputs)
-                                .param(kConfig)
-                                .param(kRemap)
-                                .param(kReconfigure)
-                                .driven(),
-                            [](const apex::ParamValues& p, apex::Manifest& m) { return addPorts(p, kOutputs.name(), m.outputs); });
+    return withDefaultPorts(
+        apex::Manifest("Runs a nodelet plugin that publishes on its own (fed by ROS topics, any number "
+                       "of outputs per input): each firing sends the newest message of each output")
+            .inCategory("ROS I/O")
+            .param(kNodelet)
+            .param(kOutputs)
+            .param(kConfig)
+            .param(kRemap)
+            .param(kReconfigure)
+            .driven(),
+        [](const apex::ParamValues& p, apex::Manifest& m) { return addPorts(p, kOutputs.name(), m.outputs); });
   }
 
   void process() override {

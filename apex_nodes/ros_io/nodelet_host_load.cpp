@@ -194,7 +194,8 @@ void HostedNodelet::advertiseInputs(ros::NodeHandle& nh) {
 void HostedNodelet::subscribeOutputs(ros::NodeHandle& nh) {
   for (std::size_t i = 0; i < options_.outputs.size(); ++i) {
     const auto& p = options_.outputs[i];
-    outputs_.push_back(p.type->subscribe(nh, ros::names::append(name_, p.topic), [this, i](Received r) { store(i, std::move(r)); }));
+    outputs_.push_back(
+        p.type->subscribe(nh, ros::names::append(name_, p.topic), [this, i](Received r) { store(i, std::move(r)); }));
   }
 }
 
@@ -232,7 +233,8 @@ bool HostedNodelet::spinUntil(const std::function<bool()>& done, double timeout)
 bool HostedNodelet::callAside(std::function<void()> call, double timeout) {
   if (aside_.joinable()) {
     if (!aside_done_->load())
-      throw std::runtime_error(describe() + " has still not answered an earlier call that timed out: not called again until it does");
+      throw std::runtime_error(describe() +
+                               " has still not answered an earlier call that timed out: not called again until it does");
     aside_.join();
   }
   auto done = std::make_shared<std::atomic<bool>>(false);
@@ -312,7 +314,8 @@ std::string HostedNodelet::topics() const {
     for (const auto& t : topics) {
       const bool under = t.rfind(mine, 0) == 0;
       const bool beside = t.rfind(parent, 0) == 0 && t.find('/', parent.size()) == std::string::npos;
-      const bool own = std::any_of(ours.begin(), ours.end(), [&](const PortTopic& p) { return ros::names::append(name_, p.topic) == t; });
+      const bool own =
+          std::any_of(ours.begin(), ours.end(), [&](const PortTopic& p) { return ros::names::append(name_, p.topic) == t; });
       if ((under || beside) && !own) out += (out.empty() ? "" : ", ") + t;
     }
     return out.empty() ? std::string("none") : out;

@@ -24,8 +24,7 @@ ros::Publisher advertiseOf(ros::NodeHandle& nh, const std::string& topic) {
 
 /** Subscribes to the nodelet's `topic` as `Msg` (its own type: no copy), converting with `convert`. */
 template <class Msg, class Convert>
-ros::Subscriber subscribeOf(ros::NodeHandle& nh, const std::string& topic, std::function<void(Received)> done,
-                            Convert convert) {
+ros::Subscriber subscribeOf(ros::NodeHandle& nh, const std::string& topic, std::function<void(Received)> done, Convert convert) {
   return nh.subscribe<Msg>(topic, 10, [done, convert](const boost::shared_ptr<const Msg>& msg) {
     Received r;
     r.arrived = true;
@@ -42,37 +41,39 @@ ros::Subscriber subscribeOf(ros::NodeHandle& nh, const std::string& topic, std::
 /** A type that travels as the ROS message itself (camera info, scans): shared both ways, no copy. */
 template <class Msg>
 RosType itself(const std::string& name) {
-  return RosType{
-      name, apex::typeOf<Msg>(), advertiseOf<Msg>,
-      [](const ros::Publisher& pub, const apex::Message& m) {
-        if (auto p = m.as<Msg>()) pub.publish(boost::shared_ptr<const Msg>(p.get(), [p](const Msg*) {}));
-      },
-      [](ros::NodeHandle& nh, const std::string& topic, std::function<void(Received)> done) {
-        return subscribeOf<Msg>(nh, topic, std::move(done), [](const boost::shared_ptr<const Msg>& msg) {
-          return apex::Message::share<Msg>(std::shared_ptr<const Msg>(msg.get(), [msg](const Msg*) {}));
-        });
-      },
-      [](const apex::Message& m) -> std::optional<ros::Time> {
-        if (auto p = m.as<Msg>()) return p->header.stamp;
-        return std::nullopt;
-      }};
+  return RosType{name,
+                 apex::typeOf<Msg>(),
+                 advertiseOf<Msg>,
+                 [](const ros::Publisher& pub, const apex::Message& m) {
+                   if (auto p = m.as<Msg>()) pub.publish(boost::shared_ptr<const Msg>(p.get(), [p](const Msg*) {}));
+                 },
+                 [](ros::NodeHandle& nh, const std::string& topic, std::function<void(Received)> done) {
+                   return subscribeOf<Msg>(nh, topic, std::move(done), [](const boost::shared_ptr<const Msg>& msg) {
+                     return apex::Message::share<Msg>(std::shared_ptr<const Msg>(msg.get(), [msg](const Msg*) {}));
+                   });
+                 },
+                 [](const apex::Message& m) -> std::optional<ros::Time> {
+                   if (auto p = m.as<Msg>()) return p->header.stamp;
+                   return std::nullopt;
+                 }};
 }
 
 RosType image() {
-  return RosType{
-      "sensor_msgs/Image", apex::typeOf<Image>(), advertiseOf<sensor_msgs::Image>,
-      [](const ros::Publisher& pub, const apex::Message& m) {
-        if (auto p = m.as<Image>()) pub.publish(toRos(*p));  // copies the pixels into the message (cv_bridge)
-      },
-      [](ros::NodeHandle& nh, const std::string& topic, std::function<void(Received)> done) {
-        return subscribeOf<sensor_msgs::Image>(nh, topic, std::move(done), [](const sensor_msgs::ImageConstPtr& msg) {
-          return apex::Message::share<Image>(fromRos(msg));  // shares the message's pixels
-        });
-      },
-      [](const apex::Message& m) -> std::optional<ros::Time> {
-        if (auto p = m.as<Image>()) return p->header.stamp;
-        return std::nullopt;
-      }};
+  return RosType{"sensor_msgs/Image",
+                 apex::typeOf<Image>(),
+                 advertiseOf<sensor_msgs::Image>,
+                 [](const ros::Publisher& pub, const apex::Message& m) {
+                   if (auto p = m.as<Image>()) pub.publish(toRos(*p));  // copies the pixels into the message (cv_bridge)
+                 },
+                 [](ros::NodeHandle& nh, const std::string& topic, std::function<void(Received)> done) {
+                   return subscribeOf<sensor_msgs::Image>(nh, topic, std::move(done), [](const sensor_msgs::ImageConstPtr& msg) {
+                     return apex::Message::share<Image>(fromRos(msg));  // shares the message's pixels
+                   });
+                 },
+                 [](const apex::Message& m) -> std::optional<ros::Time> {
+                   if (auto p = m.as<Image>()) return p->header.stamp;
+                   return std::nullopt;
+                 }};
 }
 
 /** A cloud as the message a nodelet subscribes to: a copy of its points (a PointCloud2 owns its
@@ -86,21 +87,22 @@ sensor_msgs::PointCloud2Ptr toPointCloud2(const Cloud& cloud) {
 }
 
 RosType cloud() {
-  return RosType{
-      "sensor_msgs/PointCloud2", apex::typeOf<Cloud>(), advertiseOf<sensor_msgs::PointCloud2>,
-      [](const ros::Publisher& pub, const apex::Message& m) {
-        if (auto p = m.as<Cloud>()) pub.publish(toPointCloud2(*p));
-      },
-      [](ros::NodeHandle& nh, const std::string& topic, std::function<void(Received)> done) {
-        return subscribeOf<sensor_msgs::PointCloud2>(
-            nh, topic, std::move(done), [](const sensor_msgs::PointCloud2ConstPtr& msg) {
-              return apex::Message::share<Cloud>(fromRos(msg));  // copies the points into PCL's layout
-            });
-      },
-      [](const apex::Message& m) -> std::optional<ros::Time> {
-        if (auto p = m.as<Cloud>()) return p->header.stamp;
-        return std::nullopt;
-      }};
+  return RosType{"sensor_msgs/PointCloud2",
+                 apex::typeOf<Cloud>(),
+                 advertiseOf<sensor_msgs::PointCloud2>,
+                 [](const ros::Publisher& pub, const apex::Message& m) {
+                   if (auto p = m.as<Cloud>()) pub.publish(toPointCloud2(*p));
+                 },
+                 [](ros::NodeHandle& nh, const std::string& topic, std::function<void(Received)> done) {
+                   return subscribeOf<sensor_msgs::PointCloud2>(
+                       nh, topic, std::move(done), [](const sensor_msgs::PointCloud2ConstPtr& msg) {
+                         return apex::Message::share<Cloud>(fromRos(msg));  // copies the points into PCL's layout
+                       });
+                 },
+                 [](const apex::Message& m) -> std::optional<ros::Time> {
+                   if (auto p = m.as<Cloud>()) return p->header.stamp;
+                   return std::nullopt;
+                 }};
 }
 
 const std::vector<RosType>& rosTypes() {
@@ -150,7 +152,8 @@ apex::Result<std::vector<PortTopic>> parsePorts(const std::vector<std::string>& 
     auto p = parsePort(e, what);
     if (!p) return p.status();
     for (const auto& q : out)
-      if (q.port == p->port) return apex::Status::error(what + ": '" + q.topic + "' and '" + p->topic + "' make one port, '" + q.port + "'");
+      if (q.port == p->port)
+        return apex::Status::error(what + ": '" + q.topic + "' and '" + p->topic + "' make one port, '" + q.port + "'");
     out.push_back(*p);
   }
   return out;

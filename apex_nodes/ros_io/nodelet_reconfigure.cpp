@@ -134,7 +134,8 @@ apex::Result<apex::ParamSpec> specOf(const Offered& o) {
   } else if (o.type == "bool") {
     s = apex::param::boolean(o.param, v.as<bool>());
   } else if (o.type == "int") {
-    s = o.min && o.max ? apex::param::range(o.param, int(*o.min), int(*o.max), 1, v.as<int>()) : apex::param::integer(o.param, v.as<int>());
+    s = o.min && o.max ? apex::param::range(o.param, int(*o.min), int(*o.max), 1, v.as<int>())
+                       : apex::param::integer(o.param, v.as<int>());
   } else if (o.type == "double") {
     s = o.min && o.max ? apex::param::range(o.param, *o.min, *o.max, (*o.max - *o.min) / 1000, v.as<double>())
                        : apex::param::real(o.param, v.as<double>());

@@ -25,9 +25,14 @@ class TopicSink : public apex::Node {
         .inCategory("ROS I/O")
         .input(in)
         .param(apex::param::text("topic").init(std::move(topic)).describe("resolved in the runtime's namespace"))
-        .param(apex::param::integer("queue_size").range(1, 1000).step(1).init(1).describe(
-            "messages kept for each subscriber that reads slower than the graph sends (ROS's queue_size): 1 keeps "
-            "the newest, as camera drivers do; more, and a slow subscriber (rosbag record, a script) gets every frame"));
+        .param(
+            apex::param::integer("queue_size")
+                .range(1, 1000)
+                .step(1)
+                .init(1)
+                .describe(
+                    "messages kept for each subscriber that reads slower than the graph sends (ROS's queue_size): 1 keeps "
+                    "the newest, as camera drivers do; more, and a slow subscriber (rosbag record, a script) gets every frame"));
   }
 
   void setup() override { pub_ = advertise(apex::nodeHandle(*this), topic_.get(), std::uint32_t(queue_size_.get())); }

@@ -40,10 +40,7 @@ BoxView BoxView::of(const std::string& ui_text) {
   return v;
 }
 
-bool BoxView::isPinned(const std::string& param) const {
-  return std::find(pinned.begin(), pinned.end(), param) != pinned.end();
-}
-
+bool BoxView::isPinned(const std::string& param) const { return std::find(pinned.begin(), pinned.end(), param) != pinned.end(); }
 
 bool BoxView::collapsible(const apex::NodeInfo& node) { return listed(node) > kFewParams; }
 
@@ -54,7 +51,9 @@ std::vector<std::string> BoxView::shown(const apex::NodeInfo& node) const {
   std::vector<std::string> out;
   for (const auto& p : node.parameters) {
     if (p.legacy && atDefault(p)) continue;
-    const auto in = [&p](const std::vector<std::string>& names) { return std::find(names.begin(), names.end(), p.name) != names.end(); };
+    const auto in = [&p](const std::vector<std::string>& names) {
+      return std::find(names.begin(), names.end(), p.name) != names.end();
+    };
     // a file or folder to choose: without it the node does nothing (a player, a writer, a model)
     const bool needed = p.kind == "path" || in(pinned) || in(always);
     if (all || needed || ((!atDefault(p) || p.interactive) && !in(elsewhere))) out.push_back(p.name);

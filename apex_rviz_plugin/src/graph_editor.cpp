@@ -179,7 +179,8 @@ QWidget* GraphEditor::buildToolBar() {
   auto* save = button("save", "Save...", "save the graph to a file (written by the runtime)");
   auto* load = button("load", "Load...", "load a graph file into the runtime (all or nothing)");
   connect(save, &QToolButton::clicked, this, [this] {  // a name typed without ".yaml" gets it
-    const FileDialogSpec spec{"save_dialog", "Save graph", last_path_, FileDialogSpec::Mode::Save, "APEX graphs (*.yaml)", "yaml"};
+    const FileDialogSpec spec{"save_dialog",          "Save graph", last_path_, FileDialogSpec::Mode::Save,
+                              "APEX graphs (*.yaml)", "yaml"};
     openFileDialog(file_dialog_, this, spec, [this](const QString& path) { emit saveRequested(last_path_ = path); });
   });
   connect(load, &QToolButton::clicked, this, [this] {
@@ -189,7 +190,8 @@ QWidget* GraphEditor::buildToolBar() {
   auto* buttons = new QToolBar;
   buttons->setObjectName("buttons");
   buttons->setToolButtonStyle(Qt::ToolButtonTextOnly);
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews, presets, fresh, save, load}) buttons->addWidget(b);
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews, presets, fresh, save, load})
+    buttons->addWidget(b);
   rows->addWidget(buttons);
   return bar;
 }
@@ -265,7 +267,8 @@ void GraphEditor::fitGraph() {
 void GraphEditor::reveal(const QRectF& area) {
   const double s = view_->transform().m11();
   const QSizeF seen = QSizeF(view_->viewport()->size()) / s;  // a box taller than the view: its title
-  const QRectF shown(area.topLeft(), QSizeF(std::min(area.width(), seen.width() - 20 / s), std::min(area.height(), seen.height() - 20 / s)));
+  const QRectF shown(area.topLeft(),
+                     QSizeF(std::min(area.width(), seen.width() - 20 / s), std::min(area.height(), seen.height() - 20 / s)));
   growCanvas(shown);
   view_->ensureVisible(shown, 10, 10);
 }

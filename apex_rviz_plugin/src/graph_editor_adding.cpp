@@ -110,10 +110,9 @@ apex::NodeTypeInfo GraphEditor::typeOf(const apex::NodeInfo& node) const {
   if (const apex::NodeTypeInfo* t = node.subgraph.empty() ? listedType(node.type) : nullptr) return *t;
   apex::NodeTypeInfo t;  // what the node itself shows: its ports (parameters apart) and parameters
   t.id = node.type;
-  t.description = node.subgraph.empty() ? "(a type the runtime does not list: the ports and parameters the node has)"
-                  : node.subgraph == "inline"
-                      ? "A subgraph written in the graph file: the ports and parameters it exports."
-                      : "A subgraph from " + node.subgraph + ": the ports and parameters it exports.";
+  t.description = node.subgraph.empty()       ? "(a type the runtime does not list: the ports and parameters the node has)"
+                  : node.subgraph == "inline" ? "A subgraph written in the graph file: the ports and parameters it exports."
+                                              : "A subgraph from " + node.subgraph + ": the ports and parameters it exports.";
   for (const auto& p : node.ports)
     if (p.kind != "param_in" && p.kind != "param_out") t.ports.push_back(p);
   t.parameters = node.parameters;

@@ -295,13 +295,15 @@ std::optional<Edit> GraphModel::arrange(const std::map<std::string, std::pair<do
 std::optional<Edit> GraphModel::move(const std::string& node_name, double x, double y) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return std::nullopt;
-  return Edit{"Move " + node_name, {setUi(node_name, withPosition(n->ui, x, y))}, {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+  return Edit{
+      "Move " + node_name, {setUi(node_name, withPosition(n->ui, x, y))}, {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
 }
 
 std::optional<Edit> GraphModel::setExpanded(const std::string& node_name, bool expanded) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return std::nullopt;
-  return Edit{(expanded ? "Expand " : "Collapse ") + node_name, {setUi(node_name, withUiKey(n->ui, "expanded", expanded ? "true" : "false"))},
+  return Edit{(expanded ? "Expand " : "Collapse ") + node_name,
+              {setUi(node_name, withUiKey(n->ui, "expanded", expanded ? "true" : "false"))},
               {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
 }
 
@@ -313,7 +315,8 @@ std::optional<Edit> GraphModel::setPinned(const std::string& node_name, const st
   if (pinned) now.push_back(param);
   std::string list = "[";
   for (const auto& p : now) list += (list.size() > 1 ? ", " : "") + p;
-  return Edit{(pinned ? "Pin " : "Unpin ") + node_name + "/" + param, {setUi(node_name, withUiKey(n->ui, "pinned", list + "]"))},
+  return Edit{(pinned ? "Pin " : "Unpin ") + node_name + "/" + param,
+              {setUi(node_name, withUiKey(n->ui, "pinned", list + "]"))},
               {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
 }
 

@@ -119,11 +119,12 @@ std::vector<NewInsert> GraphModel::insertable(const std::vector<apex::NodeTypeIn
   return ownFirst(std::move(offers));
 }
 
-Edit GraphModel::addLinked(const std::string& type, const std::string& name, double x, double y, const apex::Connection& c) const {
+Edit GraphModel::addLinked(const std::string& type, const std::string& name, double x, double y,
+                           const apex::Connection& c) const {
   Edit e = addNode(type, name, x, y);
   andThen(e, connect(c));  // into an input in use: replaces its link, and undo gives it back; the link undone first
-  e.label = "Add " + name + (c.from_node == name ? " feeding " + c.to_node + "/" + c.to_port
-                                                  : " fed by " + c.from_node + "/" + c.from_port);
+  e.label = "Add " + name +
+            (c.from_node == name ? " feeding " + c.to_node + "/" + c.to_port : " fed by " + c.from_node + "/" + c.from_port);
   return e;
 }
 

@@ -261,7 +261,7 @@ void GraphScene::beginConnect(PortItem* from) {
     for (PortItem* p : item->ports()) {
       if (p->isSource() == from->isSource()) continue;  // the ports at the link's other end
       const std::string& other = p->port().name;
-      const std::string why = !model_              ? ""
+      const std::string why = !model_            ? ""
                               : from->isSource() ? model_->whyNotReplacing(node, port, name, other)
                                                  : model_->whyNotReplacing(name, other, node, port);
       p->setMark(why.empty() ? PortItem::Mark::Accepts : PortItem::Mark::Refuses, QString::fromStdString(why));
@@ -286,7 +286,8 @@ void GraphScene::finishConnect(PortItem* target, QGraphicsSceneMouseEvent* e) {
   PortItem* from = drag_from_;
   const QString node = QString::fromStdString(from->node()->info().name), port = QString::fromStdString(from->port().name);
   const bool source = from->isSource();
-  const bool moved = (e->screenPos() - e->buttonDownScreenPos(Qt::LeftButton)).manhattanLength() >= QApplication::startDragDistance();
+  const bool moved =
+      (e->screenPos() - e->buttonDownScreenPos(Qt::LeftButton)).manhattanLength() >= QApplication::startDragDistance();
   endDrag();
   if (!target && moved && emptyAt(e->scenePos())) return emit linkDropped(node, port, source, e->scenePos(), e->screenPos());
   if (!target || target->isSource() == source) return;

@@ -51,8 +51,9 @@ QString parameterTable(const apex::NodeTypeInfo& type) {
   }
   QString out = table("Parameters", {"name", "kind", "range / options", "default", "description"}, rows);
   if (shapes)
-    out += "<p>The ports listed are those of the default parameters: the parameters marked <i>changes the ports</i> add or "
-           "remove some.</p>";
+    out +=
+        "<p>The ports listed are those of the default parameters: the parameters marked <i>changes the ports</i> add or "
+        "remove some.</p>";
   return out;
 }
 
@@ -84,7 +85,8 @@ QString HelpView::limits(const apex::ParamInfo& p) {
   if (p.kind == "int range" || p.kind == "double range" || p.kind == "interval" || p.kind == "angle") {
     const bool whole = p.kind == "int range";
     auto bound = [whole](double v) {
-      return QString::fromStdString(whole ? apex::toText(apex::ParamValue(static_cast<int>(v))) : apex::toText(apex::ParamValue(v)));
+      return QString::fromStdString(whole ? apex::toText(apex::ParamValue(static_cast<int>(v)))
+                                          : apex::toText(apex::ParamValue(v)));
     };
     QString text = "[" + bound(p.min) + ", " + bound(p.max) + "]";
     if (p.step > 0 && !(whole && p.step == 1)) text += " step " + bound(p.step);

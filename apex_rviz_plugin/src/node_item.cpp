@@ -211,7 +211,8 @@ QWidget* NodeItem::buildParams() {
     toggle_->setAutoRaise(true);
     toggle_->setText(hidden > 0 ? QString("▸ %1 more parameter%2").arg(hidden).arg(hidden == 1 ? "" : "s")
                                 : QString("▴ fewer parameters"));
-    toggle_->setToolTip(hidden > 0 ? "show every parameter" : "show only the pinned parameters and those set away from their defaults");
+    toggle_->setToolTip(hidden > 0 ? "show every parameter"
+                                   : "show only the pinned parameters and those set away from their defaults");
     column->addWidget(toggle_, 0, Qt::AlignLeft);
     connect(toggle_, &QToolButton::clicked, this, [this, node, expand = hidden > 0] { emit expandToggled(node, expand); });
   }

@@ -28,7 +28,8 @@ void PanelWidget::balance() {
     std::string text = res.message;
     for (const auto& note : res.notes) text += "; " + note;
     auto edit = model_.setThreadGroups(moves, "Balance: " + text);  // perform() shows the label once applied
-    if (!edit) return editor_->showMessage(QString::fromStdString("Balance: the groups are so already. " + text), !res.notes.empty());
+    if (!edit)
+      return editor_->showMessage(QString::fromStdString("Balance: the groups are so already. " + text), !res.notes.empty());
     perform(edit);
   });
 }

@@ -366,11 +366,14 @@ void ParamEditor::buildPath() {
   });
   connect(browse, &QPushButton::clicked, this, [this, line] {  // in the current file's folder
     const std::string& mode = param_.path_mode;
-    const FileDialogSpec spec{"path_dialog", QString::fromStdString(param_.name), line->text(),
+    const FileDialogSpec spec{"path_dialog",
+                              QString::fromStdString(param_.name),
+                              line->text(),
                               mode == "directory" ? FileDialogSpec::Mode::Directory
                               : mode == "write"   ? FileDialogSpec::Mode::Save
                                                   : FileDialogSpec::Mode::Open,
-                              "", ""};
+                              "",
+                              ""};
     openFileDialog(dialog_, this, spec, [this, line](const QString& path) {
       line->setText(path);
       send(quoted(path), false);

@@ -37,8 +37,9 @@ QuickAdd::QuickAdd(QWidget* parent)
   setFrameShape(QFrame::StyledPanel);
   search_->setObjectName("quick_add_search");
   search_->setPlaceholderText("Search node types");
-  search_->setToolTip("every word typed is in the type's name, category or description; Enter adds the first, "
-                      "Up and Down pick another, F1 explains it, Esc closes");
+  search_->setToolTip(
+      "every word typed is in the type's name, category or description; Enter adds the first, "
+      "Up and Down pick another, F1 explains it, Esc closes");
   list_->setObjectName("quick_add_list");
   list_->setUniformItemSizes(true);
   list_->setFocusPolicy(Qt::NoFocus);  // the keyboard stays in the search field; Up and Down reach the list
@@ -102,8 +103,8 @@ void QuickAdd::describeCurrent() {
   const QListWidgetItem* item = list_->currentItem();
   if (!item) return about_->setText(offers_.empty() ? "no node type fits here" : "no node type matches");
   const Offer& o = offers_[static_cast<std::size_t>(item->data(kOffer).toInt())];
-  QString text = QString::fromStdString(o.type.category.empty() ? "" : o.type.category + ": ") +
-                 QString::fromStdString(o.type.description);
+  QString text =
+      QString::fromStdString(o.type.category.empty() ? "" : o.type.category + ": ") + QString::fromStdString(o.type.description);
   if (!o.port.isEmpty()) text = "the link goes to its '" + o.port + "'. " + text;
   about_->setText(text);
 }

@@ -7,8 +7,8 @@
 
 namespace apex_rviz_plugin {
 
-RecoveryBar::RecoveryBar(QWidget* parent) : QFrame(parent), label_(new QLabel), restore_(new QPushButton("Restore")),
-                                            discard_(new QPushButton("Discard")) {
+RecoveryBar::RecoveryBar(QWidget* parent)
+    : QFrame(parent), label_(new QLabel), restore_(new QPushButton("Restore")), discard_(new QPushButton("Discard")) {
   setObjectName("recovery");
   setFrameShape(QFrame::StyledPanel);
   setStyleSheet("#recovery { background: #fff3cd; }");  // a notice, as a browser's "restore pages?" bar

@@ -74,7 +74,8 @@ TEST(NodeletReconfigure, AnEnumIsAChoiceOfItsNamesAndGoesToTheNodeletAsItsValue)
 }
 
 TEST(NodeletReconfigure, ADoubleEnumsValueIsFoundAsANumberNotAsText) {
-  const std::string method = "{'enum': [{'name': 'fine', 'type': 'double', 'value': 0.1}, {'name': 'coarse', 'type': 'double', 'value': 0.5}]}";
+  const std::string method =
+      "{'enum': [{'name': 'fine', 'type': 'double', 'value': 0.1}, {'name': 'coarse', 'type': 'double', 'value': 0.5}]}";
   const auto [spec, offered] = made(Description("resolution", "double", method).doubles(0.5, 0.0, 1.0).entry());
   EXPECT_EQ(spec.default_value, apex::ParamValue(std::string("coarse")));
   EXPECT_EQ(valueOf(offered, "0.10000000000000001"), apex::ParamValue(std::string("fine")));  // 0.1 as emitted

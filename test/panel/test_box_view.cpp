@@ -10,7 +10,8 @@ using ::testing::ElementsAre;
 
 namespace {
 
-apex::ParamInfo param(const std::string& name, const std::string& value, const std::string& def, const std::string& kind = "double") {
+apex::ParamInfo param(const std::string& name, const std::string& value, const std::string& def,
+                      const std::string& kind = "double") {
   apex::ParamInfo p;
   p.name = name, p.kind = kind, p.value = value, p.default_value = def;
   return p;
@@ -20,9 +21,12 @@ apex::ParamInfo param(const std::string& name, const std::string& value, const s
 apex::NodeInfo player(const std::string& ui = "{x: 10, y: 20}") {
   apex::NodeInfo n;
   n.name = "bag", n.type = "apex_nodes/BagReader", n.ui = ui;
-  n.parameters = {param("file", "''", "''", "path"), param("topics", "[]", "[]", "text list"),
+  n.parameters = {param("file", "''", "''", "path"),
+                  param("topics", "[]", "[]", "text list"),
                   param("image_topic", "/camera/image_raw", "/camera/image_raw", "string"),
-                  param("rate", "1", "1"), param("loop", "false", "false", "bool"), param("start", "0", "0")};
+                  param("rate", "1", "1"),
+                  param("loop", "false", "false", "bool"),
+                  param("start", "0", "0")};
   n.parameters[2].legacy = true;
   return n;
 }

@@ -21,7 +21,8 @@ apex::NodeTypeInfo type(const std::string& id, std::vector<apex::PortInfo> own) 
   return t;
 }
 
-/** A number filter, an image filter, a type with an int parameter that has ports, one with a slot, one with nothing of its own. */
+/** A number filter, an image filter, a type with an int parameter that has ports, one with a slot, one with nothing of its own.
+ */
 std::vector<apex::NodeTypeInfo> types() {
   auto tuned = type("t/Tuned", {});
   tuned.parameters = {param("threshold", "3", true), param("label", "'x'")};
@@ -58,9 +59,9 @@ TEST(GraphModelNewNode, AnOutputIsOfferedTheTypesThatTakeIt) {
   // clock/count is an int: an any input or an int parameter with ports takes it, a double or image input does not
   EXPECT_THAT(offered(m.linkable(types(), "clock", "count", true)), ElementsAre("t/Tuned threshold", "t/Relay in"));
   // a trigger: the types with a slot of their own first, then those with only the slots every node has
-  EXPECT_THAT(offered(m.linkable(types(), "clock", "processed", true)),
-              ElementsAre("t/Resettable reset", "t/Scale enable", "t/Blur enable", "t/Tuned enable", "t/Relay enable",
-                          "t/Pulse enable"));
+  EXPECT_THAT(
+      offered(m.linkable(types(), "clock", "processed", true)),
+      ElementsAre("t/Resettable reset", "t/Scale enable", "t/Blur enable", "t/Tuned enable", "t/Relay enable", "t/Pulse enable"));
 }
 
 TEST(GraphModelNewNode, AnInputInUseIsOfferedTheTypesThatFeedIt) {
@@ -69,9 +70,9 @@ TEST(GraphModelNewNode, AnInputInUseIsOfferedTheTypesThatFeedIt) {
   // count/in takes anything and is fed by the relay: a new node's output replaces that link
   EXPECT_THAT(offered(m.linkable(types(), "count", "in", false)),
               ElementsAre("t/Scale out", "t/Blur image", "t/Tuned threshold", "t/Relay out"));
-  EXPECT_THAT(offered(m.linkable(types(), "count", "reset", false)), ElementsAre("t/Scale processed", "t/Blur processed",
-                                                                                  "t/Tuned processed", "t/Relay processed",
-                                                                                  "t/Pulse processed", "t/Resettable processed"));
+  EXPECT_THAT(offered(m.linkable(types(), "count", "reset", false)),
+              ElementsAre("t/Scale processed", "t/Blur processed", "t/Tuned processed", "t/Relay processed", "t/Pulse processed",
+                          "t/Resettable processed"));
 }
 
 TEST(GraphModelNewNode, AddedWithItsLinkInOneEdit) {
@@ -99,7 +100,8 @@ std::vector<std::string> offered(const std::vector<NewInsert>& inserts) {
   return out;
 }
 
-apex::Connection connection(const std::string& from, const std::string& from_port, const std::string& to, const std::string& to_port) {
+apex::Connection connection(const std::string& from, const std::string& from_port, const std::string& to,
+                            const std::string& to_port) {
   apex::Connection c;
   c.from_node = from, c.from_port = from_port, c.to_node = to, c.to_port = to_port;
   return c;
@@ -138,7 +140,8 @@ TEST(GraphModelNewNode, InsertedIntoALinkInOneEditThatGivesTheLinkBack) {
   EXPECT_EQ(ends(e.revert[1]), "relay/out -> count/in");
 
   // a slot takes many links: the old one is dropped as well, and comes back first on undo
-  e = m.addInserted("t/Resettable", "resettable_1", 10, 20, connection("clock", "processed", "count", "reset"), "reset", "processed");
+  e = m.addInserted("t/Resettable", "resettable_1", 10, 20, connection("clock", "processed", "count", "reset"), "reset",
+                    "processed");
   EXPECT_THAT(services(e.apply), ElementsAre("add_node", "set_ui", "connect", "connect", "disconnect"));
   EXPECT_EQ(ends(e.apply[4]), "clock/processed -> count/reset");
   EXPECT_THAT(services(e.revert), ElementsAre("connect", "disconnect", "disconnect", "remove_node"));

@@ -31,7 +31,8 @@ TEST_F(PanelWidgetTest, ANewPlayerIsACompactBoxThatExpandsAndKeepsWhatIsPinned) 
 
   // expanded: every parameter but the two older ones, which a new player does not use
   QTest::mouseClick(toggle, Qt::LeftButton);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return box->editor("rate") != nullptr; }, kWaitMs)) << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return box->editor("rate") != nullptr; }, kWaitMs))
+      << panel.editor()->message().toStdString();
   EXPECT_NE(ui("bag_reader_1").find("expanded: true"), std::string::npos) << ui("bag_reader_1");
   EXPECT_TRUE(box->editor("loop") && box->editor("sync_window") && box->editor("topics"));
   EXPECT_FALSE(box->editor("image_topic") || box->editor("cloud_topic"));
@@ -55,7 +56,8 @@ TEST_F(PanelWidgetTest, ANewPlayerIsACompactBoxThatExpandsAndKeepsWhatIsPinned) 
   // each was one undo step: the collapse first
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0; }, kWaitMs));
   QTest::mouseClick(panel.editor()->findChild<QToolButton*>("undo"), Qt::LeftButton);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return box->editor("rate") != nullptr; }, kWaitMs)) << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return box->editor("rate") != nullptr; }, kWaitMs))
+      << panel.editor()->message().toStdString();
   // said once the runtime answered the undo, which may come after the ~graph that shows it
   EXPECT_TRUE(QTest::qWaitFor([&] { return panel.editor()->message().startsWith("undid: Collapse bag_reader_1"); }, kWaitMs))
       << panel.editor()->message().toStdString();
@@ -63,7 +65,8 @@ TEST_F(PanelWidgetTest, ANewPlayerIsACompactBoxThatExpandsAndKeepsWhatIsPinned) 
 
 TEST_F(PanelWidgetTest, AGraphThatSetTheOlderTopicParametersShowsThem) {
   emptyGraph();
-  ASSERT_TRUE(addNode("apex_nodes/BagReader", "old_bag", "{file: '" + g_bag + "', image_topic: /camera/image_raw, cloud_topic: ''}"));
+  ASSERT_TRUE(
+      addNode("apex_nodes/BagReader", "old_bag", "{file: '" + g_bag + "', image_topic: /camera/image_raw, cloud_topic: ''}"));
   waitPlaced("old_bag");
   NodeItem* box = panel.editor()->scene()->node("old_bag");
   ASSERT_TRUE(box);

@@ -87,11 +87,14 @@ TEST_F(FirstUseTest, SaveAddsYamlToANameTypedWithoutIt) {
   dialog->setDirectory(folder);
   dialog->selectFile("blur_canny");  // typed without the suffix
   // as its Save button does (again while the folder is still being read: it may ignore the first)
-  ASSERT_TRUE(QTest::qWaitFor([&] {
-    if (asked.isEmpty() && dialog && dialog->isVisible()) static_cast<QDialog*>(dialog.data())->accept();
-    return !asked.isEmpty();
-  }, kWaitMs)) << "the Save dialog gave no path"
-               << (dialog ? "; it has " + dialog->selectedFiles().join(", ").toStdString() : std::string("; it closed"));
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {
+        if (asked.isEmpty() && dialog && dialog->isVisible()) static_cast<QDialog*>(dialog.data())->accept();
+        return !asked.isEmpty();
+      },
+      kWaitMs))
+      << "the Save dialog gave no path"
+      << (dialog ? "; it has " + dialog->selectedFiles().join(", ").toStdString() : std::string("; it closed"));
   EXPECT_TRUE(asked.endsWith("/blur_canny.yaml")) << asked.toStdString();
   ASSERT_TRUE(QTest::qWaitFor([&] { return fs::exists(fs::path(g_bag).parent_path() / "blur_canny.yaml"); }, kWaitMs))
       << panel.editor()->message().toStdString();
@@ -112,7 +115,8 @@ TEST_F(FirstUseTest, UndoSaysWhatItUndidAndAnEditMadeElsewhereDropsRedo) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return !scene->node("clock_1"); }, kWaitMs));
   EXPECT_TRUE(redo->isEnabled()) << "the undo's own graph is no edit made elsewhere";
   QTest::mouseClick(redo, Qt::LeftButton);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editor()->message() == "redid: Add clock_1" && scene->node("clock_1"); }, kWaitMs))
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return panel.editor()->message() == "redid: Add clock_1" && scene->node("clock_1"); }, kWaitMs))
       << panel.editor()->message().toStdString();
   QTest::mouseClick(undo, Qt::LeftButton);
   ASSERT_TRUE(QTest::qWaitFor([&] { return !scene->node("clock_1") && panel.editor()->message().startsWith("undid"); }, kWaitMs));
@@ -216,7 +220,8 @@ TEST_F(FirstUseTest, ARightClickOnALinkAsksAndDeleteRemovesItAtOnce) {
 std::vector<std::string> shape(const apex::GraphState& g) {
   std::vector<std::string> out;
   for (const auto& n : g.nodes) out.push_back("node " + n.name + " " + n.type);
-  for (const auto& c : g.connections) out.push_back("link " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port);
+  for (const auto& c : g.connections)
+    out.push_back("link " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port);
   std::sort(out.begin(), out.end());
   return out;
 }
@@ -230,7 +235,8 @@ TEST_F(FirstUseTest, InsertNodeOnALinkPutsANewNodeBetweenLinkedOnBothSidesAsOneU
       if (c->connection().from_node == "camera_detector" && c->connection().to_node == "overlay_out") return c;
     return nullptr;
   };
-  ASSERT_TRUE(QTest::qWaitFor([&] { return shown() && panel.editsPending() == 0; }, kWaitMs)) << panel.editor()->message().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return shown() && panel.editsPending() == 0; }, kWaitMs))
+      << panel.editor()->message().toStdString();
   emit panel.editor()->tidyRequested();  // the file's positions put boxes over this link
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editsPending() == 0 && overlapping(*scene).empty(); }, kWaitMs))
       << overlapping(*scene);
@@ -293,7 +299,9 @@ std::string writeChain() {
   out << "apex_graph: 2\nnodes:\n  - {name: clock, type: apex_nodes/Clock, parameters: {rate: 1.0}}\n";
   for (int i = 1; i < 30; ++i) out << "  - {name: r" << i << ", type: apex_nodes/Relay}\n";
   out << "connections:\n";
-  for (int i = 1; i < 30; ++i) out << "  - {from: " << (i == 1 ? std::string("clock/count") : "r" + std::to_string(i - 1) + "/out") << ", to: r" << i << "/in}\n";
+  for (int i = 1; i < 30; ++i)
+    out << "  - {from: " << (i == 1 ? std::string("clock/count") : "r" + std::to_string(i - 1) + "/out") << ", to: r" << i
+        << "/in}\n";
   return path;
 }
 
@@ -348,7 +356,8 @@ TEST_F(FirstUseTest, APathsChooserIsQtsOwnDialogOverThePanelOneAtATime) {
   emptyGraph();
   ASSERT_TRUE(addNode("apex_nodes/BagReader", "chooser_bag", "{file: '" + g_bag + "'}"));
   NodeItem* node = nullptr;
-  ASSERT_TRUE(QTest::qWaitFor([&] { return (node = panel.editor()->scene()->node("chooser_bag")) && node->editor("file"); }, kWaitMs));
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return (node = panel.editor()->scene()->node("chooser_bag")) && node->editor("file"); }, kWaitMs));
   QPushButton* browse = nullptr;
   for (auto* b : node->editor("file")->findChildren<QPushButton*>())
     if (b->text() == "...") browse = b;
@@ -389,7 +398,8 @@ TEST_F(FirstUseTest, APathsChooserIsQtsOwnDialogOverThePanelOneAtATime) {
   EXPECT_TRUE(seen.qt_own) << "the desktop's dialog (it drew black in rviz)";
   EXPECT_FALSE(seen.in_scene) << "parented inside the node's box: embedded in the canvas";
   EXPECT_TRUE(seen.modal);
-  EXPECT_EQ(QDir(seen.folder).canonicalPath(), QDir(QString::fromStdString(fs::path(g_bag).parent_path().string())).canonicalPath());
+  EXPECT_EQ(QDir(seen.folder).canonicalPath(),
+            QDir(QString::fromStdString(fs::path(g_bag).parent_path().string())).canonicalPath());
   ASSERT_TRUE(recorded && seen.qt_own) << "the old dialog: stop before a second click would wait in its event loop";
   QTest::mouseClick(browse, Qt::LeftButton);  // a second click while it is open: the same one, raised
   EXPECT_EQ(fileDialogs().size(), 1u);

@@ -24,7 +24,8 @@ class QuickAddTest : public PanelWidgetTest {
     QStringList out;
     for (int i = 0; tree && i < tree->topLevelItemCount(); ++i)
       for (int j = 0; j < tree->topLevelItem(i)->childCount(); ++j)
-        if (!tree->topLevelItem(i)->child(j)->isHidden()) out << tree->topLevelItem(i)->child(j)->data(0, Qt::UserRole).toString();
+        if (!tree->topLevelItem(i)->child(j)->isHidden())
+          out << tree->topLevelItem(i)->child(j)->data(0, Qt::UserRole).toString();
     search->clear();
     out.sort();
     return out;

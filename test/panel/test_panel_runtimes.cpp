@@ -245,9 +245,8 @@ TEST(PanelWidgetManyCalls, TwoPanelsAndAScriptCallingAtOnceAreAllAnswered) {
   int answered = 0, unanswered = 0;
   for (int i = 0; i < kCalls; ++i)
     for (RuntimeLink* link : {&first, &second})
-      link->runThenRead({}, [&](bool, const std::string&, const apex::GraphState& after) {
-        ++(after.revision > 0 ? answered : unanswered);
-      });
+      link->runThenRead(
+          {}, [&](bool, const std::string&, const apex::GraphState& after) { ++(after.revision > 0 ? answered : unanswered); });
   std::atomic<bool> done{false};
   std::thread script([&] {  // one-off calls meanwhile
     while (!done) {

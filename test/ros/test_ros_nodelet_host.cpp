@@ -77,11 +77,10 @@ Points pointsOf(const Cloud& cloud) {
 }
 
 /** pcl/VoxelGrid in a NodeletHost: `config` sets its leaf (and no z limits: its default keeps 0 <= z <= 1). */
-const std::vector<std::pair<std::string, std::string>> kVoxelGrid{
-    {"nodelet", "pcl/VoxelGrid"},
-    {"inputs", "[input:sensor_msgs/PointCloud2]"},
-    {"outputs", "[output:sensor_msgs/PointCloud2]"},
-    {"config", "\"{leaf_size: 0.1, filter_field_name: ''}\""}};
+const std::vector<std::pair<std::string, std::string>> kVoxelGrid{{"nodelet", "pcl/VoxelGrid"},
+                                                                  {"inputs", "[input:sensor_msgs/PointCloud2]"},
+                                                                  {"outputs", "[output:sensor_msgs/PointCloud2]"},
+                                                                  {"config", "\"{leaf_size: 0.1, filter_field_name: ''}\""}};
 
 /** APEX's VoxelGrid on `cloud` with `leaf`. */
 Points apexVoxelGrid(const std::shared_ptr<const Cloud>& cloud, double leaf) {

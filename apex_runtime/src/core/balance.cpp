@@ -183,8 +183,8 @@ void addNotes(Proposal& r, const BalanceInput& in, const Proposal& relayed) {
   for (const SkipEdge& s : r.skips) {
     const std::string from = in.nodes[s.from].name, to = in.nodes[s.to].name;
     std::string note = "'" + from + "' -> '" + to + "' crosses from stage " + std::to_string(r.stage[s.from] + 1) +
-                       " into stage " + std::to_string(r.stage[s.to] + 1) + " beside a longer path (" + ms(s.span_ns) +
-                       "): '" + from + "' waits each frame until '" + to +
+                       " into stage " + std::to_string(r.stage[s.to] + 1) + " beside a longer path (" + ms(s.span_ns) + "): '" +
+                       from + "' waits each frame until '" + to +
                        "' takes its message; a Relay (apex_nodes/Relay) on this edge frees it";
     if (s.limits) note += ". It sets the period now: " + ms(s.span_ns) + " per frame";
     r.notes.push_back(note);

@@ -43,7 +43,8 @@ Status place(Graph& graph, const std::map<std::string, std::string>& groups) {
 Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vector<NodeStats>& before, int frames,
                                               const TrialOptions& options) {
   const auto from = runningFirings(before);
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.timeout_s));
+  const auto deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.timeout_s));
   while (true) {
     auto now = graph.nodeStats(1e12);  // no stall check: only the counts are wanted
     if (fewestSince(from, now) >= std::uint64_t(frames)) return now;

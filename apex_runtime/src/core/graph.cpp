@@ -30,8 +30,8 @@ constexpr const char* kDefaultGroup = "default";
 
 Graph::Impl::Impl(NodeRegistry registry)
     : registry_(std::move(registry)),
-      edits_(std::make_shared<detail::EditRequests>(
-          [this](const NodePtr& node, const std::string& param, const ParamValue& value) { applyRequested(node, param, value); })) {
+      edits_(std::make_shared<detail::EditRequests>([this](const NodePtr& node, const std::string& param,
+                                                           const ParamValue& value) { applyRequested(node, param, value); })) {
   group(kDefaultGroup);
 }
 

@@ -98,9 +98,9 @@ void NodeState::fireTrigger(int trigger) {
       e->pending.fetch_sub(1, std::memory_order_relaxed);
       if (e->dropped.fetch_add(1, std::memory_order_relaxed) == 0)
         log(LogLevel::Warn, e->to->name,
-            nodeLabel(e->to->name) + " slot '" + e->to->manifest().slots[e->slot].name + "' runs slower than " +
-                nodeLabel(name) + " fires '" + manifest().triggers[trigger].name + "': with " +
-                std::to_string(kMaxPendingEvents) + " events waiting, further ones are dropped until it catches up");
+            nodeLabel(e->to->name) + " slot '" + e->to->manifest().slots[e->slot].name + "' runs slower than " + nodeLabel(name) +
+                " fires '" + manifest().triggers[trigger].name + "': with " + std::to_string(kMaxPendingEvents) +
+                " events waiting, further ones are dropped until it catches up");
       continue;
     }
     e->to->post([e](NodeState& n) {

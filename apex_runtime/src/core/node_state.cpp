@@ -256,9 +256,7 @@ NodeStats NodeState::stats() const {
   return s;
 }
 
-void NodeState::deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGroup* here) {
-  deliverTo(edge, std::move(m), here);
-}
+void NodeState::deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGroup* here) { deliverTo(edge, std::move(m), here); }
 
 void NodeState::deliverSlow(const std::shared_ptr<Edge>& edge, Message&& m, ThreadGroup* here) {
   Edge& e = *edge;

@@ -59,9 +59,7 @@ class Readiness {
    *  a condition a firing reserved (none is left at zero), notifyNewData() counts only for a
    *  driven source, and edits pause the group. A release that the firing makes possible (a
    *  receiver reads, a sender delivers) comes after the handoff that this store precedes. */
-  void reserveAtZero() {
-    blockers_.store(live_inputs_ + counted_out_, std::memory_order_relaxed);
-  }
+  void reserveAtZero() { blockers_.store(live_inputs_ + counted_out_, std::memory_order_relaxed); }
 
  private:
   std::atomic<int> blockers_{0};

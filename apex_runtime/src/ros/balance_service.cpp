@@ -32,7 +32,8 @@ TrialOptions trialOptions(int frames) {
 Result<std::vector<BalanceNode>> nodeTimes(const Graph& graph, int frames) {
   const auto before = graph.nodeStats(1.0);  // stalled for a second: not waited for
   if (frames == 0) return measuredTimes({}, before);
-  if (graph.paused()) return Status::error("the graph is paused: resume it to measure, or ask with frames 0 for the times measured so far");
+  if (graph.paused())
+    return Status::error("the graph is paused: resume it to measure, or ask with frames 0 for the times measured so far");
   auto after = waitForFirings(graph, before, frames, trialOptions(frames));
   if (!after) return Status::error(after.message() + "; ask with frames 0 to use the times measured so far");
   return measuredTimes(before, after.value());
@@ -47,8 +48,9 @@ Result<std::pair<std::optional<Proposal>, std::string>> fastest(Graph& graph, co
   const auto& fps = trials->fps;
   if (fps.empty()) return std::make_pair(std::optional<Proposal>(), std::string());
   char text[160];
-  std::snprintf(text, sizeof text, "; tried the %zu closest placements for %d frames each: %.1f to %.1f frames/s, kept the fastest",
-                fps.size(), req.frames, *std::min_element(fps.begin(), fps.end()), fps[trials->fastest]);
+  std::snprintf(text, sizeof text,
+                "; tried the %zu closest placements for %d frames each: %.1f to %.1f frames/s, kept the fastest", fps.size(),
+                req.frames, *std::min_element(fps.begin(), fps.end()), fps[trials->fastest]);
   std::optional<Proposal> chosen;
   if (trials->fastest > 0) chosen = std::move(trials->candidates[trials->fastest]);
   return std::make_pair(std::move(chosen), std::string(text));

@@ -21,8 +21,7 @@ Recovery::Offer describeCopy(const std::string& path) {
   Recovery::Offer offer;
   offer.path = path;
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0)
-    offer.written_ns = std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
+  if (::stat(path.c_str(), &st) == 0) offer.written_ns = std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
   auto text = readGraphFile(path);
   auto graph = text ? parseGraphText(text.value()) : Result<GraphDescription>(text.status());
   if (graph) offer.nodes = graph.value().nodes.size();
@@ -33,18 +32,20 @@ Recovery::Offer describeCopy(const std::string& path) {
 }  // namespace
 
 Recovery::Recovery(const std::string& folder, const std::string& node, Timing timing)
-    : path_(folder + "/" + fileName(node) + ".yaml"), offered_path_(folder + "/" + fileName(node) + ".previous.yaml"),
+    : path_(folder + "/" + fileName(node) + ".yaml"),
+      offered_path_(folder + "/" + fileName(node) + ".previous.yaml"),
       timing_(timing) {
   std::error_code ec;
   fs::create_directories(folder, ec);
   if (fs::exists(path_, ec)) {  // the previous run died with unsaved edits: aside, so ours do not replace them
     fs::rename(path_, offered_path_, ec);
-    if (ec) ROS_WARN_STREAM_NAMED("apex", "cannot set aside " << path_ << " (" << ec.message() << "): this run's edits replace it");
+    if (ec)
+      ROS_WARN_STREAM_NAMED("apex", "cannot set aside " << path_ << " (" << ec.message() << "): this run's edits replace it");
   }
   if (fs::exists(offered_path_, ec)) {
     offer_ = describeCopy(offered_path_);
     ROS_WARN_STREAM_NAMED("apex", "a previous run left an unsaved graph (" << offer_->nodes << " nodes) in " << offered_path_
-                                                                             << ": restore or discard it with ~recovery");
+                                                                           << ": restore or discard it with ~recovery");
   }
 }
 
@@ -79,8 +80,8 @@ void Recovery::tick(std::uint64_t revision, const std::function<Snapshot()>& sna
 void Recovery::write(const Snapshot& graph) {
   if (const Status st = writeFileAtomically(path_, graph.text); !st) {
     if (!warned_)  // once: the next bursts try again, quietly, until one succeeds
-      ROS_WARN_STREAM_NAMED("apex", "cannot keep the recovery copy of the graph: " << st.message()
-                                                                                   << "; unsaved edits are lost if the runtime dies");
+      ROS_WARN_STREAM_NAMED("apex", "cannot keep the recovery copy of the graph: "
+                                        << st.message() << "; unsaved edits are lost if the runtime dies");
     warned_ = true;
     return;
   }
@@ -115,7 +116,7 @@ Status Recovery::adopt() {
   if (ec) return Status::error("cannot move " + offered_path_ + " to " + path_ + ": " + ec.message());
   offer_.reset();
   saved_.reset();  // in no file of the user's: unsaved until a save
-  written_ = "";   // ours now; written again in this run's form at the next tick
+  written_ = "";  // ours now; written again in this run's form at the next tick
   pending_ = true, first_change_ = last_change_ = Clock::now();
   return Status::ok();
 }

@@ -42,7 +42,7 @@ class Recovery {
   struct Offer {
     std::string path;
     std::int64_t written_ns = 0;  // its modification time, since the epoch
-    std::size_t nodes = 0;        // top-level nodes; 0 if it does not parse (a restore says why)
+    std::size_t nodes = 0;  // top-level nodes; 0 if it does not parse (a restore says why)
   };
   using Timing = RecoveryTiming;
 

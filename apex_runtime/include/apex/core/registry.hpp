@@ -46,8 +46,7 @@ struct NodeTypeChecks {
 /** @brief Up to `count` of `candidates` most like `name` (spelling, case, the part after a package
  *  prefix), closest first; none if none is close: for "did you mean ...?" in errors (node types,
  *  nodelet plugins). */
-std::vector<std::string> closestNames(const std::string& name, const std::vector<std::string>& candidates,
-                                      std::size_t count = 3);
+std::vector<std::string> closestNames(const std::string& name, const std::vector<std::string>& candidates, std::size_t count = 3);
 
 class NodeRegistry {
  public:

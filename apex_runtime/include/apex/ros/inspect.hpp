@@ -89,8 +89,7 @@ bool addInspector(Convert convert) {
                   if (const ros::Time* stamp = mt::timeStamp(msg)) out.stamp = *stamp;
                   return out;
                 },
-                nullptr,
-                nullptr});
+                nullptr, nullptr});
 }
 
 }  // namespace apex
