@@ -125,10 +125,12 @@ std::pair<double, std::string> finalBest() {
   }
 }
 
-/** Waits until every tuned parameter holds the best value (apply_best works through the graph). */
+/** Waits until every tuned parameter holds the best value (apply_best works through the graph).
+ *  An error of the optimiser's (a value it could not send) fails at once; the deadline only
+ *  bounds a hang, on a loaded machine too. */
 void waitApplied(const std::map<std::string, std::string>& tuned, const std::string& best_yaml) {
   const YAML::Node best = YAML::Load(best_yaml);
-  const auto until = Clock::now() + std::chrono::seconds(10);
+  const auto until = Clock::now() + std::chrono::seconds(60);
   for (;;) {
     const auto g = graph();
     bool all = true;
@@ -138,7 +140,9 @@ void waitApplied(const std::map<std::string, std::string>& tuned, const std::str
       all = all && have == best[dim].as<double>();
     }
     if (all) return;
-    if (Clock::now() > until) throw std::runtime_error("apply_best did not reach the tuned parameters within 10 s");
+    for (const auto& n : g.nodes)
+      if (n.name == "optimizer" && !n.error.empty()) throw std::runtime_error("apply_best: " + n.error);
+    if (Clock::now() > until) throw std::runtime_error("apply_best did not reach the tuned parameters within 60 s");
     ros::WallDuration(0.05).sleep();
   }
 }

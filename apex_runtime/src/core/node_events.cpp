@@ -39,26 +39,41 @@ bool NodeState::sendFromSlot(const std::string& slot) {
     if (out.pending.isNothing()) continue;
     Message m = std::move(out.pending);
     out.pending = Message();
-    // A counted edge may carry one message at a time: the slot cannot send while a receiver
-    // still holds the last one (the firing rule's exclusivity of the receiver's input).
+    // A counted edge into an input may carry one message at a time: the slot cannot send while a
+    // receiver still holds the last one (the firing rule's exclusivity of the receiver's input).
+    // Into a parameter a value is a setting, not a frame: one sent while the last is still in the
+    // receiver's mail goes behind it (its mailbox keeps their order), uncounted; never refused.
+    // (The Optimizer's apply_best right after its run gave the old values back: a busy group had
+    // not applied them yet, and the best values were refused.)
     // An input whose sender is cut off from every source does not count it: nothing to send there.
     auto reaches = [](const Edge& e) { return e.to_param || e.live; };
     const Edge* busy = nullptr;
-    int counted = 0;
-    for (auto& e : out.edges) {
-      if (e->unread.load(std::memory_order_acquire)) busy = e.get();
-      counted += e->counted() && reaches(*e) ? 1 : 0;
-    }
+    for (auto& e : out.edges)
+      if (!e->to_param && e->unread.load(std::memory_order_acquire)) busy = e.get();
     if (busy) {
       setError(nodeLabel(name, type->id) + " slot '" + slot + "' published on output '" + manifest().outputs[i].name +
                "' while '" + busy->to->name + "' had not read its last message: not sent");
       all = false;
       continue;
     }
+    // Which edges wait for their receiver, decided once: a receiver may read its last value meanwhile.
+    // (Only this thread sets `unread`: an edge seen read stays so.)
+    std::vector<char> behind(out.edges.size(), 0);
+    int counted = 0;
+    for (std::size_t k = 0; k < out.edges.size(); ++k) {
+      const Edge& e = *out.edges[k];
+      if (!e.counted() || !reaches(e)) continue;
+      behind[k] = e.to_param && e.unread.load(std::memory_order_acquire);
+      counted += behind[k] ? 0 : 1;
+    }
     if (out.tap) out.tap(m);
     readiness.block(counted);  // released as the receivers read, as after a firing
-    for (auto& e : out.edges)
-      if (reaches(*e)) deliver(e, m);
+    for (std::size_t k = 0; k < out.edges.size(); ++k) {
+      const auto& e = out.edges[k];
+      if (!reaches(*e)) continue;
+      if (behind[k]) e->to->post([e, m](NodeState& n) { n.receiveParam(*e, m, false); });
+      else deliver(e, m);
+    }
   }
   return all;
 }

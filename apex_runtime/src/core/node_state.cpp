@@ -404,7 +404,7 @@ void NodeState::publishParam(int index, ThreadGroup* here) {
   if (params[index].tap) params[index].tap(m);
 }
 
-void NodeState::receiveParam(Edge& edge, const Message& m) {
+void NodeState::receiveParam(Edge& edge, const Message& m, bool counted) {
   if (edge.dead) return;
   if (!m.isNothing()) {
     auto value = fromMessage(manifest().params[edge.to_index], m);
@@ -416,7 +416,7 @@ void NodeState::receiveParam(Edge& edge, const Message& m) {
     }
   }
   // A flush (an edit) may have cleared the mark already: release the sender once.
-  if (edge.counted() && edge.unread.exchange(false, std::memory_order_acq_rel)) edge.from->unblock(1);
+  if (counted && edge.counted() && edge.unread.exchange(false, std::memory_order_acq_rel)) edge.from->unblock(1);
 }
 
 void NodeState::runSetup() {

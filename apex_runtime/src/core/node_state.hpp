@@ -179,7 +179,9 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void runSlot(int slot);
   /** Node::downstreamChanged(); a throw is the node's error. */
   void runDownstreamChanged();
-  void receiveParam(Edge& edge, const Message& m);
+  /** Applies a value that came into a parameter (on its group's thread); `counted`: the mail that
+   *  releases the sender (a slot's value sent behind an unread one is not). */
+  void receiveParam(Edge& edge, const Message& m, bool counted = true);
   /** The node set its own parameter (Node::updateParam); a pending request stays and wins. */
   void updateParam(int index, ParamValue v);
   /** Sends an event; from process() or a slot handler it waits until the messages published
