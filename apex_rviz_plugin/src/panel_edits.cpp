@@ -51,17 +51,29 @@ void PanelWidget::pasted(const Pasted& p) {
   if (!p.error.empty()) editor_->showMessage(QString::fromStdString(p.error), true);
 }
 
+std::vector<Box> PanelWidget::takenPlaces() const {
+  const auto shown = editor_->scene()->boxes();
+  std::vector<Box> taken;
+  for (const auto& [n, box] : shown)
+    if (!placing_.count(n)) taken.push_back(box);
+  // Sent a place a moment ago: taken where it goes, not where it shows now (a ~graph between a
+  // node's add_node and its set_ui shows it without a place), and at least as big as it shows.
+  for (const auto& [n, box] : placing_) {
+    Box b = box;
+    if (const auto s = shown.find(n); s != shown.end())
+      b.width = std::max(b.width, s->second.width), b.height = std::max(b.height, s->second.height);
+    taken.push_back(b);
+  }
+  return taken;
+}
+
 std::pair<std::string, Box> PanelWidget::placeNew(const std::string& type, QPointF at, bool left_of) {
   const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
   std::set<std::string> sent;  // added a moment ago, not shown yet: their names are taken too
   for (const auto& [n, box] : placing_) sent.insert(n);
   const std::string name = model_.freshName(type, inside, sent);
   const std::string path = inside.empty() ? name : inside + "/" + name;
-  const auto shown = editor_->scene()->boxes();
-  std::vector<Box> taken;
-  for (const auto& [n, box] : shown) taken.push_back(box);
-  for (const auto& [n, box] : placing_)  // added a moment ago, not shown yet: their places are taken too
-    if (!shown.count(n)) taken.push_back(box);
+  const std::vector<Box> taken = takenPlaces();
   Box wanted = typeBox(type);  // as a new node of the type is shown
   wanted.x = left_of ? at.x() - wanted.width : at.x(), wanted.y = at.y();
   const Box free = freePlace(wanted, taken);  // on no other
@@ -131,9 +143,7 @@ void PanelWidget::onPasteRequested(QPointF at) {
       group.width = std::max(group.width, x + NodeItem::kMinWidth - at.x());
       group.height = std::max(group.height, y + 150 - at.y());
     }
-  std::vector<Box> taken;
-  for (const auto& [n, box] : editor_->scene()->boxes()) taken.push_back(box);
-  const Box free = freePlace(group, taken);  // not on top of what is there
+  const Box free = freePlace(group, takenPlaces());  // not on top of what is there
   pasted(free.x == at.x() && free.y == at.y() ? p : model_.paste(text, level, free.x, free.y));
 }
 

@@ -357,6 +357,36 @@ TEST_F(PanelWidgetTest, NewEmptiesTheGraphAndStartsAFreshHistory) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().empty(); }, kWaitMs));
 }
 
+TEST_F(PanelWidgetTest, ANodeShownBeforeItsPlaceIsSetStillHoldsThatPlaceForTheNextOne) {
+  // A new node is add_node, then set_ui. On a loaded machine a ~graph comes between the two and
+  // shows the node without its place for a moment: a node added then went onto the place the
+  // first one was sent to (clean CI: "bag_reader_1 on counter_1"). That moment, made certain:
+  emptyGraph();
+  addByKeyboard("Clock", "clock_1");
+  waitPlaced("clock_1");
+  apex::ListNodeTypes types;
+  ASSERT_TRUE(ros::service::call("/apex/list_node_types", types));
+  const auto counter = std::find_if(types.response.types.begin(), types.response.types.end(),
+                                    [](const apex::NodeTypeInfo& t) { return t.id == "apex_nodes/Counter"; });
+  ASSERT_NE(counter, types.response.types.end());
+
+  search->setFocus();
+  search->selectAll();
+  QTest::keyClicks(search, "Counter");
+  QTest::keyClick(search, Qt::Key_Return);  // its add_node and set_ui on their way; no event handled yet
+  apex::GraphState between = panel.model().graph();  // as the runtime shows it right after the add_node
+  between.revision += 1;
+  between.nodes.push_back(GraphModel::newNode(*counter, "counter_1"));
+  emit const_cast<RuntimeLink&>(panel.link()).graphReceived(between);
+  ASSERT_TRUE(panel.editor()->scene()->node("counter_1"));
+
+  addByKeyboard("BagReader", "bag_reader_1");
+  waitPlaced("counter_1");
+  waitPlaced("bag_reader_1");
+  EXPECT_EQ(overlapping(*panel.editor()->scene()), "");
+  emptyGraph();
+}
+
 TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestUndoably) {
   // A loop through services, as a script would make it: the bag's stamps, scaled, averaged per
   // pass; the Optimizer is what the panel adds.

@@ -130,6 +130,8 @@ class PanelWidget : public QWidget {
   /** A path for a new node of `type` in the subgraph shown, and a free place for its box with its
    *  top-left corner near `at` (its top-right one if `left_of`); reserved until the graph shows it. */
   std::pair<std::string, Box> placeNew(const std::string& type, QPointF at, bool left_of = false);
+  /** The boxes a new one must not lie on: those shown, and those sent a place not shown there yet. */
+  std::vector<Box> takenPlaces() const;
   void onRemoveRequested(const QString& node);
   void onGroupIntoSubgraphRequested(const QStringList& nodes);
   void onUngroupRequested(const QString& subgraph);
