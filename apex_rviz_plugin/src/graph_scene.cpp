@@ -67,7 +67,11 @@ NodeItem* GraphScene::node(const std::string& name) const {
 
 void GraphScene::show(const GraphModel& model) {
   model_ = &model;
-  endDrag();
+  // A link being dragged goes on through any number of graphs shown (a playing bag changes the
+  // graph ten times a second): its port is found again by name below, since a box may be rebuilt.
+  std::optional<PortKey> dragging;
+  if (drag_from_) dragging = PortKey{drag_from_->node()->info().name, drag_from_->port().name, drag_from_->isSource()};
+  drag_from_ = nullptr;
   for (auto* c : connections_) delete c;  // first: they point at ports that may be rebuilt
   connections_.clear();
   auto shown = [this](const std::string& name) {  // a node of the level shown
@@ -76,7 +80,10 @@ void GraphScene::show(const GraphModel& model) {
   };
   bool level_exists = level_.empty();
   for (const auto& n : model.graph().nodes) level_exists = level_exists || (n.name == level_ && !n.subgraph.empty());
-  if (!level_exists) return setLevel("");  // the subgraph shown is gone (removed, or a Load)
+  if (!level_exists) {  // the subgraph shown is gone (removed, or a Load)
+    resumeDrag(std::nullopt);
+    return setLevel("");
+  }
   std::set<std::string> seen;
   for (const auto& n : model.graph().nodes) {
     if (!shown(n.name)) continue;
@@ -119,6 +126,14 @@ void GraphScene::show(const GraphModel& model) {
     connections_.push_back(new ConnectionItem(c, a, b));
     addItem(connections_.back());
   }
+  resumeDrag(dragging);
+}
+
+void GraphScene::resumeDrag(const std::optional<PortKey>& from) {
+  NodeItem* item = from ? node(from->node) : nullptr;
+  drag_from_ = item ? item->port(from->port, from->source) : nullptr;
+  if (drag_from_) return markPorts();  // boxes rebuilt or new: their ports marked again
+  endDrag();  // the port it started from is gone: no link to make
 }
 
 std::map<std::string, Box> GraphScene::boxes() const {
@@ -256,6 +271,11 @@ void GraphScene::beginConnect(PortItem* from) {
   drag_from_ = from;
   drag_line_ = addPath(QPainterPath(), QPen(QColor(255, 255, 255), 2, Qt::DotLine));
   drag_line_->setZValue(5);
+  markPorts();
+}
+
+void GraphScene::markPorts() {
+  PortItem* from = drag_from_;
   const std::string node = from->node()->info().name, port = from->port().name;
   for (const auto& [name, item] : nodes_) {
     for (PortItem* p : item->ports()) {
@@ -302,8 +322,8 @@ void GraphScene::finishConnect(PortItem* target, QGraphicsSceneMouseEvent* e) {
 }
 
 void GraphScene::endDrag() {
-  if (!drag_from_) return;
   drag_from_ = nullptr;
+  if (!drag_line_) return;  // no drag
   delete drag_line_;
   drag_line_ = nullptr;
   for (const auto& [name, item] : nodes_)

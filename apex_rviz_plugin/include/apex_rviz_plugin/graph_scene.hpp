@@ -12,6 +12,7 @@
 #include <apex/RuntimeStatus.h>
 
 #include <map>
+#include <optional>
 
 #include "apex_rviz_plugin/box_view.hpp"
 #include "apex_rviz_plugin/graph_model.hpp"
@@ -266,6 +267,15 @@ class GraphScene : public QGraphicsScene {
   /** The dragged link let go at `e` on port `target` (nullptr: none): connected if the rules allow. */
   void finishConnect(PortItem* target, QGraphicsSceneMouseEvent* e);
   void endDrag();
+  /** A port by name: what a link being dragged started from, across graphs shown. */
+  struct PortKey {
+    std::string node, port;
+    bool source = false;
+  };
+  /** After a graph is shown: the drag goes on from `from`'s port as now shown, or ends if it is gone. */
+  void resumeDrag(const std::optional<PortKey>& from);
+  /** Marks each port as accepting or refusing the link being dragged from drag_from_. */
+  void markPorts();
 
   const GraphModel* model_ = nullptr;
   std::string level_;
