@@ -33,10 +33,15 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   connect(&link_, &RuntimeLink::answerOverdue, this, [this](const QString& text) { editor_->showConnection(true, text); });
   connect(&link_, &RuntimeLink::connectionChanged, this, [this](bool up, const QString& text) {
     editor_->showConnection(up, text);
-    if (!up) model_.reset(), watched_.clear(), previewing_.clear(), forgetHistory();  // a runtime that comes back starts anew
-    if (up) refreshTypes(), editor_->fitNextGraph(), untangle_ = true;
-    if (up) askRecovery();
-    else recovery_->withdraw();
+    if (!up) return forgetRuntime(), recovery_->withdraw();  // a runtime that comes back starts anew
+    meetRuntime();
+  });
+  // Killed, or stuck: said, and what is shown stays (a stuck one may speak again, the same runtime).
+  connect(&link_, &RuntimeLink::silenceChanged, this,
+          [this](bool silent, const QString& text) { editor_->showConnection(!silent, text); });
+  connect(&link_, &RuntimeLink::runtimeReplaced, this, [this] {  // killed and started again, between two heartbeats
+    forgetRuntime();
+    meetRuntime();
   });
   connectEditor();
 }
@@ -312,12 +317,24 @@ void PanelWidget::report(bool ok, const std::string& message, const QString& wha
   editor_->showMessage(ok ? what : what + " refused: " + QString::fromStdString(message), !ok);
 }
 
+void PanelWidget::forgetRuntime() { model_.reset(), watched_.clear(), previewing_.clear(), forgetHistory(); }
+
+void PanelWidget::meetRuntime() {
+  refreshTypes(), editor_->fitNextGraph(), untangle_ = true;
+  askRecovery();  // a copy its previous run left: the bar at once
+  // Its graph as it is now: the latched ~graph may have come before this (and no other until it changes).
+  link_.runThenRead({}, [this](bool, const std::string&, const apex::GraphState& g) {
+    if (g.revision > 0) onGraph(g);
+  });
+}
+
 void PanelWidget::onGraph(const apex::GraphState& graph) {
   if (!model_.update(graph)) {
     if (graph.revision >= model_.graph().revision) return;
     model_.reset();  // older than what is shown: a restarted runtime
     forgetHistory();
     model_.update(graph);
+    askRecovery();
   }
   editor_->showGraph(model_);
   dropRedoIfEditedElsewhere();

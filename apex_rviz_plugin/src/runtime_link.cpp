@@ -109,7 +109,7 @@ RuntimeLink::RuntimeLink(QObject* parent)
     : QObject(parent), owner_(std::make_shared<Owner>()), jobs_(std::make_unique<JobThread>()) {
   owner_->link = this;
   connect(&watchdog_, &QTimer::timeout, this, &RuntimeLink::checkConnection);
-  watchdog_.start(500);
+  watchdog_.start(250);
 }
 
 RuntimeLink::~RuntimeLink() {
@@ -159,28 +159,59 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
     deliver(gen, [this, g] { emit graphReceived(*g); });
   });
   status_sub_ = nh_->subscribe<apex::RuntimeStatus>(service("status"), 1, [this, gen](const apex::RuntimeStatus::ConstPtr& s) {
-    deliver(gen, [this, s] { emit statusReceived(*s); });
+    deliver(gen, [this, s] {
+      heard(*s);
+      emit statusReceived(*s);
+    });
   });
   spinner_->start();
   connected_ = false;
+  heard_ = {}, run_started_ = ros::Time(), silent_ = false;
   emit connectionChanged(false, QString("waiting for the runtime at %1").arg(QString::fromStdString(ns_)));
   return true;
+}
+
+void RuntimeLink::heard(const apex::RuntimeStatus& status) {
+  heard_ = std::chrono::steady_clock::now();
+  const bool replaced = !run_started_.isZero() && !status.started.isZero() && status.started != run_started_;
+  run_started_ = status.started;
+  if (replaced) emit runtimeReplaced();
+  if (silent_) checkConnection();  // it speaks again: said at once
 }
 
 void RuntimeLink::checkConnection() {
   if (!nh_) return;
   const bool up = graph_sub_.getNumPublishers() > 0;
-  const double waiting = jobs_->busyFor();
   const QString ns = QString::fromStdString(ns_);
-  if (up && connected_ && (waiting > 1.0 || overdue_)) {  // slow: said, and the panel goes on
+  if (up != connected_) {
+    connected_ = up;
+    silent_ = false;
+    heard_ = {};  // its heartbeat is waited for anew
+    emit connectionChanged(
+        up, up ? QString("connected to %1").arg(ns) : QString("the runtime at %1 is gone; reconnecting when it is back").arg(ns));
+    return;
+  }
+  if (!up) return;
+  // A killed runtime leaves its topics registered (and roscpp keeps trying its links): only its
+  // heartbeat tells. One that never sent a ~status (an older one) is taken at its topics' word.
+  const double quiet = heard_ == std::chrono::steady_clock::time_point{}
+                           ? 0.0
+                           : std::chrono::duration<double>(std::chrono::steady_clock::now() - heard_).count();
+  const bool silent = quiet > kSilence;
+  if (silent != silent_) {
+    silent_ = silent;
+    overdue_ = false;
+    emit silenceChanged(
+        silent, silent ? QString("the runtime at %1 is gone or stuck: no word from it for %2 s").arg(ns).arg(quiet, 0, 'f', 1)
+                       : QString("connected to %1").arg(ns));
+  }
+  if (silent_) return;
+  const double waiting = jobs_->busyFor();
+  if (waiting > 1.0 || overdue_) {  // slow: said, and the panel goes on
     overdue_ = waiting > 1.0;
     emit answerOverdue(overdue_ ? QString("connected to %1; no answer for %2 s").arg(ns).arg(waiting, 0, 'f', 0)
                                 : QString("connected to %1").arg(ns));
   }
-  if (up == connected_) return;
-  connected_ = up;
-  emit connectionChanged(
-      up, up ? QString("connected to %1").arg(ns) : QString("the runtime at %1 is gone; reconnecting when it is back").arg(ns));
 }
 
 void RuntimeLink::run(std::vector<Call> calls, Done done) {

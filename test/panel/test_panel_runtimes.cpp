@@ -1,5 +1,6 @@
 // Panel tests with runtimes of their own: one that goes away and comes back, a
 // slow one, a hung one, two at once (copy in one, paste in the other), and many calls at once.
+#include "apex_rviz_plugin/recovery_bar.hpp"
 #include "panel_test_support.hpp"
 
 namespace panel_test {
@@ -7,25 +8,30 @@ namespace {
 
 class OwnRuntime {
  public:
-  explicit OwnRuntime(const char* name) : name_(name) {}
+  /** `ros_home`: its $ROS_HOME (where it keeps its recovery copy); "" for the test's. */
+  explicit OwnRuntime(const char* name, std::string ros_home = "") : name_(name), ros_home_(std::move(ros_home)) {}
   ~OwnRuntime() { stop(); }
   void start() {
     pid_ = fork();
     if (pid_ == 0) {
+      if (!ros_home_.empty()) setenv("ROS_HOME", ros_home_.c_str(), 1);
       const std::string arg = std::string("__name:=") + name_;
       execlp("rosrun", "rosrun", "apex", "apex_runtime_node", arg.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
   }
-  void stop() {
+  void stop(int signal = SIGINT) {
     if (pid_ <= 0) return;
-    kill(pid_, SIGINT);
+    kill(pid_, signal);
     waitpid(pid_, nullptr, 0);
     pid_ = -1;
   }
+  /** kill -9 of rosrun's runtime (rosrun execs it: the same process): no clean stop, nothing unregistered. */
+  void kill9() { stop(SIGKILL); }
 
  private:
   const char* name_;
+  std::string ros_home_;
   pid_t pid_ = -1;
 };
 
@@ -57,6 +63,55 @@ TEST(PanelWidgetReconnect, SaysWhenTheRuntimeIsGoneAndPicksItUpWhenItIsBack) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph(); }, kWaitMs))
       << status->text().toStdString();
   EXPECT_GT(panel.nodeTypeCount(), 0);
+}
+
+TEST(PanelWidgetReconnect, AKilledRuntimeIsSaidGoneAtOnceAndTheNextOneOffersWhatItLeftUnsaved) {
+  // kill -9 leaves a runtime's topics registered and roscpp retrying its links: the panel said
+  // "connected" for 15 s, and after a restart showed an empty graph and no Restore bar until rviz
+  // was restarted. Its heartbeat (~status, twice a second) tells it now; a new run, its stamp.
+  const std::string home = "/tmp/apex_panel_kill_test_" + std::to_string(getpid());
+  std::filesystem::remove_all(home);
+  const std::string copy = home + "/apex/recovery/apex_k.yaml";
+  OwnRuntime runtime("apex_k", home);
+  runtime.start();
+  PanelWidget panel;
+  panel.show();
+  panel.setNamespace("/apex_k");
+  auto* status = panel.editor()->findChild<QLabel*>("connection");
+  auto* bar = panel.findChild<RecoveryBar*>("recovery");
+  ASSERT_TRUE(status && bar);
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return panel.link().connected() && panel.model().hasGraph() && panel.nodeTypeCount() > 0; }, kWaitMs))
+      << status->text().toStdString();
+  apex::AddNode add;  // an edit nobody saved: the runtime keeps a copy of it
+  add.request.type = "apex_nodes/Clock", add.request.name = "unsaved_clock";
+  ASSERT_TRUE(ros::service::call("/apex_k/add_node", add) && add.response.success) << add.response.message;
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return std::filesystem::exists(copy) && panel.editor()->scene()->node("unsaved_clock"); }, kWaitMs))
+      << "no recovery copy at " << copy;
+
+  runtime.kill9();
+  QElapsedTimer clock;
+  clock.start();
+  // a bound far above the heartbeat's (0.5 s, said after 1.2 s) and below what roscpp alone took (15 s)
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.link().connected(); }, 8000))
+      << "8 s after kill -9: " << status->text().toStdString();
+  std::printf("said gone %lld ms after kill -9: %s\n", static_cast<long long>(clock.elapsed()),
+              status->text().toStdString().c_str());
+  EXPECT_TRUE(status->text().contains("gone or stuck")) << status->text().toStdString();
+  EXPECT_TRUE(panel.editor()->scene()->node("unsaved_clock")) << "what was shown went with the runtime's silence";
+
+  runtime.start();
+  clock.restart();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return bar->isVisible(); }, kWaitMs))
+      << "no Restore bar for the new runtime; the panel says: " << status->text().toStdString();
+  std::printf("Restore offered %lld ms after the new runtime was started\n", static_cast<long long>(clock.elapsed()));
+  ASSERT_TRUE(
+      QTest::qWaitFor([&] { return panel.link().connected() && !panel.editor()->scene()->node("unsaved_clock"); }, kWaitMs))
+      << "the new runtime's (empty) graph is not shown: " << status->text().toStdString();
+  EXPECT_TRUE(status->text().contains("connected")) << status->text().toStdString();
+  runtime.stop();
+  std::filesystem::remove_all(home);
 }
 
 /** A stand-in runtime in `ns`: ~graph with one Scale node 'n', list_node_types (no types),
@@ -129,7 +184,9 @@ TEST(PanelWidgetSlowRuntime, TheGuiThreadNeverWaitsAndSaysTheRuntimeIsSlow) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return slow.calls == 3 && panel.editsPending() == 0; }, kWaitMs));
   ASSERT_TRUE(QTest::qWaitFor([&] { return !status->text().contains("no answer"); }, kWaitMs)) << status->text().toStdString();
   ticker.stop();
-  EXPECT_LT(longest, 50) << "the GUI thread waited " << longest << " ms";
+  // A GUI thread that waited for an answer would miss ticks for the 1.5 s of it; a loaded machine
+  // delays ticks too, by far less (the figure for a quiet machine, < 50 ms, is no test's to assert).
+  EXPECT_LT(longest, 1000) << "the GUI thread waited " << longest << " ms";
 
   // an edit on its way when the user turns to another runtime: its late answer is not the new one's
   emit factor->edited("factor", "5");
@@ -195,6 +252,10 @@ class HungRuntime {
     std::lock_guard<std::mutex> lock(mutex_);
     return called_;
   }
+  bool releasedAlready() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return released_;
+  }
 
  private:
   std::mutex mutex_;
@@ -227,11 +288,18 @@ TEST(PanelWidgetHungRuntime, AnotherRuntimeIsServedAndClosingThePanelDoesNotWait
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel->link().connected() && panel->editor()->scene()->node("n"); }, kWaitMs));
   emit panel->editor()->scene()->node("n")->editor("factor")->edited("factor", "3");
   ASSERT_TRUE(QTest::qWaitFor([&] { return hung.called() == 2; }, kWaitMs));
-  QElapsedTimer clock;
-  clock.start();
+  // A panel that waited for the hung call would never close: a watchdog lets the call go after
+  // 20 s (only a hang takes that long) and says so.
+  std::atomic<bool> waited{false};
+  std::thread watchdog([&] {
+    for (int i = 0; i < 2000 && !hung.releasedAlready(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (!hung.releasedAlready()) waited = true, hung.release();
+  });
   panel.reset();
-  EXPECT_LT(clock.elapsed(), 1000) << "closing the panel waited for the hung runtime";
+  const bool closed_first = !hung.releasedAlready();
   hung.release();  // the calls end; their answers go nowhere
+  watchdog.join();
+  EXPECT_TRUE(closed_first && !waited) << "closing the panel waited for the hung runtime";
 }
 
 // Two panels' calls, while one-off calls are made in the same process: every panel call is

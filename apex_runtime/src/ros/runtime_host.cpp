@@ -74,6 +74,7 @@ struct RuntimeHost::Impl {
   std::unique_ptr<MasterWatch> master_watch;  // last made, first gone
   std::mutex publish_mutex;
   std::uint64_t published_revision = ~0ull;
+  const ros::Time started = ros::Time::now();  // in every ~status: a client tells a restarted runtime by it
 
   Impl(ros::NodeHandle n, ros::NodeHandle p) : nh(n), pnh(p), graph(NodeRegistry()), inspection(pnh), mirror(pnh) {
     graph.setHost(std::make_shared<RosHost>(nh, pnh));  // nodes' topics: in our namespace, with our remappings
@@ -384,7 +385,10 @@ struct RuntimeHost::Impl {
       recovery->tick(graph.revision(), [this] { return snapshot(); });
     });
     status_timer = pnh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
-      if (status_pub.getNumSubscribers() > 0) status_pub.publish(toStatus(graph));
+      if (status_pub.getNumSubscribers() == 0) return;
+      RuntimeStatus status = toStatus(graph);
+      status.started = started;
+      status_pub.publish(status);
     });
   }
 

@@ -107,6 +107,10 @@ class PanelWidget : public QWidget {
   /** The places the set_ui calls among `calls` send nodes to, taken until the graph shows them there. */
   void reservePlaces(const std::vector<Call>& calls);
   void onGraph(const apex::GraphState& graph);
+  /** The runtime is gone or another one came: its graph, history, watches and previews forgotten. */
+  void forgetRuntime();
+  /** A runtime to show (connected, or started anew): its types, its graph, a copy its last run left. */
+  void meetRuntime();
   void onInspect(const QString& node, const QString& port);
   /** The renames among `calls`, about to be sent, as renameSent. */
   void announceRenames(const std::vector<Call>& calls);

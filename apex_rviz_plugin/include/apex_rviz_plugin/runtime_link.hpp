@@ -18,6 +18,7 @@
 #include <ros/ros.h>
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -45,7 +46,8 @@ class RuntimeLink : public QObject {
   /** @brief The runtime to talk to, e.g. "/apex"; subscribes anew. False if it is the current one. */
   bool setNamespace(const std::string& ns);
   const std::string& ns() const { return ns_; }
-  bool connected() const { return connected_; }
+  /** @brief Its topics are there and it speaks (its ~status comes). */
+  bool connected() const { return connected_ && !silent_; }
 
   /** @brief Makes the calls in order, stopping at the first refused one; `done` gets its message. */
   void run(std::vector<Call> calls, Done done);
@@ -95,6 +97,12 @@ class RuntimeLink : public QObject {
   void statusReceived(const apex::RuntimeStatus& status);
   /** The runtime appeared (up) or is gone; `text` says which, for the user. */
   void connectionChanged(bool up, const QString& text);
+  /** The runtime sent no ~status (its heartbeat, twice a second) for over a second: killed or stuck
+   *  (a killed process leaves its topics registered), or it speaks again; `text` says which. */
+  void silenceChanged(bool silent, const QString& text);
+  /** Another runtime answers at the namespace (its ~status says it started anew): what the panel
+   *  knew of the one before (its graph, the history, previews) no longer applies. */
+  void runtimeReplaced();
   /** A call has waited more than a second for its answer (or the answer came): what to show. */
   void answerOverdue(const QString& text);
   void scalarReceived(const QString& node, const QString& port, const QString& text);
@@ -130,6 +138,13 @@ class RuntimeLink : public QObject {
   std::uint64_t generation_ = 0;  // counts namespaces: GUI thread only
   bool connected_ = false;
   bool overdue_ = false;  // a call has waited for its answer more than a second
+  // The heartbeat: when the last ~status came (none yet: the epoch), and the run it was from.
+  std::chrono::steady_clock::time_point heard_{};
+  ros::Time run_started_;
+  bool silent_ = false;  // no ~status for kSilence
+  static constexpr double kSilence = 1.2;  // seconds: ~status comes every 0.5 s
+  /** A ~status came: the runtime speaks; a new run is another runtime. */
+  void heard(const apex::RuntimeStatus& status);
   ros::CallbackQueue queue_;
   std::unique_ptr<ros::NodeHandle> nh_;
   std::unique_ptr<ros::AsyncSpinner> spinner_;
