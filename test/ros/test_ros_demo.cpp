@@ -140,7 +140,9 @@ TEST(Demo, EveryFrameProcessedOverlayExactCountsMatchTheGroundTruth) {
   EXPECT_EQ(counts.size(), truth.size());
   ASSERT_GE(previews.size(), 2u);  // while 40 overlays went out whole
   const double seconds = (previews.back().first - previews.front().first).toSec();
-  EXPECT_LE(previews.size(), 2 + 5 * seconds * 1.2) << previews.size() << " previews in " << seconds << " s";
+  // at most ~5 a second (unthrottled: one per overlay, 10 a second); a second of slack for arrival
+  // times a loaded test process compresses
+  EXPECT_LE(previews.size(), 2 + 5 * (seconds + 1) * 1.2) << previews.size() << " previews in " << seconds << " s";
   for (const auto& [at, img] : previews) {
     EXPECT_EQ(img->width, 160u);  // 640 wide, scaled down, aspect kept
     EXPECT_EQ(img->height, 120u);

@@ -80,7 +80,10 @@ Points pointsOf(const Cloud& cloud) {
 const std::vector<std::pair<std::string, std::string>> kVoxelGrid{{"nodelet", "pcl/VoxelGrid"},
                                                                   {"inputs", "[input:sensor_msgs/PointCloud2]"},
                                                                   {"outputs", "[output:sensor_msgs/PointCloud2]"},
-                                                                  {"config", "\"{leaf_size: 0.1, filter_field_name: ''}\""}};
+                                                                  {"config", "\"{leaf_size: 0.1, filter_field_name: ''}\""},
+                                                                  {"timeout", "10"}};
+/** A frame's answer is waited for up to 10 s (the node's default, 1 s, a loaded machine can miss). */
+const std::vector<std::pair<std::string, std::string>> kPatient{{"timeout", "10"}};
 
 /** APEX's VoxelGrid on `cloud` with `leaf`. */
 Points apexVoxelGrid(const std::shared_ptr<const Cloud>& cloud, double leaf) {
@@ -125,7 +128,8 @@ std::vector<std::string> nodeletTopics() {
 }
 
 TEST(NodeletHost, ImageProcRectifyEqualsApexsRectifyAndKeepsTheFramesHeader) {
-  NodeHarness host("apex_nodes/NodeletHost", {"image_mono", "camera_info"}, "image_rect");  // its defaults: image_proc/rectify
+  // its defaults: image_proc/rectify
+  NodeHarness host("apex_nodes/NodeletHost", {"image_mono", "camera_info"}, "image_rect", kPatient);
   NodeHarness apex("apex_nodes/Rectify", {"image", "camera_info"}, "image");
   for (int frame = 0; frame < 3; ++frame) {
     const auto image = leftImage(ros::Time(42 + frame, 7));
@@ -173,7 +177,9 @@ TEST(NodeletSource, SendsWhatTheNodeletPublishesFromATopic) {
   msg.header = cloud->header;
   ros::NodeHandle nh;
   auto pub = nh.advertise<sensor_msgs::PointCloud2>("/nodelet_host_test/points", 1);
-  for (int i = 0; i < 200 && !sink->waitFor(1, 0.05); ++i) pub.publish(msg);  // until the nodelet has subscribed
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);  // bounds a hang only
+  while (!sink->waitFor(1, 0.05) && std::chrono::steady_clock::now() < until)
+    pub.publish(msg);  // until the nodelet has subscribed
   ASSERT_TRUE(sink->waitFor(1, 0.05)) << "the source sent nothing: " << source.error();
   const Message got = sink->messages().front();
   ASSERT_TRUE(got.as<Cloud>()) << source.error();
@@ -198,7 +204,8 @@ TEST(NodeletHost, AFrameWithoutAnAnswerIsNothingAndAnErrorNamingTheNodeletAndThe
   EXPECT_THAT(host.error(), HasSubstr("did not answer within"));
   EXPECT_THAT(host.error(), HasSubstr("no 'image_rect'"));
 
-  const auto next = leftImage(ros::Time(43, 0));  // the next frame is answered
+  host.set("timeout", "10");  // the next frame is answered (a deadline that only bounds a hang: a loaded machine is slow)
+  const auto next = leftImage(ros::Time(43, 0));
   const Message got = host.run(cameraFrame(next, leftModel(*next)));
   ASSERT_TRUE(got.as<Image>()) << host.error();
   EXPECT_EQ(got.as<Image>()->header, next->header);
@@ -209,7 +216,7 @@ TEST(NodeletHost, RemovingTheNodeLeavesNoTopicNoParameterAndNoThread) {
   const auto image = leftImage();
   auto runBoth = [&](std::vector<std::string>* loaded) {
     NodeHarness voxels("apex_nodes/NodeletHost", {"input"}, "output", kVoxelGrid);
-    NodeHarness rectify("apex_nodes/NodeletHost", {"image_mono", "camera_info"}, "image_rect");
+    NodeHarness rectify("apex_nodes/NodeletHost", {"image_mono", "camera_info"}, "image_rect", kPatient);
     EXPECT_TRUE(voxels.run(cloud).as<Cloud>()) << voxels.error();
     EXPECT_TRUE(rectify.run(cameraFrame(image, leftModel(*image))).as<Image>()) << rectify.error();
     if (loaded) *loaded = nodeletTopics();
