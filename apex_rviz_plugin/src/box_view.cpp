@@ -1,5 +1,8 @@
 #include "apex_rviz_plugin/box_view.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -73,6 +76,34 @@ std::string withUiKey(const std::string& ui_text, const std::string& key, const 
 
 std::string withPosition(const std::string& ui_text, double x, double y) {
   return withUiKey(withUiKey(ui_text, "x", std::to_string(static_cast<int>(x))), "y", std::to_string(static_cast<int>(y)));
+}
+
+std::string scalarText(double v) {
+  char text[64];
+  const double a = std::fabs(v);
+  if (std::isfinite(v) && a >= 1e5 && a < 1e15) {
+    std::snprintf(text, sizeof text, "%.3f", v);
+    std::string t = text;
+    while (t.back() == '0') t.pop_back();
+    if (t.back() == '.') t.pop_back();
+    return t;
+  }
+  std::snprintf(text, sizeof text, "%.6g", v);
+  return text;
+}
+
+std::string kindLine(const std::string& type, const std::string& thread_group) {
+  return thread_group.empty() || thread_group == "default" ? type : type + "  · group " + thread_group;
+}
+
+std::string playerPlace(long frame, long last, bool last_known, double time_s, bool playing, bool loops) {
+  std::string out = "frame " + std::to_string(frame);  // as the `frame` parameter counts: from 0
+  if (last_known) out += " / " + std::to_string(last + 1);
+  char time[48];
+  std::snprintf(time, sizeof time, " · %.2f s", time_s);
+  out += time;
+  if (last_known && frame >= last && !loops) return "ended · " + out;  // the pass is over: its last frame held
+  return playing ? out : "held · " + out;
 }
 
 }  // namespace apex_rviz_plugin

@@ -172,8 +172,9 @@ void GraphScene::setLevel(const std::string& path) {
   connections_.clear();
   for (auto& [name, item] : nodes_) delete item;
   nodes_.clear();
-  emit levelChanged(QString::fromStdString(level_));
-  if (model_) show(*model_);
+  const std::string shown = level_;  // (`path` may be a name of a box just deleted)
+  if (model_) show(*model_);  // first: who follows the level (the editor's Fit) sees its boxes
+  if (level_ == shown) emit levelChanged(QString::fromStdString(level_));  // (else show went up: said there)
 }
 
 void GraphScene::mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) {

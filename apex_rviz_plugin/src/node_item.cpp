@@ -245,7 +245,7 @@ QString NodeItem::kindLine() const {
   if (!info_.subgraph.empty())  // a subgraph has no group of its own: its nodes do
     return QString::fromStdString("subgraph  " + (info_.subgraph == "inline" ? std::string("(inline)") : info_.subgraph) +
                                   "  · double-click to open");
-  return QString::fromStdString(info_.type + "  [" + (info_.thread_group.empty() ? "default" : info_.thread_group) + "]");
+  return QString::fromStdString(apex_rviz_plugin::kindLine(info_.type, info_.thread_group));
 }
 
 double NodeItem::wantedWidth(const QWidget* params) const {

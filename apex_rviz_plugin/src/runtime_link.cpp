@@ -1,5 +1,7 @@
 #include "apex_rviz_plugin/runtime_link.hpp"
 
+#include "apex_rviz_plugin/box_view.hpp"
+
 #include <apex/Control.h>
 #include <apex/FireSlot.h>
 #include <apex/GetGraph.h>
@@ -417,7 +419,7 @@ ros::Subscriber RuntimeLink::subscribeScalar(const std::string& topic, const std
         nh_->subscribe<std_msgs::Int32>(topic, 1, [show](const std_msgs::Int32::ConstPtr& m) { show(QString::number(m->data)); });
   else if (type == "std_msgs/Float64")
     sub = nh_->subscribe<std_msgs::Float64>(
-        topic, 1, [show](const std_msgs::Float64::ConstPtr& m) { show(QString::number(m->data, 'g', 6)); });
+        topic, 1, [show](const std_msgs::Float64::ConstPtr& m) { show(QString::fromStdString(scalarText(m->data))); });
   else if (type == "std_msgs/Bool")
     sub =
         nh_->subscribe<std_msgs::Bool>(topic, 1, [show](const std_msgs::Bool::ConstPtr& m) { show(m->data ? "true" : "false"); });

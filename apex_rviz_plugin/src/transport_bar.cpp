@@ -1,5 +1,7 @@
 #include "apex_rviz_plugin/transport_bar.hpp"
 
+#include "apex_rviz_plugin/box_view.hpp"
+
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QToolButton>
@@ -47,7 +49,10 @@ TransportBar::TransportBar(const apex::NodeInfo& node, QWidget* parent) : QWidge
   connect(button("◀", "previous frame"), &QToolButton::clicked, this, [this] { emit slotFired("previous"); });
   play_ = button("▶", "play");
   play_->setObjectName("play");
-  connect(play_, &QToolButton::clicked, this, [this] { emit parameterEdited("playing", playing_ ? "false" : "true"); });
+  connect(play_, &QToolButton::clicked, this, [this] {
+    if (ended_ && playing_) return emit slotFired("restart");  // from the first frame, again
+    emit parameterEdited("playing", playing_ ? "false" : "true");
+  });
   connect(button("▶|", "next frame"), &QToolButton::clicked, this, [this] { emit slotFired("next"); });
   row->addStretch(1);
   label_ = new QLabel;
@@ -61,13 +66,16 @@ void TransportBar::show(const apex::NodeInfo& node) {
   const apex::ParamInfo* frame = param(node, "frame");
   if (!playing || !frame) return;
   playing_ = playing->value == "true";
-  play_->setText(playing_ ? "❚❚" : "▶");
-  play_->setToolTip(playing_ ? "pause: hold this frame; every change downstream runs it again" : "play");
-  QString where = "frame " + QString::fromStdString(frame->value);
-  if (frame->max < 1e7) where += " / " + QString::number(static_cast<long>(frame->max) + 1);
-  if (const apex::ParamInfo* time = param(node, "time"))
-    where += " · " + QString::number(std::atof(time->value.c_str()), 'f', 2) + " s";
-  label_->setText(playing_ ? where : "held · " + where);
+  const apex::ParamInfo* time = param(node, "time");
+  const apex::ParamInfo* loop = param(node, "loop");
+  const std::string where = playerPlace(std::atol(frame->value.c_str()), static_cast<long>(frame->max), frame->max < 1e7,
+                                        time ? std::atof(time->value.c_str()) : 0.0, playing_, loop && loop->value == "true");
+  ended_ = where.rfind("ended", 0) == 0;
+  play_->setText(playing_ && !ended_ ? "❚❚" : "▶");
+  play_->setToolTip(ended_     ? "the bag's end: play it again from the first frame"
+                    : playing_ ? "pause: hold this frame; every change downstream runs it again"
+                               : "play");
+  label_->setText(QString::fromStdString(where));
 }
 
 QString TransportBar::text() const { return play_->text() + " " + label_->text(); }

@@ -132,6 +132,15 @@ inline std::string overlapping(const GraphScene& scene) {
   return out;
 }
 
+/** The boxes shown that do not lie whole in the view's visible part, as text; "" if none. */
+inline std::string outOfView(QGraphicsView* view, const GraphScene& scene) {
+  const QRectF seen = view->mapToScene(view->viewport()->rect()).boundingRect();
+  std::string out;
+  for (const auto& [name, b] : scene.boxes())
+    if (!seen.contains(QRectF(b.x, b.y, b.width, b.height))) out += name + " " + boxText(b) + "; ";
+  return out;
+}
+
 /** A mouse event as the window system would deliver it to the view. */
 inline void mouse(QGraphicsView* view, QEvent::Type type, QPointF scene_pos, Qt::MouseButtons held) {
   const QPoint at = view->mapFromScene(scene_pos);

@@ -73,6 +73,33 @@ TEST(BoxView, MetadataIsEditedKeyByKeyKeepingThePositionAndOtherKeys) {
   EXPECT_FALSE(BoxView::of("{expanded: [1]}").expanded);  // a value of another shape: the default
 }
 
+TEST(BoxView, AStampReadsWholeNotInExponentForm) {
+  // #48: a stamp on a box read "1.7e+09"
+  EXPECT_EQ(scalarText(1700000123.456789), "1700000123.457");
+  EXPECT_EQ(scalarText(123456.5), "123456.5");
+  EXPECT_EQ(scalarText(200000), "200000");
+  EXPECT_EQ(scalarText(12.3456789), "12.3457");
+  EXPECT_EQ(scalarText(-0.5), "-0.5");
+  EXPECT_EQ(scalarText(1e-7), "1e-07");  // where whole digits would say nothing
+  EXPECT_EQ(scalarText(3e20), "3e+20");
+}
+
+TEST(BoxView, TheHeaderNamesAThreadGroupOnlyWhenItIsNotTheDefault) {
+  // #48: "[default]" on every box read as "defaults"
+  EXPECT_EQ(kindLine("apex_nodes/Blur", "default"), "apex_nodes/Blur");
+  EXPECT_EQ(kindLine("apex_nodes/Blur", ""), "apex_nodes/Blur");
+  EXPECT_EQ(kindLine("apex_nodes/Blur", "vision"), "apex_nodes/Blur  · group vision");
+}
+
+TEST(BoxView, APlayerAtTheEndOfAPassThatDoesNotLoopSaysEnded) {
+  // #48: the end of a bag showed "frame 794 / 795" and a pause icon, no "ended"
+  EXPECT_EQ(playerPlace(794, 794, true, 79.4, true, false), "ended · frame 794 / 795 · 79.40 s");
+  EXPECT_EQ(playerPlace(794, 794, true, 79.4, true, true), "frame 794 / 795 · 79.40 s");  // a loop goes on
+  EXPECT_EQ(playerPlace(3, 794, true, 0.3, true, false), "frame 3 / 795 · 0.30 s");
+  EXPECT_EQ(playerPlace(3, 794, true, 0.3, false, false), "held · frame 3 / 795 · 0.30 s");
+  EXPECT_EQ(playerPlace(0, 0, false, 0, true, false), "frame 0 · 0.00 s");  // no bag yet: no end known
+}
+
 TEST(GraphModel, ExpandPinAndMoveAreEditsOfTheUiMetadataUndoneToItAsItWas) {
   apex::GraphState g;
   g.revision = 1;

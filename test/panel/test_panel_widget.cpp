@@ -153,11 +153,17 @@ TEST_F(PanelWidgetTest, GroupIntoASubgraphOpenItWithADoubleClickGoUpAndUndo) {
   ASSERT_TRUE(crumb("") && crumb("subgraph_1") && crumb("subgraph_1/subgraph_1"));
   EXPECT_TRUE(crumb("")->isVisible());
   EXPECT_FALSE(crumb("subgraph_1/subgraph_1")->isEnabled());  // where the view is
+  // each level is shown whole, wherever the view was (#48: an empty canvas until Fit, a box in a corner)
+  EXPECT_EQ(outOfView(view, *scene), "");
+  view->centerOn(5000, 5000);  // looked away, then up
   QTest::mouseClick(crumb("subgraph_1"), Qt::LeftButton);  // the middle one: one level up
   EXPECT_EQ(scene->level(), "subgraph_1");
   EXPECT_FALSE(crumb("subgraph_1/subgraph_1"));
+  EXPECT_EQ(outOfView(view, *scene), "");
+  view->centerOn(-5000, 5000);
   QTest::mouseClick(panel.editor()->findChild<QToolButton*>("up"), Qt::LeftButton);  // Up: the top
   EXPECT_EQ(scene->level(), "");
+  EXPECT_EQ(outOfView(view, *scene), "");
   EXPECT_FALSE(crumb("")->isVisible());  // the bar is hidden at the top
   // each level's boxes are made anew when it is shown: the ones to click on top again (the
   // grouped box may lie under print_1's: the group took clock_3's place)
@@ -236,6 +242,22 @@ TEST_F(PanelWidgetTest, APlayerHasATransportBar) {
   ASSERT_TRUE(
       QTest::qWaitFor([&] { return player->transport()->text() == "▶ held · frame 1 / 40 · 0.10 s"; }, kWaitMs))  // 0, 1, 2, 1
       << player->transport()->text().toStdString();
+  // Played to the end of a pass that does not loop: "ended", and play starts the bag again (#48:
+  // a pause icon and "frame 39 / 40" said nothing of an end).
+  ASSERT_TRUE(setParameter("bag_reader_1", "rate", "0.0"));
+  play = player->transport()->findChild<QToolButton*>("play");  // (the bar was made anew with the bag's ports)
+  QTest::mouseClick(play, Qt::LeftButton);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text().startsWith("▶ ended · frame 39 / 40"); }, kWaitMs))
+      << player->transport()->text().toStdString();
+  EXPECT_EQ(param(runtimeGraph(), "bag_reader_1", "frame"), "39");
+  ASSERT_TRUE(setParameter("bag_reader_1", "rate", "1.0"));  // (the pass again at its pace: 4 s, seen going)
+  play = player->transport()->findChild<QToolButton*>("play");
+  QTest::mouseClick(play, Qt::LeftButton);  // again, from the first frame, to the end
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !player->transport()->text().contains("ended"); }, kWaitMs))
+      << player->transport()->text().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return player->transport()->text().startsWith("▶ ended · frame 39 / 40"); }, kWaitMs))
+      << player->transport()->text().toStdString();
+  ASSERT_TRUE(setParameter("bag_reader_1", "playing", "false"));
   // The node's parameter box with its transport bar (docs/panel_transport.png).
   player->transport()->parentWidget()->grab().save(QString::fromStdString(g_shot).replace(".png", "_transport.png"));
 }

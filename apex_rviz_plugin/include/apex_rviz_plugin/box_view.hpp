@@ -40,6 +40,17 @@ struct BoxView {
   static bool collapsible(const apex::NodeInfo& node);
 };
 
+/** @brief A number as a box shows it: six significant digits, but a large one (a stamp, 1.7e9 s)
+ *  whole with up to three decimals, never in exponent form where it fits in 15 digits. */
+std::string scalarText(double v);
+/** @brief A box's second line: the node's type, and its thread group when it is not the default
+ *  one ("[default]" on every box read as "defaults"). */
+std::string kindLine(const std::string& type, const std::string& thread_group);
+/** @brief Where a player is: "frame F / N · T s" (F as its `frame` parameter counts, from 0; N
+ *  frames, when known), "ended · ..." on the last frame of a pass that does not loop (held there),
+ *  "held · ..." when paused. */
+std::string playerPlace(long frame, long last, bool last_known, double time_s, bool playing, bool loops);
+
 /** @brief The ui metadata with one key set to a YAML value, every other key kept (the position,
  *  another front end's keys); metadata that is not a map is replaced by a map. */
 std::string withUiKey(const std::string& ui_text, const std::string& key, const std::string& yaml_value);

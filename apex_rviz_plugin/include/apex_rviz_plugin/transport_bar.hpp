@@ -28,6 +28,7 @@ class TransportBar : public QWidget {
 
  private:
   QToolButton* play_;
+  bool ended_ = false;  // on the last frame of a pass that does not loop: play starts again
   QLabel* label_;
   bool playing_ = false;
 };
