@@ -244,8 +244,9 @@ TEST_F(Threads, AFastNodesParameterAndEventsDoNotStopASlowerGroup) {
   setLogSink(nullptr);
   EXPECT_TRUE(all) << "the slower group stopped: " << sink()->size() << " of 20 frames";
   EXPECT_GT(object<SlowSlot>(g, "worker")->runs, 0) << "of the events of " << fast << " firings";
-  for (const auto& n : g.nodeStats())
+  for (const auto& n : g.nodeStats()) {
     if (n.name == "quiet") EXPECT_FALSE(n.enabled);
+  }
   std::lock_guard<std::mutex> l(m);
   ASSERT_EQ(warnings.size(), 1u) << "one warning, for 'work' ('disable' is never dropped)";
   EXPECT_THAT(warnings.front(), ::testing::HasSubstr("node 'worker' slot 'work' runs slower than node 'fast' fires 'processed'"));

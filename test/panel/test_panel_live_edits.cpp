@@ -16,7 +16,7 @@ int liveDrag(PanelWidget& panel, QGraphicsView* view, QPointF from, QPointF to) 
     QTest::qWait(20);
     mouse(view, QEvent::MouseMove, from + (to - from) * (i / 10.0), Qt::LeftButton);
   }
-  QTest::qWaitFor([&] { return shown > 0; }, kWaitMs);
+  (void)QTest::qWaitFor([&] { return shown > 0; }, kWaitMs);  // (the caller asserts it)
   mouse(view, QEvent::MouseMove, to, Qt::LeftButton);
   mouse(view, QEvent::MouseButtonRelease, to, Qt::NoButton);
   QObject::disconnect(counting);

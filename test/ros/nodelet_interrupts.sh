@@ -2,7 +2,7 @@
 # The runtime as a nodelet, interrupted at random moments: N rounds of a manager, a `nodelet load`
 # of apex/Runtime with the demo graph, and SIGINT (what roslaunch sends) to the loader or to the
 # manager after 0 to 2 s (while the runtime loads, runs, or unloads). Counts what a robot's
-# operator would see: an abort (SIGABRT or SIGSEGV, a core), a process alive 2 s after its SIGINT
+# operator would see: an abort (SIGABRT or SIGSEGV, a core), a process alive 14 s after its SIGINT (roslaunch kills at 15)
 # (or after its manager went), a manager that no longer answers after a loader was stopped.
 # TOOLS: `apex` (the default: apex_nodelet_manager and apex_nodelet_load, as runtime.launch and the
 # README use them) or `nodelet` (Debian's `nodelet manager` and `nodelet load`: the manager crashes
@@ -114,7 +114,7 @@ elif crashed "$status"; then
 fi
 echo "$cycles_done loads and unloads in one manager: ${cycle_failure:-OK}"
 
-summary="$rounds_done rounds with ${tools}'s manager and loader: $aborts aborts, $lingering processes alive 2 s after they should have gone, $deaf managers deaf"
+summary="$rounds_done rounds with ${tools}'s manager and loader: $aborts aborts, $lingering processes alive 14 s after they should have gone, $deaf managers deaf"
 echo "$summary"
 for n in "${notes[@]+"${notes[@]}"}"; do echo "  $n"; done
 failure=""

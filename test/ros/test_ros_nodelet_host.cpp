@@ -169,6 +169,7 @@ TEST(NodeletSource, SendsWhatTheNodeletPublishesFromATopic) {
   const auto cloud = generatedCloud();
   auto params = kVoxelGrid;
   params.erase(params.begin() + 1);  // no inputs: its input is a topic
+  params.pop_back();  // nor a frame's timeout: it sends what the nodelet publishes, when it does
   params.push_back({"remap", "[\"input:=/nodelet_host_test/points\"]"});
   NodeHarness source("apex_nodes/NodeletSource", {}, "output", params);
   auto* sink = object<Collector>(source.graph(), "sink");
