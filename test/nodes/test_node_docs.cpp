@@ -14,7 +14,7 @@
 namespace {
 
 /** docs/nodes.md of the source tree this test was built from (APEX_SOURCE_DIR, from CMake: __FILE__
- *  is relative when ccache compiles it, its paths hashed relative to the source folder). */
+ *  is relative when ccache compiles it, its paths hashed relative to a folder above). */
 std::string docsPath() { return std::string(APEX_SOURCE_DIR) + "/docs/nodes.md"; }
 
 std::vector<std::string> lines(const std::string& text) {
