@@ -3,6 +3,8 @@
 // publish, a node sees the parameters its outputs feed, and reportError keeps what was sent.
 #include <gmock/gmock.h>
 
+#include <condition_variable>
+#include <mutex>
 #include <thread>
 
 #include "apex_test/test_nodes.hpp"
@@ -80,10 +82,18 @@ class Stall : public Node {
   static Manifest manifest() { return Manifest("holds its thread").slot("hold", &Stall::hold); }
   void process() override {}
   void hold() {
+    std::unique_lock<std::mutex> lock(m);
     held = true;
-    while (!go) std::this_thread::sleep_for(1ms);
+    cv.wait(lock, [this] { return go.load(); });
+  }
+  void letGo() {
+    std::lock_guard<std::mutex> lock(m);
+    go = true;
+    cv.notify_all();
   }
   std::atomic<bool> held{false}, go{false};
+  std::mutex m;
+  std::condition_variable cv;
 };
 
 /** Reports an error and still publishes. */
@@ -211,7 +221,7 @@ TEST(Sequences, ASlotSetsAParameterWhoseLastValueIsStillInTheMailOfABusyGroup) {
   g.start();
   auto* stall = object<Stall>(g, "stall");
   auto* marker = object<Stall>(g, "marker");
-  marker->go = true;
+  marker->letGo();
   ASSERT_TRUE(g.fireSlot("stall", "hold"));
   ASSERT_TRUE(waitUntil([&] { return stall->held.load(); }));  // group two applies nothing until let go
   ASSERT_TRUE(g.setParameter("set", "to", "5"));
@@ -220,7 +230,7 @@ TEST(Sequences, ASlotSetsAParameterWhoseLastValueIsStillInTheMailOfABusyGroup) {
   ASSERT_TRUE(g.fireSlot("set", "send"));
   ASSERT_TRUE(g.fireSlot("marker", "hold"));
   ASSERT_TRUE(waitUntil([&] { return marker->held.load(); }));  // group one has made both sends
-  stall->go = true;
+  stall->letGo();
   ASSERT_TRUE(g.waitIdle(kWait));
   EXPECT_EQ(std::get<int>(g.parameterValue("probe", "gain").value()), 9) << "the newer value was not sent";
   for (const auto& s : g.nodeStats()) EXPECT_EQ(s.error, "") << s.name;

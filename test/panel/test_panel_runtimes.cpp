@@ -256,6 +256,11 @@ class HungRuntime {
     std::lock_guard<std::mutex> lock(mutex_);
     return released_;
   }
+  /** Whether it was released within `limit`. */
+  bool waitReleased(std::chrono::seconds limit) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return released_cv_.wait_for(lock, limit, [this] { return released_; });
+  }
 
  private:
   std::mutex mutex_;
@@ -292,8 +297,7 @@ TEST(PanelWidgetHungRuntime, AnotherRuntimeIsServedAndClosingThePanelDoesNotWait
   // 20 s (only a hang takes that long) and says so.
   std::atomic<bool> waited{false};
   std::thread watchdog([&] {
-    for (int i = 0; i < 2000 && !hung.releasedAlready(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    if (!hung.releasedAlready()) waited = true, hung.release();
+    if (!hung.waitReleased(std::chrono::seconds(20))) waited = true, hung.release();
   });
   panel.reset();
   const bool closed_first = !hung.releasedAlready();
