@@ -22,6 +22,7 @@ class Accumulate : public apex::Node {
                "Collects messages until `count` have come, the `flush` slot or the end of a sequence, then sends them as one "
                "list and starts a new one")
         .inCategory("flow")
+        .keepsState("its running total: a re-run adds the held frame again")
         .input(kIn)
         .output(kValues)
         .param(kCount)

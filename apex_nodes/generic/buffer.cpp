@@ -19,6 +19,7 @@ class Buffer : public StatefulFlowNode {
   static apex::Manifest manifest() {
     return apex::Manifest("Sends the last `size` messages as one list with each message: a sliding window")
         .inCategory("flow")
+        .keepsState("the messages it buffers: a re-run adds the held frame again")
         .input(kIn)
         .output(kWindow)
         .param(kSize)

@@ -10,6 +10,7 @@ class Counter : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Counts the messages it receives")
         .inCategory("flow")
+        .keepsState("its count: a re-run counts the held frame again")
         .input(kIn)
         .output(kCount)
         .slot("reset", &Counter::reset, "sets the count to zero");

@@ -16,6 +16,7 @@ class Delay : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Sends each message again `frames` messages later: with this frame, the one of N frames ago")
         .inCategory("flow")
+        .keepsState("the messages it delays: a re-run pushes the held frame in again")
         .input(kIn)
         .output(kOut)
         .param(kFrames)

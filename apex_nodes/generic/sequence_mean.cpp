@@ -17,6 +17,7 @@ class SequenceMean : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Averages a value over a sequence; sends mean and count at its end, then starts the next")
         .inCategory("evaluation")
+        .keepsState("the sum of the sequence so far: a re-run counts the held frame again")
         .input(kValue)
         .output(kMean)
         .output(kCount)

@@ -25,6 +25,7 @@ class Statistics : public StatefulFlowNode {
   static apex::Manifest manifest() {
     return apex::Manifest("Mean, standard deviation, minimum and maximum of a number over its last `window` values")
         .inCategory("flow")
+        .keepsState("the values so far: a re-run counts the held frame again")
         .input(kValue)
         .output(kMean)
         .output(kStd)

@@ -38,6 +38,7 @@ class BackgroundSubtraction : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Foreground mask of each frame against a background model learnt over the frames (MOG2 or KNN)")
         .inCategory("motion")
+        .keepsState("its background model: every frame it sees teaches it, a re-run of the held frame too")
         .input(kImage)
         .output(kMask)
         .param(kMethod)

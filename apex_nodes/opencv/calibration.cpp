@@ -80,6 +80,7 @@ class CameraCalibration : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Calibrates a camera from views of a chessboard (cv::calibrateCamera) and saves its model")
         .inCategory("cameras and stereo")
+        .keepsState("the views collected: a re-run may add the held frame again")
         .input(kCorners)
         .output(kInfo)
         .output(kRms)

@@ -23,6 +23,7 @@ class ImageExport : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Writes each image, or each region's crop, as a PNG file")
         .inCategory("ROS I/O")
+        .keepsState("the files it writes: a re-run writes the held frame again")
         .input(kImage)
         .input(kRegions)
         .output(kPath)

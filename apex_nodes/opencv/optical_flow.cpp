@@ -71,6 +71,7 @@ class OpticalFlowLK : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Tracks corners from the previous frame to this one (goodFeaturesToTrack, calcOpticalFlowPyrLK)")
         .inCategory("motion")
+        .keepsState("the previous frame: a re-run compares the held frame with itself")
         .input(kImage)
         .output(kTracks)
         .param(kMaxCorners)
@@ -155,6 +156,7 @@ class OpticalFlowFarneback : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Dense optical flow from the previous frame to this one (calcOpticalFlowFarneback)")
         .inCategory("motion")
+        .keepsState("the previous frame: a re-run compares the held frame with itself")
         .input(kImage)
         .output(kFlow)
         .param(kPyrScale)

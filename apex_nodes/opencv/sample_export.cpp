@@ -40,6 +40,7 @@ class SampleExport : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Writes the crop of each region that matches a labelled sign of the ground truth, with an index file")
         .inCategory("learning")
+        .keepsState("the files it writes: a re-run writes the held frame's samples again")
         .input(kImage)
         .input(kRegions)
         .output(kWritten)

@@ -84,7 +84,8 @@ class BagReader : public apex::Node {
   static inline const apex::TriggerPort kFinished{"finished",
                                                   "fires after the last frame of each pass, with the end-of-sequence token that "
                                                   "follows that frame on every output"};
-  static inline const apex::ParamDecl<std::string> kFile = param::path("file").describe("the bag").shapesInterface();
+  static inline const apex::ParamDecl<std::string> kFile =
+      param::path("file").files({"*.bag"}).describe("the bag").shapesInterface();
   static inline const apex::ParamDecl<std::vector<std::string>> kTopics =
       param::textList("topics")
           .describe(

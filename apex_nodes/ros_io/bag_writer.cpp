@@ -80,6 +80,7 @@ class BagWriter : public apex::Node {
   static apex::Manifest manifest() {
     return apex::Manifest("Records its inputs into a bag: one input per topic, each message at its own stamp")
         .inCategory("ROS I/O")
+        .keepsState("the bag it records: a re-run records the held frame again")
         .slot("start", &BagWriter::start, "start recording (a new file: an old one of that name is replaced)")
         .slot("stop", &BagWriter::stop, "stop recording and close the file")
         .param(kFile)

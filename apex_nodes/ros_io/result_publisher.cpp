@@ -54,7 +54,7 @@ class ResultPublisher : public apex::Node {
   void advertise() {
     pub_.shutdown();
     ros::NodeHandle nh = apex::nodeHandle(*this);
-    pub_ = inspector_.advertise(nh, topic_.get());
+    pub_ = inspector_.advertise(nh, topic_.get(), ros::SubscriberStatusCallback());
     if (!pub_) {
       const std::string type = inspector_.message_type;
       type_ = nullptr;  // the next message tries again

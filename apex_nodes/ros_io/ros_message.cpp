@@ -54,11 +54,14 @@ apex::Inspector inspector() {
   apex::Inspector i;
   auto advertised = std::make_shared<std::pair<std::mutex, std::map<std::string, std::string>>>();  // topic → MD5
   i.message_type = "*";
-  i.advertise = [](ros::NodeHandle&, const std::string&) { return ros::Publisher(); };  // (advertise_as instead)
-  i.advertise_as = [advertised](ros::NodeHandle& nh, const std::string& topic, const apex::Message& first) {
+  i.advertise = [](ros::NodeHandle&, const std::string&, const ros::SubscriberStatusCallback&) {
+    return ros::Publisher();  // (advertise_as instead)
+  };
+  i.advertise_as = [advertised](ros::NodeHandle& nh, const std::string& topic, const apex::Message& first,
+                                const ros::SubscriberStatusCallback& connected) {
     auto p = first.as<RosMessage>();
     if (!p) return ros::Publisher();
-    ros::AdvertiseOptions options(topic, 1, p->md5sum, p->datatype, p->definition);
+    ros::AdvertiseOptions options(topic, 1, p->md5sum, p->datatype, p->definition, connected);
     ros::Publisher pub = nh.advertise(options);
     std::lock_guard<std::mutex> lock(advertised->first);
     if (pub) advertised->second[pub.getTopic()] = p->md5sum;

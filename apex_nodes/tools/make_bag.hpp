@@ -26,7 +26,7 @@ struct MakeBagOptions {
   std::int64_t start_ns = -1;  // the first stamp; -1: kDefaultStart (with timestamps: the file's)
   std::string camera_info, left_info, right_info;  // calibration files
   std::uint64_t max_frames = 0;  // 0: all
-  std::string compression = "none";  // none, lz4, bz2
+  std::string compression = "lz4";  // lz4 (a video in a tenth of its raw size, read as fast), bz2, none
   bool overwrite = false;
 
   bool stereo() const { return !left.empty() || !right.empty(); }

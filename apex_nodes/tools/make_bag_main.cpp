@@ -49,7 +49,7 @@ OUT.bag.active and gets its name only when complete: a failure or Ctrl-C leaves 
   --left-info FILE, --right-info FILE
                         a pair's calibrations
   --max-frames N        at most N frames (pairs)
-  --compression C       none (default), lz4 or bz2
+  --compression C       lz4 (default), bz2 or none
   --overwrite           replace OUT.bag if it exists
   -h, --help            this help
 

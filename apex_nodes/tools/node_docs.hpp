@@ -89,8 +89,11 @@ inline std::string limits(const apex::ParamSpec& s, const apex::ParamInfo& p) {
       for (const auto& o : p.options) text += (text.empty() ? "" : ", ") + code(o);
       return text;
     }
-    case apex::ParamKind::Path:
-      return "mode: " + p.path_mode;
+    case apex::ParamKind::Path: {
+      std::string files;
+      for (const auto& o : p.options) files += (files.empty() ? "" : " ") + code(o);
+      return "mode: " + p.path_mode + (files.empty() ? "" : ", files " + files);
+    }
     default:
       return s.file_name ? "a file name, no path" : "";
   }
@@ -105,6 +108,7 @@ inline void writeType(std::string& out, const apex::NodeType& type) {
   const apex::NodeTypeInfo info = apex::ros_host::toTypeInfo(type);
   out += "### " + type.id + "\n\n";
   out += (info.description.empty() ? std::string("(no description)") : info.description) + "\n";
+  if (!info.keeps.empty()) out += "\n*Keeps from frame to frame:* " + info.keeps + ".\n";
 
   std::vector<const apex::PortInfo*> inputs, outputs, slots, triggers;
   for (const auto& port : info.ports) {

@@ -1,13 +1,15 @@
 // Tuning on a held frame, as a user does it with rosservice or the panel: the
 // demo graph's player is paused; seeking sends exactly the frames asked for;
 // setting the threshold's `c` re-runs the held frame at once (no play, no step);
-// a burst of changes re-runs it a few times, the last with the last value.
+// a burst of changes re-runs it a few times, the last with the last value; whoever
+// watches one of its ports (a display, a preview) gets the held frame at once.
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 
 #include <apex/Control.h>
+#include <apex/Inspect.h>
 #include <apex/RuntimeStatus.h>
 #include <apex/SetParameter.h>
 #include <sensor_msgs/Image.h>
@@ -165,6 +167,26 @@ TEST(HeldFrame, SeekThenTuneOnTheHeldFrameWithoutPlaying) {
   auto reference = overlays.next(other).second;
   ASSERT_TRUE(reference);
   EXPECT_TRUE(sameImage(*reruns.back(), *reference)) << "the last re-run did not use the last value";
+}
+
+TEST(HeldFrame, WhoeverWatchesAPortOfTheHeldGraphGetsTheHeldFrameAtOnce) {
+  // "Show in rviz" or a preview on a held graph: the port's topic is new, no frame will pass by
+  // itself; each watcher that subscribes gets the held frame (the previous test held frame 7)
+  ros::NodeHandle nh;
+  const auto stamps = bagStamps();
+  ASSERT_TRUE(quiet(nh));
+  apex::Inspect::Request req;
+  req.node = "threshold", req.port = "image", req.enable = true;
+  const auto res = call<apex::Inspect>("inspect", req);
+  ASSERT_TRUE(res.success) << res.message;
+  for (const char* watcher : {"a display", "a preview after it"}) {
+    sensor_msgs::Image image;
+    ASSERT_TRUE(receive(nh, res.topic, image)) << watcher << " got nothing on the held graph's " << res.topic;
+    EXPECT_EQ(image.header.stamp, stamps[7]) << watcher;
+  }
+  req.enable = false;
+  ASSERT_TRUE(call<apex::Inspect>("inspect", req).success);
+  ASSERT_TRUE(quiet(nh));
 }
 
 TEST(HeldFrame, AStepIsOneFrameThroughBothThreadGroups) {

@@ -234,8 +234,10 @@ void Graph::Impl::clearLocked() {
 
 // ------------------------------------------------------------------ node settings
 
-void Graph::Impl::changedDownstreamOf(NodeState* node) {
-  for (NodeState* up : detail::upstreamOf(node)) {
+void Graph::Impl::changedDownstreamOf(NodeState* node, bool itself) {
+  std::vector<NodeState*> ups = detail::upstreamOf(node);
+  if (itself) ups.push_back(node);
+  for (NodeState* up : ups) {
     if (!up->type || !up->isSource()) continue;  // a held frame starts at a source
     // At most one re-send per pass of a frame through what it feeds (the sum of those nodes'
     // mean firing times; 40 ms to 0.5 s, so at most 25 re-runs a second, which the eye cannot
@@ -396,12 +398,15 @@ Status Graph::Impl::setTap(const std::string& outer, const std::string& outer_po
   NodeState* s = n.value().get();
   EditScope scope;  // the group reads taps while firing
   scope.involve(s);
+  const bool watching = static_cast<bool>(tap);
   if (const int i = s->findOutput(port); i >= 0) {
     s->outputs[i].tap = std::move(tap);
+    if (watching) changedDownstreamOf(s, true);  // a held frame: through the new tap at once
     return Status::ok();
   }
   if (const int i = s->findParam(port); i >= 0 && s->params[i].interactive) {
     s->params[i].tap = std::move(tap);
+    if (watching) changedDownstreamOf(s, true);
     return Status::ok();
   }
   return Status::error(nodeLabel(node, s->typeId()) + " has no output or interactive parameter '" + port +

@@ -115,9 +115,9 @@ struct Graph::Impl {
   /** The edit of one data or parameter connection between two nodes (see live.hpp). */
   detail::Restructure restructure(detail::NodeState* from, detail::NodeState* to, bool into_data_input) const;
   void removeEdge(std::shared_ptr<detail::Edge> edge);
-  /** Tells every node upstream of `node` that something downstream of it changed
-   *  (Node::downstreamChanged: a holding source re-sends its frame). */
-  void changedDownstreamOf(detail::NodeState* node);
+  /** Tells every node upstream of `node` (and `node` too if `itself`) that something downstream
+   *  of it changed (Node::downstreamChanged: a holding source re-sends its frame). */
+  void changedDownstreamOf(detail::NodeState* node, bool itself = false);
   /** The node's interface if `param` had `value` (nullptr: as it is); refused with a message
    *  naming the node when the type's interface function fails or breaks a rule. */
   Result<std::shared_ptr<const Manifest>> interfaceFor(const detail::NodeState& node, const std::string& param,

@@ -87,6 +87,7 @@ NodeTypeInfo toTypeInfo(const NodeType& type) {
   t.id = type.id;
   t.description = m.description;
   t.category = m.category;
+  t.keeps = m.keeps;
   t.ports = ports(m);
   for (const auto& s : m.params) t.parameters.push_back(param(s, toText(s.default_value), s.interactive));
   return t;
@@ -104,6 +105,7 @@ NodeInfo toNodeInfo(const NodeDescription& n) {
   if (n.subgraph) info.subgraph = n.source.empty() ? "inline" : n.source;
   if (!n.interface) return info;  // a placeholder: no ports known
   info.ports = ports(*n.interface);
+  info.keeps = n.interface->keeps;
   for (const auto& s : n.interface->params) {
     std::string value = toText(s.default_value);
     for (const auto& [name, text] : n.parameters)

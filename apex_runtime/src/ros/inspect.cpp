@@ -108,7 +108,9 @@ Inspector findInspector(const TypeInfo* type) {
   }
   // Unknown types: their readable type name, so a person sees that messages flow.
   return Inspector{"std_msgs/String",
-                   [](ros::NodeHandle& nh, const std::string& topic) { return nh.advertise<std_msgs::String>(topic, 1); },
+                   [](ros::NodeHandle& nh, const std::string& topic, const ros::SubscriberStatusCallback& connected) {
+                     return nh.advertise<std_msgs::String>(topic, 1, connected);
+                   },
                    [](const ros::Publisher& pub, const Message& m) {
                      std_msgs::String s;
                      s.data = "<" + m.typeName() + ">";

@@ -26,14 +26,19 @@ struct Inspection::Tap {
   bool typed = false;  // inspector known (from the port's type, or the first message)
   Topic whole, preview, about;
   std::chrono::steady_clock::time_point next_preview{};
+  /** A subscriber connected: a held frame is sent again for it (Inspection::watchedAnew). */
+  std::function<void()> watched;
 
   /** Under mutex, once the inspector is known; `first`: the message being sent, if any (a type
    *  whose ROS type is its message's own is advertised at its first message). */
   void advertise(const Message* first = nullptr) {
+    const ros::SubscriberStatusCallback connected = [w = watched](const ros::SingleSubscriberPublisher&) {
+      if (w) w();
+    };
     for (Topic* t : {&whole, &preview}) {
       if (!t->wanted || t->pub) continue;
-      if (!inspector.advertise_as) t->pub = inspector.advertise(nh, t->name);
-      else if (first) t->pub = inspector.advertise_as(nh, t->name, *first);
+      if (!inspector.advertise_as) t->pub = inspector.advertise(nh, t->name, connected);
+      else if (first) t->pub = inspector.advertise_as(nh, t->name, *first, connected);
     }
     if (preview.wanted && inspector.describe && !about.pub) about.pub = nh.advertise<std_msgs::String>(about.name, 1);
   }
@@ -93,6 +98,7 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
     if (auto* p = iface->findParam(port)) port_type = p->portType();
     tap = std::make_shared<Tap>();
     tap->nh = nh_;
+    tap->watched = [this, &graph, key, node, port, weak = std::weak_ptr<Tap>(tap)] { watchedAnew(graph, key, node, port, weak); };
     tap->whole.name = "inspect/" + key;
     tap->preview.name = "preview/" + key;
     tap->about.name = "preview/" + key + "/about";
@@ -107,6 +113,15 @@ Result<std::pair<std::string, std::string>> Inspection::set(Graph& graph, const 
   if (tap->typed) tap->advertise();
   const bool type_known = tap->typed && !tap->inspector.advertise_as;  // else: the first message's
   return std::make_pair(t.pub ? t.pub.getTopic() : nh_.resolveName(t.name), type_known ? tap->inspector.message_type : "");
+}
+
+void Inspection::watchedAnew(Graph& graph, const std::string& key, const std::string& node, const std::string& port,
+                             const std::weak_ptr<Tap>& weak) {
+  const std::shared_ptr<Tap> tap = weak.lock();
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto it = taps_.find(key);
+  if (!tap || it == taps_.end() || it->second != tap) return;  // ended, or another tap since
+  (void)graph.setTap(node, port, [tap](const Message& m) { tap->onMessage(m); });  // a held frame: sent again
 }
 
 void Inspection::forgetNode(const std::string& node) {

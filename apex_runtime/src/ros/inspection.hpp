@@ -1,6 +1,7 @@
 // ~inspect: publishes one port's messages on ~inspect/<node>/<port> while
 // enabled, and previews (throttled, shrunk) on ~preview/<node>/<port>. Costs
-// nothing while off (no tap) or while nobody subscribes.
+// nothing while off (no tap) or while nobody subscribes. Whoever subscribes to a
+// held graph's port gets its frame at once (the held frame is sent again).
 #pragma once
 
 #include <ros/ros.h>
@@ -32,6 +33,10 @@ class Inspection {
 
  private:
   struct Tap;
+  /** A subscriber connected to one of `weak`'s topics (a display or a preview, maybe of a held
+   *  graph): the tap installed again, which sends a held frame again, if it is still the port's. */
+  void watchedAnew(Graph& graph, const std::string& key, const std::string& node, const std::string& port,
+                   const std::weak_ptr<Tap>& weak);
   ros::NodeHandle nh_;
   std::mutex mutex_;
   std::map<std::string, std::shared_ptr<Tap>> taps_;  // "node/port"

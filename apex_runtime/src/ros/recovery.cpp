@@ -59,6 +59,7 @@ std::string Recovery::fileName(const std::string& node) {
 void Recovery::saved(const std::string& text) {
   std::lock_guard<std::mutex> lock(mutex_);
   saved_ = text;
+  unsaved_ = false;
   removeOwn();
 }
 
@@ -73,6 +74,7 @@ void Recovery::tick(std::uint64_t revision, const std::function<Snapshot()>& sna
   if (!pending_ || (now - last_change_ < timing_.quiet && now - first_change_ < timing_.at_most)) return;
   pending_ = false;
   const Snapshot graph = snapshot();
+  unsaved_ = graph.nodes > 0 && !(saved_ && *saved_ == graph.text);  // what the copy keeps
   if (graph.nodes == 0 || (saved_ && *saved_ == graph.text)) return removeOwn();  // nothing unsaved to lose
   if (graph.text != written_) write(graph);
 }
@@ -95,6 +97,11 @@ void Recovery::removeOwn() {
   fs::remove(path_, ec);
   if (ec) ROS_WARN_STREAM_NAMED("apex", "cannot remove the recovery copy " << path_ << ": " << ec.message());
   written_.reset();
+}
+
+bool Recovery::unsaved() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return unsaved_;
 }
 
 void Recovery::close() {

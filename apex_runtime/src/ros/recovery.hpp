@@ -63,6 +63,9 @@ class Recovery {
   /** @brief Clean stop: this run's copy removed, no more written. An offered copy stays offered. */
   void close();
 
+  /** @brief Whether the graph differed from the saved one at the last check (a second after the
+   *  last change): what a save would keep. */
+  bool unsaved() const;
   std::optional<Offer> offer() const;
   /** @brief The offered copy was loaded: it becomes this run's copy (moved to its place), and the
    *  graph counts as unsaved until saved. */
@@ -83,7 +86,7 @@ class Recovery {
   std::optional<std::string> saved_;  // none: in no file of the user's (restored from a copy)
   std::optional<std::string> written_;  // the text of this run's copy; none if there is none
   std::uint64_t seen_revision_ = ~0ull;
-  bool pending_ = false, closed_ = false, warned_ = false;
+  bool pending_ = false, closed_ = false, warned_ = false, unsaved_ = false;
   Clock::time_point first_change_, last_change_;
 };
 

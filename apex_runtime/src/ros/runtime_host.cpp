@@ -388,6 +388,7 @@ struct RuntimeHost::Impl {
       if (status_pub.getNumSubscribers() == 0) return;
       RuntimeStatus status = toStatus(graph);
       status.started = started;
+      status.unsaved = recovery->unsaved();
       status_pub.publish(status);
     });
   }

@@ -111,6 +111,13 @@ class ParamDecl {
     spec_.path_mode = mode;
     return std::move(*this);
   }
+  /** @brief A path parameter's kinds of file, e.g. `.files({"*.bag"})`: the panel's file chooser
+   *  lists those first (any file can still be chosen or typed). */
+  ParamDecl files(std::vector<std::string> patterns) && {
+    static_assert(std::is_same_v<T, std::string>, "files() is for path parameters");
+    spec_.options = std::move(patterns);
+    return std::move(*this);
+  }
   /** @brief A text that names a file inside a folder given elsewhere (ParamSpec::fileName). */
   ParamDecl fileName() && {
     static_assert(std::is_same_v<T, std::string>, "fileName() is for text parameters");

@@ -91,7 +91,9 @@ class Graph {
   /** @brief Stores front-end metadata (YAML flow text, e.g. "{x: 10, y: 20}") with the node. */
   Status setUi(const std::string& node, const std::string& ui_yaml);
   /** @brief Installs (or, with an empty tap, removes) an observer of an output or of an
-   *  interactive parameter's output. Costs nothing on ports without one. */
+   *  interactive parameter's output. Costs nothing on ports without one. A held frame (a paused
+   *  player's) is sent again, as after an edit, so that a tap installed (or installed again:
+   *  someone new watches) on a held graph sees the frame at once. */
   Status setTap(const std::string& node, const std::string& port, PortTap tap);
 
   // --- running ---

@@ -69,6 +69,10 @@ using InterfaceFn = std::function<Status(const ParamValues& params, Manifest& if
 struct Manifest {
   std::string description;
   std::string category;  ///< where the palette and docs/nodes.md list the type, e.g. "image filters"
+  /** What the node keeps from one frame to the next (a background model, the last frame, a file
+   *  it writes), so that a re-run of a held frame changes it; empty: its output is a function of
+   *  its inputs and parameters alone. */
+  std::string keeps;
   std::vector<PortSpec> inputs, outputs;
   std::vector<ParamSpec> params;
   std::vector<EventSpec> slots, triggers;
@@ -80,6 +84,13 @@ struct Manifest {
   /** @brief The type's category, e.g. `Manifest("Smooths an image").inCategory("image filters")`. */
   Manifest& inCategory(std::string name) {
     category = std::move(name);
+    return *this;
+  }
+
+  /** @brief What the node keeps from frame to frame, e.g. `.keepsState("its background model")`:
+   *  the panel says so on a held frame, whose re-runs change it. */
+  Manifest& keepsState(std::string what) {
+    keeps = std::move(what);
     return *this;
   }
 

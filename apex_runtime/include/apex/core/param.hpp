@@ -58,7 +58,7 @@ struct ParamSpec {
   ParamValue default_value;
   std::string description;
   double min = 0, max = 0, step = 0;  ///< ranges, intervals, angles
-  std::vector<std::string> options;  ///< sets
+  std::vector<std::string> options;  ///< sets; paths: the kinds of file (e.g. "*.bag"), for a file chooser
   PathMode path_mode = PathMode::Read;  ///< paths
   bool interactive = false;  ///< gets ports by default
   bool file_name = false;  ///< strings: a single file name, never a path (no '/', not "." or "..")

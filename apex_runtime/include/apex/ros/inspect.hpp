@@ -23,7 +23,9 @@ struct SerializedMessage {
 
 struct Inspector {
   std::string message_type;  ///< e.g. "std_msgs/Int32"
-  std::function<ros::Publisher(ros::NodeHandle&, const std::string& topic)> advertise;
+  /** Advertises `topic`; `connected` is called when a subscriber connects. */
+  std::function<ros::Publisher(ros::NodeHandle&, const std::string& topic, const ros::SubscriberStatusCallback& connected)>
+      advertise;
   std::function<void(const ros::Publisher&, const Message&)> publish;
   /** For previews (the panel's thumbnails): a smaller message at most `max_width` wide, e.g.
    *  an image scaled down; none: previews are the messages themselves. */
@@ -35,7 +37,9 @@ struct Inspector {
   std::function<std::string(const Message&)> describe;
   /** For a type whose ROS type is the message's own (a ROS message of any type): advertises the
    *  topic as `first`'s type, at the first message; `advertise` is then not used. */
-  std::function<ros::Publisher(ros::NodeHandle&, const std::string& topic, const Message& first)> advertise_as;
+  std::function<ros::Publisher(ros::NodeHandle&, const std::string& topic, const Message& first,
+                               const ros::SubscriberStatusCallback& connected)>
+      advertise_as;
 };
 
 /** @brief Registers the converter for messages of `type` (the last registration wins). */
@@ -72,7 +76,9 @@ bool addInspector(Convert convert) {
   return registerInspector(
       typeOf<T>(),
       Inspector{ros::message_traits::datatype<RosMsg>(),
-                [](ros::NodeHandle& nh, const std::string& topic) { return nh.advertise<RosMsg>(topic, 1); },
+                [](ros::NodeHandle& nh, const std::string& topic, const ros::SubscriberStatusCallback& connected) {
+                  return nh.advertise<RosMsg>(topic, 1, connected);
+                },
                 [convert](const ros::Publisher& pub, const Message& m) {
                   if (auto p = m.as<T>()) pub.publish(convert(*p));
                 },
