@@ -8,6 +8,16 @@
 
 namespace apex_rviz_plugin {
 
+QString apexFolder() {
+  const QByteArray ros_home = qgetenv("ROS_HOME");
+  return (ros_home.isEmpty() ? QString::fromLocal8Bit(qgetenv("HOME")) + "/.ros" : QString::fromLocal8Bit(ros_home)) + "/apex/";
+}
+
+QString& lastChosenFolder() {
+  static QString folder = apexFolder();
+  return folder;
+}
+
 QWidget* dialogParent(QWidget* w) {
   QGraphicsProxyWidget* proxy = w ? w->window()->graphicsProxyWidget() : nullptr;
   if (!proxy || !proxy->scene() || proxy->scene()->views().isEmpty()) return w;

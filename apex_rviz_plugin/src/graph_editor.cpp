@@ -3,8 +3,10 @@
 #include "apex_rviz_plugin/file_dialog.hpp"
 #include "apex_rviz_plugin/help_view.hpp"
 #include "apex_rviz_plugin/palette.hpp"
+#include "apex_rviz_plugin/properties_view.hpp"
 #include "apex_rviz_plugin/view_parts.hpp"
 
+#include <QApplication>
 #include <QCursor>
 #include <QGraphicsView>
 #include <QHBoxLayout>
@@ -19,6 +21,8 @@
 #include <QScrollBar>
 #include <QShortcut>
 #include <QSplitter>
+#include <QTabWidget>
+#include <QTimer>
 #include <QToolBar>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -71,7 +75,7 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
     connect(bar, &QScrollBar::valueChanged, this, [this] { placeMinimap(), minimap_->update(); });
   connect(scene_, &QGraphicsScene::sceneRectChanged, this, [this] { growCanvas(), placeMinimap(); });
   auto* split = new QSplitter;
-  split->addWidget(buildPalette());
+  split->addWidget(buildSideTabs());
   split->addWidget(view_);
   split->setStretchFactor(1, 1);
   message_ = new QLabel;
@@ -106,6 +110,12 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   shortcut(QKeySequence::Undo, [this] { emit undoRequested(); });
   shortcut(QKeySequence::Find, [this] { find_->setFocus(), find_->selectAll(); });
   shortcut(QKeySequence::Redo, [this] { emit redoRequested(); });
+  shortcut(QKeySequence(Qt::CTRL | Qt::Key_M), [this] { whole_->toggle(); });
+}
+
+GraphEditor::~GraphEditor() {
+  scene_->disconnect(this);
+  model_ = nullptr;
 }
 
 QWidget* GraphEditor::buildToolBar() {
@@ -125,6 +135,14 @@ QWidget* GraphEditor::buildToolBar() {
   namespace_->setMinimumWidth(60);
   connect(namespace_, &QLineEdit::editingFinished, this, [this] { emit namespaceChanged(namespace_->text()); });
   row->addWidget(namespace_);
+  unsaved_ = new QLabel("● unsaved");
+  unsaved_->setObjectName("unsaved");
+  unsaved_->setStyleSheet("color: #d08020;");
+  unsaved_->setToolTip(
+      "the graph differs from the file it was loaded from or last saved to: Save... keeps it "
+      "(the runtime also keeps a copy that survives a crash)");
+  unsaved_->hide();
+  row->addWidget(unsaved_);
   connection_ = new QLabel;
   connection_->setObjectName("connection");
   connection_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);  // long news must not widen the panel
@@ -187,10 +205,18 @@ QWidget* GraphEditor::buildToolBar() {
     const FileDialogSpec spec{"load_dialog", "Load graph", last_path_, FileDialogSpec::Mode::Open, "APEX graphs (*.yaml)", ""};
     openFileDialog(file_dialog_, this, spec, [this](const QString& path) { emit loadRequested(last_path_ = path); });
   });
+  whole_ = button("whole_window", "Whole window",
+                  "the graph editor over rviz's whole window, and back (Ctrl+M); the 3D view and other panels "
+                  "come back as they were");
+  whole_->setCheckable(true);
+  connect(whole_, &QToolButton::toggled, this, &GraphEditor::wholeWindowToggled);
+  connect(whole_, &QToolButton::toggled, this, [this] {  // the graph fitted to the view's new size
+    QTimer::singleShot(100, this, [this] { fitGraph(); });
+  });
   auto* buttons = new QToolBar;
   buttons->setObjectName("buttons");
   buttons->setToolButtonStyle(Qt::ToolButtonTextOnly);
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews, presets, fresh, save, load})
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews, presets, fresh, save, load, whole_})
     buttons->addWidget(b);
   rows->addWidget(buttons);
   return bar;
@@ -203,6 +229,31 @@ QWidget* GraphEditor::buildLevelBar() {  // where the view is inside subgraphs; 
     fitGraph();
   });
   return bar;
+}
+
+QWidget* GraphEditor::buildSideTabs() {
+  // The palette and the selected node's properties share the column beside the canvas (as an
+  // IDE's side bar): the canvas keeps its width in a dock across rviz's window.
+  side_ = new QTabWidget;
+  side_->setObjectName("side");
+  side_->setDocumentMode(true);
+  side_->addTab(buildPalette(), "Nodes");
+  properties_ = new PropertiesView;
+  side_->addTab(properties_, "Properties");
+  connect(properties_, &PropertiesView::parameterEdited, scene_, &GraphScene::parameterEdited);
+  connect(properties_, &PropertiesView::interactiveToggled, scene_, &GraphScene::interactiveToggled);
+  connect(properties_, &PropertiesView::paramMenuRequested, this, &GraphEditor::showParamMenu);
+  connect(scene_, &QGraphicsScene::selectionChanged, this, [this] {  // a node picked: its properties
+    showProperties();
+    const QWidget* typing = QApplication::focusWidget();  // not away from a search being typed
+    if (!properties_->node().isEmpty() && !(typing && palette_->isAncestorOf(typing))) side_->setCurrentWidget(properties_);
+  });
+  return side_;
+}
+
+void GraphEditor::showProperties() {
+  const QStringList selected = selectedNodes();
+  properties_->showNode(model_ && selected.size() == 1 ? model_->node(selected.front().toStdString()) : nullptr);
 }
 
 QWidget* GraphEditor::buildPalette() {
@@ -228,6 +279,7 @@ QPointF GraphEditor::newNodePosition() {  // the middle of the view, a little fu
 void GraphEditor::showGraph(const GraphModel& model) {
   model_ = &model;
   scene_->show(model);
+  showProperties();
   const bool all_shown = std::all_of(select_when_shown_.begin(), select_when_shown_.end(),
                                      [this](const QString& n) { return scene_->node(n.toStdString()) != nullptr; });
   if (!select_when_shown_.isEmpty() && all_shown) {  // a paste may show up over several graphs: at its end
@@ -332,6 +384,10 @@ void GraphEditor::showHistory(const QString& undo_label, bool can_undo, bool can
 
 void GraphEditor::setNamespace(const QString& ns) { namespace_->setText(ns); }
 
+void GraphEditor::showUnsaved(bool unsaved) { unsaved_->setVisible(unsaved); }
+
+bool GraphEditor::unsavedShown() const { return !unsaved_->isHidden(); }
+
 void GraphEditor::removeSelected() {
   for (QGraphicsItem* i : scene_->selectedItems())
     if (auto* n = dynamic_cast<NodeItem*>(i)) emit removeRequested(QString::fromStdString(n->info().name));
@@ -367,9 +423,6 @@ QStringList GraphEditor::selectedNodes() const {
 
 void GraphEditor::selectWhenShown(const QStringList& nodes) { select_when_shown_ = nodes; }
 
-QString GraphEditor::defaultGraphFolder() {
-  const QByteArray ros_home = qgetenv("ROS_HOME");
-  return (ros_home.isEmpty() ? QString::fromLocal8Bit(qgetenv("HOME")) + "/.ros" : QString::fromLocal8Bit(ros_home)) + "/apex/";
-}
+QString GraphEditor::defaultGraphFolder() { return apexFolder(); }
 
 }  // namespace apex_rviz_plugin

@@ -12,6 +12,8 @@
 #include "apex_rviz_plugin/help_view.hpp"
 #include "apex_rviz_plugin/quick_add.hpp"
 
+#include <algorithm>
+
 namespace apex_rviz_plugin {
 
 QPointF GraphEditor::cursorPosition() const {
@@ -39,6 +41,19 @@ void GraphEditor::openQuickAdd(QPointF at) {
   ensureQuickAdd()->open(std::move(offers), view_->viewport()->mapToGlobal(view_->mapFromScene(at)), "Add a node here");
 }
 
+namespace {
+
+/** The required inputs a new node of `type` would still lack with only its port `linked` fed (""
+ *  none): the types that run with the one link are offered first (from a threshold's output,
+ *  FindContours before DrawContours, which needs contours too). */
+int stillNeeded(const apex::NodeTypeInfo& type, const QString& linked) {
+  int n = 0;
+  for (const auto& p : type.ports) n += p.kind == "input" && !p.optional && QString::fromStdString(p.name) != linked;
+  return n;
+}
+
+}  // namespace
+
 void GraphEditor::openLinkAdd(const QString& node, const QString& port, bool source, QPointF at) {
   if (!model_) return;
   const std::string n = node.toStdString(), p = port.toStdString();
@@ -47,6 +62,9 @@ void GraphEditor::openLinkAdd(const QString& node, const QString& port, bool sou
   std::vector<QuickAdd::Offer> offers;
   for (const NewLink& l : model_->linkable(types_, n, p, source))
     offers.push_back({*by_id.at(l.type), QString::fromStdString(l.port)});
+  std::stable_sort(offers.begin(), offers.end(), [source](const QuickAdd::Offer& a, const QuickAdd::Offer& b) {
+    return stillNeeded(a.type, source ? a.port : "") < stillNeeded(b.type, source ? b.port : "");
+  });
   const apex::PortInfo* info = model_->port(n, p, "");
   const QString what = node + "/" + port + (info && !info->type.empty() ? " (" + QString::fromStdString(info->type) + ")" : "");
   if (offers.empty()) return showMessage("no node type has a port that can be linked with " + what, true);

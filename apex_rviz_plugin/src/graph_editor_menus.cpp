@@ -118,14 +118,20 @@ void GraphEditor::fillParamMenu(QMenu& menu, const QString& node, const QString&
                                 [this, node, param, pinned] { emit pinRequested(node, param, !pinned); });
   pin->setObjectName("pin");
   if (p->type != "int" && p->type != "double") return;  // a number can be tuned
-  QMenu* with = menu.addMenu("Optimise with");
+  QMenu* with = menu.addMenu("Tune automatically with");
   with->setObjectName("optimise_with");
+  with->setToolTipsVisible(true);
+  const QString how = "; link a score to its fitness input (larger is better), then fire its start slot";
   if (model_)
     for (const auto& opt : model_->optimizers()) {
       const QString o = QString::fromStdString(opt);
-      with->addAction(o, this, [this, node, param, o] { emit optimiseRequested(node, param, o); });
+      QAction* a =
+          with->addAction(o + " (tune this too)", this, [this, node, param, o] { emit optimiseRequested(node, param, o); });
+      a->setToolTip(o + " also sets " + param + " in its search (Differential Evolution)" + how);
     }
-  with->addAction("New Optimizer", this, [this, node, param] { emit optimiseRequested(node, param, QString()); });
+  QAction* fresh = with->addAction("a new Optimizer (Differential Evolution)", this,
+                                   [this, node, param] { emit optimiseRequested(node, param, QString()); });
+  fresh->setToolTip("an Optimizer below " + node + " that tries values of " + param + " in its range" + how);
 }
 
 void GraphEditor::showParamMenu(const QString& node, const QString& param, QPoint at) {

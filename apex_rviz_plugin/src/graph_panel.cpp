@@ -6,6 +6,10 @@
 #include <rviz/display_group.h>
 #include <rviz/visualization_manager.h>
 
+#include <QDockWidget>
+#include <QMainWindow>
+#include <QSignalBlocker>
+#include <QToolButton>
 #include <QVBoxLayout>
 #include <cstdlib>
 #include <memory>
@@ -38,6 +42,14 @@ GraphPanel::GraphPanel(QWidget* parent) : rviz::Panel(parent), widget_(new Panel
                       for (const QString& p : ports) widget_->inspect(p.section('/', 0, -2), p.section('/', -1));
                     });
   }
+  // For test/panel/rviz_check.sh's screenshot: node N selected (its properties shown), once shown.
+  if (const char* select = std::getenv("APEX_PANEL_SELECT")) {
+    auto once = std::make_shared<QMetaObject::Connection>();
+    *once = connect(widget_, &PanelWidget::graphShown, this, [this, once, node = std::string(select)] {
+      if (NodeItem* item = widget_->editor()->scene()->node(node)) disconnect(*once), item->setSelected(true);
+    });
+  }
+  connect(widget_->editor(), &GraphEditor::wholeWindowToggled, this, &GraphPanel::setWholeWindow);
   connect(widget_, &PanelWidget::statusShown, this,
           [] { ROS_INFO_STREAM_ONCE_NAMED("apex_panel", "GraphPanel: timing shown from ~status"); });
 }
@@ -101,6 +113,32 @@ void GraphPanel::followGraph() {
     }
     display->setEnabled(followed_.enabled(c.id));
   }
+}
+
+void GraphPanel::setWholeWindow(bool on) {
+  // The panel's dock (rviz's PanelDockWidget) in rviz's main window: every other dock and the 3D
+  // view hidden, the dock areas then take the window; back, the window's layout as it was.
+  QDockWidget* dock = nullptr;
+  for (QWidget* w = parentWidget(); w && !dock; w = w->parentWidget()) dock = qobject_cast<QDockWidget*>(w);
+  auto* window = dock ? qobject_cast<QMainWindow*>(dock->parentWidget()) : nullptr;
+  if (!window || !window->centralWidget() || dock->isFloating()) {  // not docked in rviz's window: nothing to take
+    const QSignalBlocker quiet(widget_->editor()->wholeWindowButton());
+    widget_->editor()->wholeWindowButton()->setChecked(false);
+    return;
+  }
+  if (on == !hidden_.isEmpty()) return;
+  if (on) {
+    layout_ = window->saveState();
+    hidden_.append(window->centralWidget());
+    for (QDockWidget* other : window->findChildren<QDockWidget*>())
+      if (other != dock && other->isVisible()) hidden_.append(other);
+    for (const auto& w : hidden_) w->hide();
+    return;
+  }
+  for (const auto& w : hidden_)
+    if (w) w->show();
+  hidden_.clear();
+  window->restoreState(layout_);
 }
 
 void GraphPanel::removeDisplay(rviz::Display* display) {

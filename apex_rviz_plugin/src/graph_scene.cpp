@@ -1,4 +1,5 @@
 #include "apex_rviz_plugin/graph_scene.hpp"
+#include "apex_rviz_plugin/transport_bar.hpp"
 
 #include <QApplication>
 #include <QGraphicsProxyWidget>
@@ -65,6 +66,16 @@ NodeItem* GraphScene::node(const std::string& name) const {
   return it == nodes_.end() ? nullptr : it->second;
 }
 
+bool GraphScene::holdsFrame(const apex::GraphState& graph) {
+  if (graph.paused) return true;
+  for (const auto& n : graph.nodes) {
+    if (!TransportBar::isPlayer(n)) continue;
+    for (const auto& p : n.parameters)
+      if (p.name == "playing" && p.value == "false") return true;
+  }
+  return false;
+}
+
 void GraphScene::show(const GraphModel& model) {
   model_ = &model;
   // A link being dragged goes on through any number of graphs shown (a playing bag changes the
@@ -84,6 +95,7 @@ void GraphScene::show(const GraphModel& model) {
     resumeDrag(std::nullopt);
     return setLevel("");
   }
+  const bool held = holdsFrame(model.graph());
   std::set<std::string> seen;
   for (const auto& n : model.graph().nodes) {
     if (!shown(n.name)) continue;
@@ -104,7 +116,8 @@ void GraphScene::show(const GraphModel& model) {
     } else {
       item->update(n);
     }
-    item->setDetail(zoom_ >= kDetailScale);
+    item->setZoom(zoom_);
+    item->setHeld(held);
     const auto [x, y] = model.position(n.name);
     if (mouseGrabberItem() != item) item->setPos(x, y);
   }
@@ -213,7 +226,7 @@ void GraphScene::showValue(const QString& node_name, const QString& port, const 
 
 void GraphScene::setZoom(double scale) {
   zoom_ = scale;
-  for (auto& [name, item] : nodes_) item->setDetail(scale >= kDetailScale);
+  for (auto& [name, item] : nodes_) item->setZoom(scale);
 }
 
 void GraphScene::showImage(const QString& node_name, const QString& port, const QImage& image) {

@@ -97,7 +97,10 @@ QString HelpView::limits(const apex::ParamInfo& p) {
     for (const auto& o : p.options) options << QString::fromStdString(o);
     return options.join(", ");
   }
-  return p.kind == "path" ? "mode: " + QString::fromStdString(p.path_mode) : QString();
+  if (p.kind != "path") return QString();
+  QStringList files;
+  for (const auto& o : p.options) files << QString::fromStdString(o);
+  return "mode: " + QString::fromStdString(p.path_mode) + (files.isEmpty() ? "" : ", files " + files.join(" "));
 }
 
 QString HelpView::html(const apex::NodeTypeInfo& type) {

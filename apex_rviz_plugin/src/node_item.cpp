@@ -3,6 +3,7 @@
 
 #include <QGraphicsProxyWidget>
 #include <QGraphicsSceneMouseEvent>
+#include <QFontInfo>
 #include <QFontMetricsF>
 #include <QPainter>
 #include <QToolButton>
@@ -131,7 +132,8 @@ void NodeItem::update(const apex::NodeInfo& node) {
   if (!typing && paramsKey() != params_key_) return build();  // expanded, collapsed, pinned, or a value set
   if (!typing && wantedWidth() != width_) return build();  // a longer path, group or type: wider
   if (transport_) transport_->show(info_);
-  setToolTip(QString::fromStdString(info_.error));
+  setToolTip(QString::fromStdString(info_.error + (info_.error.empty() || info_.keeps.empty() ? "" : "\n") +
+                                    (info_.keeps.empty() ? "" : "Keeps from frame to frame: " + info_.keeps)));
   QGraphicsObject::update();
 }
 
@@ -170,7 +172,8 @@ void NodeItem::build() {
     for (const auto& name : previewPorts()) height_ += imageType(port(name, true)->port().type) ? kThumb + 4 : kSpark;
   if (isOptimizer()) height_ += kPlot;  // its progress
   height_ += 2 * kRow;  // timing and error lines
-  setToolTip(QString::fromStdString(info_.error));
+  setToolTip(QString::fromStdString(info_.error + (info_.error.empty() || info_.keeps.empty() ? "" : "\n") +
+                                    (info_.keeps.empty() ? "" : "Keeps from frame to frame: " + info_.keeps)));
 }
 
 QWidget* NodeItem::buildParams() {
@@ -303,12 +306,39 @@ void NodeItem::setPreviews(bool on) {
   build();
 }
 
-void NodeItem::setDetail(bool full) {
-  if (full == detail_) return;
+void NodeItem::setZoom(double scale) {
+  const bool full = scale >= GraphScene::kDetailScale;
+  if (full == detail_ && (full || scale == zoom_)) return;
+  zoom_ = scale;
   detail_ = full;
   if (params_) params_->setVisible(full);
   QGraphicsObject::update();
   for (auto* p : ports_) p->update();
+}
+
+void NodeItem::setHeld(bool held) {
+  if (held == held_) return;
+  held_ = held;
+  QGraphicsObject::update();
+}
+
+QString NodeItem::heldNote() const {
+  return held_ && !info_.keeps.empty() ? QString("↻ re-runs of the held frame change it") : QString();
+}
+
+BoxName NodeItem::name() const {
+  QFont bold;
+  bold.setBold(true);
+  if (detail_) {  // on the title bar
+    bold.setPointSizeF(9.5);
+    return BoxName{bold, title(), Qt::AlignLeft | Qt::AlignVCenter, true};
+  }
+  return BoxName::fit(title(), QRectF(kPad, 2, width_ - 2 * kPad, (previews_ ? preview_top_ : height_) - 4), zoom_, bold);
+}
+
+double NodeItem::namePixels() const {
+  const BoxName n = name();
+  return (n.font.pixelSize() > 0 ? n.font.pixelSize() : QFontInfo(n.font).pixelSize()) * zoom_;
 }
 
 void NodeItem::showImage(const QString& port, const QImage& image) {
@@ -382,25 +412,19 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   p->setPen(Qt::NoPen);
   p->drawRoundedRect(QRectF(1, 1, width_ - 2, kTitle - 4), 5, 5);
   p->setPen(Qt::white);
-  QFont f = p->font();
-  f.setBold(true);
-  f.setPointSizeF(9.5);
-  p->setFont(f);
-  const QString title = this->title();
-  if (!detail_) {  // zoomed out: the name alone, as large as the box is wide
-    QFont big = f;
-    big.setPointSizeF(22);
-    const double wide = QFontMetricsF(big).horizontalAdvance(title);
-    if (wide > width_ - 2 * kPad) big.setPointSizeF(std::max(9.0, 22 * (width_ - 2 * kPad) / wide));
-    p->setFont(big);
-    p->drawText(QRectF(kPad, kTitle, width_ - 2 * kPad, std::max(preview_top_ - kTitle, 40.0)), Qt::AlignCenter, title);
+  const BoxName name = this->name();
+  p->setFont(name.font);
+  QFont f = name.font;
+  if (!detail_) {  // zoomed out: the name alone, as large as the box holds it, readable on screen
+    p->drawText(QRectF(kPad, 2, width_ - 2 * kPad, (previews_ ? preview_top_ : height_) - 4), name.flags, name.text);
+    f = QFont();
     f.setBold(false);
     f.setPointSizeF(7.5);
     p->setFont(f);
     if (previews_) paintPreviews(p);
     return;
   }
-  p->drawText(QRectF(kPad, 2, width_ - 2 * kPad, 18), Qt::AlignLeft | Qt::AlignVCenter, title);
+  p->drawText(QRectF(kPad, 2, width_ - 2 * kPad, 18), name.flags, name.text);
   f.setBold(false);
   f.setPointSizeF(7.5);
   p->setFont(f);
@@ -420,6 +444,10 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
     p->setPen(QColor(255, 190, 60));
     p->drawText(QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
                 p->fontMetrics().elidedText(waiting_, Qt::ElideRight, static_cast<int>(width_ - 2 * kPad)));
+  } else if (!heldNote().isEmpty()) {  // what it keeps: the held frame's re-runs add to it
+    p->setPen(QColor(230, 170, 60));
+    p->drawText(QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter,
+                p->fontMetrics().elidedText(heldNote(), Qt::ElideRight, static_cast<int>(width_ - 2 * kPad)));
   } else if (!values_.isEmpty()) {
     p->drawText(QRectF(kPad, bottom + kRow, width_ - 2 * kPad, kRow), Qt::AlignLeft | Qt::AlignVCenter, timing_);
   }

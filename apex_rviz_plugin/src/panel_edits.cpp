@@ -23,10 +23,11 @@ std::vector<std::string> stdNames(const QStringList& nodes) {
 void PanelWidget::perform(const std::optional<Edit>& edit) {
   if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
   reservePlaces(edit->apply);
-  announceRenames(edit->apply);
+  announceMoves(edit->apply);
   ++pending_;
   link_.run(edit->apply, [this, edit = *edit, epoch = history_epoch_](bool ok, const std::string& message) {
     --pending_;
+    if (ok && GraphModel::regroups(edit.apply)) inspectAgain();  // the runtime ended every inspection
     if (!ok)  // its places are free again
       for (const auto& call : edit.apply)
         if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) placing_.erase(ui->node);

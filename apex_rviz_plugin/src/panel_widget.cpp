@@ -23,6 +23,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   connect(&link_, &RuntimeLink::graphReceived, this, &PanelWidget::onGraph);
   connect(&link_, &RuntimeLink::statusReceived, this, [this](const apex::RuntimeStatus& s) {
     editor_->scene()->showStatus(s);
+    editor_->showUnsaved(s.unsaved);
     emit statusShown();
   });
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
@@ -194,21 +195,26 @@ void PanelWidget::onLevelChanged() {
 void PanelWidget::replay(std::vector<Call> calls, bool undo, const std::string& label) {
   editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
   if (calls.empty()) return;
-  announceRenames(calls);
+  announceMoves(calls);
   ++replaying_;
   redo_base_.reset();
-  link_.runThenRead(std::move(calls), [this, undo, label](bool ok, const std::string& m, const apex::GraphState& after) {
-    stepDone(undo, label, ok, m, after);
-  });
+  const bool regroups = GraphModel::regroups(calls);
+  link_.runThenRead(std::move(calls),
+                    [this, undo, label, regroups](bool ok, const std::string& m, const apex::GraphState& after) {
+                      if (ok && regroups) inspectAgain();
+                      stepDone(undo, label, ok, m, after);
+                    });
 }
 
-void PanelWidget::announceRenames(const std::vector<Call>& calls) {
-  for (const auto& c : calls) {
-    const auto* r = std::get_if<apex::RenameNode::Request>(&c.request);
-    if (!r) continue;
-    const auto slash = r->name.rfind('/');  // the node stays in its subgraph
-    const std::string path = (slash == std::string::npos ? "" : r->name.substr(0, slash + 1)) + r->new_name;
-    emit renameSent(QString::fromStdString(r->name), QString::fromStdString(path));
+void PanelWidget::announceMoves(const std::vector<Call>& calls) {
+  for (const auto& [from, to] : model_.moves(calls)) {
+    emit renameSent(QString::fromStdString(from), QString::fromStdString(to));
+    std::set<std::pair<std::string, std::string>> followed;  // the ports inspected, under the names they will have
+    for (const auto& [node, port] : inspected_) {
+      const bool inside = node.size() > from.size() && node.compare(0, from.size() + 1, from + "/") == 0;
+      followed.insert({node == from || inside ? to + node.substr(from.size()) : node, port});
+    }
+    inspected_ = std::move(followed);
   }
 }
 
@@ -296,7 +302,7 @@ std::function<void(bool, const std::string&)> PanelWidget::replacingGraph(const 
   untangle_from_ = 0;
   return [this, what, before](bool ok, const std::string& message) {
     report(ok, message, what);
-    if (ok) return afterLoad();
+    if (ok) return inspectAgain();
     if (!history_.canUndo() && !history_.canRedo()) {  // refused, and nothing done since: the old history stands
       history_ = *before;
       editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
@@ -304,10 +310,10 @@ std::function<void(bool, const std::string&)> PanelWidget::replacingGraph(const 
   };
 }
 
-void PanelWidget::afterLoad() {
+void PanelWidget::inspectAgain() {
   for (const auto& key : previewing_) link_.unwatchPreview(key.substr(0, key.rfind('/')), key.substr(key.rfind('/') + 1));
   previewing_.clear();  // a load ends the runtime's previews: asked for again by the next update
-  watched_.clear();  // a load ends every inspection: the Optimizers' progress and the displays
+  watched_.clear();  // a load, group or ungroup ends every inspection: the Optimizers' progress and the displays
   watchOptimizers();  // the loaded graph may be shown already: no other ~graph may follow
   for (const auto& [node, port] : inspected_)  // displays showing a port go on if the new graph has it
     link_.inspect(node, port, [](bool, const std::string&, const std::string&, const std::string&) {});
@@ -317,7 +323,10 @@ void PanelWidget::report(bool ok, const std::string& message, const QString& wha
   editor_->showMessage(ok ? what : what + " refused: " + QString::fromStdString(message), !ok);
 }
 
-void PanelWidget::forgetRuntime() { model_.reset(), watched_.clear(), previewing_.clear(), forgetHistory(); }
+void PanelWidget::forgetRuntime() {
+  model_.reset(), watched_.clear(), previewing_.clear(), forgetHistory();
+  editor_->showUnsaved(false);
+}
 
 void PanelWidget::meetRuntime() {
   refreshTypes(), editor_->fitNextGraph(), untangle_ = true;

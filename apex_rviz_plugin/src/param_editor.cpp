@@ -13,6 +13,7 @@
 #include <QDoubleSpinBox>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QFileInfo>
 #include <QLineEdit>
 #include <QPushButton>
 #include <QSlider>
@@ -124,7 +125,7 @@ QString tip(const apex::ParamInfo& p) {
   if (!p.options.empty()) {
     QStringList o;
     for (const auto& x : p.options) o << QString::fromStdString(x);
-    t += ": one of " + o.join(", ");
+    t += p.kind == "path" ? ": files " + o.join(" ") : ": one of " + o.join(", ");
   }
   t += "\ndefault " + QString::fromStdString(p.default_value);
   if (!p.description.empty()) t += "\n" + QString::fromStdString(p.description);
@@ -273,6 +274,8 @@ void ParamEditor::buildNumber(bool integer) {
     send(text(v), false);
   });
   show_ = [spin, slider, scale](const std::string& v) {
+    const auto* typing = spin->findChild<QLineEdit*>();
+    if (spin->hasFocus() && typing && typing->isModified()) return;  // digits typed, not sent yet: kept
     const double d = as<double>(parse(v), 0.0);
     QSignalBlocker b1(spin);
     spin->setValue(d);
@@ -366,15 +369,20 @@ void ParamEditor::buildPath() {
   });
   connect(browse, &QPushButton::clicked, this, [this, line] {  // in the current file's folder
     const std::string& mode = param_.path_mode;
+    QStringList files;  // the kinds of file the node takes first, then any
+    for (const auto& o : param_.options) files << QString::fromStdString(o);
+    const QString filter =
+        files.isEmpty() ? "" : QString::fromStdString(param_.name) + " (" + files.join(" ") + ");;All files (*)";
     const FileDialogSpec spec{"path_dialog",
                               QString::fromStdString(param_.name),
-                              line->text(),
+                              line->text().isEmpty() ? lastChosenFolder() : line->text(),
                               mode == "directory" ? FileDialogSpec::Mode::Directory
                               : mode == "write"   ? FileDialogSpec::Mode::Save
                                                   : FileDialogSpec::Mode::Open,
-                              "",
+                              filter,
                               ""};
     openFileDialog(dialog_, this, spec, [this, line](const QString& path) {
+      lastChosenFolder() = QFileInfo(path).absolutePath();
       line->setText(path);
       send(quoted(path), false);
     });

@@ -18,12 +18,14 @@ namespace {
 
 constexpr int kOffer = Qt::UserRole;  // an item's index in offers_
 
-/** `at` moved so that a `size` box at it stays on the screen it is on. */
-QPoint onScreen(QPoint at, QSize size) {
+/** `at` moved so that a `size` box at it stays inside `window` (rviz's, global coordinates) where
+ *  it fits there, else on the screen it is on. */
+QPoint inside(QPoint at, QSize size, const QRect& window) {
   const QScreen* screen = QGuiApplication::screenAt(at);
   if (!screen) screen = QGuiApplication::primaryScreen();
-  if (!screen) return at;
-  const QRect room = screen->availableGeometry();
+  QRect room = screen ? screen->availableGeometry() : window;
+  if (const QRect both = room & window; both.width() >= size.width() && both.height() >= size.height()) room = both;
+  if (room.isEmpty()) return at;
   at.setX(std::max(room.left(), std::min(at.x(), room.right() - size.width())));
   at.setY(std::max(room.top(), std::min(at.y(), room.bottom() - size.height())));
   return at;
@@ -73,8 +75,11 @@ void QuickAdd::open(std::vector<Offer> offers, QPoint global, const QString& tit
   search_->clear();
   search_->blockSignals(false);
   filter();
-  move(onScreen(global, size()));
+  const QWidget* owner = parentWidget() ? parentWidget()->window() : nullptr;
+  const QRect room = owner ? owner->geometry() : QRect();
+  move(inside(global, size(), room));
   show();
+  move(inside(global, frameGeometry().size(), room));  // as shown: its frame and margins too
   raise();
   activateWindow();
   search_->setFocus(Qt::PopupFocusReason);

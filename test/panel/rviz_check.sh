@@ -8,6 +8,8 @@
 #   rviz_check.sh RESULT_XML SCREENSHOT_PNG BAG [GRAPH CONFIG [NAME]]
 #   APEX_RVIZ_UNDOCK_SHOT=PNG   also undock the panel (a double-click on its title bar),
 #                               screenshot it floating into PNG, and dock it back
+#   APEX_RVIZ_WHOLE_WINDOW=1    also press Ctrl+M on the canvas: the editor over the whole window
+#                               (screenshot *_whole_window.png), and again: rviz's layout back
 # Needs the devel space sourced; starts (and stops) its own X server and master.
 set -uo pipefail
 result=$1 shot=$2 bag=$3
@@ -68,6 +70,35 @@ undock_and_back() {
   fi
 }
 
+# The Whole window key (Ctrl+M, with the focus on the canvas, clicked just below the panel's tool
+# bar): the editor over rviz's whole window (the 3D view gone from the screenshot), then, pressed
+# again, rviz's layout as before (the 3D view measured again).
+whole_window_and_back() {
+  local geometry x y w h
+  geometry=$(printf '%s' "$layout" | head -1 | sed -n 's/.* is \([0-9]*\)x\([0-9]*\) at +\([0-9]*\)+\([0-9]*\),.*/\1 \2 \3 \4/p')
+  read -r w h x y <<<"$geometry"
+  if [ -z "$geometry" ]; then layout_failure="whole window: the 3D view was not found"; return; fi
+  local first=${shot%.png}_first.png  # the screenshot before the click: kept as the check's
+  cp "$shot" "$first"
+  python3 "$root/test/panel/rviz_layout.py" click $((x + w - 40)) $((y + h + 110))  # the canvas's right end
+  python3 "$root/test/panel/rviz_layout.py" key ctrl+m
+  whole() { shoot && python3 "$root/test/panel/rviz_layout.py" measure "$shot" --windows "$work/windows.txt" --min 0 \
+              --max 0.05 --background "$background" --name "whole window" >/dev/null 2>&1; }
+  wait_for 10 whole
+  local big=${shot%.png}_whole_window.png
+  cp "$shot" "$big"
+  if ! whole; then
+    layout_failure="whole window: Ctrl+M on the canvas left the 3D view shown (screenshot $big)"
+    return
+  fi
+  echo "rviz check: Ctrl+M gives the editor the whole window (screenshot $big)"
+  python3 "$root/test/panel/rviz_layout.py" key ctrl+m
+  wait_for 10 measures
+  shoot && measure_layout
+  [ -z "$layout_failure" ] || layout_failure="after the whole window and back: $layout_failure"
+  mv "$first" "$shot"
+}
+
 if start_x_and_master; then  # else `failure` says why
   rosparam set /apex/overrides "{bag: {file: '$bag', loop: true}}"
   rosrun apex apex_runtime_node __name:=apex _graph:="$graph" >"$work/runtime.log" 2>&1 &
@@ -88,6 +119,7 @@ if start_x_and_master; then  # else `failure` says why
   if shoot; then
     measure_layout
     [ -n "${APEX_RVIZ_UNDOCK_SHOT:-}" ] && [ -z "$failure$layout_failure" ] && undock_and_back
+    [ -n "${APEX_RVIZ_WHOLE_WINDOW:-}" ] && [ -z "$failure$layout_failure" ] && whole_window_and_back
   else
     failure="${failure:-no screenshot: $(cat "$work/import.log")}"
     layout_failure="no screenshot"

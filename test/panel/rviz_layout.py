@@ -9,11 +9,13 @@ back, and measures an rviz screenshot.
 
   rviz_layout.py state CONFIG.rviz [--write]     the state for CONFIG's layout (--write: into CONFIG)
   rviz_layout.py decode CONFIG.rviz|HEX           what a state holds: dock areas, docks, sizes, tool bars
-  rviz_layout.py measure SHOT.png --windows TREE [--background R,G,B] [--min F] [--name N]
+  rviz_layout.py measure SHOT.png --windows TREE [--background R,G,B] [--min F] [--max F] [--name N]
         the 3D view's share of rviz's window in a screenshot of the X root window; TREE is the output
         of `xwininfo -root -tree` taken with it. The 3D view is the X window (rviz's render widget is
         a native one) of rviz's that shows the most of the view's background colour; without one,
-        the box of the columns, then rows, at least a quarter that colour. Exits 1 below F (0.5).
+        the box of the columns, then rows, at least a quarter that colour. Exits 1 below F (0.5) or above --max.
+  rviz_layout.py key COMBINATION                 a key pressed with modifiers held (e.g. ctrl+m), on
+        $DISPLAY, through the XTEST extension
   rviz_layout.py click X Y [--double]            a (double) click of the left button at X,Y on
         $DISPLAY, through the XTEST extension (to undock a panel by its title bar)
   rviz_layout.py window NAME --windows TREE      the geometry of the top-level X window named NAME
@@ -354,6 +356,37 @@ def click(x, y, double=False):
     x11.XCloseDisplay(dpy)
 
 
+def key(combination):
+    """A key pressed with its modifiers held, e.g. "ctrl+m", as a keyboard does it (XTEST)."""
+    x11 = ctypes.CDLL("libX11.so.6")
+    xtst = ctypes.CDLL("libXtst.so.6")
+    x11.XOpenDisplay.restype = ctypes.c_void_p
+    x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x11.XStringToKeysym.restype = ctypes.c_ulong
+    x11.XStringToKeysym.argtypes = [ctypes.c_char_p]
+    x11.XKeysymToKeycode.restype = ctypes.c_ubyte
+    x11.XKeysymToKeycode.argtypes = [ctypes.c_void_p, ctypes.c_ulong]
+    x11.XSync.argtypes = [ctypes.c_void_p, ctypes.c_int]
+    x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    xtst.XTestFakeKeyEvent.argtypes = [ctypes.c_void_p, ctypes.c_uint, ctypes.c_int, ctypes.c_ulong]
+    dpy = x11.XOpenDisplay(None)
+    if not dpy:
+        raise SystemExit("key: cannot open the display")
+    names = {"ctrl": "Control_L", "shift": "Shift_L", "alt": "Alt_L"}
+    codes = []
+    for part in combination.split("+"):
+        code = x11.XKeysymToKeycode(dpy, x11.XStringToKeysym(names.get(part.lower(), part).encode()))
+        if not code:
+            raise SystemExit("key: no key for '%s'" % part)
+        codes.append(code)
+    for c in codes:
+        xtst.XTestFakeKeyEvent(dpy, c, 1, 50)
+    for c in reversed(codes):
+        xtst.XTestFakeKeyEvent(dpy, c, 0, 30)
+    x11.XSync(dpy, 0)
+    x11.XCloseDisplay(dpy)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = p.add_subparsers(dest="cmd", required=True)
@@ -368,11 +401,14 @@ def main():
     m.add_argument("--background", default="48,48,48")
     m.add_argument("--size", default="1200x846", help="rviz's window if the tree does not show it")
     m.add_argument("--min", type=float, default=0.5)
+    m.add_argument("--max", type=float, default=1.0, help="fail above this share (a view that should be hidden)")
     m.add_argument("--name", default="rviz")
     c = sub.add_parser("click")
     c.add_argument("x", type=int)
     c.add_argument("y", type=int)
     c.add_argument("--double", action="store_true")
+    k = sub.add_parser("key")
+    k.add_argument("combination", help='e.g. "ctrl+m"')
     w = sub.add_parser("window")
     w.add_argument("name")
     w.add_argument("--windows", required=True)
@@ -401,8 +437,13 @@ def main():
         if fraction < a.min:
             print("%s: the 3D view covers %.1f%% of the window, less than %.0f%%" % (a.name, 100 * fraction, 100 * a.min))
             sys.exit(1)
+        if fraction > a.max:
+            print("%s: the 3D view covers %.1f%% of the window, more than %.0f%%" % (a.name, 100 * fraction, 100 * a.max))
+            sys.exit(1)
     elif a.cmd == "click":
         click(a.x, a.y, a.double)
+    elif a.cmd == "key":
+        key(a.combination)
     elif a.cmd == "window":  # a top-level one (a child of the root window): a docked panel's keeps its name
         tree = windows(open(a.windows).read())
         top = min(t[0] for t in tree)

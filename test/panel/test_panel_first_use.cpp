@@ -366,6 +366,7 @@ TEST_F(FirstUseTest, APathsChooserIsQtsOwnDialogOverThePanelOneAtATime) {
     int dialogs = 0;
     bool qt_own = false, in_scene = true, modal = false;
     QString folder;
+    QStringList filters;
   } seen;
   bool recorded = false, clicking = false;
   auto record = [&] {
@@ -377,6 +378,7 @@ TEST_F(FirstUseTest, APathsChooserIsQtsOwnDialogOverThePanelOneAtATime) {
     seen.in_scene = d->graphicsProxyWidget() || !d->parentWidget() || d->parentWidget()->window()->graphicsProxyWidget();
     seen.modal = d->isModal() || d->windowModality() != Qt::NonModal;
     seen.folder = d->directory().absolutePath();
+    seen.filters = d->nameFilters();
     recorded = true;
   };
   QTimer unblock;  // the old dialog ran its own event loop in the click: read it there, and close it
@@ -400,6 +402,7 @@ TEST_F(FirstUseTest, APathsChooserIsQtsOwnDialogOverThePanelOneAtATime) {
   EXPECT_TRUE(seen.modal);
   EXPECT_EQ(QDir(seen.folder).canonicalPath(),
             QDir(QString::fromStdString(fs::path(g_bag).parent_path().string())).canonicalPath());
+  EXPECT_TRUE(!seen.filters.isEmpty() && seen.filters.front().contains("*.bag")) << seen.filters.join(";;").toStdString();
   ASSERT_TRUE(recorded && seen.qt_own) << "the old dialog: stop before a second click would wait in its event loop";
   QTest::mouseClick(browse, Qt::LeftButton);  // a second click while it is open: the same one, raised
   EXPECT_EQ(fileDialogs().size(), 1u);

@@ -23,6 +23,37 @@ int liveDrag(PanelWidget& panel, QGraphicsView* view, QPointF from, QPointF to) 
   return shown;
 }
 
+/** A button held on `w` at `from`, moved to `to` in steps with the event loop running between
+ *  them (over several of the editor's throttle intervals), released once a graph was shown
+ *  during it. Returns the number of graphs shown between the press and the release. */
+int liveWidgetDrag(PanelWidget& panel, QWidget* w, QPoint from, QPoint to) {
+  int shown = 0;
+  const auto counting = QObject::connect(&panel, &PanelWidget::graphShown, [&] { ++shown; });
+  auto send = [w](QEvent::Type type, QPoint at, Qt::MouseButtons held) {
+    QMouseEvent e(type, at, w->mapToGlobal(at), type == QEvent::MouseMove ? Qt::NoButton : Qt::LeftButton, held, Qt::NoModifier);
+    QApplication::sendEvent(w, &e);
+  };
+  send(QEvent::MouseButtonPress, from, Qt::LeftButton);
+  for (int i = 1; i <= 8; ++i) {
+    QTest::qWait(ParamEditor::kThrottleMs / 2);
+    send(QEvent::MouseMove, from + (to - from) * i / 8, Qt::LeftButton);
+  }
+  (void)QTest::qWaitFor([&] { return shown > 0; }, kWaitMs);  // (the caller asserts it)
+  send(QEvent::MouseButtonRelease, to, Qt::NoButton);
+  QObject::disconnect(counting);
+  return shown;
+}
+
+/** Where a slider's handle is, in the slider. */
+QPoint handleOf(QSlider* slider) {
+  QStyleOptionSlider option;
+  option.initFrom(slider);
+  option.orientation = slider->orientation();
+  option.minimum = slider->minimum(), option.maximum = slider->maximum();
+  option.sliderPosition = option.sliderValue = slider->value();
+  return slider->style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider).center();
+}
+
 bool disconnectLink(const std::string& a, const std::string& ap, const std::string& b, const std::string& bp) {
   apex::Connect srv;
   srv.request.from_node = a, srv.request.from_port = ap, srv.request.to_node = b, srv.request.to_port = bp;
@@ -57,6 +88,93 @@ TEST_F(PanelWidgetTest, TwentyLinkDragsAllConnectWhileABagPlaysAtItsFullRate) {
         kWaitMs));
   }
   EXPECT_EQ(connected_by_drag, 20);
+  emptyGraph();
+}
+
+TEST_F(PanelWidgetTest, TheSelectedNodesParametersAreSetInItsPropertiesWhileABagPlays) {
+  emptyGraph();
+  ASSERT_TRUE(addNode("apex_nodes/BagReader", "prop_player",
+                      "{file: '" + g_bag + "', topics: [/camera/image_raw], rate: 0.0, loop: true}"));
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "prop_clock", "{rate: 10.0}"));
+  for (const char* n : {"prop_player", "prop_clock"}) waitPlaced(n);
+  const auto before = panel.model().graph().revision;
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.model().graph().revision > before + 5; }, kWaitMs))
+      << "the player does not change the graph as it plays";
+
+  // a click on the box's title: its parameters beside the canvas, at the panel's size
+  NodeItem* clock = panel.editor()->scene()->node("prop_clock");
+  const QPointF title = clock->scenePos() + QPointF(40, 8);
+  view->ensureVisible(QRectF(title, QSizeF(1, 1)));
+  mouse(view, QEvent::MouseButtonPress, title, Qt::LeftButton);
+  mouse(view, QEvent::MouseButtonRelease, title, Qt::NoButton);
+  PropertiesView* properties = panel.editor()->properties();
+  ASSERT_EQ(properties->node(), "prop_clock");
+  auto* side = panel.editor()->findChild<QTabWidget*>("side");
+  ASSERT_TRUE(side && side->currentWidget() == properties) << "the properties are not the tab shown";
+  const QPointer<ParamEditor> rate = properties->editor("rate");
+  ASSERT_TRUE(rate);
+  auto* slider = rate->findChild<QSlider*>();
+  auto* spin = rate->findChild<QDoubleSpinBox*>("spin");
+  ASSERT_TRUE(slider && spin);
+  QApplication::processEvents();
+
+  // a slider drag by the mouse while graphs come: the editor stays, the runtime takes the value
+  const QPoint from = handleOf(slider);
+  const int shown = liveWidgetDrag(panel, slider, from, from + QPoint(slider->width() / 5, 0));
+  ASSERT_GT(shown, 0) << "no graph came during the drag";
+  ASSERT_TRUE(rate) << "the properties' editor was rebuilt under the drag";
+  const double dragged = spin->value();
+  ASSERT_GT(dragged, 10.0) << "the drag did not move the slider";
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] { return panel.editsPending() == 0 && std::abs(number(runtimeGraph(), "prop_clock", "rate") - dragged) < 1e-3; },
+      kWaitMs))
+      << number(runtimeGraph(), "prop_clock", "rate") << " vs " << dragged;
+
+  // a value typed key by key while graphs come, then Enter: that value, not one a graph brought back
+  QLineEdit* field = spin->findChild<QLineEdit*>();
+  ASSERT_TRUE(field);
+  panel.activateWindow();  // typed into as a person does: the window active, the field focused
+  ASSERT_TRUE(QTest::qWaitForWindowActive(&panel));
+  spin->setFocus();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return spin->hasFocus(); }, kWaitMs));
+  field->selectAll();
+  for (const QChar c : QString("25")) {
+    const auto at = panel.model().graph().revision;
+    QTest::keyClicks(field, QString(c));
+    ASSERT_TRUE(QTest::qWaitFor([&] { return panel.model().graph().revision > at; }, kWaitMs));
+  }
+  QTest::keyClick(field, Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "prop_clock", "rate") == 25.0; }, kWaitMs))
+      << number(runtimeGraph(), "prop_clock", "rate");
+  ASSERT_TRUE(QTest::qWaitFor([&] { return number(panel.model().graph(), "prop_clock", "rate") == 25.0; }, kWaitMs));
+  EXPECT_EQ(panel.editor()->scene()->node("prop_clock")->editor("rate")->findChild<QDoubleSpinBox*>("spin")->value(), 25.0)
+      << "the box does not show the value set in the properties";
+  panel.editor()->scene()->clearSelection();
+  EXPECT_TRUE(properties->node().isEmpty());
+  emptyGraph();
+}
+
+TEST_F(PanelWidgetTest, OnAHeldFrameANodeThatLearnsFromEveryFrameSaysThatReRunsChangeIt) {
+  emptyGraph();
+  ASSERT_TRUE(
+      addNode("apex_nodes/BagReader", "held_player", "{file: '" + g_bag + "', topics: [/camera/image_raw], playing: false}"));
+  ASSERT_TRUE(addNode("apex_nodes/BackgroundSubtraction", "held_mog", ""));
+  ASSERT_TRUE(addNode("apex_nodes/GaussianBlur", "held_blur", ""));
+  for (const char* n : {"held_player", "held_mog", "held_blur"}) waitPlaced(n);
+  GraphScene* scene = panel.editor()->scene();
+  EXPECT_TRUE(scene->node("held_mog")->heldNote().contains("re-runs")) << "MOG2 on a held frame says nothing";
+  EXPECT_TRUE(scene->node("held_mog")->toolTip().contains("background model"))
+      << scene->node("held_mog")->toolTip().toStdString();
+  EXPECT_TRUE(scene->node("held_blur")->heldNote().isEmpty()) << "a blur keeps nothing from frame to frame";
+  scene->node("held_mog")->setSelected(true);
+  auto* kind = panel.editor()->properties()->findChild<QLabel*>("properties_kind");
+  ASSERT_TRUE(kind);
+  EXPECT_TRUE(kind->text().contains("Keeps from frame to frame")) << kind->text().toStdString();
+  ASSERT_TRUE(setParameter("held_player", "playing", "true"));  // frames flow: nothing is re-run
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->node("held_mog")->heldNote().isEmpty(); }, kWaitMs));
+  ASSERT_TRUE(setParameter("held_player", "playing", "false"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !scene->node("held_mog")->heldNote().isEmpty(); }, kWaitMs));
+  scene->clearSelection();
   emptyGraph();
 }
 

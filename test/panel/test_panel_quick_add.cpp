@@ -142,6 +142,27 @@ TEST_F(QuickAddTest, ALinkLetGoOnEmptyCanvasOffersOnlyTypesThatTakeItAndAddsBoth
       << panel.editor()->message().toStdString();
 }
 
+TEST_F(QuickAddTest, FromAThresholdsOutputContoursOffersFindContoursFirst) {
+  // what can run with the one link comes first: DrawContours needs contours besides the image
+  emptyGraph();
+  ASSERT_TRUE(addNode("apex_nodes/Threshold", "qa_threshold", ""));
+  waitPlaced("qa_threshold");
+  panel.editor()->fitGraph();
+  const QPointF out = portAt("qa_threshold", "image", true);
+  const QPointF drop = out + QPointF(200, 0);
+  ASSERT_TRUE(panel.editor()->scene()->emptyAt(drop));
+  drag(view, out, drop);
+  QuickAdd* quick = panel.editor()->quickAdd();
+  ASSERT_TRUE(quick && quick->isVisible()) << panel.editor()->message().toStdString();
+  QTest::keyClicks(quick->search(), "contours");
+  const QStringList shown = quick->shown();
+  ASSERT_TRUE(shown.contains("apex_nodes/FindContours") && shown.contains("apex_nodes/DrawContours"))
+      << shown.join(", ").toStdString();
+  EXPECT_EQ(shown.front(), "apex_nodes/FindContours") << shown.join(", ").toStdString();
+  QTest::keyClick(quick->search(), Qt::Key_Escape);
+  emptyGraph();
+}
+
 TEST_F(QuickAddTest, ALinkFromAnInputLetGoOnEmptyCanvasAddsANodeThatFeedsIt) {
   emptyGraph();
   GraphScene* scene = panel.editor()->scene();
@@ -165,6 +186,24 @@ TEST_F(QuickAddTest, ALinkFromAnInputLetGoOnEmptyCanvasAddsANodeThatFeedsIt) {
   waitPlaced(name);
   EXPECT_LT(panel.model().position(name).first, drop.x()) << "left of where the link was let go";
   emptyGraph();  // the tests after start from nothing
+}
+
+TEST_F(QuickAddTest, OpenedNearTheWindowsCornerTheSearchStaysInsideTheWindow) {
+  // rviz's window is smaller than the screen: a box hanging past its edge is half out of reach
+  const QSize before = panel.size();
+  panel.resize(720, 520);
+  QApplication::processEvents();
+  const QPoint corner(view->viewport()->width() - 5, view->viewport()->height() - 5);
+  view->setFocus();
+  pointAt(corner);
+  QTest::keyClick(view, Qt::Key_Tab);
+  QuickAdd* quick = panel.editor()->quickAdd();
+  ASSERT_TRUE(quick && quick->isVisible());
+  const QRect window = panel.window()->geometry(), box = quick->frameGeometry();
+  EXPECT_TRUE(window.contains(box)) << "the box (" << box.x() << ", " << box.y() << ", " << box.width() << " x " << box.height()
+                                    << ") is not inside the window (" << window.width() << " x " << window.height() << ")";
+  QTest::keyClick(quick->search(), Qt::Key_Escape);
+  panel.resize(before);
 }
 
 }  // namespace

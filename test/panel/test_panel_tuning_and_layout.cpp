@@ -241,8 +241,30 @@ TEST_F(PanelWidgetTest, FitsANarrowDock) {
   EXPECT_LE(panel.minimumSizeHint().height(), 300) << "rviz's default layout gives a bottom dock about 300 px";
   auto* buttons = panel.editor()->findChild<QToolBar*>("buttons");
   ASSERT_TRUE(buttons);
-  for (const char* b : {"pause", "step", "undo", "redo", "fit", "tidy", "balance", "previews", "presets", "new", "save", "load"})
+  for (const char* b :
+       {"pause", "step", "undo", "redo", "fit", "tidy", "balance", "previews", "presets", "new", "save", "load", "whole_window"})
     EXPECT_TRUE(buttons->findChild<QToolButton*>(b)) << b << " is not in the tool bar";
+}
+
+TEST_F(PanelWidgetTest, TheElevenNodesOfThePaperPipelineAreReadableAtFitInRvizsDefaultDock) {
+  // rviz at its default size (1200 x 846) with the panel docked at the bottom, the 3D view keeping
+  // more than half the window (test/panel/rviz_layout.py): the panel is ~1190 x 265 px
+  const QSize before = panel.size();
+  panel.resize(1190, 265);
+  emit panel.editor()->loadRequested(QString::fromStdString(g_graphs + "/paper_pipeline.yaml"));
+  GraphScene* scene = panel.editor()->scene();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return scene->boxes().size() == 11 && panel.editsPending() == 0; }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  QTest::mouseClick(panel.editor()->findChild<QToolButton*>("fit"), Qt::LeftButton);
+  const QRectF seen = view->mapToScene(view->viewport()->rect()).boundingRect();
+  for (const auto& [name, item] : scene->nodes()) {
+    EXPECT_TRUE(seen.contains(item->sceneBoundingRect())) << name << " is out of view after Fit";
+    EXPECT_GE(item->namePixels(), 10.0) << name << "'s name at Fit, at zoom " << view->transform().m11();
+    EXPECT_TRUE(item->name().whole) << name << "'s name does not fit its box at Fit";
+  }
+  panel.editor()->scene()->clearSelection();
+  panel.resize(before);
+  emptyGraph();
 }
 
 TEST_F(PanelWidgetTest, ATextEditIsOneUndoStepAndLeavingAFieldUntouchedIsNone) {
@@ -297,11 +319,11 @@ TEST_F(PanelWidgetTest, ABoxIsAsWideAsItsNameAndValuesNeed) {
       QTest::qWaitFor([&] { return panel.editsPending() == 0 && overlapping(*panel.editor()->scene()).empty(); }, kWaitMs))
       << overlapping(*panel.editor()->scene());  // placed beside the others, wide as it is
   // zoomed out, the box is its name alone: a rebuild then (previews on) does not bring its editors back
-  box->setDetail(false);
+  box->setZoom(0.3);
   EXPECT_FALSE(box->editor("file")->isVisible());
   box->setPreviews(true);
   EXPECT_FALSE(box->editor("file")->isVisible());
-  box->setDetail(true);
+  box->setZoom(1);
   EXPECT_TRUE(box->editor("file")->isVisible());
   box->setPreviews(false);
 }
@@ -396,12 +418,13 @@ TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestU
   ASSERT_TRUE(link("player", "stamp", "scale", "in") && link("scale", "out", "mean", "value"));
   ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editor()->scene()->node("scale") != nullptr; }, kWaitMs));
 
-  // Right-click on the factor: Optimise with > New Optimizer.
+  // Right-click on the factor: Tune automatically with > a new Optimizer.
   QMenu menu;
   panel.editor()->fillParamMenu(menu, "scale", "factor");
   auto* with = menu.findChild<QMenu*>("optimise_with");
   ASSERT_TRUE(with && !with->actions().isEmpty());
-  EXPECT_EQ(with->actions().back()->text().toStdString(), "New Optimizer");
+  EXPECT_EQ(with->actions().back()->text().toStdString(), "a new Optimizer (Differential Evolution)");
+  EXPECT_TRUE(with->actions().back()->toolTip().contains("fitness")) << "the menu does not say what comes next";
   with->actions().back()->trigger();
   ASSERT_TRUE(QTest::qWaitFor([&] { return connected(runtimeGraph(), "optimizer_1", "factor", "scale", "factor"); }, kWaitMs))
       << panel.editor()->message().toStdString();

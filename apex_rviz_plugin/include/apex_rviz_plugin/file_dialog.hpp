@@ -22,6 +22,13 @@ struct FileDialogSpec {
   QString suffix;  ///< Save: added to a name typed without one ("blur" -> "blur.yaml"); "" none
 };
 
+/** @brief $ROS_HOME/apex/ (~/.ros/apex/): where graphs and presets go by default, a folder the
+ *  runtime reads (~file_roots). */
+QString apexFolder();
+/** @brief The folder a path parameter's chooser picked from last (in any box): where the next one
+ *  opens for a parameter that has no file yet; at first apexFolder(). */
+QString& lastChosenFolder();
+
 /** @brief The widget a dialog opened from `w` belongs to. A widget in a node's box lives in the
  *  graph's scene (a QGraphicsProxyWidget): a window parented there is embedded in the scene too,
  *  drawn into the canvas (a black window), so the view that shows the scene is taken instead. */

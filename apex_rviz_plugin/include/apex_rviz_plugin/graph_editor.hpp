@@ -22,6 +22,7 @@ class QGraphicsView;
 class QLabel;
 class QMenu;
 class QLineEdit;
+class QTabWidget;
 class QToolButton;
 
 namespace apex_rviz_plugin {
@@ -29,13 +30,17 @@ namespace apex_rviz_plugin {
 class HelpView;
 class Minimap;
 class Palette;
+class PropertiesView;
 class QuickAdd;
 
 class GraphEditor : public QWidget {
   Q_OBJECT
  public:
   explicit GraphEditor(QWidget* parent = nullptr);
-  /** @brief The menu of a right-click on a number parameter: "Optimise with" an Optimizer of the
+  /** Deaf to its scene first: the scene's items go last (selectionChanged while they go), after
+   *  the model shown (its owner's) is gone. */
+  ~GraphEditor() override;
+  /** @brief The menu of a right-click on a number parameter: "Tune automatically with" an Optimizer of the
    *  graph or a new one. Filled for tests to read; shown by a right-click. */
   void fillParamMenu(QMenu& menu, const QString& node, const QString& param);
   /** @brief The menu of a right-click on a node. Filled for tests to read; shown by a right-click. */
@@ -74,6 +79,9 @@ class GraphEditor : public QWidget {
   void showMessage(const QString& text, bool error);
   void showConnection(bool up, const QString& text);
   void showHistory(const QString& undo_label, bool can_undo, bool can_redo);
+  /** @brief The mark beside the runtime's name: the graph differs from its file (RuntimeStatus::unsaved). */
+  void showUnsaved(bool unsaved);
+  bool unsavedShown() const;
   void setNamespace(const QString& ns);
   QString message() const;
   /** @brief The smallest zoom (Fit, the wheel): a docked view shows a graph of hundreds of nodes whole. */
@@ -106,6 +114,10 @@ class GraphEditor : public QWidget {
   void showNodeHelp(const QString& node);
   /** @brief The help window; nullptr before help was first asked for. */
   HelpView* help() const { return help_; }
+  /** @brief The Whole window button: checked while the editor has the whole window. */
+  QToolButton* wholeWindowButton() const { return whole_; }
+  /** @brief The selected node's parameters, beside the canvas (a tab beside the palette's). */
+  PropertiesView* properties() const { return properties_; }
 
  protected:
   /** The wheel zooms around the cursor; Delete, Ctrl+C, Ctrl+V, Ctrl+D on the selection; Tab or
@@ -158,12 +170,20 @@ class GraphEditor : public QWidget {
   void presetCompareRequested(const QString& name);
   /** Previews on the nodes (thumbnails of images, sparklines of numbers) on or off. */
   void previewsToggled(bool on);
+  /** The editor over the whole window (the Whole window button, Ctrl+M), or back where it was:
+   *  for who holds it (GraphPanel, in rviz's window). */
+  void wholeWindowToggled(bool on);
 
  private:
   QWidget* buildToolBar();
   QWidget* buildLevelBar();
   /** The palette of node types (palette.hpp): what it asks to add goes at newNodePosition(). */
   QWidget* buildPalette();
+  /** The column beside the canvas: the palette, and the selected node's properties, as tabs;
+   *  picking one node shows its properties. */
+  QWidget* buildSideTabs();
+  /** The properties of the node selected alone, as the graph shows it now. */
+  void showProperties();
   void showNodeMenu(const QString& node, QPoint at);
   void showPortMenu(const QString& node, const QString& port, QPoint at);
   /** "Show in rviz" for an output of `port_type`: see fillPortMenu. */
@@ -201,6 +221,8 @@ class GraphEditor : public QWidget {
   QLineEdit* find_ = nullptr;  ///< finds nodes on the canvas by name or type
   int found_ = -1;  ///< the match shown last
   Palette* palette_ = nullptr;
+  QTabWidget* side_ = nullptr;  ///< the palette and the properties
+  PropertiesView* properties_ = nullptr;
   std::vector<apex::NodeTypeInfo> types_;  ///< as the runtime listed them, in the palette's order
   QuickAdd* quick_add_ = nullptr;
   QPointF quick_at_;  ///< where the quick-add box adds (scene)
@@ -211,7 +233,8 @@ class GraphEditor : public QWidget {
   QPoint last_mouse_{-1, -1};  ///< where the mouse was last over the view (viewport pixels)
   QLabel* message_;
   QLabel* connection_;
-  QToolButton *pause_, *undo_, *redo_;
+  QLabel* unsaved_;  ///< "● unsaved" while the graph differs from its file
+  QToolButton *pause_, *undo_, *redo_, *whole_;
   int added_ = 0;
   QStringList select_when_shown_;
   QStringList presets_;

@@ -101,6 +101,12 @@ class GraphModel {
   const apex::GraphState& graph() const { return graph_; }
 
   const apex::NodeInfo* node(const std::string& name) const;
+  /** @brief The nodes `calls` give another path, as (from, to), read before they are sent: a
+   *  rename's node, a group's members, an ungrouped subgraph's nodes (the nodes inside a moved
+   *  subgraph move with it and are not listed). */
+  std::vector<std::pair<std::string, std::string>> moves(const std::vector<Call>& calls) const;
+  /** @brief Whether `calls` group or ungroup nodes: the runtime then ends every inspection. */
+  static bool regroups(const std::vector<Call>& calls);
   const apex::ParamInfo* parameter(const std::string& node, const std::string& name) const;
   const apex::PortInfo* port(const std::string& node, const std::string& port, const std::string& kind) const;
   /** @brief Whether an output (or trigger, or parameter output) may feed an input (or slot,

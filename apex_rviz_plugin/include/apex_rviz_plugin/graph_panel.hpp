@@ -6,6 +6,8 @@
 
 #include <rviz/panel.h>
 
+#include <QByteArray>
+#include <QList>
 #include <QPointer>
 #include <map>
 
@@ -33,12 +35,17 @@ class GraphPanel : public rviz::Panel {
   void showDisplay(const QString& node, const QString& port, const QString& topic, const QString& message_type);
   /** The graph shown changed: the displays made here follow it. */
   void followGraph();
+  /** The editor over rviz's whole window (the 3D view and the other docks hidden), or rviz's
+   *  layout as it was before. */
+  void setWholeWindow(bool on);
   /** Removes a display from rviz as its Displays panel does. */
   void removeDisplay(rviz::Display* display);
 
   PanelWidget* widget_;
   FollowedDisplays followed_;
   std::map<int, QPointer<rviz::Display>> displays_;  // by followed_'s id; null once deleted in rviz
+  QList<QPointer<QWidget>> hidden_;  // while the editor has the whole window: what it hid
+  QByteArray layout_;  // rviz's window layout before
 };
 
 }  // namespace apex_rviz_plugin

@@ -14,6 +14,7 @@
 #include <map>
 #include <optional>
 
+#include "apex_rviz_plugin/box_name.hpp"
 #include "apex_rviz_plugin/box_view.hpp"
 #include "apex_rviz_plugin/graph_model.hpp"
 #include "apex_rviz_plugin/layout.hpp"
@@ -84,9 +85,19 @@ class NodeItem : public QGraphicsObject {
     auto it = series_.find(port);
     return it == series_.end() ? 0 : it->second.size();
   }
-  /** @brief Full detail (port labels, widgets, timing), or, zoomed out, the name large alone. */
-  void setDetail(bool full);
+  /** @brief At the view's scale: full detail (port labels, widgets, timing) from
+   *  GraphScene::kDetailScale, else the name alone, as large as the box holds it (BoxName). */
+  void setZoom(double scale);
   bool detailed() const { return detail_; }
+  /** @brief The graph holds a frame (GraphScene::holdsFrame): a node that keeps something from
+   *  frame to frame (NodeInfo::keeps) says that the re-runs change it. */
+  void setHeld(bool held);
+  /** @brief What the box says of a held frame: "" unless the graph holds one and the node keeps something. */
+  QString heldNote() const;
+  /** @brief The name as drawn at the zoom set: on the title bar, or alone, zoomed out. */
+  BoxName name() const;
+  /** @brief How tall the name's letters are on screen, in pixels (the font's size at the zoom). */
+  double namePixels() const;
   /** @brief What a port is and what it carried last: its tooltip. */
   QString portTip(const apex::PortInfo& port) const;
   PortItem* port(const std::string& name, bool source) const;
@@ -162,6 +173,8 @@ class NodeItem : public QGraphicsObject {
   int evaluations_ = 0;
   bool previews_ = false;
   bool detail_ = true;
+  bool held_ = false;
+  double zoom_ = 1;
   double preview_top_ = 0;  // where the previews start in the box
   std::map<std::string, QImage> images_;  // previews: the last thumbnail per output
   std::map<std::string, QString> abouts_;  // previews: what the last message was per output
@@ -198,10 +211,13 @@ class GraphScene : public QGraphicsScene {
   void showImage(const QString& node, const QString& port, const QImage& image);
   void showAbout(const QString& node, const QString& port, const QString& text);
   NodeItem* node(const std::string& name) const;
+  /** @brief Whether the graph holds a frame that edits re-run: it is paused, or a player is. */
+  static bool holdsFrame(const apex::GraphState& graph);
   /** @brief The view's scale: below kDetailScale nodes show their names large, without
    *  port labels and widgets (as map viewers drop detail when zoomed out). */
   void setZoom(double scale);
-  static constexpr double kDetailScale = 0.6;
+  /** The title bar's name (9.5 pt, 12.7 px) is 10 px on screen from this scale on. */
+  static constexpr double kDetailScale = 0.8;
   /** @brief The nodes shown, by name. */
   const std::map<std::string, NodeItem*>& nodes() const { return nodes_; }
   /** @brief The subgraph shown ("" the top level): its nodes and the connections between them. */

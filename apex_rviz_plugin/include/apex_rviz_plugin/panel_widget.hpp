@@ -48,7 +48,8 @@ class PanelWidget : public QWidget {
    *  (rviz_displays.hpp): rviz may show it. */
   void displayRequested(const QString& node, const QString& port, const QString& topic, const QString& message_type);
   /** A rename of node `from` (its new path `to`) is sent to the runtime: who follows node names
-   *  (GraphPanel's displays) follows it once a graph shows it. */
+   *  (GraphPanel's displays) follows it once a graph shows it. Also for the nodes a group or
+   *  an ungroup moves. */
   void renameSent(const QString& from, const QString& to);
   /** The graph shown changed (after a ~graph message): for tests and status. */
   void graphShown(quint64 revision);
@@ -92,11 +93,12 @@ class PanelWidget : public QWidget {
   void placeUnplaced();
   /** Sends positions for nodes (set_ui), outside the history. */
   void place(const std::map<std::string, std::pair<double, double>>& positions);
-  /** A graph was loaded: a fresh history, the inspected ports inspected again. */
   /** For a Load or New: starts a fresh history now; the answer's handler, which reports it and,
    *  if refused, brings the old history back. */
   std::function<void(bool, const std::string&)> replacingGraph(const QString& what);
-  void afterLoad();
+  /** The runtime ended every inspection (a load, a group, an ungroup): the ports inspected (the
+   *  displays' and the Optimizers' progress) inspected again, the previews asked for anew. */
+  void inspectAgain();
   /** Boxes below a box that grew onto them move down (a box is sized to its content). */
   void pushDownUnderGrown();
   void rememberSizes();
@@ -112,8 +114,9 @@ class PanelWidget : public QWidget {
   /** A runtime to show (connected, or started anew): its types, its graph, a copy its last run left. */
   void meetRuntime();
   void onInspect(const QString& node, const QString& port);
-  /** The renames among `calls`, about to be sent, as renameSent. */
-  void announceRenames(const std::vector<Call>& calls);
+  /** The nodes `calls` move (a rename, a group, an ungroup), about to be sent, as renameSent; the
+   *  ports inspected follow them. */
+  void announceMoves(const std::vector<Call>& calls);
   void refreshTypes();
   /** The size of a new node of `type`'s box, measured on one made for it. */
   Box typeBox(const std::string& type) const;
