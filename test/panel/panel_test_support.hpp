@@ -191,8 +191,7 @@ class PanelWidgetTest : public ::testing::Test {
     ASSERT_TRUE(QTest::qWaitFor(
         [&] {
           const apex::GraphState g = runtimeGraph();
-          return g.revision > before && g.nodes.empty() && panel.editor()->scene()->boxes().empty() &&
-                 panel.editsPending() == 0;
+          return g.revision > before && g.nodes.empty() && panel.editor()->scene()->boxes().empty() && panel.editsPending() == 0;
         },
         kWaitMs))
         << panel.editor()->message().toStdString();
