@@ -71,8 +71,10 @@ GraphEditor::GraphEditor(QWidget* parent) : QWidget(parent), scene_(new GraphSce
   view_->installEventFilter(this);  // Delete and Ctrl+D on the selected nodes
   minimap_ = new Minimap(scene_, view_);
   new EdgeScroller(view_);  // a box dragged to the view's edge scrolls it
-  for (QScrollBar* bar : {view_->horizontalScrollBar(), view_->verticalScrollBar()})  // scrolled or zoomed
+  for (QScrollBar* bar : {view_->horizontalScrollBar(), view_->verticalScrollBar()}) {  // scrolled or zoomed
     connect(bar, &QScrollBar::valueChanged, this, [this] { placeMinimap(), minimap_->update(); });
+    connect(bar, &QScrollBar::actionTriggered, this, [this] { keep_fitted_ = false; });  // by the person
+  }
   connect(scene_, &QGraphicsScene::sceneRectChanged, this, [this] { growCanvas(), placeMinimap(); });
   auto* split = new QSplitter;
   split->addWidget(buildSideTabs());
@@ -290,6 +292,9 @@ void GraphEditor::showGraph(const GraphModel& model) {
   if (fit_pending_ && !model.graph().nodes.empty()) {
     fit_pending_ = false;
     fitGraph();
+    keep_fitted_ = true;
+  } else if (keep_fitted_ && !fitted_.contains(scene_->itemsBoundingRect())) {
+    fitGraph();  // boxes grew (previews arrived) and the person has not touched the view since the fit
   }
   growCanvas();  // boxes moved or loaded where the canvas did not reach
   pause_->setChecked(model.graph().paused);
@@ -313,6 +318,7 @@ void GraphEditor::fitGraph() {
   growCanvas();
   view_->ensureVisible(QRectF(r.topLeft(), QSizeF(1, 1)), 0, 0);  // a graph too big to fit: its start
   if (s * r.width() <= port.width() && s * r.height() <= port.height()) view_->centerOn(r.center());
+  fitted_ = scene_->itemsBoundingRect();
   placeMinimap();
 }
 
@@ -326,6 +332,8 @@ void GraphEditor::reveal(const QRectF& area) {
 }
 
 bool GraphEditor::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == view_->viewport() && (event->type() == QEvent::MouseButtonPress || event->type() == QEvent::Wheel))
+    keep_fitted_ = false;  // the view is the person's now (see showGraph)
   if (watched == view_ && event->type() == QEvent::KeyPress && !scene_->focusItem()) {  // not while typing in a widget
     auto* key = static_cast<QKeyEvent*>(event);
     if (key->key() == Qt::Key_Delete || key->key() == Qt::Key_Backspace) return removeSelected(), true;

@@ -400,7 +400,9 @@ ParamEditor* NodeItem::editor(const std::string& param) const {
   return it == editors_.end() ? nullptr : it->second;
 }
 
-QRectF NodeItem::boundingRect() const { return QRectF(-1, -1, width_ + 2, height_ + 2); }
+// The frame's pen is up to 3 wide (an error's), half of it outside the box: all of it inside the
+// bounds, or a moved box leaves a trail of its old frame.
+QRectF NodeItem::boundingRect() const { return QRectF(-2, -2, width_ + 4, height_ + 4); }
 
 void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   p->setRenderHint(QPainter::Antialiasing);

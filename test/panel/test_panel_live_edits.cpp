@@ -2,6 +2,10 @@
 // time), and no gesture in progress may be cancelled by the graphs shown meanwhile.
 #include "panel_test_support.hpp"
 
+#include <QContextMenuEvent>
+
+#include "apex_rviz_plugin/quick_add.hpp"
+
 namespace panel_test {
 namespace {
 
@@ -88,6 +92,62 @@ TEST_F(PanelWidgetTest, TwentyLinkDragsAllConnectWhileABagPlaysAtItsFullRate) {
         kWaitMs));
   }
   EXPECT_EQ(connected_by_drag, 20);
+  emptyGraph();
+}
+
+TEST_F(PanelWidgetTest, ALinkDraggedToEmptyCanvasAndAMenuBothWorkWhileABagPlays) {
+  emptyGraph();
+  ASSERT_TRUE(addNode("apex_nodes/BagReader", "menu_player",
+                      "{file: '" + g_bag + "', topics: [/camera/image_raw], rate: 0.0, loop: true}"));
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "menu_clock", ""));
+  for (const char* n : {"menu_player", "menu_clock"}) waitPlaced(n);
+  const auto before = panel.model().graph().revision;
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.model().graph().revision > before + 5; }, kWaitMs))
+      << "the player does not change the graph as it plays";
+
+  // drag-to-add: a link from the clock let go on empty canvas, graphs coming meanwhile; the box
+  // that opens adds a Counter with the link
+  const QPointF count = portAt("menu_clock", "count", true);
+  QPointF drop = count + QPointF(260, 0);
+  view->ensureVisible(QRectF(drop, QSizeF(1, 1)));
+  ASSERT_TRUE(panel.editor()->scene()->emptyAt(drop));
+  ASSERT_GT(liveDrag(panel, view, portAt("menu_clock", "count", true), drop), 0) << "no graph came during the drag";
+  QuickAdd* quick = panel.editor()->quickAdd();
+  ASSERT_TRUE(quick && quick->isVisible()) << "no quick add after the drag; " << panel.editor()->message().toStdString();
+  QTest::keyClicks(quick->search(), "apex_nodes/Counter");
+  const std::string counter = panel.model().freshName("apex_nodes/Counter");
+  QTest::keyClick(quick->search(), Qt::Key_Return);
+  ASSERT_TRUE(QTest::qWaitFor([&] { return connected(runtimeGraph(), "menu_clock", "count", counter, "in"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+
+  // a right-click menu held open while graphs come, then "Disable" chosen in it
+  int shown = 0;
+  const auto counting = QObject::connect(&panel, &PanelWidget::graphShown, [&] { ++shown; });
+  bool chose = false;
+  QTimer chooser;  // inside the menu's own event loop
+  chooser.setInterval(20);
+  QObject::connect(&chooser, &QTimer::timeout, [&] {
+    auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
+    if (!menu || shown < 3 || chose) return;
+    for (QAction* a : menu->actions())
+      if (a->text() == "Disable") chose = true, menu->hide(), a->trigger();
+  });
+  shown = 0;
+  chooser.start();
+  NodeItem* clock = panel.editor()->scene()->node("menu_clock");
+  const QPoint at = view->mapFromScene(clock->scenePos() + QPointF(40, 8));
+  QContextMenuEvent right(QContextMenuEvent::Mouse, at, view->viewport()->mapToGlobal(at));
+  QApplication::sendEvent(view->viewport(), &right);  // returns once the menu is closed
+  chooser.stop();
+  QObject::disconnect(counting);
+  ASSERT_TRUE(chose) << "the node's menu did not stay open through " << shown << " graphs";
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {
+        const auto* n = find(runtimeGraph(), "menu_clock");
+        return n && !n->enabled;
+      },
+      kWaitMs))
+      << panel.editor()->message().toStdString();
   emptyGraph();
 }
 

@@ -91,7 +91,8 @@ class GraphEditor : public QWidget {
   /** @brief Scrolls the view (growing the canvas if needed) to show `area`'s top-left part: where
    *  a node was just put (freePlace may have moved it below the view). */
   void reveal(const QRectF& area);
-  /** @brief Fits the view to the next graph shown (after connecting to a runtime). */
+  /** @brief Fits the view to the next graph shown (after connecting to a runtime), and again as
+   *  boxes grow past the view (previews arriving) until the person clicks or scrolls in it. */
   void fitNextGraph() { fit_pending_ = true; }
 
   // --- adding where the person works, and the types' help (graph_editor_adding.cpp) ---
@@ -240,6 +241,8 @@ class GraphEditor : public QWidget {
   QStringList presets_;
   std::map<std::string, std::string> message_types_;  ///< port type -> ROS message type, as inspections answered
   bool fit_pending_ = true;
+  bool keep_fitted_ = false;  ///< fitted on its own (a new runtime's graph) and not moved by the person since
+  QRectF fitted_;  ///< the boxes' bounds at the last fit
   QString last_path_ = defaultGraphFolder();  // where a runtime saves and loads by default (~file_roots)
   QPointer<QFileDialog> file_dialog_;  // Save's or Load's, while open: one at a time
 };
