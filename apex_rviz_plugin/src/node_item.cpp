@@ -194,15 +194,9 @@ QWidget* NodeItem::buildParams() {
   const std::vector<std::string> shown = view.shown(info_);
   for (const auto& p : info_.parameters) {
     if (std::find(shown.begin(), shown.end(), p.name) == shown.end()) continue;
-    auto* e = new ParamEditor(p);
+    auto* e = editorFor(p, node, this);
     editors_[p.name] = e;
     column->addWidget(e);
-    connect(e, &ParamEditor::edited, this,
-            [this, node](const QString& n, const QString& v, bool dragging) { emit parameterEdited(node, n, v, dragging); });
-    connect(e, &ParamEditor::interactiveToggled, this,
-            [this, node](const QString& n, bool on) { emit interactiveToggled(node, n, on); });
-    connect(e, &ParamEditor::menuRequested, this,
-            [this, node](const QString& n, QPoint at) { emit paramMenuRequested(node, n, at); });
   }
   BoxView compact = view;
   compact.expanded = false;

@@ -87,15 +87,9 @@ void PropertiesView::rebuild() {
   const QString node = QString::fromStdString(node_->name);
   for (const auto& p : node_->parameters) {
     if (std::find(shown.begin(), shown.end(), p.name) == shown.end()) continue;
-    auto* e = new ParamEditor(p);
+    auto* e = editorFor(p, node, this);
     editors_[p.name] = e;
     column->addWidget(e);
-    connect(e, &ParamEditor::edited, this,
-            [this, node](const QString& n, const QString& v, bool dragging) { emit parameterEdited(node, n, v, dragging); });
-    connect(e, &ParamEditor::interactiveToggled, this,
-            [this, node](const QString& n, bool on) { emit interactiveToggled(node, n, on); });
-    connect(e, &ParamEditor::menuRequested, this,
-            [this, node](const QString& n, QPoint at) { emit paramMenuRequested(node, n, at); });
   }
   if (editors_.empty()) column->addWidget(new QLabel("no parameters"));
   column_->insertWidget(2, editors_box_);

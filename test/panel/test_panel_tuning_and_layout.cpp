@@ -259,6 +259,8 @@ TEST_F(PanelWidgetTest, TheElevenNodesOfThePaperPipelineAreReadableAtFitInRvizsD
   const QRectF seen = view->mapToScene(view->viewport()->rect()).boundingRect();
   for (const auto& [name, item] : scene->nodes()) {
     EXPECT_TRUE(seen.contains(item->sceneBoundingRect())) << name << " is out of view after Fit";
+    for (const PortItem* port : item->ports())  // the ports at the boxes' edges too
+      EXPECT_TRUE(seen.contains(port->sceneBoundingRect())) << name << "/" << port->port().name << " is cut at Fit";
     EXPECT_GE(item->namePixels(), 10.0) << name << "'s name at Fit, at zoom " << view->transform().m11();
     EXPECT_TRUE(item->name().whole) << name << "'s name does not fit its box at Fit";
   }

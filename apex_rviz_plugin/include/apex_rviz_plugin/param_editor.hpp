@@ -59,4 +59,20 @@ class ParamEditor : public QWidget {
   QPointer<QFileDialog> dialog_;  ///< a path's file chooser while open: one at a time
 };
 
+/** @brief An editor of node `node`'s parameter `param` whose signals come out of `owner` as its
+ *  own parameterEdited, interactiveToggled and paramMenuRequested, with the node's name (a box, the
+ *  properties view: both are the same edits). */
+template <class Owner>
+ParamEditor* editorFor(const apex::ParamInfo& param, const QString& node, Owner* owner) {
+  auto* e = new ParamEditor(param);
+  QObject::connect(e, &ParamEditor::edited, owner, [owner, node](const QString& n, const QString& v, bool dragging) {
+    emit owner->parameterEdited(node, n, v, dragging);
+  });
+  QObject::connect(e, &ParamEditor::interactiveToggled, owner,
+                   [owner, node](const QString& n, bool on) { emit owner->interactiveToggled(node, n, on); });
+  QObject::connect(e, &ParamEditor::menuRequested, owner,
+                   [owner, node](const QString& n, QPoint at) { emit owner->paramMenuRequested(node, n, at); });
+  return e;
+}
+
 }  // namespace apex_rviz_plugin
