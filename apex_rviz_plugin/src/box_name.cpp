@@ -21,9 +21,19 @@ BoxName BoxName::fit(const QString& name, const QRectF& area, double zoom, QFont
     if (out.whole) return out;
     if (px <= least) break;
   }
-  // At the least size and still too long: broken anywhere, what is below the box cut.
-  out.flags = Qt::AlignCenter | Qt::TextWrapAnywhere;
-  out.whole = QFontMetricsF(out.font).boundingRect(area, out.flags, out.text).height() <= area.height() + 0.5;
+  // At the least size and still too wide: a word broken anywhere ("passthro|ugh") if the lines fit
+  // the box's height; else one line, its end elided ("preset_cl…"; the properties and Find show it
+  // whole), never lines past the box's edges.
+  const QFontMetricsF metrics(out.font);
+  const int anywhere = Qt::AlignCenter | Qt::TextWrapAnywhere;
+  if (metrics.boundingRect(area, anywhere, out.text).height() <= area.height() + 0.5) {
+    out.flags = anywhere;
+    out.whole = true;
+    return out;
+  }
+  out.text = metrics.elidedText(name, Qt::ElideRight, area.width());
+  out.flags = Qt::AlignCenter | Qt::TextSingleLine;
+  out.whole = false;
   return out;
 }
 

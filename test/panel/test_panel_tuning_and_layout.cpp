@@ -2,6 +2,10 @@
 // previews, errors on nodes, layout, box sizes, text edits, New, the optimiser.
 #include "panel_test_support.hpp"
 
+#include <QFontMetricsF>
+
+#include "apex_rviz_plugin/box_name.hpp"
+
 namespace panel_test {
 namespace {
 
@@ -244,6 +248,19 @@ TEST_F(PanelWidgetTest, FitsANarrowDock) {
   for (const char* b :
        {"pause", "step", "undo", "redo", "fit", "tidy", "balance", "previews", "presets", "new", "save", "load", "whole_window"})
     EXPECT_TRUE(buttons->findChild<QToolButton*>(b)) << b << " is not in the tool bar";
+}
+
+TEST(BoxNameTest, ANameTooLongForItsBoxIsOneLineWithItsEndElidedNeverPastTheBox) {
+  QFont bold;
+  bold.setBold(true);
+  const QRectF small(0, 0, 200, 100);  // at zoom 0.2: 40 x 20 px on screen, room for one 13-px line
+  const BoxName n = BoxName::fit("preset_other_clock", small, 0.2, bold);
+  EXPECT_FALSE(n.whole);
+  EXPECT_TRUE(n.text.endsWith(QChar(0x2026))) << n.text.toStdString();
+  EXPECT_LE(QFontMetricsF(n.font).boundingRect(small, n.flags, n.text).height(), small.height()) << "drawn past the box";
+  EXPECT_GE(n.pixels(0.2), 13.0);
+  // a word with no break, in a box tall enough for two lines: broken anywhere, every letter kept
+  EXPECT_TRUE(BoxName::fit("passthrough", QRectF(0, 0, 200, 200), 0.3, bold).whole);
 }
 
 TEST_F(PanelWidgetTest, TheElevenNodesOfThePaperPipelineAreReadableAtFitInRvizsDefaultDock) {

@@ -1,6 +1,7 @@
 // A box's name as drawn zoomed out (the detail gone): as large as the box holds it, never
 // smaller on screen than kLeastPixels, wrapped where the name has a break (after "_" or "/")
-// over as many lines as the box is tall. A map viewer's labels do the same: they keep their
+// over as many lines as the box is tall (a word with no break, anywhere); a box too small for it
+// even so shows one line, its end elided. A map viewer's labels do the same: they keep their
 // size on screen as the map shrinks. Qt's fonts only: no scene, no ROS.
 #pragma once
 
@@ -19,7 +20,7 @@ struct BoxName {
   QFont font;  ///< in scene units (pixel size)
   QString text;  ///< the name with its break chances marked
   int flags = 0;  ///< Qt::AlignmentFlag | Qt::TextFlag, for QPainter::drawText
-  bool whole = true;  ///< it fits in the area; false: what does not fit is cut
+  bool whole = true;  ///< every letter fits in the area; false: one line, its end elided
 
   /** @brief How `name` is drawn in `area` (scene units) at view scale `zoom`, from `base` (bold). */
   static BoxName fit(const QString& name, const QRectF& area, double zoom, QFont base);
