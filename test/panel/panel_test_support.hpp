@@ -196,6 +196,16 @@ class PanelWidgetTest : public ::testing::Test {
         kWaitMs))
         << panel.editor()->message().toStdString();
   }
+  /** A BagReader `player` playing the demo bag at its full rate, looping: returns once it has
+   *  changed the graph a few times (its frame and time, ten times a second). */
+  void startPlaying(const std::string& player) {
+    ASSERT_TRUE(
+        addNode("apex_nodes/BagReader", player, "{file: '" + g_bag + "', topics: [/camera/image_raw], rate: 0.0, loop: true}"));
+    waitPlaced(player);
+    const auto before = panel.model().graph().revision;
+    ASSERT_TRUE(QTest::qWaitFor([&] { return panel.model().graph().revision > before + 5; }, kWaitMs))
+        << "the player does not change the graph as it plays";
+  }
   /** Waits until the node is shown where the panel put it, with no edit on its way. */
   void waitPlaced(const std::string& node) {
     ASSERT_TRUE(QTest::qWaitFor(
