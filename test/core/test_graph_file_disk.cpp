@@ -6,7 +6,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "apex/core/graph_file.hpp"
 #include "apex_test/graph_file_helpers.hpp"
@@ -103,6 +109,74 @@ TEST(GraphFileDisk, AFileOverTheSizeLimitIsRefusedUnread) {
   auto r = loadGraphFile(g, path);
   ASSERT_FALSE(r);
   EXPECT_TRUE(Contains(r.message(), {"over the limit of " + std::to_string(kMaxGraphFileBytes)}));
+}
+
+/** The most memory this process has held (VmHWM) in MiB, or -1 where Linux does not say. */
+long peakMib() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6)) / 1024;
+  return -1;
+}
+/** From here on, the peak counts from what the process holds now. */
+void resetPeak() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
+TEST(GraphFileDisk, AFileOfBracketsOrDeepMapsCostsLittleMemoryToRefuse) {
+  // 4 MiB of "[" took the runtime from 143 MB to 1,078 MB, and yaml-cpp kept it.
+  TempDir dir;
+  Graph g(testRegistry());
+  std::string maps, dashes;
+  while (maps.size() < (4u << 20)) maps += "{a: ";
+  while (dashes.size() < (4u << 20)) dashes += "- ";
+  for (const auto& text : {std::string(4u << 20, '['), maps, dashes}) {
+    const std::string path = dir.file("hostile.yaml");
+    writeFile(path, text);
+    resetPeak();
+    const long before = peakMib();
+    auto r = loadGraphFile(g, path);
+    ASSERT_FALSE(r);
+    EXPECT_TRUE(Contains(r.message(), {"line 1", "nested deeper than 32 levels"}));
+    EXPECT_TRUE(Contains(saveGraphFile(g, path).message(), {"it is not a graph file"}));
+    const long peak = peakMib();
+    if (before < 0 || peak < 0) GTEST_SKIP() << "no VmHWM in /proc/self/status";
+    EXPECT_LT(peak - before, 64) << "MiB for a load and a save of " << text.substr(0, 8) << "... (file, copies and all)";
+    EXPECT_EQ(readFile(path), text) << "left as it was";
+  }
+}
+
+TEST(GraphFileDisk, ASaveThroughAFolderSwappedForALinkNeverLandsOutsideNorLeavesATemporary) {
+  // A folder inside the roots swapped for a link to one outside while saves ran: they once wrote
+  // there, and left 931 temporary files outside and 1,092 inside in a minute.
+  TempDir dir;
+  const std::string outside = dir.file("outside"), inner = dir.file("root/d"), aside = dir.file("root/d.real");
+  fs::create_directories(inner);
+  fs::create_directories(outside);
+  Graph g(testRegistry());
+  ASSERT_TRUE(g.addNode("test/Relay", "r"));
+  std::atomic<bool> done{false};
+  std::thread swapper([&] {
+    while (!done) {
+      std::error_code ec;
+      fs::rename(inner, aside, ec);
+      fs::create_directory_symlink(outside, inner, ec);
+      fs::remove(inner, ec);  // the link
+      fs::rename(aside, inner, ec);
+    }
+  });
+  int saved = 0, refused = 0;
+  for (int i = 0; i < 400; ++i) ++(saveGraphFile(g, inner + "/x.yaml", Links::Refuse) ? saved : refused);
+  done = true;
+  swapper.join();
+  std::vector<std::string> outside_files, temporaries;
+  for (const auto& e : fs::recursive_directory_iterator(dir.path)) {
+    const std::string name = e.path().filename().string();
+    if (e.path().string().rfind(outside + "/", 0) == 0) outside_files.push_back(name);
+    if (name.find(".tmp.") != std::string::npos) temporaries.push_back(e.path().string());
+  }
+  EXPECT_TRUE(outside_files.empty()) << outside_files.size() << " files outside, e.g. " << outside_files.front() << " (" << saved
+                                     << " saves, " << refused << " refused)";
+  EXPECT_TRUE(temporaries.empty()) << temporaries.size() << " temporaries left, e.g. " << temporaries.front();
+  EXPECT_EQ(saved + refused, 400);
 }
 
 TEST(GraphFileDisk, TemporariesOfASaveThatDiedAreRemovedByTheNextSave) {

@@ -155,6 +155,46 @@ TEST_F(GraphFileErrors, SizesBeyondTheLimitsAreRefusedNotRunOutOfMemory) {
                        {"a value of 100000 characters, over the limit of 65536"}));
 }
 
+TEST_F(GraphFileErrors, NestingTooDeepIsRefusedBeforeTheTextIsParsed) {
+  // yaml-cpp queues a token for each bracket of a line before it builds anything (4 MiB of "["
+  // took a gigabyte): a scan refuses such text first, naming where.
+  const std::string ui = "apex_graph: 1\nnodes:\n  - {name: a, type: test/Relay, ui: ";
+  EXPECT_TRUE(Contains(loadFails(ui + std::string(100000, '[')), {"line 3", "nested deeper than 32 levels"}));
+  std::string maps;
+  for (int i = 0; i < 1000; ++i) maps += "{a: ";
+  EXPECT_TRUE(Contains(loadFails(ui + maps), {"line 3", "nested deeper than 32 levels"}));
+  std::string dashes = "apex_graph: 1\nnodes:\n";
+  for (int i = 0; i < 1000; ++i) dashes += "- ";
+  EXPECT_TRUE(Contains(loadFails(dashes + "x\n"), {"line 3", "nested deeper than 32 levels"}));
+  EXPECT_TRUE(Contains(loadFails("apex_graph: 1\nnodes: []\n---\n" + std::string(100000, '{')),
+                       {"line 4", "nested deeper than 32 levels"}));
+  std::string block = "apex_graph: 1\nnodes:\n  - name: a\n    type: test/Relay\n    ui:\n";
+  for (int i = 0; i < 40; ++i) block += std::string(6 + 2 * i, ' ') + "k:\n";
+  EXPECT_TRUE(Contains(loadFails(block), {"nested deeper than 32 levels"}));
+}
+
+TEST_F(GraphFileErrors, BracketsInTextCommentsAndQuotesAreNotNesting) {
+  const std::string many(40, '['), braces(40, '{');
+  const std::string text = "apex_graph: 1\n# " + many + " a comment\nnodes:\n  - name: a  # " + braces +
+                           "\n    type: test/Relay\n    ui:\n      note: |\n        " + many + "\n        " + braces +
+                           "\n\n        - - - - - - - - - - - - - - - - - - - - - - - - - - - - - - - - - - - -\n"
+                           "      folded: >-\n        " +
+                           many + "\n      quoted: '" + many + " '' " + braces + "'\n      double: \"" + many + " \\\" " +
+                           braces + "\"\n      plain: a " + many + "\n      list: [\"" + many + "\", '" + braces +
+                           "', {b: [1, 2]}]  # " + many + "\n";
+  const std::string path = dir.file("brackets.yaml");
+  writeFile(path, text);
+  auto r = loadGraphFile(graph, path);
+  ASSERT_TRUE(r) << r.message() << "\n" << text;
+  EXPECT_EQ(graph.size(), 1u);
+  for (const char* name : {"demo", "paper_pipeline", "table_objects", "tune_paper_pipeline", "number_signs", "real_digits"}) {
+    auto file = readGraphFile(std::string(APEX_GRAPHS_DIR) + "/" + name + ".yaml");
+    ASSERT_TRUE(file) << file.message();
+    auto parsed = parseGraphText(file.value());
+    EXPECT_TRUE(parsed) << name << ": " << parsed.message();
+  }
+}
+
 TEST(GraphFileErrorsMapValue, ParameterMapMissingAKeyIsAnErrorNotAnException) {
   NodeRegistry registry = testRegistry();
   ASSERT_TRUE(registry.add<Sized>("test/Sized"));

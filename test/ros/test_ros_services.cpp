@@ -200,6 +200,31 @@ TEST_F(Services, EveryServiceNamesANodeThatIsNotThere) {
   refused(call<apex::RenameNode>("rename_node", rn), before, ghost);
 }
 
+TEST_F(Services, EveryServiceRefusesTextThatIsNotUtf8NamingTheField) {
+  // set_ui once took "\xff\xfe"; get_graph then returned it, and save_graph named a file with it.
+  ASSERT_TRUE(addNode("apex_nodes/Counter", "count").success);
+  const std::string before = graphText(), bad = "{x: 1, note: \"\xff\xfe\"}";
+  apex::SetUi::Request u;
+  u.node = "count", u.ui = bad;
+  refused(call<apex::SetUi>("set_ui", u), before,
+          "set_ui: 'ui' is refused: not UTF-8 at byte 15 ('{x: 1, note: \"\\xff\\xfe\"}')");
+  apex::SaveGraph::Request save;
+  save.path = "/tmp/apex_\xff\xfe.yaml";
+  const auto saved = call<apex::SaveGraph>("save_graph", save);
+  EXPECT_FALSE(saved.success);
+  EXPECT_THAT(saved.message, HasSubstr("save_graph: 'path' is refused: not UTF-8 at byte 11"));
+  EXPECT_FALSE(std::filesystem::exists(save.path));
+  apex::AddNode::Request add;
+  add.type = "apex_nodes/Counter", add.name = "c", add.parameters = "{start: 1, note: \"\x01\"}";
+  refused(call<apex::AddNode>("add_node", add), before, "add_node: 'parameters' is refused: a control character at byte 19");
+  apex::Group::Request g;
+  g.nodes = {"count", "\xc0\xaf"}, g.name = "sub";  // in a list
+  refused(call<apex::Group>("group", g), before, "group: 'nodes' is refused: not UTF-8");
+  u.ui = "{note: \"caf\xc3\xa9 \xe2\x9c\x93\"}";  // UTF-8: taken
+  ASSERT_TRUE(call<apex::SetUi>("set_ui", u).success);
+  EXPECT_THAT(graphText(), HasSubstr("caf\xc3\xa9"));
+}
+
 TEST_F(Services, ControlPausesResumesSteps) {
   apex::Control::Request req;
   req.command = "pause";

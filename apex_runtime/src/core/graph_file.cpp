@@ -1,13 +1,10 @@
 // Graph files: read (regular files only, within a size limit), their subgraph references
-// expanded, and written atomically; the text itself is graph_text.cpp's.
-#include <dirent.h>
+// expanded, and saved (file_write.cpp writes); the text itself is graph_text.cpp's.
 #include <fcntl.h>
-#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -160,81 +157,9 @@ Status replaceableByGraph(const std::string& path) {
 
 }  // namespace
 
-Status saveGraphFile(const Graph& graph, const std::string& path) {
+Status saveGraphFile(const Graph& graph, const std::string& path, Links links) {
   if (auto st = replaceableByGraph(path); !st) return st;
-  return writeFileAtomically(path, formatGraphText(graph.describe()));
-}
-
-namespace {
-
-std::string directoryOf(const std::string& path) {
-  const auto slash = path.rfind('/');
-  return slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
-}
-
-/** Removes `<path>.tmp.<pid>.<n>` files left by saves that died (their process is gone). */
-void removeStaleTemporaries(const std::string& path) {
-  const std::string dir = directoryOf(path);
-  const std::string prefix = path.substr(path.rfind('/') == std::string::npos ? 0 : path.rfind('/') + 1) + ".tmp.";
-  DIR* d = ::opendir(dir.c_str());
-  if (!d) return;
-  while (const dirent* e = ::readdir(d)) {
-    const std::string name = e->d_name;
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
-    char* end = nullptr;
-    const long pid = std::strtol(name.c_str() + prefix.size(), &end, 10);
-    const bool named_by_a_save = pid > 0 && end && *end == '.';
-    const bool gone = ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
-    if (named_by_a_save && pid != ::getpid() && gone) ::unlink((dir + "/" + name).c_str());
-  }
-  ::closedir(d);
-}
-
-}  // namespace
-
-Status writeFileAtomically(const std::string& path, const std::string& content) {
-  static std::atomic<unsigned> counter{0};
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  struct stat old {};
-  const bool exists = ::stat(path.c_str(), &old) == 0;
-  // The rename would replace anything, even as root: refuse what a careful user would not overwrite.
-  if (exists && !S_ISREG(old.st_mode)) return Status::error("cannot write '" + path + "': not a regular file");
-  if (exists && (old.st_mode & 0222) == 0) return Status::error("cannot write '" + path + "': the file is read-only");
-  const mode_t mode = exists ? (old.st_mode & 07777) : 0644;  // keep a file's permissions
-  removeStaleTemporaries(path);
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, mode);
-  if (fd < 0) return Status::error(fileError("write", path));
-  (void)::fchmod(fd, mode);  // open() applies the umask; a replaced file keeps its exact mode
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const Status st = Status::error(fileError("write", path));
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      return st;
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  const bool synced = ::fsync(fd) == 0;
-  const bool closed = ::close(fd) == 0;
-  if (!synced || !closed) {
-    const Status st = Status::error(fileError("write", path));
-    ::unlink(tmp.c_str());
-    return st;
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
-    const Status st = Status::error(fileError("replace", path));
-    ::unlink(tmp.c_str());
-    return st;
-  }
-  const int dfd = ::open(directoryOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);  // the rename, durable
-  if (dfd >= 0) {
-    ::fsync(dfd);
-    ::close(dfd);
-  }
-  return Status::ok();
+  return writeFileAtomically(path, formatGraphText(graph.describe()), links);
 }
 
 }  // namespace apex

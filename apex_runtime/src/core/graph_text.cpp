@@ -10,6 +10,8 @@
 
 #include "apex/core/graph_file.hpp"
 #include "apex/core/node_names.hpp"
+#include "apex/core/text.hpp"
+#include "yaml_load.hpp"
 #include "yaml_text.hpp"
 
 namespace apex {
@@ -284,8 +286,9 @@ Status checkYamlText(const std::string& text) {
   if (text.size() > kMaxYamlString)
     return Status::error("has " + std::to_string(text.size()) + " characters, over the limit of " +
                          std::to_string(kMaxYamlString));
+  if (auto st = checkText(text); !st) return Status::error("is not text: " + st.message());
   try {
-    const YAML::Node root = YAML::Load(text);
+    const YAML::Node root = loadYaml(text);
     checkTree(root);  // what a graph file may hold, so that the graph saved with it loads
     std::vector<YAML::Node> stack{root};
     while (!stack.empty()) {
@@ -304,7 +307,7 @@ Status checkYamlText(const std::string& text) {
 }
 bool isGraphText(const std::string& text) {
   try {
-    const YAML::Node root = YAML::Load(text);
+    const YAML::Node root = loadYaml(text);
     return root.IsMap() && root["apex_graph"];
   } catch (const YAML::Exception&) {
     return false;
@@ -315,7 +318,7 @@ bool isGraphText(const std::string& text) {
 Result<std::vector<std::pair<std::string, std::string>>> parseParameterMap(const std::string& text) {
   std::vector<std::pair<std::string, std::string>> out;
   try {
-    const YAML::Node map = YAML::Load(text);
+    const YAML::Node map = detail::loadYaml(text);
     if (!map || map.IsNull()) return out;
     if (!map.IsMap()) return Status::error("'" + text + "' is not a YAML mapping of parameter: value");
     for (const auto& kv : map) out.emplace_back(kv.first.as<std::string>(), flow(kv.second));
@@ -327,7 +330,7 @@ Result<std::vector<std::pair<std::string, std::string>>> parseParameterMap(const
 
 Result<GraphDescription> parseGraphText(const std::string& text) {
   try {
-    const YAML::Node root = YAML::Load(text);  // the first document
+    const YAML::Node root = detail::loadYaml(text);  // the first document
     if (const int line = secondDocumentLine(text))
       throw ParseError{"line " + std::to_string(line) + ": a graph file holds one YAML document, and this is a second one"};
     return parseRoot(root);

@@ -2,6 +2,8 @@
 // Text parsing lives in param_text.cpp, next to the other YAML code.
 #include "apex/core/param.hpp"
 
+#include "apex/core/text.hpp"
+
 #include <cmath>
 #include <sstream>
 
@@ -85,25 +87,8 @@ ParamSpec make(std::string name, ParamKind kind, ParamValue def) {
   return s;
 }
 
-/** Text is UTF-8 without control characters (tab and line breaks aside): what YAML writes and
- *  reads back unchanged. yaml-cpp turns a NUL into bytes it then writes as another string
- *  (found by fuzzing). */
 Status checkText(const ParamSpec& s, const std::string& v) {
-  auto bad = [&](std::size_t at, const char* what) {
-    return Status::error("parameter '" + s.name + "': " + what + " at byte " + std::to_string(at + 1));
-  };
-  for (std::size_t i = 0; i < v.size();) {
-    const auto c = static_cast<unsigned char>(v[i]);
-    if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') return bad(i, "a control character");
-    const int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
-    if (extra < 0 || i + extra >= v.size()) return bad(i, "not UTF-8");
-    for (int k = 1; k <= extra; ++k)
-      if ((static_cast<unsigned char>(v[i + k]) >> 6) != 0x2) return bad(i, "not UTF-8");
-    if ((extra == 1 && c < 0xC2) || (extra == 2 && c == 0xE0 && static_cast<unsigned char>(v[i + 1]) < 0xA0) ||
-        (extra == 3 && c == 0xF0 && static_cast<unsigned char>(v[i + 1]) < 0x90) || (extra == 3 && c > 0xF4))
-      return bad(i, "not UTF-8 (an overlong or out-of-range sequence)");
-    i += extra + 1;
-  }
+  if (auto st = apex::checkText(v); !st) return Status::error("parameter '" + s.name + "': " + st.message());
   return Status::ok();
 }
 

@@ -1,10 +1,11 @@
-// Parameter values to and from YAML text. With graph_text.cpp the only code
+// Parameter values to and from YAML text. With graph_text.cpp and yaml_load.cpp the only code
 // that includes yaml-cpp.
 #include <yaml-cpp/yaml.h>
 
 #include <charconv>
 
 #include "apex/core/param.hpp"
+#include "yaml_load.hpp"
 
 namespace apex {
 namespace {
@@ -134,7 +135,7 @@ struct Parser {
 Result<ParamValue> ParamSpec::parse(std::string_view text) const {
   YAML::Node node;
   try {
-    node = YAML::Load(std::string(text));
+    node = detail::loadYaml(std::string(text));
   } catch (const YAML::Exception& e) {
     return Status::error("parameter '" + name + "': '" + std::string(text) + "' is not valid YAML: " + e.msg);
   }

@@ -7,6 +7,7 @@
 
 namespace apex {
 namespace detail {
+
 /** @brief OK if the text parses as YAML; else the parser's message. */
 Status checkYamlText(const std::string& text);
 /** @brief True if the text is a YAML map with the key `apex_graph`: a graph file, valid or not. */

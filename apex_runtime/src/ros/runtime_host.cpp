@@ -42,6 +42,7 @@
 #include "plugin_types.hpp"
 #include "reconfigure.hpp"
 #include "recovery.hpp"
+#include "request_text.hpp"
 
 namespace apex {
 namespace ros_host {
@@ -261,7 +262,8 @@ struct RuntimeHost::Impl {
     auto path = roots.resolve(req.path, FileRoots::Access::Write);
     if (path) res.path = path.value();  // a relative path: in the first writable root
     const std::string text = snapshot().text;  // before: an edit during the save keeps a copy
-    const Status st = path ? saveGraphFile(graph, path.value()) : path.status();
+    // (Links::Refuse: the folder the roots allowed, not one a link swapped in since sends it elsewhere)
+    const Status st = path ? saveGraphFile(graph, path.value(), Links::Refuse) : path.status();
     if (st) recovery->saved(text);
     return answered(res, st);
   }
@@ -341,7 +343,7 @@ struct RuntimeHost::Impl {
 
   template <class Req, class Res>
   void serve(const std::string& name, bool (Impl::*fn)(Req&, Res&)) {
-    services.push_back(pnh.advertiseService<Impl, Req, Res>(name, fn, this));
+    services.push_back(advertiseChecked<Req, Res>(pnh, name, [this, fn](Req& req, Res& res) { return (this->*fn)(req, res); }));
   }
 
   void advertise() {

@@ -46,13 +46,21 @@ std::string joinReference(const std::string& ref, const std::string& from);
 Result<GraphDescription> readGraphDescription(const std::string& path, const GraphFileOptions& options = {});
 /** @brief readGraphDescription(), then Graph::load: all or nothing. */
 Result<LoadReport> loadGraphFile(Graph& graph, const std::string& path, const GraphFileOptions& options = {});
+/** How a write reaches its folder. */
+enum class Links {
+  Follow,  ///< as the path says, links and all (a path the user gave)
+  /** No link on the way: each folder opened without following one. For a path resolved and
+   *  checked before (FileRoots), which a link swapped in after the check must not redirect. */
+  Refuse,
+};
 /** @brief Saves the graph atomically: the file is either the old one or the whole new one. Replaces
  *  only a graph file (a YAML mapping with `apex_graph`) or an empty file; anything else (a bag, an
  *  image, notes) is refused, naming the file, and left as it is. */
-Status saveGraphFile(const Graph& graph, const std::string& path);
-/** @brief Writes a temporary file beside `path`, flushes it to disk, renames it over `path`.
- *  Refuses to replace what is not a regular file or has no write bit in its mode; removes
- *  temporary files left beside `path` by saves whose process died. */
-Status writeFileAtomically(const std::string& path, const std::string& content);
+Status saveGraphFile(const Graph& graph, const std::string& path, Links links = Links::Follow);
+/** @brief Writes a temporary file beside `path`, flushes it to disk, renames it over `path`, all
+ *  in the one folder opened first: no temporary file is left anywhere, whatever happens to the
+ *  path meanwhile. Refuses to replace what is not a regular file (a link too) or has no write bit
+ *  in its mode; removes temporary files left beside `path` by saves whose process died. */
+Status writeFileAtomically(const std::string& path, const std::string& content, Links links = Links::Follow);
 
 }  // namespace apex
