@@ -12,12 +12,14 @@
 #include <apex/SaveGraph.h>
 #include <apex/SetParameter.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "apex_test/runtime_process.hpp"
+#include "apex_test/test_bags.hpp"
 
 namespace {
 
@@ -157,6 +159,43 @@ TEST_F(RecoveryTest, SaveGraphRemovesTheCopyAndTheNextEditWritesItAgain) {
   set.node = "ticks", set.parameter = "rate", set.value = "7";
   ASSERT_TRUE(call<apex::SetParameter>("set_parameter", set).success);
   EXPECT_TRUE(copyIsCurrent()) << "an edit after the save has no recovery copy";
+}
+
+TEST_F(RecoveryTest, EditsWhileABagPlaysSurviveAKillAndPlayingAloneIsNoEdit) {
+  // A playing bag changes the graph (its frame, its time) many times a second: once, the copy's
+  // quiet second never came, edits were written only every 5 s and lost to a kill, and a graph
+  // as saved was offered back as "unsaved" for its player's position.
+  ASSERT_NO_FATAL_FAILURE(start("recovery_playing"));
+  const std::string bag = home_ + "/apex/playing.bag";  // $ROS_HOME/apex: a root of the runtime's
+  fs::copy_file(apex_test::writeBag(50), bag);
+  apex::AddNode::Request add;
+  add.type = "apex_nodes/BagReader", add.name = "bag", add.parameters = "{file: '" + bag + "', loop: true, rate: 4}";
+  const auto added = call<apex::AddNode>("add_node", add);
+  ASSERT_TRUE(added.success) << added.message;
+  apex::SaveGraph::Request save;
+  save.path = "playing.yaml";
+  const auto saved = call<apex::SaveGraph>("save_graph", save);
+  ASSERT_TRUE(saved.success) << saved.message;
+
+  auto revision = [&] { return call<apex::GetGraph>("get_graph").graph.revision; };
+  const auto since = std::chrono::steady_clock::now();
+  const auto at_save = revision();
+  ASSERT_TRUE(waitUntil(
+      [&] { return std::chrono::steady_clock::now() - since > std::chrono::seconds(6) && revision() > at_save + 20; }, 60))
+      << "the bag does not play";  // (longer than a copy ever waited)
+  EXPECT_FALSE(fs::exists(copy())) << "a copy of the graph as saved: the player's frame counted as an edit";
+
+  apex::SetParameter::Request set;
+  set.node = "bag", set.parameter = "rate", set.value = "3";
+  ASSERT_TRUE(call<apex::SetParameter>("set_parameter", set).success);
+  ASSERT_TRUE(waitUntil([&] { return fs::exists(copy()) && readText(copy()).find("rate: 3") != std::string::npos; }, 20))
+      << "the edit made while the bag plays is not in " << copy();
+  ASSERT_EQ(runtime_->stop(SIGKILL), 128 + SIGKILL);
+  ASSERT_NO_FATAL_FAILURE(restart());
+  ASSERT_TRUE(recovery("keep").offered);
+  const auto restored = recovery("restore");
+  ASSERT_TRUE(restored.success) << restored.message;
+  EXPECT_THAT(graphText(), HasSubstr("rate: 3")) << "the restored graph lost the edit";
 }
 
 TEST_F(RecoveryTest, DiscardDeletesAKilledRunsCopy) {

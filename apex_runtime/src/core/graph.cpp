@@ -119,7 +119,7 @@ Result<std::string> Graph::Impl::addNodeWith(const std::string& type_id, const s
   } catch (const std::exception& ex) {
     return Status::error("node type '" + type->id + "' failed to construct: " + ex.what());
   }
-  auto state = std::make_shared<NodeState>(name, type, next_seq_++, revision_);
+  auto state = std::make_shared<NodeState>(name, type, next_seq_++, revisions_);
   state->host = host_;
   state->edits = edits_;
   if (type->manifest->shape) {  // its ports for its default parameters

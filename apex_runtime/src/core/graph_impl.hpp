@@ -140,7 +140,7 @@ struct Graph::Impl {
   bool running_ = false;
   bool ran_ = false;  // started at least once: messages may be in flight
   bool paused_ = false;
-  std::shared_ptr<std::atomic<std::uint64_t>> revision_ = std::make_shared<std::atomic<std::uint64_t>>(0);
+  std::shared_ptr<detail::Revisions> revisions_ = std::make_shared<detail::Revisions>();
   /** Node::requestEdit's queue; stopped first when the graph goes. */
   std::shared_ptr<detail::EditRequests> edits_;
   /** addNode, its parameters set before its setup() runs (NodeDescription's, in order). */
@@ -154,7 +154,7 @@ struct Graph::Impl {
   Status setParameterLocked(detail::NodeState& node, int index, const ParamValue& value);
   /** A node's own request (Node::requestEdit), if it is still in the graph; a refusal is its error. */
   void applyRequested(const std::shared_ptr<detail::NodeState>& node, const std::string& param, const ParamValue& value);
-  void bump() { revision_->fetch_add(1, std::memory_order_relaxed); }
+  void bump() { revisions_->edit(); }  // an edit: shown, and what a save keeps
 };
 
 }  // namespace apex

@@ -121,7 +121,7 @@ Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   if (auto why = checkNewPath(d.name); !why.empty()) return Status::error(why);
   const std::string group_name = d.thread_group.empty() ? "default" : d.thread_group;
   if (auto room = roomFor(group_name, 1); !room) return Status::error(nodeLabel(d.name) + ": " + room.message());
-  auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revision_);
+  auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revisions_);
   state->placeholder = d;
   state->ui = d.ui;
   state->enabled = d.enabled;
@@ -203,7 +203,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   for (auto& [seq, n] : staged.order_) {
     n->queued = false;
     n->queued_from_outside = false;  // the staged groups and their counts go away
-    n->revision = revision_;
+    n->revisions = revisions_;
     n->edits = edits_;
     std::lock_guard<std::mutex> g(n->group_mutex);
     n->group = group(n->group->name());

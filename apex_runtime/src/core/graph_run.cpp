@@ -25,14 +25,14 @@ void Graph::Impl::stop() {
 void Graph::Impl::pause() {
   auto lock = lockEdits();
   paused_ = true;
-  bump();
+  revisions_->shown();  // not an edit: a save does not keep it
   for (auto& [name, g] : groups_) g->hold(true);
 }
 
 void Graph::Impl::resume() {
   auto lock = lockEdits();
   paused_ = false;
-  bump();
+  revisions_->shown();
   for (auto& [name, g] : groups_) g->hold(false);
 }
 
@@ -63,7 +63,7 @@ Status Graph::Impl::stepFrame(double timeout_s) {
   for (auto& g : groups) g->resume();
   const bool done = allIdle(groups, timeout_s);
   for (auto& g : groups) g->endFrameStep();
-  bump();
+  revisions_->shown();
   if (!done) return Status::error("the frame did not finish within " + std::to_string(timeout_s) + " s");
   return Status::ok();
 }

@@ -18,13 +18,12 @@ std::shared_ptr<const Manifest> manifestOf(const std::shared_ptr<const NodeType>
 
 }  // namespace
 
-NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint64_t s,
-                     std::shared_ptr<std::atomic<std::uint64_t>> r)
+NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint64_t s, std::shared_ptr<Revisions> r)
     : name(std::move(n)),
       type(std::move(t)),
       iface(manifestOf(type)),
       seq(s),
-      revision(std::move(r)),
+      revisions(std::move(r)),
       driven_(iface->source_mode == SourceMode::Driven) {
   const Manifest& m = manifest();
   for (std::size_t i = 0; i < m.inputs.size(); ++i) inputs.push_back(std::make_unique<InputState>());
@@ -317,7 +316,7 @@ void NodeState::setError(std::string text) {
     error_ = text;
     has_error_.store(true, std::memory_order_relaxed);
   }
-  revision->fetch_add(1, std::memory_order_relaxed);
+  revisions->shown();
   if (report) log(LogLevel::Error, name, text);
 }
 
@@ -327,7 +326,7 @@ void NodeState::clearError() {
     error_.clear();
     has_error_.store(false, std::memory_order_relaxed);
   }
-  revision->fetch_add(1, std::memory_order_relaxed);
+  revisions->shown();
   log(LogLevel::Info, name, "recovered");
 }
 
@@ -383,7 +382,7 @@ void NodeState::applyParams() {
     }
     publishParam(i);  // a parameter output carries every change
   }
-  if (!changed.empty()) revision->fetch_add(1, std::memory_order_relaxed);
+  if (!changed.empty()) revisions->edit();
 }
 
 void NodeState::updateParam(int index, ParamValue v) {
@@ -394,7 +393,7 @@ void NodeState::updateParam(int index, ParamValue v) {
     if (p.requested == p.active) p.requested = v;  // else an edit asked for another value: it applies next
     p.active = std::move(v);
   }
-  revision->fetch_add(1, std::memory_order_relaxed);  // its output sends it with the firing's outputs
+  revisions->shown();  // its output sends it with the firing's outputs
 }
 
 void NodeState::publishParam(int index, ThreadGroup* here) {
@@ -438,7 +437,7 @@ void NodeState::applyEnabled() {
   const int before = gates();
   active_enabled_ = want;
   adjust(gates() - before);
-  revision->fetch_add(1, std::memory_order_relaxed);
+  revisions->shown();
 }
 
 void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) {

@@ -109,10 +109,24 @@ struct ParamState {
   Tap tap;
 };
 
+/** The graph's change counters, shared with its nodes. */
+struct Revisions {
+  /** Every change a client shows: edits, and a node's own reports (a player's frame), errors,
+   *  enabling, pausing. */
+  std::atomic<std::uint64_t> visible{0};
+  /** What a save keeps, changed from outside the node: edits, and values arriving through
+   *  parameter inputs. Not a node's own reports: a playing bag is not an unsaved change. */
+  std::atomic<std::uint64_t> edited{0};
+  void shown() { visible.fetch_add(1, std::memory_order_relaxed); }
+  void edit() {
+    edited.fetch_add(1, std::memory_order_relaxed);
+    shown();
+  }
+};
+
 class NodeState : public std::enable_shared_from_this<NodeState> {
  public:
-  NodeState(std::string name, std::shared_ptr<const NodeType> type, std::uint64_t seq,
-            std::shared_ptr<std::atomic<std::uint64_t>> revision);
+  NodeState(std::string name, std::shared_ptr<const NodeType> type, std::uint64_t seq, std::shared_ptr<Revisions> revisions);
   ~NodeState();
 
   /** Its path in the graph. Changed only by group/ungroup (Graph::moveLocked), with its
@@ -124,7 +138,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::shared_ptr<const Manifest> iface;
   const Manifest& manifest() const { return *iface; }
   const std::uint64_t seq;
-  std::shared_ptr<std::atomic<std::uint64_t>> revision;  // the graph's: bumped on every visible change
+  std::shared_ptr<Revisions> revisions;  // the graph's
   std::unique_ptr<Node> node;
   void attach(std::unique_ptr<Node> object) {
     node = std::move(object);

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "apex/core/graph_file.hpp"
+#include "request_text.hpp"
 
 namespace apex {
 namespace ros_host {
@@ -56,9 +57,11 @@ std::string Recovery::fileName(const std::string& node) {
   return name.empty() ? "apex" : name;
 }
 
-void Recovery::saved(const std::string& text) {
+void Recovery::saved(const Snapshot& graph) {
   std::lock_guard<std::mutex> lock(mutex_);
-  saved_ = text;
+  saved_ = graph.text;
+  seen_revision_ = graph.revision;  // a later edit is one the file does not have
+  pending_ = false;
   unsaved_ = false;
   removeOwn();
 }
@@ -172,7 +175,7 @@ ros::ServiceServer serveRecovery(ros::NodeHandle& pnh, Recovery& recovery,
     res.message = st.isOk() ? "" : st.message();
     return true;  // the call itself worked; `success` says whether the action did
   };
-  return pnh.advertiseService<apex::Recovery::Request, apex::Recovery::Response>("recovery", handle);
+  return advertiseChecked<apex::Recovery::Request, apex::Recovery::Response>(pnh, "recovery", handle);
 }
 
 }  // namespace ros_host

@@ -24,19 +24,21 @@
 namespace apex {
 namespace ros_host {
 
-/** After the last change, how long the revision stays put before the copy is written, and how
- *  long a graph that keeps changing (values arriving through ports) waits at most. */
+/** After the last edit, how long the edit revision stays put before the copy is written, and how
+ *  long edits that go on wait at most: a copy within a second of any edit (on a 100 ms tick). */
 struct RecoveryTiming {
-  std::chrono::milliseconds quiet{1000}, at_most{5000};
+  std::chrono::milliseconds quiet{300}, at_most{800};
 };
 
 class Recovery {
  public:
   using Clock = std::chrono::steady_clock;
-  /** The graph as a graph file's text, and its number of nodes. */
+  /** The graph as a graph file's text, its number of nodes, and its edit revision
+   *  (Graph::editRevision) read before the text. */
   struct Snapshot {
     std::string text;
     std::size_t nodes = 0;
+    std::uint64_t revision = 0;
   };
   /** A copy a previous run left. */
   struct Offer {
@@ -53,18 +55,19 @@ class Recovery {
   static std::string fileName(const std::string& node);
 
   /** @brief The graph is as a file has it (the start-up graph, one loaded or just saved): no copy
-   *  while it stays so; this run's copy, if any, is removed. */
-  void saved(const std::string& text);
-  /** @brief On a timer: once `revision` has stayed the same `quiet` after a change (or changes
+   *  until the next edit; this run's copy, if any, is removed. */
+  void saved(const Snapshot& graph);
+  /** @brief On a timer: once the edit revision has stayed the same `quiet` after an edit (or edits
    *  have gone on for `at_most`), writes the graph whole if it differs from the saved one and
-   *  from the copy, or removes the copy if it is as saved or empty. A failure to write is
-   *  logged once (until a write succeeds), naming the file; nothing stops. */
+   *  from the copy, or removes the copy if it is as saved or empty. What nodes report of
+   *  themselves (a player's frame) changes the text, not the revision: no copy without an edit.
+   *  A failure to write is logged once (until a write succeeds), naming the file; nothing stops. */
   void tick(std::uint64_t revision, const std::function<Snapshot()>& snapshot, Clock::time_point now = Clock::now());
   /** @brief Clean stop: this run's copy removed, no more written. An offered copy stays offered. */
   void close();
 
-  /** @brief Whether the graph differed from the saved one at the last check (a second after the
-   *  last change): what a save would keep. */
+  /** @brief Whether the graph differed from the saved one at the last check (a moment after the
+   *  last edit): what a save would keep. */
   bool unsaved() const;
   std::optional<Offer> offer() const;
   /** @brief The offered copy was loaded: it becomes this run's copy (moved to its place), and the

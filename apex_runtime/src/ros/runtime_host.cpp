@@ -253,7 +253,7 @@ struct RuntimeHost::Impl {
       res.revision = graph.revision();
       inspection.clear();
       for (const auto& w : res.warnings) ROS_WARN_STREAM_NAMED("apex", w);
-      recovery->saved(snapshot().text);
+      recovery->saved(snapshot());
     }
     return answered(res, report.status());
   }
@@ -261,16 +261,17 @@ struct RuntimeHost::Impl {
   bool saveGraph(SaveGraph::Request& req, SaveGraph::Response& res) {
     auto path = roots.resolve(req.path, FileRoots::Access::Write);
     if (path) res.path = path.value();  // a relative path: in the first writable root
-    const std::string text = snapshot().text;  // before: an edit during the save keeps a copy
+    const Recovery::Snapshot before = snapshot();  // an edit during the save keeps a copy
     // (Links::Refuse: the folder the roots allowed, not one a link swapped in since sends it elsewhere)
     const Status st = path ? saveGraphFile(graph, path.value(), Links::Refuse) : path.status();
-    if (st) recovery->saved(text);
+    if (st) recovery->saved(before);
     return answered(res, st);
   }
 
   Recovery::Snapshot snapshot() const {
+    const std::uint64_t revision = graph.editRevision();  // first: an edit meanwhile is one more
     const GraphDescription d = graph.describe();
-    return {formatGraphText(d), d.nodes.size()};
+    return {formatGraphText(d), d.nodes.size(), revision};
   }
 
   // ------------------------------------------------------------ paths from outside
@@ -384,7 +385,7 @@ struct RuntimeHost::Impl {
     if (diagnosed) diagnostics = std::make_unique<Diagnostics>(nh, pnh, graph);
     change_timer = pnh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) {
       publishIfChanged();
-      recovery->tick(graph.revision(), [this] { return snapshot(); });
+      recovery->tick(graph.editRevision(), [this] { return snapshot(); });
     });
     status_timer = pnh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
       if (status_pub.getNumSubscribers() == 0) return;
@@ -469,7 +470,7 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
   impl_->loadStartupGraph();  // trusted, like ~overrides: the operator's own launch file
   impl_->loadRoots();  // its folders among them
   impl_->recovery = std::make_unique<Recovery>(ownFolder() + "/recovery", impl_->pnh.getNamespace());
-  impl_->recovery->saved(impl_->snapshot().text);  // the start-up graph, as its launch gives it again
+  impl_->recovery->saved(impl_->snapshot());  // the start-up graph, as its launch gives it again
   impl_->graph.start();
   impl_->advertise();
   impl_->publishIfChanged();

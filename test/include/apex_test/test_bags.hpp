@@ -3,6 +3,7 @@
 #pragma once
 
 #include <rosbag/bag.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/String.h>

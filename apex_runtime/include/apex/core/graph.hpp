@@ -140,6 +140,10 @@ class Graph {
   /** @brief Grows with every visible change from any source (edits, parameter values
    *  arriving through ports, errors, enable events): poll it to know when to republish. */
   std::uint64_t revision() const;
+  /** @brief Grows with every change of what a save keeps, made from outside a node: edits and
+   *  values arriving through parameter inputs, not a node's own reports (a player's frame, an
+   *  optimiser's progress): poll it to know the graph was edited. */
+  std::uint64_t editRevision() const;
 
   /** @brief Waits until no node is ready or firing and no event is pending (a stopped
    *  group counts as idle), or the timeout passes; true if idle. For tests and shutdown. */
