@@ -321,6 +321,32 @@ TEST(BalanceTrials, AThreadGroupIsRemovedOnlyWhenEmpty) {
   g.stop();
 }
 
+TEST(BalanceTrials, NoFramesArrivingIsRefusedAtOnceAndFramesThatStopEndTheWait) {
+  // Once, a balance with no frames arriving waited its whole 30 s, holding a service thread.
+  Graph g(testRegistry());
+  add(g, "test/Feeder", "feed");  // driven: fires only when fed, and it is not
+  add(g, "test/Relay", "a");
+  link(g, "feed", "out", "a", "in");
+  g.start();
+  std::vector<NodeStats> before = g.nodeStats(1e12);
+  for (auto& s : before) s.waiting_for.clear(), s.idle_s = 4;
+  TrialOptions trial;
+  trial.timeout_s = 600;  // only bounds a hang: neither may wait for it
+  auto r = waitForFirings(g, before, 1, trial);
+  ASSERT_FALSE(r);
+  EXPECT_THAT(r.message(), HasSubstr("no frames are arriving (no node fired in the last 4 s)"));
+  for (auto& s : before) s.idle_s = 0;  // they fired a moment ago, and then no more
+  trial.stopped_s = 0.1;
+  r = waitForFirings(g, before, 1, trial);
+  ASSERT_FALSE(r);
+  EXPECT_THAT(r.message(), AllOf(HasSubstr("the frames stopped: no node fired for 0.1 s"), HasSubstr("feed (0)")));
+  for (auto& s : before) s.enabled = false;
+  r = waitForFirings(g, before, 1, trial);
+  ASSERT_FALSE(r);
+  EXPECT_THAT(r.message(), HasSubstr("no node runs"));
+  g.stop();
+}
+
 TEST(BalanceTrials, AGraphThatDoesNotRunNamesTheNodesBehind) {
   Graph g(testRegistry());
   add(g, "test/Feeder", "feed");  // driven: fires only when fed, and it is not

@@ -2,7 +2,10 @@
 // request through set_thread_group (one binary with test_ros_services.cpp, one services.test).
 #include <apex/Balance.h>
 
+#include <chrono>
+#include <future>
 #include <map>
+#include <vector>
 
 #include "services_fixture.hpp"
 
@@ -107,6 +110,39 @@ TEST_F(Services, BalanceRefusesWhatItCannotDoAndSaysWhy) {
   EXPECT_EQ(graphText(), before);
   pause.command = "resume";
   EXPECT_FALSE(call<apex::Control>("control", pause).paused);
+}
+
+TEST_F(Services, BalancesWaitingForFramesHoldNoThreadOfTheOtherServices) {
+  // Four balances once held every service thread: a get_graph sent 1 s later waited 29 s.
+  addChain();
+  std::vector<std::future<apex::Balance::Response>> balances;
+  for (int i = 0; i < 4; ++i)
+    balances.push_back(std::async(std::launch::async, [] {
+      apex::Balance::Request req;
+      req.frames = 1000000, req.groups = 2;  // more frames than it would ever wait for
+      return call<apex::Balance>("balance", req);
+    }));
+  const auto since = std::chrono::steady_clock::now();
+  int answered = 0;
+  while (std::chrono::steady_clock::now() - since < std::chrono::seconds(2)) {
+    EXPECT_EQ(call<apex::GetGraph>("get_graph").graph.nodes.size(), 4u);
+    apex::Control::Request resume;  // (it runs: it goes on running)
+    resume.command = "resume";
+    EXPECT_TRUE(call<apex::Control>("control", resume).success);
+    ++answered;
+  }
+  int done = 0;
+  for (auto& b : balances) done += b.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+  EXPECT_EQ(done, 0) << "the other services answered only once a balance gave up (" << answered << " calls answered)";
+  // Frames stop: the balance measuring gives up, those waiting their turn are refused at once.
+  apex::RemoveNode::Request remove;
+  remove.name = "clock";
+  ASSERT_TRUE(call<apex::RemoveNode>("remove_node", remove).success);
+  for (auto& b : balances) {
+    const auto res = b.get();
+    EXPECT_FALSE(res.success);
+    EXPECT_THAT(res.message, ::testing::AnyOf(HasSubstr("the frames stopped"), HasSubstr("no node runs"))) << res.message;
+  }
 }
 
 }  // namespace

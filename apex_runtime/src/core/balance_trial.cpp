@@ -43,20 +43,38 @@ Status place(Graph& graph, const std::map<std::string, std::string>& groups) {
 Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vector<NodeStats>& before, int frames,
                                               const TrialOptions& options) {
   const auto from = runningFirings(before);
-  const auto deadline =
-      Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options.timeout_s));
+  auto seconds = [](double s) { return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s)); };
+  auto text = [](double s) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%g s", s);
+    return std::string(t);
+  };
+  if (from.empty()) return Status::error("cannot measure: no node runs (each is disabled, failing or waiting for data)");
+  double idle = 1e300;
+  for (const auto& s : before)
+    if (from.count(s.name)) idle = std::min(idle, s.idle_s);
+  if (idle >= options.stopped_s)
+    return Status::error("cannot measure: no frames are arriving (no node fired in the last " + text(idle) + ")");
+  const auto deadline = Clock::now() + seconds(options.timeout_s);
+  auto progress = Clock::now();
+  std::uint64_t total = 0;
   while (true) {
     auto now = graph.nodeStats(1e12);  // no stall check: only the counts are wanted
     if (fewestSince(from, now) >= std::uint64_t(frames)) return now;
-    if (Clock::now() > deadline || (options.keep_going && !options.keep_going())) {
+    std::uint64_t fired = 0;
+    for (const auto& s : now)
+      if (from.count(s.name)) fired += s.firings;
+    if (fired != total) total = fired, progress = Clock::now();
+    const bool stopped = Clock::now() - progress > seconds(options.stopped_s);
+    if (stopped || Clock::now() > deadline || (options.keep_going && !options.keep_going())) {
       std::string behind;
       for (const auto& s : now)
         if (auto it = from.find(s.name); it != from.end() && s.firings < it->second + std::uint64_t(frames))
           behind += (behind.empty() ? "" : ", ") + s.name + " (" + std::to_string(s.firings - it->second) + ")";
-      char within[32];
-      std::snprintf(within, sizeof within, "%g", options.timeout_s);
-      return Status::error("cannot measure: within " + std::string(within) + " s these nodes did not fire " +
-                           std::to_string(frames) + " more frames (the frames each did fire): " + behind);
+      const std::string why = stopped ? "the frames stopped: no node fired for " + text(options.stopped_s) + ", and "
+                                      : "within " + text(options.timeout_s) + " ";
+      return Status::error("cannot measure: " + why + "these nodes did not fire " + std::to_string(frames) +
+                           " more frames (the frames each did fire): " + behind);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the graph has no event to wait on
   }

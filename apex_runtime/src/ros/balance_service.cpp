@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "apex/core/balance.hpp"
+#include "request_text.hpp"
 
 namespace apex {
 namespace ros_host {
@@ -20,21 +21,21 @@ namespace {
 /** How long ~balance waits for its frames: a slow graph's N frames, and not forever. */
 constexpr double kMeasureTimeoutS = 30;
 
-TrialOptions trialOptions(int frames) {
+TrialOptions trialOptions(int frames, const std::atomic<bool>& stopping) {
   TrialOptions o;
   o.frames = frames;
   o.timeout_s = kMeasureTimeoutS;
-  o.keep_going = [] { return ros::ok(); };
+  o.keep_going = [&stopping] { return ros::ok() && !stopping.load(); };
   return o;
 }
 
 /** Each node's time per frame: over `frames` new frames, or (0) as measured so far. */
-Result<std::vector<BalanceNode>> nodeTimes(const Graph& graph, int frames) {
+Result<std::vector<BalanceNode>> nodeTimes(const Graph& graph, int frames, const std::atomic<bool>& stopping) {
   const auto before = graph.nodeStats(1.0);  // stalled for a second: not waited for
   if (frames == 0) return measuredTimes({}, before);
   if (graph.paused())
     return Status::error("the graph is paused: resume it to measure, or ask with frames 0 for the times measured so far");
-  auto after = waitForFirings(graph, before, frames, trialOptions(frames));
+  auto after = waitForFirings(graph, before, frames, trialOptions(frames, stopping));
   if (!after) return Status::error(after.message() + "; ask with frames 0 to use the times measured so far");
   return measuredTimes(before, after.value());
 }
@@ -42,8 +43,9 @@ Result<std::vector<BalanceNode>> nodeTimes(const Graph& graph, int frames) {
 /** Of balance's close proposals, the one that ran the most frames/s over `frames` frames each
  *  (none: the first, balance's own), and the trials in words for the message. */
 Result<std::pair<std::optional<Proposal>, std::string>> fastest(Graph& graph, const BalanceInput& input,
-                                                                const BalanceOptions& options, const Balance::Request& req) {
-  auto trials = tryCandidates(graph, input, options, std::size_t(req.trials), trialOptions(req.frames));
+                                                                const BalanceOptions& options, const Balance::Request& req,
+                                                                const std::atomic<bool>& stopping) {
+  auto trials = tryCandidates(graph, input, options, std::size_t(req.trials), trialOptions(req.frames, stopping));
   if (!trials) return Status::error("cannot try the proposals: " + trials.message());
   const auto& fps = trials->fps;
   if (fps.empty()) return std::make_pair(std::optional<Proposal>(), std::string());
@@ -80,20 +82,20 @@ Status applyGroups(const Balance::Response& res, const std::vector<std::string>&
   return Status::ok();
 }
 
-Status answerBalance(Graph& graph, const Balance::Request& req, Balance::Response& res,
-                     const std::function<bool(SetThreadGroup::Request&, SetThreadGroup::Response&)>& set_group) {
+Status answerBalance(Graph& graph, const Balance::Request& req, Balance::Response& res, const BalanceService::SetGroup& set_group,
+                     const std::atomic<bool>& stopping) {
   if (req.frames < 0) return Status::error("frames must be 0 (the times measured so far) or more");
   if (req.groups < 0) return Status::error("groups must be 0 (the number of cores) or more");
   BalanceOptions options;
   options.groups = req.groups > 0 ? std::size_t(req.groups) : std::max(1u, std::thread::hardware_concurrency());
-  auto times = nodeTimes(graph, req.frames);
+  auto times = nodeTimes(graph, req.frames, stopping);
   if (!times) return times.status();
   const BalanceInput input = balanceInput(graph, times.value());
   auto proposal = balance(input, options);
   if (!proposal) return Status::error("cannot balance: " + proposal.message());
   std::string tried;
   if (req.trials > 1 && req.frames > 0) {  // the close proposals run, the fastest kept
-    auto chosen = fastest(graph, input, options, req);
+    auto chosen = fastest(graph, input, options, req, stopping);
     if (!chosen) return chosen.status();
     if (chosen->first) proposal = std::move(*chosen->first);
     tried = chosen->second;
@@ -114,17 +116,22 @@ Status answerBalance(Graph& graph, const Balance::Request& req, Balance::Respons
 
 }  // namespace
 
-ros::ServiceServer serveBalance(ros::NodeHandle& pnh, Graph& graph,
-                                std::function<bool(SetThreadGroup::Request&, SetThreadGroup::Response&)> set_group) {
-  auto busy = std::make_shared<std::mutex>();  // one at a time: two applies would undo each other's moves
-  auto handle = [&graph, set_group, busy](Balance::Request& req, Balance::Response& res) {
-    std::lock_guard<std::mutex> lock(*busy);
-    const Status st = answerBalance(graph, req, res, set_group);
+BalanceService::BalanceService(ros::NodeHandle& pnh, Graph& graph, SetGroup set_group) {
+  auto handle = [this, &graph, set_group](Balance::Request& req, Balance::Response& res) {
+    const Status st = answerBalance(graph, req, res, set_group, stopping_);
     res.success = st.isOk();
     if (!st) res.message = st.message();
     return true;  // the call itself worked; `success` says whether balancing did
   };
-  return pnh.advertiseService<Balance::Request, Balance::Response>("balance", handle);
+  server_ = advertiseChecked<Balance::Request, Balance::Response>(pnh, "balance", handle, &queue_);
+  spinner_ = std::make_unique<ros::AsyncSpinner>(1, &queue_);  // one at a time: two applies would undo each other's moves
+  spinner_->start();
+}
+
+BalanceService::~BalanceService() {
+  stopping_ = true;  // a balance waiting for frames ends now
+  server_.shutdown();
+  spinner_->stop();
 }
 
 }  // namespace ros_host

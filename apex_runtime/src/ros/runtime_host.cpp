@@ -69,6 +69,7 @@ struct RuntimeHost::Impl {
   ros::Publisher graph_pub, status_pub;
   std::unique_ptr<Recovery> recovery;  // unsaved edits kept on disk (recovery.hpp); outlives the services
   std::vector<ros::ServiceServer> services;
+  std::unique_ptr<BalanceService> balance;  // ~balance, on a thread of its own
   ros::WallTimer change_timer, status_timer;
   std::unique_ptr<Reconfigure> reconfigure;  // after the graph: gone before it
   std::unique_ptr<Diagnostics> diagnostics;
@@ -361,7 +362,7 @@ struct RuntimeHost::Impl {
     serve("set_interactive", &Impl::setInteractive);
     serve("set_enabled", &Impl::setEnabled);
     serve("set_thread_group", &Impl::setThreadGroup);
-    services.push_back(serveBalance(pnh, graph, [this](auto& req, auto& res) { return setThreadGroup(req, res); }));
+    balance = std::make_unique<BalanceService>(pnh, graph, [this](auto& req, auto& res) { return setThreadGroup(req, res); });
     serve("set_ui", &Impl::setUi);
     serve("fire_slot", &Impl::fireSlot);
     serve("group", &Impl::group);
@@ -480,6 +481,7 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
 RuntimeHost::~RuntimeHost() {
   impl_->change_timer.stop();
   impl_->recovery->close();  // first: a stop that then waits for a node in process() is still clean
+  impl_->balance.reset();  // a balance waiting for frames ends
   impl_->master_watch.reset();
   {
     std::lock_guard<std::mutex> lock(impl_->publish_mutex);  // they are used under it

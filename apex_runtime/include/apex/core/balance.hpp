@@ -109,12 +109,16 @@ struct TrialOptions {
   int frames = 100;  ///< measured per placement, after `warmup` frames in it
   int warmup = 5;
   double timeout_s = 30;  ///< per wait for frames
+  /** No node fired for this long: no frames are arriving. Refused before a wait (at once), and
+   *  a wait ends when they stop for this long. */
+  double stopped_s = 3;
   std::function<bool()> keep_going;  ///< false stops a wait (e.g. ROS shuts down); empty: never
 };
 
 /** @brief Waits until every node that runs (enabled, no error, not waiting for anything in
- *  `before`) has fired `frames` more times than in `before`; the stats then. An error names the
- *  nodes behind, with the frames each did fire. Reads the counts every 5 ms. */
+ *  `before`) has fired `frames` more times than in `before`; the stats then. Refused at once if
+ *  none runs or none has fired for `stopped_s`; an error names the nodes behind, with the frames
+ *  each did fire. Reads the counts every 5 ms. */
 Result<std::vector<NodeStats>> waitForFirings(const Graph& graph, const std::vector<NodeStats>& before, int frames,
                                               const TrialOptions& options);
 
