@@ -64,14 +64,17 @@ std::map<std::string, std::set<std::string>> connectedPublishers() {
 
 }  // namespace
 
-MasterWatch::MasterWatch(std::function<void()> registered_again, double period)
+MasterWatch::MasterWatch(std::function<void()> registered_again, std::function<std::uint64_t()> services_version, double period)
     : registered_again_(std::move(registered_again)),
       period_(period),
       // (read now: once roscpp shuts down, its TCP server is gone and asking for its port aborts)
       service_api_("rosrpc://" + ros::network::getHost() + ":" +
                    std::to_string(ros::ConnectionManager::instance()->getTCPPort())) {
+  services_version_ = std::move(services_version);
+  seen_version_ = listed_version_ = services_version_();
   ros::param::get("/run_id", run_id_);
-  (void)check();  // what the master lists of this node now
+  (void)check();  // the master's process
+  listServices();  // what it lists of this node now
   thread_ = std::thread([this] { run(); });
 }
 
@@ -92,7 +95,7 @@ void MasterWatch::run() {
       // (shutting down, roscpp unregisters everything itself: nothing is lost then)
       if (!ros::isShuttingDown() && check() && !ros::isShuttingDown()) {
         const std::string what = registerAgain();
-        (void)check();  // the new master's lists
+        listServices();  // the new master's list
         if (registered_again_) registered_again_();
         ROS_WARN_STREAM_NAMED("apex", "a new ROS master (run id '" << run_id_ << "'): registered " << what << " again");
       }
@@ -104,10 +107,34 @@ void MasterWatch::run() {
 }
 
 bool MasterWatch::check() {
+  XmlRpcValue pid;
+  if (!callMaster("getPid", {}, pid) || pid.getType() != XmlRpcValue::TypeInt) return false;  // no master: the next one
+  // Lost: another master process, or a roscore started again (its run id, set soon after it
+  // starts). Whatever of ours registered with the new master meanwhile cannot hide the rest.
+  bool lost = master_pid_ != 0 && static_cast<int>(pid) != master_pid_;
+  master_pid_ = static_cast<int>(pid);
+  std::string run_id;
+  if (ros::param::get("/run_id", run_id) && run_id != run_id_) {
+    lost = lost || !run_id_.empty();
+    run_id_ = run_id;
+  }
+  if (lost) return true;  // services_: what the last master listed, for the new one
+  constexpr int kRelistChecks = 300;
+  const std::uint64_t version = services_version_();
+  const bool settled = version != listed_version_ && version == seen_version_;  // the host made them by now
+  seen_version_ = version;
+  if (settled || relist_ || ++checks_ % kRelistChecks == 0) {
+    listed_version_ = version;
+    listServices();
+  }
+  return false;
+}
+
+void MasterWatch::listServices() {
   XmlRpcValue state;
-  if (!callMaster("getSystemState", {}, state) || state.getType() != XmlRpcValue::TypeArray || state.size() < 3)
-    return false;  // no master: wait for the next one
-  std::set<std::string> listed;  // this node's services, as the master has them
+  relist_ = !callMaster("getSystemState", {}, state) || state.getType() != XmlRpcValue::TypeArray || state.size() < 3;
+  if (relist_) return;  // again at the next check
+  std::set<std::string> listed;
   XmlRpcValue& services = state[2];
   for (int i = 0; services.getType() == XmlRpcValue::TypeArray && i < services.size(); ++i) {
     XmlRpcValue& providers = services[i][1];
@@ -115,20 +142,7 @@ bool MasterWatch::check() {
       if (static_cast<std::string>(providers[j]) == ros::this_node::getName())
         listed.insert(static_cast<std::string>(services[i][0]));
   }
-  // Lost: a service the last master listed, still offered, that this one does not list; or a
-  // roscore started again (its run id, set soon after it starts). Whatever of ours registered
-  // with the new master meanwhile cannot hide the rest.
-  auto offered = [](const std::string& name) { return bool(ros::ServiceManager::instance()->lookupServicePublication(name)); };
-  bool lost = false;
-  for (const auto& name : services_) lost = lost || (offered(name) && !listed.count(name));
-  std::string run_id;
-  if (ros::param::get("/run_id", run_id) && run_id != run_id_) {
-    lost = lost || !run_id_.empty();
-    run_id_ = run_id;
-  }
-  for (const auto& name : listed) services_.insert(name);  // kept: the next master must get them
-  for (auto it = services_.begin(); it != services_.end();) it = offered(*it) ? std::next(it) : services_.erase(it);
-  return lost;
+  services_ = std::move(listed);
 }
 
 std::string MasterWatch::registerAgain() {
@@ -152,7 +166,9 @@ std::string MasterWatch::registerAgain() {
     update[0] = "/master", update[1] = topic, update[2] = list;
     (void)callSelf("publisherUpdate", update, response);
   }
-  for (const auto& service : services_) services += callMaster("registerService", {service, service_api_, api}, payload);
+  for (const auto& service : services_)  // (those still offered: an edit may have removed one since)
+    if (ros::ServiceManager::instance()->lookupServicePublication(service))
+      services += callMaster("registerService", {service, service_api_, api}, payload);
   return std::to_string(publications) + " publications, " + std::to_string(subscriptions) + " subscriptions and " +
          std::to_string(services) + " services";
 }

@@ -93,6 +93,7 @@ struct RuntimeHost::Impl {
     graph_pub.publish(state);
     mirror.update(graph, state);
     if (reconfigure) reconfigure->update(state);
+
     if (diagnostics) diagnostics->setGraph(state);
   }
 
@@ -475,7 +476,9 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
   impl_->graph.start();
   impl_->advertise();
   impl_->publishIfChanged();
-  impl_->master_watch = std::make_unique<MasterWatch>([impl = impl_.get()] { impl->afterNewMaster(); });
+  impl_->master_watch = std::make_unique<MasterWatch>(
+      [impl = impl_.get()] { impl->afterNewMaster(); },
+      [impl = impl_.get()] { return impl->graph.editRevision(); });  // (reconfigure's services follow edits)
 }
 
 RuntimeHost::~RuntimeHost() {
