@@ -321,15 +321,27 @@ TEST(BalanceTrials, AThreadGroupIsRemovedOnlyWhenEmpty) {
   g.stop();
 }
 
-TEST(BalanceTrials, NoFramesArrivingIsRefusedAtOnceAndFramesThatStopEndTheWait) {
-  // Once, a balance with no frames arriving waited its whole 30 s, holding a service thread.
-  Graph g(testRegistry());
-  add(g, "test/Feeder", "feed");  // driven: fires only when fed, and it is not
+/** feed -> a, started: a driven source that is never fed, so neither fires. */
+void neverFed(Graph& g) {
+  add(g, "test/Feeder", "feed");
   add(g, "test/Relay", "a");
   link(g, "feed", "out", "a", "in");
   g.start();
-  std::vector<NodeStats> before = g.nodeStats(1e12);
-  for (auto& s : before) s.waiting_for.clear(), s.idle_s = 4;
+}
+
+/** The nodes' stats as if both ran (not waiting for anything). */
+std::vector<NodeStats> asIfRunning(const Graph& g) {
+  std::vector<NodeStats> stats = g.nodeStats(1e12);
+  for (auto& s : stats) s.waiting_for.clear();
+  return stats;
+}
+
+TEST(BalanceTrials, NoFramesArrivingIsRefusedAtOnceAndFramesThatStopEndTheWait) {
+  // Once, a balance with no frames arriving waited its whole 30 s, holding a service thread.
+  Graph g(testRegistry());
+  neverFed(g);
+  std::vector<NodeStats> before = asIfRunning(g);
+  for (auto& s : before) s.idle_s = 4;
   TrialOptions trial;
   trial.timeout_s = 600;  // only bounds a hang: neither may wait for it
   auto r = waitForFirings(g, before, 1, trial);
@@ -349,12 +361,8 @@ TEST(BalanceTrials, NoFramesArrivingIsRefusedAtOnceAndFramesThatStopEndTheWait) 
 
 TEST(BalanceTrials, AGraphThatDoesNotRunNamesTheNodesBehind) {
   Graph g(testRegistry());
-  add(g, "test/Feeder", "feed");  // driven: fires only when fed, and it is not
-  add(g, "test/Relay", "a");
-  link(g, "feed", "out", "a", "in");
-  g.start();
-  std::vector<NodeStats> before = g.nodeStats(1e12);
-  for (auto& s : before) s.waiting_for.clear();  // as if both ran
+  neverFed(g);
+  const std::vector<NodeStats> before = asIfRunning(g);
   TrialOptions trial;
   trial.timeout_s = 0.05;
   const auto r = waitForFirings(g, before, 1, trial);
