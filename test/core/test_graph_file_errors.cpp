@@ -186,13 +186,7 @@ TEST_F(GraphFileErrors, BracketsInTextCommentsAndQuotesAreNotNesting) {
   writeFile(path, text);
   auto r = loadGraphFile(graph, path);
   ASSERT_TRUE(r) << r.message() << "\n" << text;
-  EXPECT_EQ(graph.size(), 1u);
-  for (const char* name : {"demo", "paper_pipeline", "table_objects", "tune_paper_pipeline", "number_signs", "real_digits"}) {
-    auto file = readGraphFile(std::string(APEX_GRAPHS_DIR) + "/" + name + ".yaml");
-    ASSERT_TRUE(file) << file.message();
-    auto parsed = parseGraphText(file.value());
-    EXPECT_TRUE(parsed) << name << ": " << parsed.message();
-  }
+  EXPECT_EQ(graph.size(), 1u);  // (every shipped graph loads: services.test's EveryShippedGraphLoads)
 }
 
 TEST(GraphFileErrorsMapValue, ParameterMapMissingAKeyIsAnErrorNotAnException) {
