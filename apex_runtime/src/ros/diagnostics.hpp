@@ -22,9 +22,10 @@ namespace ros_host {
 
 class Diagnostics {
  public:
-  /** @brief Publishes on /diagnostics (in `nh`'s namespace); `~expected_rates` ({node: Hz}) under
-   *  `pnh` names the rates below which a node is WARN (10% tolerance, as diagnostic_updater's
-   *  FrequencyStatus). */
+  /** @brief Publishes on /diagnostics (in `nh`'s namespace) once a second while anyone listens
+   *  (a status per node is a graph-sized message: nobody listening, none is made); `~expected_rates`
+   *  ({node: Hz}) under `pnh` names the rates below which a node is WARN (10% tolerance, as
+   *  diagnostic_updater's FrequencyStatus). */
   Diagnostics(ros::NodeHandle nh, ros::NodeHandle pnh, const Graph& graph);
   Diagnostics(const Diagnostics&) = delete;
   Diagnostics& operator=(const Diagnostics&) = delete;
@@ -49,6 +50,7 @@ class Diagnostics {
   ros::WallTime last_tick_;
   std::set<std::string> tasks_;  // the updater's task names
   ros::WallTimer timer_;
+  ros::Publisher listeners_;  // the updater's topic, to see whether anyone listens
 };
 
 }  // namespace ros_host
