@@ -327,8 +327,10 @@ BoxName NodeItem::name() const {
     bold.setPointSizeF(9.5);
     return BoxName{bold, title(), Qt::AlignLeft | Qt::AlignVCenter, true};
   }
-  return BoxName::fit(title(), QRectF(kPad, 2, width_ - 2 * kPad, (previews_ ? preview_top_ : height_) - 4), zoom_, bold);
+  return BoxName::fit(title(), nameArea(), zoom_, bold);
 }
+
+QRectF NodeItem::nameArea() const { return QRectF(kPad, 2, width_ - 2 * kPad, (previews_ ? preview_top_ : height_) - 4); }
 
 double NodeItem::namePixels() const {
   const BoxName n = name();
@@ -412,7 +414,7 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   p->setFont(name.font);
   QFont f = name.font;
   if (!detail_) {  // zoomed out: the name alone, as large as the box holds it, readable on screen
-    p->drawText(QRectF(kPad, 2, width_ - 2 * kPad, (previews_ ? preview_top_ : height_) - 4), name.flags, name.text);
+    p->drawText(nameArea(), name.flags, name.text);
     f = QFont();
     f.setBold(false);
     f.setPointSizeF(7.5);

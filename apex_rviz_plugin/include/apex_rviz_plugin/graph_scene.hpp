@@ -96,6 +96,8 @@ class NodeItem : public QGraphicsObject {
   QString heldNote() const;
   /** @brief The name as drawn at the zoom set: on the title bar, or alone, zoomed out. */
   BoxName name() const;
+  /** @brief Where the name is drawn zoomed out: the box above its previews. */
+  QRectF nameArea() const;
   /** @brief How tall the name's letters are on screen, in pixels (the font's size at the zoom). */
   double namePixels() const;
   /** @brief What a port is and what it carried last: its tooltip. */
