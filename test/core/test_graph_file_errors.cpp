@@ -6,6 +6,7 @@
 
 #include "apex/core/graph.hpp"
 #include "apex/core/graph_file.hpp"
+#include "apex/core/param.hpp"
 #include "apex_test/graph_file_helpers.hpp"
 #include "apex_test/test_nodes.hpp"
 
@@ -187,6 +188,25 @@ TEST_F(GraphFileErrors, BracketsInTextCommentsAndQuotesAreNotNesting) {
   auto r = loadGraphFile(graph, path);
   ASSERT_TRUE(r) << r.message() << "\n" << text;
   EXPECT_EQ(graph.size(), 1u);  // (every shipped graph loads: services.test's EveryShippedGraphLoads)
+}
+
+TEST_F(GraphFileErrors, ALoneCarriageReturnIsTextAndACrLfEndsALine) {
+  // yaml-cpp reads "\r\n" as a line break and a "\r" alone as text; the scan must agree, or
+  // text that parses as one value is refused as nesting (found by fuzz_param_text).
+  std::string dashes;
+  for (int i = 0; i < 100; ++i) dashes += "-\r?\r";
+  auto value = param::text("s", "x").parse(dashes);
+  ASSERT_TRUE(value) << value.message();
+  EXPECT_EQ(toText(value.value()), dashes);
+  std::string deep = "apex_graph: 1\r\nnodes:\r\n";
+  for (int i = 0; i < 1000; ++i) deep += "- ";
+  EXPECT_TRUE(Contains(loadFails(deep + "x\r\n"), {"line 3", "nested deeper than 32 levels"}));
+  std::string crlf = "apex_graph: 1\r\nnodes:\r\n  - name: a\r\n    type: test/Relay\r\n    ui:\r\n";
+  for (int i = 0; i < 20; ++i) crlf += std::string(6 + 2 * i, ' ') + "k:\r\n" + std::string(6 + 2 * i, ' ') + "\r\n";
+  const std::string path = dir.file("crlf.yaml");
+  writeFile(path, crlf + std::string(46, ' ') + "k: 1\r\n");
+  auto r = loadGraphFile(graph, path);
+  ASSERT_TRUE(r) << r.message();
 }
 
 TEST(GraphFileErrorsMapValue, ParameterMapMissingAKeyIsAnErrorNotAnException) {

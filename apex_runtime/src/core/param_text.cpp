@@ -19,20 +19,28 @@ std::string number(double v) {
   return s;
 }
 
-/** A string as YAML; quoted where plain text would read back as a bool, number or null. */
+/** Whether YAML reads `plain` back as the string `s`, not as a bool, number, null or anything else. */
+bool readsBackAs(const std::string& plain, const std::string& s) {
+  try {
+    const YAML::Node back = detail::loadYaml(plain);  // its shape checked too: "- - - x" nests
+    bool b;
+    double d;
+    return back.IsScalar() && back.Tag() != "!" && back.Scalar() == s && !YAML::convert<bool>::decode(back, b) &&
+           !YAML::convert<double>::decode(back, d);
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+
+/** A string as YAML; quoted where plain text would not read back as the same string (a bool, a
+ *  number, null, or what yaml-cpp's emitter leaves plain but cannot read, such as "---"). */
 std::string quoted(const std::string& s) {
   YAML::Emitter e;
   e << YAML::Flow << s;
-  std::string plain = e.c_str();
-  const YAML::Node back = YAML::Load(plain);
-  bool b;
-  double d;
-  if (back.IsScalar() && back.Tag() != "!" && (YAML::convert<bool>::decode(back, b) || YAML::convert<double>::decode(back, d))) {
-    YAML::Emitter q;
-    q << YAML::DoubleQuoted << s;
-    return q.c_str();
-  }
-  return plain;
+  if (readsBackAs(e.c_str(), s)) return e.c_str();
+  YAML::Emitter q;
+  q << YAML::DoubleQuoted << s;
+  return q.c_str();
 }
 
 struct Parser {

@@ -10,8 +10,6 @@ namespace apex {
 namespace detail {
 namespace {
 
-bool blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-
 /** One pass over the text with what decides nesting: the columns of the open block collections
  *  and the depth of flow collections; quoted and block scalars and comments skipped. Nesting that
  *  costs a character a level ("[[[", "{a: {a: ", "- - - ") is counted as the tree will have it;
@@ -37,6 +35,12 @@ class ShapeScan {
   std::optional<YamlShapeError> error_;
 
   char at(std::size_t k) const { return k < t_.size() ? t_[k] : '\n'; }
+  /** A space or a tab, or the "\r" of a "\r\n" (a line break to yaml-cpp: a "\r" alone is text). */
+  bool blank(std::size_t k) const {
+    const char c = at(k);
+    return c == ' ' || c == '\t' || (c == '\r' && at(k + 1) == '\n');
+  }
+  bool lineEnds(std::size_t k) const { return at(k) == '\n' || (at(k) == '\r' && at(k + 1) == '\n'); }
   std::size_t column() const { return i_ - line_start_; }
   void fail(const std::string& what) { error_ = YamlShapeError{line_, static_cast<int>(column()), what}; }
   void deeper() {
@@ -60,14 +64,17 @@ class ShapeScan {
     if (flow_ > 0) return flow();
     std::size_t indent = 0;
     while (at(i_) == ' ') ++i_, ++indent;
-    if (at(i_) == '\n') return newLine();
+    if (lineEnds(i_)) {
+      toEndOfLine();
+      return newLine();
+    }
     if (at(i_) == '#') return toEndOfLine();
     while (!block_.empty() && block_.back() > indent) block_.pop_back();
     if (block_.empty() || block_.back() < indent) {
       block_.push_back(indent);
       deeper();
     }
-    if (t_.compare(i_, 3, "---") == 0 && indent == 0 && (blank(at(i_ + 3)) || at(i_ + 3) == '\n')) i_ += 3;
+    if (t_.compare(i_, 3, "---") == 0 && indent == 0 && (blank(i_ + 3) || lineEnds(i_ + 3))) i_ += 3;
     content();
   }
 
@@ -77,15 +84,15 @@ class ShapeScan {
     while (!error_ && i_ < t_.size()) {
       const char c = t_[i_];
       if (c == '\n') return newLine();
-      if (blank(c)) {
+      if (blank(i_)) {
         ++i_;
         continue;
       }
-      if (c == '#' && (i_ == line_start_ || blank(t_[i_ - 1]))) return toEndOfLine();
-      if (start && (c == '-' || c == '?') && (blank(at(i_ + 1)) || at(i_ + 1) == '\n')) {
+      if (c == '#' && (i_ == line_start_ || blank(i_ - 1))) return toEndOfLine();
+      if (start && (c == '-' || c == '?') && (blank(i_ + 1) || lineEnds(i_ + 1))) {
         i_ += 1;  // "- - x": a collection in a collection, at the column of what follows
-        while (blank(at(i_))) ++i_;
-        if (at(i_) != '\n' && at(i_) != '#' && at(i_) != '|' && at(i_) != '>') {
+        while (blank(i_)) ++i_;
+        if (!lineEnds(i_) && at(i_) != '#' && at(i_) != '|' && at(i_) != '>') {
           block_.push_back(column());
           deeper();
         }
@@ -100,10 +107,10 @@ class ShapeScan {
       }
       if (start && (c == '|' || c == '>')) return blockScalar();
       if (start && (c == '&' || c == '!')) {  // an anchor or a tag: the value follows
-        while (i_ < t_.size() && !blank(t_[i_]) && t_[i_] != '\n') ++i_;
+        while (i_ < t_.size() && !blank(i_) && t_[i_] != '\n') ++i_;
         continue;
       }
-      if (c == ':' && (blank(at(i_ + 1)) || at(i_ + 1) == '\n')) {
+      if (c == ':' && (blank(i_ + 1) || lineEnds(i_ + 1))) {
         ++i_;
         value();
         start = true;
@@ -120,7 +127,7 @@ class ShapeScan {
     while (!error_ && i_ < t_.size()) {
       const char c = t_[i_];
       if (c == '\n') return newLine();
-      if (c == '#' && (i_ == line_start_ || blank(t_[i_ - 1]))) {
+      if (c == '#' && (i_ == line_start_ || blank(i_ - 1))) {
         toEndOfLine();
         continue;
       }
@@ -140,7 +147,7 @@ class ShapeScan {
         start = false;
         continue;
       }
-      start = blank(c) || c == '[' || c == '{' || c == ',' || c == ':';
+      start = blank(i_) || c == '[' || c == '{' || c == ',' || c == ':';
       ++i_;
     }
   }
@@ -175,7 +182,7 @@ class ShapeScan {
       newLine();
       std::size_t k = i_;
       while (at(k) == ' ') ++k;
-      if (at(k) != '\n' && k - i_ <= parent) return;  // the next node
+      if (!lineEnds(k) && k - i_ <= parent) return;  // the next node
       i_ = k;
       toEndOfLine();
     }
