@@ -69,7 +69,7 @@ class TopicSubscriber : public TopicSource<RosMessage> {
         .param(kType)
         .param(holdParam())
         .shapedBy(shapeOutput)
-        .driven();
+        .keepsNewest();
   }
 
  private:

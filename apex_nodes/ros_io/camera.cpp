@@ -31,7 +31,7 @@ class CameraSubscriber : public TopicSource<CameraFrame> {
         .param(kTopic)
         .param(kTransport)
         .param(holdParam())
-        .driven();
+        .keepsNewest();
   }
 
  private:

@@ -22,7 +22,7 @@ class LaserScanSubscriber : public TopicSource<sensor_msgs::LaserScan> {
         .output(kScan)
         .param(kTopic)
         .param(holdParam())
-        .driven();
+        .keepsNewest();
   }
 
  private:

@@ -25,7 +25,7 @@ class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
         .param(kTopic)
         .param(kTransport)
         .param(holdParam())
-        .driven();
+        .keepsNewest();
   }
 
  private:
@@ -62,7 +62,7 @@ class PointCloudSubscriber : public TopicSource<Cloud> {
         .output(kCloud)
         .param(kTopic)
         .param(holdParam())
-        .driven();
+        .keepsNewest();
   }
 
  private:

@@ -2,6 +2,9 @@
 // zero-copy fan-out, errors, and driven sources that drop instead of queueing.
 #include <gmock/gmock.h>
 
+#include <chrono>
+#include <thread>
+
 #include "apex_test/test_nodes.hpp"
 #include "graph_text.hpp"
 
@@ -157,16 +160,22 @@ struct Gate : Node {
   int entered = 0;
 };
 
-TEST(Firing, ADrivenSourceDropsFramesInsteadOfQueueing) {
-  Graph g(testRegistry());
-  ASSERT_TRUE(g.registry().add<Latest>("test/Latest"));
+/** cam (a `Camera`) -> slow (a Gate, in thread group "worker") -> sink, started. */
+template <class Camera>
+void cameraIntoASlowNode(Graph& g) {
+  ASSERT_TRUE(g.registry().add<Camera>("test/Camera"));
   ASSERT_TRUE(g.registry().add<Gate>("test/Gate"));
-  add(g, "test/Latest", "cam");
+  add(g, "test/Camera", "cam");
   add(g, "test/Gate", "slow", "worker");
   add(g, "test/Collector", "sink");
   link(g, "cam", "out", "slow", "in");
   link(g, "slow", "out", "sink", "in");
   g.start();
+}
+
+TEST(Firing, ADrivenSourceDropsFramesInsteadOfQueueing) {
+  Graph g(testRegistry());
+  cameraIntoASlowNode<Latest>(g);
   object<Latest>(g, "cam")->set(1);
   ASSERT_TRUE(object<Gate>(g, "slow")->waitEntered(1));  // slow holds frame 1
   object<Latest>(g, "cam")->set(2);  // cam fires: slow's input takes 2
@@ -177,6 +186,36 @@ TEST(Firing, ADrivenSourceDropsFramesInsteadOfQueueing) {
   EXPECT_EQ(got.front(), 1);
   EXPECT_EQ(got.back(), 50);
   EXPECT_LE(got.size(), 3u);  // 1, maybe 2, and the newest: never all 50
+}
+
+/** A subscriber's way (SourceMode::Newest): sends what it holds when its receiver's firing ends. */
+struct Newest : Latest {
+  static Manifest manifest() { return Manifest().output<int>("out").keepsNewest(); }
+  void process() override {
+    ++sent;
+    Latest::process();
+  }
+  std::atomic<int> sent{0};
+};
+
+TEST(Firing, ASourceKeepingTheNewestSendsWhenItsReceiverEndsSoNoFrameWaitsWhileNewerCome) {
+  // In another thread group, the receiver took a frame and the source sent the next at once:
+  // it waited in the input while the receiver worked and newer frames came (#54 item 6: 0% of
+  // the outputs from the newest frame across groups). Now it waits in the source, replaced.
+  Graph g(testRegistry());
+  cameraIntoASlowNode<Newest>(g);
+  auto* cam = object<Newest>(g, "cam");
+  cam->set(1);
+  ASSERT_TRUE(object<Gate>(g, "slow")->waitEntered(1));  // slow works on frame 1
+  cam->set(2);
+  // what must not happen, given time to: the old rule sent 2 within microseconds
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
+  while (cam->sent < 2 && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+  EXPECT_EQ(cam->sent, 1) << "frame 2 was sent while 'slow' worked on frame 1";
+  for (int v = 3; v <= 50; ++v) cam->set(v);
+  object<Gate>(g, "slow")->release();
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(object<Collector>(g, "sink")->ints(), (std::vector<int>{1, 50}));
 }
 
 /** A free-running source that (wrongly) calls notifyNewData(), which is for driven sources. */

@@ -199,6 +199,7 @@ Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
   e->to = to.get();
   e->to_param = d.kind == PortKind::ParamIn;
   e->to_index = d.index;
+  e->read_after_firing = !e->from_param && !e->to_param && from->sendsNewest();
   if (e->from_param) {
     from->params[s.index].out_edges.push_back(e);
   } else {

@@ -24,7 +24,7 @@ NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint
       iface(manifestOf(type)),
       seq(s),
       revisions(std::move(r)),
-      driven_(iface->source_mode == SourceMode::Driven) {
+      driven_(iface->source_mode != SourceMode::FreeRunning) {
   const Manifest& m = manifest();
   for (std::size_t i = 0; i < m.inputs.size(); ++i) inputs.push_back(std::make_unique<InputState>());
   outputs.resize(m.outputs.size());
@@ -124,15 +124,19 @@ void NodeState::adjust(int delta) {
 
 // ---------------------------------------------------------------- firing
 
-[[gnu::always_inline]] inline void NodeState::take(InputState& in, bool optional, bool& skip) {
+[[gnu::always_inline]] inline void NodeState::take(InputState& in, bool optional, bool& skip, bool& read_later) {
   Edge* e = in.edge.get();
   if (!e || !e->live) {  // unconnected or cut off: Nothing
     in.current = Message();
   } else if (e->counted()) {  // exclusive by the firing rule: no lock
     in.current = std::move(in.msg);  // leaves Nothing behind
     in.full.store(false, std::memory_order_release);
-    e->unread.store(false, std::memory_order_release);  // a slot of the sender reads it (sendFromSlot)
-    e->from->unblock(1, group);  // the source may fire again while we work
+    if (e->read_after_firing) {  // the source's newest then, not a frame that waits while we work
+      read_later = true;
+    } else {
+      e->unread.store(false, std::memory_order_release);  // a slot of the sender reads it (sendFromSlot)
+      e->from->unblock(1, group);  // the source may fire again while we work
+    }
   } else {
     std::lock_guard<std::mutex> lock(in.m);
     in.current = std::move(in.msg);
@@ -156,7 +160,7 @@ void NodeState::adjust(int delta) {
   Firing f;
   f.skip = !active_enabled_;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
-    take(*inputs[i], manifest().inputs[i].optional, f.skip);
+    take(*inputs[i], manifest().inputs[i].optional, f.skip, f.read_later);
     const Message& m = inputs[i]->current;
     f.end = f.end || m.isEndOfSequence();
     f.data = f.data || (!m.isNothing() && !m.isEndOfSequence());
@@ -220,9 +224,17 @@ bool NodeState::fireIfReady() {
   run(f);
   deliverOutputs(f.data);
   for (auto& in : inputs) in->current = Message();
+  if (f.read_later) readAfterFiring();
   if (!held_triggers_.empty()) releaseTriggers();  // checked here: most firings need neither call
   if (!f.skip && !f.end && !trigger_edges[kProcessedIndex].empty()) fireTrigger(kProcessedIndex);
   return true;
+}
+
+void NodeState::readAfterFiring() {
+  for (auto& in : inputs) {
+    Edge* e = in->edge.get();
+    if (e && e->read_after_firing && e->unread.exchange(false, std::memory_order_acq_rel)) e->from->unblock(1, group);
+  }
 }
 
 void NodeState::recordTimedOrNothing(bool timed, std::int64_t t) {

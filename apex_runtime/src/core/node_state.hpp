@@ -56,6 +56,9 @@ struct Edge {
   bool to_param = false;
   int to_index = 0;
   std::atomic<bool> unread{false};  // counted edges: the receiver has not taken the last message
+  /** From a source that keeps the newest (SourceMode::Newest): read once the receiver's firing
+   *  ends, not when it takes the message (set when connected). */
+  bool read_after_firing = false;
   bool dead = false;  // removed; pending mail on it is ignored
   bool live = false;  // its sender can fire (edits only): a dead input is treated as Nothing
   /** Data outputs wait for their receivers; parameter outputs never hold a node back. */
@@ -232,6 +235,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** The part of the blockers that only edits and firings change (not has_data). */
   int structuralBlockers();
   bool driven() const { return driven_; }
+  /** Its receivers read its messages when their firing ends (SourceMode::Newest). */
+  bool sendsNewest() const { return iface->source_mode == SourceMode::Newest; }
   NodeStats stats() const;
   /** When the node last fired, or was made if never (ticks.hpp). */
   std::int64_t lastFired() const { return last_fired_.load(std::memory_order_relaxed); }
@@ -287,12 +292,15 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   static constexpr int kTimeEvery = 8;
   static constexpr std::int64_t kSlowTicks = 4096;  // ~1-4 µs at a TSC of 1-4 GHz (ticks.hpp)
   std::atomic<std::int64_t> last_t_{0}, total_t_{0}, max_t_{0}, last_fired_{0};  // in ticks (ticks.hpp)
-  inline void take(InputState& in, bool optional, bool& skip);
+  inline void take(InputState& in, bool optional, bool& skip, bool& read_later);
+  /** The firing has ended: the edges of its inputs read only now (Edge::read_after_firing). */
+  void readAfterFiring();
   // fireIfReady's steps, in order
   struct Firing {
     bool skip = false;  // disabled, or a mandatory input holds Nothing: process() is not run
     bool end = false;  // an input holds the end of a sequence
     bool data = false;  // an input holds a frame (not Nothing, not the end token): for rates
+    bool read_later = false;  // an input's edge is read when the firing ends (Edge::read_after_firing)
   };
   inline void reserve();
   inline Firing takeInputs();

@@ -36,6 +36,10 @@ struct EventSpec {
 enum class SourceMode {
   FreeRunning,  ///< fires whenever its outputs are free
   Driven,  ///< fires only after notifyNewData(): an outside callback has data
+  /** Driven, holding only the newest of what arrives (a subscriber): it sends to a receiver
+   *  only once that receiver's firing has ended, not when it took the last message, so the
+   *  receiver's next firing starts from the newest frame, in any thread group. */
+  Newest,
 };
 
 struct Manifest;
@@ -138,6 +142,11 @@ struct Manifest {
   }
   Manifest& driven() {
     source_mode = SourceMode::Driven;
+    return *this;
+  }
+  /** @brief Driven, keeping only the newest of what arrives (SourceMode::Newest). */
+  Manifest& keepsNewest() {
+    source_mode = SourceMode::Newest;
     return *this;
   }
   /** @brief Interfaces per instance: `fn` decides the ports from the parameters marked
