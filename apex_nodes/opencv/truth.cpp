@@ -1,4 +1,5 @@
-// The ground truth of apex_make_demo_bag: reading it, and matching regions to its signs.
+// The ground truth of apex_make_demo_bag: reading it, and matching regions to its signs (the
+// other formats' readers: truth_formats.cpp).
 #include "apex_nodes/truth.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -7,9 +8,11 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "truth_formats.hpp"
+
 namespace apex_nodes {
 
-Truth loadTruth(const std::string& path) {
+Truth truth_formats::readDemoYaml(const std::string& path) {
   Truth t;
   t.has_digits = true;
   try {

@@ -1,5 +1,6 @@
-// The ground truth that apex_make_demo_bag writes next to its bag: per frame (by stamp) the
-// signs' boxes in the upright scene and the digit on each, and how the camera saw the scene.
+// The ground truth that apex_make_demo_bag writes next to its bag (per frame, by stamp, the signs'
+// boxes in the upright scene and the digit on each, and how the camera saw the scene), or that a
+// labelling tool wrote for images named by their frames' stamps (boxes in the image).
 // Shared by the nodes that score or label regions (RegionScore, DigitScore, SampleExport).
 #pragma once
 
@@ -33,7 +34,12 @@ struct Truth {
   std::vector<TruthSign> signsFor(const Regions& regions, const std::string& path) const;
 };
 
-/** @brief Reads a truth file; throws std::invalid_argument naming the file and the problem. */
+/** @brief Reads the ground truth at `path`, by its kind: apex_make_demo_bag's YAML (.yaml, .yml or
+ *  any other name), a COCO or labelme .json (by its keys), a Pascal VOC .xml, a YOLO .txt, or a
+ *  folder of one tool's per-image files (.xml, .json or .txt). A labelling tool's image is the
+ *  frame whose stamp its name holds (frame_<sec>.<nsec>.png, <nanoseconds>.png); its boxes are in
+ *  the image's frame; a label "0".."9" is the sign's digit, and has_digits says every label is one.
+ *  Throws std::invalid_argument naming the file, and the line or entry, and the problem. */
 Truth loadTruth(const std::string& path);
 
 /** @brief A truth box in the frame of an image of `size` (the scene, or the scene turned by the
