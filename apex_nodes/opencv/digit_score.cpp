@@ -45,9 +45,7 @@ class DigitScore : public apex::Node {
   void process() override {
     const Regions& in = *regions_.get();
     const Truth& truth = truth_file_.get(truth_.get());
-    if (!truth.has_digits)
-      throw std::invalid_argument("the ground truth '" + truth_.get() +
-                                  "' lists no digits (made by an older apex_make_demo_bag): make the bag again");
+    truth.requireDigits(truth_.get());
     const std::vector<TruthSign> signs = truth.signsFor(in, truth_.get());
     for (const auto& [s, r] : matchSigns(signs, in.regions, iou_.get())) {
       const int digit = signs[s].digit, label = in.regions[r].label;

@@ -1,6 +1,6 @@
-// RegionScore: how well a frame's regions (BlobDetection's) match the ground truth that
-// apex_make_demo_bag writes: frames found by stamp, truth boxes matched one-to-one to regions
-// whose overlap (intersection over union) reaches `iou`, best overlaps first.
+// RegionScore: how well a frame's regions (BlobDetection's) match the ground truth (the one that
+// apex_make_demo_bag writes, or a labelling tool's: truth.hpp): frames found by stamp, truth boxes
+// matched one-to-one to regions whose overlap (intersection over union) reaches `iou`, best overlaps first.
 #include "apex/core/registry.hpp"
 #include "apex_nodes/truth.hpp"
 
@@ -13,12 +13,12 @@ class RegionScore : public apex::Node {
   static inline const apex::OutputPort<double> kPrecision{"precision", "matched regions / regions (1 if none were found)"};
   static inline const apex::OutputPort<double> kRecall{"recall", "matched truth boxes / truth boxes (1 if the frame has none)"};
   static inline const apex::OutputPort<double> kF1{"f1", "2 precision recall / (precision + recall); 0 if both are 0"};
-  static inline const apex::ParamDecl<std::string> kTruth =
-      param::path("truth").describe("the ground truth: frames by stamp, boxes in the upright scene and the camera's rotation");
+  static inline const apex::ParamDecl<std::string> kTruth = param::path("truth").describe(
+      "the ground truth: apex_make_demo_bag's, or a labelling tool's (COCO, Pascal VOC, YOLO, labelme; images named by stamp)");
   static inline const apex::ParamDecl<double> kIou =
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a truth box");
   static apex::Manifest manifest() {
-    return apex::Manifest("Scores a frame's regions against the ground truth (apex_make_demo_bag's truth file)")
+    return apex::Manifest("Scores a frame's regions against the ground truth (apex_make_demo_bag's, or a labelling tool's)")
         .inCategory("evaluation")
         .input(kRegions)
         .output(kPrecision)

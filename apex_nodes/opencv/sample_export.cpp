@@ -61,8 +61,7 @@ class SampleExport : public apex::Node {
     const std::string& dir = directory_.get();
     if (dir.empty()) throw std::invalid_argument("no directory: set 'directory' to the folder for the samples");
     const Truth& truth = truth_file_.get(truth_.get());
-    if (!truth.has_digits)
-      throw std::invalid_argument("the ground truth '" + truth_.get() + "' lists no digits: make the bag again");
+    truth.requireDigits(truth_.get());
     const std::vector<TruthSign> signs = truth.signsFor(in, truth_.get());
     openIndex(dir);
     const cv::Rect frame(0, 0, image.mat.cols, image.mat.rows);

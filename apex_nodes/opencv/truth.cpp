@@ -36,6 +36,12 @@ Truth truth_formats::readDemoYaml(const std::string& path) {
   return t;
 }
 
+void Truth::requireDigits(const std::string& path) const {
+  if (!has_digits)
+    throw std::invalid_argument("the ground truth '" + path + "' lists no digits for some signs: a labelling tool's labels " +
+                                "must all be 0..9 (an older apex_make_demo_bag's file: make the bag again)");
+}
+
 const std::vector<TruthSign>* Truth::frameAt(std::uint64_t ns) const {
   constexpr std::uint64_t kTolerance = 1000000;
   auto it = frames.lower_bound(ns >= kTolerance ? ns - kTolerance : 0);

@@ -269,6 +269,22 @@ TEST(TruthFormats, ImagesNamedByNanosecondsAndLabelsThatAreNotDigits) {
   EXPECT_EQ(boxesOf(loadTruth(dir.string())), (Boxes{{f.ns, {{120, 60, 80, 120, 4}}}}));
 }
 
+TEST(TruthFormats, SampleExportNeedsADigitOnEverySign) {
+  const Frame f{"", 1700000000250000000, {{{10, 20, 30, 40}, "sign"}}};
+  const fs::path truth =
+      write(folder("not_digits") / "labels.json", replaced(labelmeJson(f), "frame_.png", "1700000000250000000.png"));
+  NodeHarness h("apex_nodes/SampleExport", {"image", "regions"}, "written");
+  h.set("truth", truth.string());
+  h.set("directory", folder("samples").string());
+  auto image = std::make_shared<apex_nodes::Image>();
+  image->header.stamp.fromNSec(f.ns);
+  image->encoding = "bgr8";
+  image->mat = cv::Mat(kImage, CV_8UC3, cv::Scalar(0));
+  const Message written = h.run({Message::share<apex_nodes::Image>(image), Message::make(regions(f.ns, {{10, 20, 30, 40}}))});
+  EXPECT_TRUE(written.isNothing());
+  EXPECT_THAT(h.error(), AllOf(HasSubstr("'" + truth.string() + "'"), HasSubstr("labels must all be 0..9")));
+}
+
 // ------------------------------------------------------------------ errors name the file
 
 TEST(TruthFormats, AMalformedFileOfEachFormatIsRefusedNamingTheFileAndThePlace) {

@@ -27,6 +27,8 @@ struct Truth {
   int rotation = 0;  ///< degrees clockwise: the image is the scene turned
   bool has_digits = false;  ///< every frame lists its signs' digits
 
+  /** @brief Throws std::invalid_argument naming `path` unless every sign has its digit. */
+  void requireDigits(const std::string& path) const;
   /** @brief The frame within a millisecond of `ns`, or nullptr. */
   const std::vector<TruthSign>* frameAt(std::uint64_t ns) const;
   /** @brief The frame of `regions` with its boxes in the regions' image; throws
