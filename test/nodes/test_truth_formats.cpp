@@ -43,11 +43,18 @@ const std::vector<Frame> kFrames{
     {"1700000000.200000000", 1700000000200000000, {{{40, 60, 64, 72}, "5"}}},
     {"1700000000.300000000", 1700000000300000000, {}}};
 
+/** This run's files: under the test's temporary folder, removed at the end. */
+fs::path root() { return fs::path(::testing::TempDir()) / ("apex_truth_formats_" + std::to_string(::getpid())); }
+
+struct RemoveFiles : ::testing::Environment {
+  void TearDown() override { fs::remove_all(root()); }
+};
+const auto* const kRemoveFiles = ::testing::AddGlobalTestEnvironment(new RemoveFiles);
+
 /** A fresh folder for one test's files. */
 fs::path folder(const std::string& name) {
   static int count = 0;
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("apex_truth_formats_" + std::to_string(::getpid()) + "_" + std::to_string(++count)) / name;
+  const fs::path dir = root() / std::to_string(++count) / name;
   fs::create_directories(dir);
   return dir;
 }
