@@ -26,11 +26,16 @@ class Feeder : public Node {
  public:
   static Manifest manifest() { return Manifest("feeds queued ints").output<int>("out").driven(); }
   void feed(int v) {
+    bool was_empty;
     {
       std::lock_guard<std::mutex> l(m_);
+      was_empty = queue_.empty();
       queue_.push_back(v);
     }
-    notifyNewData();
+    // Only what makes the queue non-empty wakes it (a firing that leaves more wakes it again):
+    // a wake for every value could come after a firing had taken that value already, and the
+    // firing it caused, on an empty queue, would send Nothing (seen once under TSan and load).
+    if (was_empty) notifyNewData();
   }
   void process() override {
     int v;
