@@ -1,6 +1,10 @@
 #include "param_mirror.hpp"
 
-#include <set>
+#include <xmlrpcpp/XmlRpcException.h>
+
+#include <map>
+#include <utility>
+#include <vector>
 
 namespace apex {
 namespace ros_host {
@@ -47,27 +51,59 @@ XmlRpc::XmlRpcValue toXmlRpc(const ParamValue& value) {
 }  // namespace
 
 void ParamMirror::update(const Graph& graph, const GraphState& state) {
-  std::set<std::string> seen;
-  for (const auto& node : state.nodes) {
+  std::map<std::string, std::string> now;  // key → value text
+  std::vector<std::pair<std::string, std::string>> changed;  // key, node
+  for (const auto& node : state.nodes)
     for (const auto& p : node.parameters) {
       const std::string key = "nodes/" + node.name + "/" + p.name;
-      seen.insert(key);
+      now[key] = p.value;
       auto it = last_.find(key);
-      if (it != last_.end() && it->second == p.value) continue;
-      auto value = graph.parameterValue(node.name, p.name);
-      if (!value) continue;  // removed meanwhile
-      nh_.setParam(key, toXmlRpc(value.value()));
-      last_[key] = p.value;
+      if (it == last_.end() || it->second != p.value) changed.emplace_back(key, node.name);
     }
+  std::size_t gone = 0;
+  for (const auto& [key, value] : last_) gone += now.count(key) ? 0 : 1;
+  if (changed.size() + gone > kOneByOne && setAll(graph, state)) {
+    last_ = std::move(now);
+    return;
+  }
+  for (const auto& [key, node] : changed) {
+    auto value = graph.parameterValue(node, key.substr(key.rfind('/') + 1));
+    if (!value) continue;  // removed meanwhile
+    nh_.setParam(key, toXmlRpc(value.value()));
+    last_[key] = now[key];
   }
   for (auto it = last_.begin(); it != last_.end();) {
-    if (seen.count(it->first)) {
+    if (now.count(it->first)) {
       ++it;
       continue;
     }
     nh_.deleteParam(it->first);
     it = last_.erase(it);
   }
+}
+
+bool ParamMirror::setAll(const Graph& graph, const GraphState& state) {
+  XmlRpc::XmlRpcValue tree;
+  try {
+    for (const auto& node : state.nodes) {
+      XmlRpc::XmlRpcValue values;
+      for (const auto& p : node.parameters)
+        if (auto value = graph.parameterValue(node.name, p.name)) values[p.name] = toXmlRpc(value.value());
+      if (values.getType() != XmlRpc::XmlRpcValue::TypeStruct) continue;  // none (an empty entry is invalid)
+      XmlRpc::XmlRpcValue* at = &tree;
+      std::size_t from = 0;
+      for (std::size_t slash; (slash = node.name.find('/', from)) != std::string::npos; from = slash + 1)
+        at = &(*at)[node.name.substr(from, slash - from)];  // a node in a subgraph: nested
+      XmlRpc::XmlRpcValue& entry = (*at)[node.name.substr(from)];  // (a subgraph's nodes may be in it already)
+      for (auto& [param, value] : values) entry[param] = value;
+    }
+  } catch (const XmlRpc::XmlRpcException&) {  // a path that is a node and a subgraph's: one by one
+    return false;
+  }
+  if (tree.getType() == XmlRpc::XmlRpcValue::TypeStruct)
+    nh_.setParam("nodes", tree);  // replaces the tree: what is gone goes with it
+  else nh_.deleteParam("nodes");  // no parameter left
+  return true;
 }
 
 }  // namespace ros_host

@@ -186,21 +186,33 @@ struct Reconfigure::Server {
   std::string described, valued;  // what was last published
 };
 
-Reconfigure::Reconfigure(ros::NodeHandle pnh, Graph& graph, Setter set) : pnh_(pnh), graph_(graph), set_(std::move(set)) {}
+Reconfigure::Reconfigure(ros::NodeHandle pnh, Graph& graph, Setter set, int limit)
+    : pnh_(pnh), graph_(graph), set_(std::move(set)), limit_(limit) {}
 
 Reconfigure::~Reconfigure() = default;
 
 void Reconfigure::update(const GraphState& state) {
   std::map<std::string, std::unique_ptr<Server>> kept;
+  int made = 0, served = 0;
+  std::size_t unserved = 0;
+  pending_ = false;
   for (const auto& node : state.nodes) {
-    if (node.state == "placeholder") continue;
+    if (node.state == "placeholder" || node.parameters.empty()) continue;  // nothing to reconfigure
     const auto iface = graph_.nodeInterface(node.name);
-    if (!iface) continue;  // removed meanwhile
+    if (!iface || iface->params.empty()) continue;  // removed or changed meanwhile
+    if (++served > limit_) {  // the first nodes with parameters, in the graph's order
+      ++unserved;
+      continue;
+    }
     auto it = servers_.find(node.name);
     std::unique_ptr<Server> server;
     if (it != servers_.end()) {
       server = std::move(it->second);
+    } else if (made == kMadePerUpdate) {
+      pending_ = true;
+      continue;
     } else {
+      ++made;
       try {
         ros::NodeHandle nh(pnh_, node.name);
         server = std::make_unique<Server>();
@@ -232,6 +244,11 @@ void Reconfigure::update(const GraphState& state) {
     kept[node.name] = std::move(server);
   }
   servers_ = std::move(kept);  // the rest shut down with their handles
+  if (unserved > 0 && unserved != unserved_)
+    ROS_WARN_STREAM_NAMED("apex", "dynamic_reconfigure serves the first " << limit_ << " nodes with parameters, not " << unserved
+                                                                          << " more (~dynamic_reconfigure_limit); "
+                                                                          << "set_parameter sets any node's");
+  unserved_ = unserved;
 }
 
 bool Reconfigure::setParameters(const std::string& node, const Config& request, Config& applied) {

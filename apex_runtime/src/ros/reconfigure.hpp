@@ -30,15 +30,24 @@ class Reconfigure {
   using Setter =
       std::function<Result<std::string>(const std::string& node, const std::string& param, const std::string& yaml_text)>;
 
-  Reconfigure(ros::NodeHandle pnh, Graph& graph, Setter set);
+  /** `limit`: at most this many servers (nodes beyond it are warned of once). */
+  Reconfigure(ros::NodeHandle pnh, Graph& graph, Setter set, int limit = kDefaultLimit);
   ~Reconfigure();
   Reconfigure(const Reconfigure&) = delete;
   Reconfigure& operator=(const Reconfigure&) = delete;
 
-  /** @brief Makes a server for each node of `state` that has none (placeholders have none), drops
-   *  those of nodes that are gone, and publishes each node's descriptions when its parameters'
-   *  declarations changed and its values when they changed. */
+  /** @brief Makes a server for each node of `state` with parameters that has none, drops those
+   *  of nodes that are gone or have none, and publishes each node's descriptions when its
+   *  parameters' declarations changed and its values when they changed. A call makes at most
+   *  kMadePerUpdate servers (each is three calls to the master: a big graph's would hold the
+   *  services for seconds), and the graph has at most `limit` (its first nodes with parameters;
+   *  `set_parameter` sets every node's). */
   void update(const GraphState& state);
+  /** @brief Servers are still to be made: update() again, with the same state if it is current. */
+  bool pending() const { return pending_; }
+
+  static constexpr int kMadePerUpdate = 16;
+  static constexpr int kDefaultLimit = 500;
 
  private:
   struct Server;
@@ -50,6 +59,9 @@ class Reconfigure {
   Graph& graph_;
   Setter set_;
   std::map<std::string, std::unique_ptr<Server>> servers_;  // by node path
+  int limit_;
+  bool pending_ = false;
+  std::size_t unserved_ = 0;  // nodes with parameters beyond the limit, as last warned
 };
 
 }  // namespace ros_host

@@ -76,6 +76,7 @@ struct RuntimeHost::Impl {
   std::unique_ptr<MasterWatch> master_watch;  // last made, first gone
   std::mutex publish_mutex;
   std::uint64_t published_revision = ~0ull;
+  GraphState published;  // publish_mutex: the last ~graph, for the servers still to make
   const ros::Time started = ros::Time::now();  // in every ~status: a client tells a restarted runtime by it
 
   Impl(ros::NodeHandle n, ros::NodeHandle p) : nh(n), pnh(p), graph(NodeRegistry()), inspection(pnh), mirror(pnh) {
@@ -87,9 +88,13 @@ struct RuntimeHost::Impl {
   void publishIfChanged() {
     std::lock_guard<std::mutex> lock(publish_mutex);
     const std::uint64_t revision = graph.revision();
-    if (revision == published_revision) return;
+    if (revision == published_revision) {  // a few more of a big graph's servers at each tick
+      if (reconfigure && reconfigure->pending()) reconfigure->update(published);
+      return;
+    }
     published_revision = revision;
-    const GraphState state = toGraphState(graph, revision);
+    published = toGraphState(graph, revision);
+    const GraphState& state = published;
     graph_pub.publish(state);
     mirror.update(graph, state);
     if (reconfigure) reconfigure->update(state);
@@ -377,13 +382,17 @@ struct RuntimeHost::Impl {
     bool reconfigurable = true, diagnosed = true;
     pnh.param("dynamic_reconfigure", reconfigurable, true);
     pnh.param("diagnostics", diagnosed, true);
+    int reconfigure_limit = Reconfigure::kDefaultLimit;
+    pnh.param("dynamic_reconfigure_limit", reconfigure_limit, reconfigure_limit);
     if (reconfigurable)
       reconfigure = std::make_unique<Reconfigure>(
-          pnh, graph, [this](const std::string& node, const std::string& param, const std::string& text) {
+          pnh, graph,
+          [this](const std::string& node, const std::string& param, const std::string& text) {
             auto applied = setFromOutside(node, param, text);
             publishIfChanged();  // parameter_updates, ~graph
             return applied;
-          });
+          },
+          reconfigure_limit);
     if (diagnosed) diagnostics = std::make_unique<Diagnostics>(nh, pnh, graph);
     change_timer = pnh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) {
       publishIfChanged();
