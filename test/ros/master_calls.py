@@ -23,7 +23,8 @@ from xmlrpc.server import SimpleXMLRPCServer
 from xml.sax.saxutils import quoteattr
 
 NAME = '/apex_calls'
-CHECKS = 5  # MasterWatch checks once a second
+CHECKS = 5  # MasterWatch checks once a second, each with one getPid
+SLACK = 2  # a window's ends may cut a check (getPid, then /run_id): what differs by that is the same
 
 
 class Proxy(ThreadingMixIn, SimpleXMLRPCServer):
@@ -66,10 +67,12 @@ def call(env, service, request, timeout=600):
         raise RuntimeError('%s %s: %s%s' % (service, request, out.stdout, out.stderr))
 
 
-def window(counting):
-    """The runtime's calls over CHECKS checks."""
+def window(counting, limit=60):
+    """The runtime's calls over CHECKS checks (each begins with one getPid), however long they take."""
     before = counting.snapshot()
-    time.sleep(CHECKS)
+    deadline = time.time() + limit
+    while (counting.snapshot() - before)['getPid'] < CHECKS and time.time() < deadline:
+        time.sleep(0.05)  # (polling the count: the condition is the checks made)
     return counting.snapshot() - before
 
 
@@ -80,7 +83,7 @@ def resting_calls(counting, at_most=None, limit=120):
     deadline = time.time() + limit
     while True:
         calls = window(counting)
-        rested = not calls['getSystemState'] and (at_most is None or sum(calls.values()) <= sum(at_most.values()))
+        rested = not calls['getSystemState'] and (at_most is None or sum(calls.values()) <= sum(at_most.values()) + SLACK)
         if rested or time.time() > deadline:
             return calls
 
@@ -117,7 +120,7 @@ def main():
         call(env, 'control', '{command: pause}')
         big = resting_calls(counting, at_most=small)
         print('calls of %d checks, 10 nodes: %s; 2000 nodes: %s' % (CHECKS, dict(small), dict(big)))
-        if sum(big.values()) > sum(small.values()):
+        if sum(big.values()) > sum(small.values()) + SLACK:
             failure = ('a resting runtime of 2000 nodes asked the master more than one of 10 in %d checks: %s against %s'
                        % (CHECKS, dict(big), dict(small)))
         elif big['getSystemState'] or small['getSystemState']:
