@@ -81,12 +81,19 @@ class ContourFilter : public apex::Node {
       param::interval("circularity").range(0.0, 1.0).step(0.01).describe("4 pi area / perimeter^2: 1 for a circle");
   static inline const apex::ParamDecl<apex::Interval> kVertices =
       param::interval("vertices").range(0.0, 1000.0).step(1.0).describe("after cv::approxPolyDP; at the top: no upper limit");
+  static inline const apex::ParamDecl<apex::Interval> kExtent = param::interval("extent").range(0.0, 1.0).step(0.01).describe(
+      "area / bounding box area: 1 for an upright rectangle, pi/4 for a circle");
+  static inline const apex::ParamDecl<apex::Interval> kHoles =
+      param::interval("holes")
+          .range(0.0, 1000.0)
+          .step(1.0)
+          .describe("contours directly inside (needs FindContours' ccomp or tree); at the top: no upper limit");
   static inline const apex::ParamDecl<double> kEpsilon =
       param::number("epsilon").range(0.0, 0.5).step(0.001).init(0.02).describe("approxPolyDP's epsilon, times the perimeter");
   static apex::Manifest manifest() {
     return apex::Manifest(
-               "Keeps the contours whose area, perimeter, aspect ratio, solidity, circularity and vertex count "
-               "are within their intervals")
+               "Keeps the contours whose area, perimeter, aspect ratio, solidity, circularity, vertex count, "
+               "extent and holes are within their intervals")
         .inCategory(kCategory)
         .input(kIn)
         .output(kOut)
@@ -96,13 +103,19 @@ class ContourFilter : public apex::Node {
         .param(kSolidity)
         .param(kCircularity)
         .param(kVertices)
-        .param(kEpsilon);
+        .param(kEpsilon)
+        .param(kExtent)
+        .param(kHoles);
   }
   void process() override {
     const auto in = in_.get();
+    const bool nested = !in->hierarchy.empty() && in->hierarchy.size() == in->contours.size();
+    if (!all(holes_.get(), kHoles) && !nested)
+      throw std::invalid_argument("holes needs the contours' hierarchy: FindContours with mode ccomp or tree");
     std::vector<int> kept;
     for (std::size_t i = 0; i < in->contours.size(); ++i)
-      if (keep(in->contours[i])) kept.push_back(static_cast<int>(i));
+      if (keep(in->contours[i]) && (!nested || within(holes(in->hierarchy, i), holes_.get(), kHoles)))
+        kept.push_back(static_cast<int>(i));
     if (kept.size() == in->contours.size()) {  // all of them: the message as it came
       out_.publishMessage(in_.take());
       return;
@@ -132,6 +145,7 @@ class ContourFilter : public apex::Node {
     if (!within(perimeter, perimeter_.get(), kPerimeter)) return false;
     const cv::Rect box = cv::boundingRect(c);
     if (!within(double(box.width) / box.height, aspect_.get(), kAspect)) return false;
+    if (!within(area / box.area(), extent_.get(), kExtent)) return false;
     if (!all(solidity_.get(), kSolidity)) {
       std::vector<cv::Point> hull;
       cv::convexHull(c, hull);
@@ -146,6 +160,12 @@ class ContourFilter : public apex::Node {
       if (!within(double(polygon.size()), vertices_.get(), kVertices)) return false;
     }
     return true;
+  }
+  /** How many contours lie directly inside contour `i` (its children). */
+  static double holes(const std::vector<cv::Vec4i>& h, std::size_t i) {
+    int n = 0;
+    for (int k = h[i][2]; k >= 0 && k < int(h.size()) && n <= int(h.size()); k = h[k][0]) ++n;
+    return n;
   }
   /** The kept contours' hierarchy: each one's parent is its nearest kept ancestor; its siblings
    *  are the kept contours of that parent, in their order. */
@@ -177,6 +197,8 @@ class ContourFilter : public apex::Node {
   apex::Param<apex::Interval> circularity_{this, kCircularity};
   apex::Param<apex::Interval> vertices_{this, kVertices};
   apex::Param<double> epsilon_{this, kEpsilon};
+  apex::Param<apex::Interval> extent_{this, kExtent};
+  apex::Param<apex::Interval> holes_{this, kHoles};
 };
 
 class ContoursToRegions : public apex::Node {
@@ -184,11 +206,13 @@ class ContoursToRegions : public apex::Node {
   static inline const apex::InputPort<Contours> kContours{"contours"};
   static inline const apex::OutputPort<Regions> kRegions{
       "regions", "one per contour: its upright bounding box, area (cv::contourArea) and centroid (moments)"};
+  static inline const apex::OutputPort<int> kCount{"count", "how many regions"};
   static apex::Manifest manifest() {
     return apex::Manifest("Makes regions of contours: upright bounding boxes (a Region has no rotated box), area, centroid")
         .inCategory(kCategory)
         .input(kContours)
-        .output(kRegions);
+        .output(kRegions)
+        .output(kCount);
   }
   void process() override {
     const Contours& in = *contours_.get();
@@ -209,12 +233,15 @@ class ContoursToRegions : public apex::Node {
       }
       out->regions.push_back(r);
     }
+    const int n = static_cast<int>(out->regions.size());
     regions_.publish(std::move(out));
+    count_.publish(n);
   }
 
  private:
   apex::Input<Contours> contours_{this, kContours};
   apex::Output<Regions> regions_{this, kRegions};
+  apex::Output<int> count_{this, kCount};
 };
 
 class DrawContours : public apex::Node {

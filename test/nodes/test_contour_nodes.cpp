@@ -168,6 +168,34 @@ TEST(ContourNodes, ContourFilterKeepsWhatItsIntervalsSay) {
   }
 }
 
+TEST(ContourNodes, ContourFilterKeepsByExtentAndHoles) {
+  const auto in = direct(cv::RETR_CCOMP);
+  NodeHarness h("apex_nodes/ContourFilter", {"contours"}, "contours");
+  h.set("extent", "[0.9, 1]");  // area / bounding box area: the upright rectangles
+  auto got = h.run(in).as<Contours>();
+  ASSERT_TRUE(got) << h.error();
+  std::vector<std::vector<cv::Point>> want;
+  for (const auto& c : in->contours)
+    if (cv::contourArea(c) / cv::boundingRect(c).area() >= 0.9) want.push_back(c);
+  EXPECT_EQ(got->contours, want);
+  EXPECT_GE(want.size(), 1u);
+  EXPECT_LT(want.size(), in->contours.size());
+
+  h.set("extent", "[0, 1]"), h.set("holes", "[1, 1000]");  // those with a contour directly inside
+  got = h.run(in).as<Contours>();
+  ASSERT_TRUE(got) << h.error();
+  want.clear();
+  for (std::size_t i = 0; i < in->contours.size(); ++i)
+    if (in->hierarchy[i][2] >= 0) want.push_back(in->contours[i]);
+  EXPECT_EQ(got->contours, want);
+  EXPECT_GE(want.size(), 1u);  // the rectangle with the dots
+
+  auto flat = std::make_shared<Contours>(*in);
+  flat->hierarchy.clear();  // as a node that keeps no hierarchy sends them
+  EXPECT_TRUE(h.run(std::shared_ptr<const Contours>(flat)).isNothing());
+  EXPECT_THAT(h.error(), HasSubstr("holes needs the contours' hierarchy: FindContours with mode ccomp or tree"));
+}
+
 TEST(ContourNodes, ContoursToRegionsGivesBoxesAreasAndCentroids) {
   const auto in = direct(cv::RETR_EXTERNAL);
   NodeHarness h("apex_nodes/ContoursToRegions", {"contours"}, "regions");
@@ -189,6 +217,8 @@ TEST(ContourNodes, ContoursToRegionsGivesBoxesAreasAndCentroids) {
     EXPECT_TRUE(r.box.contains(cv::Point(r.centroid))) << i;
     EXPECT_EQ(r.label, -1);
   }
+  NodeHarness count("apex_nodes/ContoursToRegions", {"contours"}, "count");
+  EXPECT_EQ(*count.run(in).as<int>(), static_cast<int>(in->contours.size()));
 }
 
 TEST(ContourNodes, DrawContoursMatchesOpenCV) {

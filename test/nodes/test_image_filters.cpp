@@ -60,6 +60,45 @@ TEST(ImageFilters, BoxFilterMatchesOpenCVNormalizedOrNot) {
   expectImage(h, h.run(imageOf(src, "mono8")), want, "mono8");
 }
 
+/** cv::meanStdDev's deviation of the ksize × ksize window around each pixel `step` apart, away from the border. */
+template <class Check>
+void eachWindow(const cv::Mat& src, int ksize, int step, Check check) {
+  const int r = ksize / 2;
+  for (int y = r; y + r < src.rows; y += step)
+    for (int x = r; x + r < src.cols; x += step) {
+      cv::Scalar mean, dev;
+      cv::meanStdDev(src(cv::Rect(x - r, y - r, ksize, ksize)), mean, dev);
+      check(y, x, dev[0]);
+    }
+}
+
+TEST(ImageFilters, StdDevFilterIsEachWindowsDeviationAsMeanStdDevGivesIt) {
+  const cv::Mat src = readGrayData("building.jpg");
+  NodeHarness h("apex_nodes/StdDevFilter", {"image"}, "image");
+  h.set("ksize", "7");
+  cv::Mat floats;
+  src.convertTo(floats, CV_32F);
+  const auto f = h.run(imageOf(floats, "32FC1")).as<apex_nodes::Image>();
+  ASSERT_TRUE(f) << h.error();
+  EXPECT_EQ(f->encoding, "32FC1");
+  int checked = 0;
+  eachWindow(src, 7, 5, [&](int y, int x, double dev) {
+    ASSERT_NEAR(f->mat.at<float>(y, x), dev, 1e-3 * (1 + dev)) << x << "," << y;
+    ++checked;
+  });
+  EXPECT_GT(checked, 5000);
+  h.set("ksize", "5");
+  h.set("scale", "10");  // 8-bit: tenths of a grey level, rounded, at most 255
+  const auto b = h.run(imageOf(src, "mono8")).as<apex_nodes::Image>();
+  ASSERT_TRUE(b) << h.error();
+  EXPECT_EQ(b->encoding, "mono8");
+  eachWindow(src, 5, 5, [&](int y, int x, double dev) {
+    ASSERT_NEAR(b->mat.at<uchar>(y, x), std::min(255.0, std::round(10 * dev)), 1.0) << x << "," << y;
+  });
+  expectNothing(h, h.run(readDataImage("building.jpg")),
+                "cannot handle 3-channel images (encoding 'bgr8'); needs a single-channel image");
+}
+
 TEST(ImageFilters, SobelMatchesOpenCVWithTheEncodingOfItsDepth) {
   const cv::Mat src = readGrayData("sudoku.png"), colour = readData("sudoku.png");
   NodeHarness h("apex_nodes/Sobel", {"image"}, "image");  // dx 1, dy 0, ksize 3, ddepth 16S
