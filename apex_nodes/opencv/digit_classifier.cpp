@@ -1,6 +1,8 @@
 // DigitClassifier: the digit on each region (a sign), by a model apex_train_mlp wrote. The model
 // is read when first needed, and again when the parameter is set or the file changes; a missing
 // or damaged file is an error on the node (the regions still go out, unlabelled).
+// With reject_label, a model trained with a "not a sign" class (SampleExport's negatives) is
+// the detector's last stage: the regions it gives that class are dropped.
 // A preset for the number signs (its own digit features and MLP file); Classifier is the general
 // form: FeatureExtract's features of the regions, labelled by any cv::ml model (apex_train's).
 
@@ -18,8 +20,8 @@ class DigitClassifier : public apex::Node {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "the image the regions were found in"};
   static inline const apex::InputPort<Regions> kRegions{"regions", "e.g. BlobDetection's: one sign each"};
-  static inline const apex::OutputPort<Regions> kLabelled{"regions",
-                                                          "the regions with label (the digit, -1 if rejected) and confidence"};
+  static inline const apex::OutputPort<Regions> kLabelled{
+      "regions", "the regions with label (the digit, -1 if unsure) and confidence; without those of reject_label"};
   static inline const apex::ParamDecl<std::string> kModel = param::path("model").describe("apex_train_mlp's model file");
   static inline const apex::ParamDecl<double> kMinConfidence =
       param::number("min_confidence")
@@ -27,6 +29,12 @@ class DigitClassifier : public apex::Node {
           .step(0.01)
           .init(0.5)
           .describe("a region whose best digit is less certain gets label -1 (shown as '?')");
+  static inline const apex::ParamDecl<int> kRejectLabel =
+      param::integer("reject_label")
+          .range(-1, 1000000)
+          .step(1)
+          .init(-1)
+          .describe("the model's class for 'not a sign' (SampleExport's negatives): regions classified so are dropped; -1: none");
   static apex::Manifest manifest() {
     return apex::Manifest("Classifies the digit in each region with a trained MLP (apex_train_mlp's model file)")
         .inCategory("learning")
@@ -34,7 +42,8 @@ class DigitClassifier : public apex::Node {
         .input(kRegions)
         .output(kLabelled)
         .param(kModel)
-        .param(kMinConfidence);
+        .param(kMinConfidence)
+        .param(kRejectLabel);
   }
   void parameterChanged(const std::string& name) override {
     if (name == kModel.name()) model_.forget();
@@ -52,13 +61,17 @@ class DigitClassifier : public apex::Node {
       return;
     }
     auto out = std::make_shared<Regions>(*in);
+    out->regions.clear();
     const cv::Rect frame(0, 0, image.mat.cols, image.mat.rows);
-    for (auto& r : out->regions) {
+    for (Region r : in->regions) {
       const cv::Rect box = r.box & frame;
-      if (box.empty()) continue;
-      const DigitPrediction p = model->classify(image.mat(box));
-      r.confidence = p.confidence;
-      r.label = p.confidence >= min_confidence_.get() ? p.label : -1;
+      if (!box.empty()) {
+        const DigitPrediction p = model->classify(image.mat(box));
+        if (p.label == reject_label_.get()) continue;  // not a sign
+        r.confidence = p.confidence;
+        r.label = p.confidence >= min_confidence_.get() ? p.label : -1;
+      }
+      out->regions.push_back(std::move(r));
     }
     regions_out_.publish(std::move(out));
   }
@@ -81,6 +94,7 @@ class DigitClassifier : public apex::Node {
   apex::Output<Regions> regions_out_{this, kLabelled};
   apex::Param<std::string> model_path_{this, kModel};
   apex::Param<double> min_confidence_{this, kMinConfidence};
+  apex::Param<int> reject_label_{this, kRejectLabel};
   ModelFile<DigitModel> model_;
 };
 

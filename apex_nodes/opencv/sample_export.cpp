@@ -1,8 +1,10 @@
 // SampleExport: training samples from a running pipeline. Each region that matches a sign of
 // the ground truth is cut out of the image and written as DIGIT/STAMP_REGION.png under
 // `directory`, and listed in DIRECTORY/index.csv (file,label,stamp_ns,x,y,width,height), which
-// apex_train_mlp reads. The index is replaced whole after every frame (never half-written); a
-// second pass over the same bag rewrites the same samples, and other bags add theirs.
+// apex_train_mlp reads. With `negatives` set, each region that overlaps no sign at all (a window,
+// a shadow: what the detector wrongly found) is written too, under that label: a classifier
+// trained on them learns to reject such regions (DigitClassifier's reject_label). The index is replaced whole after every frame
+// (never half-written); a second pass over the same bag rewrites the same samples, and other bags add theirs.
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -34,6 +36,12 @@ class SampleExport : public apex::Node {
       param::path("truth").describe("the ground truth with each sign's digit");
   static inline const apex::ParamDecl<double> kIou =
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a sign");
+  static inline const apex::ParamDecl<int> kNegatives =
+      param::integer("negatives")
+          .range(-1, 1000000)
+          .step(1)
+          .init(-1)
+          .describe("label of the regions that overlap no sign (hard negatives), written as the signs are; -1: not written");
   static inline const apex::ParamDecl<bool> kOverwrite =
       param::flag("overwrite").describe("replace files at a sample's name that index.csv does not list (not samples)");
 
@@ -48,6 +56,7 @@ class SampleExport : public apex::Node {
         .param(kDirectory)
         .param(kTruth)
         .param(kIou)
+        .param(kNegatives)
         .param(kOverwrite);
   }
   void parameterChanged(const std::string& name) override {
@@ -66,18 +75,27 @@ class SampleExport : public apex::Node {
     openIndex(dir);
     const cv::Rect frame(0, 0, image.mat.cols, image.mat.rows);
     int written = 0;
-    for (const auto& [s, r] : matchSigns(signs, in.regions, iou_.get())) {
+    const auto save = [&](int label, int r) {
       const cv::Rect box = in.regions[r].box & frame;
-      if (box.empty() || signs[s].digit < 0) continue;
-      write(dir, signs[s].digit, in.header.stamp.toNSec(), r, box, image.mat(box));
+      if (box.empty() || label < 0) return;
+      write(dir, label, in.header.stamp.toNSec(), r, box, image.mat(box));
       ++written;
-    }
+    };
+    for (const auto& [s, r] : matchSigns(signs, in.regions, iou_.get())) save(signs[s].digit, r);
+    if (negatives_.get() >= 0)
+      for (std::size_t r = 0; r < in.regions.size(); ++r)
+        if (overlapsNone(in.regions[r].box, signs)) save(negatives_.get(), static_cast<int>(r));
     if (written) saveIndex(dir);
     written_.publish(written);
   }
   void endOfSequence() override { samples_.publish(static_cast<int>(index_.size())); }  // in the token's place
 
  private:
+  static bool overlapsNone(const cv::Rect& box, const std::vector<TruthSign>& signs) {
+    for (const auto& s : signs)
+      if ((s.box & box).area() > 0) return false;
+    return true;
+  }
   void write(const std::string& dir, int digit, std::uint64_t stamp, int region, const cv::Rect& box, const cv::Mat& crop) {
     const std::string folder = std::to_string(digit);
     std::error_code ec;
@@ -122,6 +140,7 @@ class SampleExport : public apex::Node {
   apex::Param<std::string> directory_{this, kDirectory};
   apex::Param<std::string> truth_{this, kTruth};
   apex::Param<double> iou_{this, kIou};
+  apex::Param<int> negatives_{this, kNegatives};
   apex::Param<bool> overwrite_{this, kOverwrite};
   TruthFile truth_file_;
   std::map<std::string, std::string> index_;  // file → its line

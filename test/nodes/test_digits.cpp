@@ -163,6 +163,27 @@ TEST(SampleExport, WritesTheCropOfEachMatchedRegionUnderItsDigitWithAnIndex) {
   EXPECT_EQ(*m.as<int>(), 2);  // the index it found in the folder, and this frame's (the same) samples
 }
 
+TEST(SampleExport, WithNegativesARegionOnNoSignIsWrittenUnderThatLabel) {
+  Frame f;
+  const std::string dir = tempPath("negatives");
+  NodeHarness h("apex_nodes/SampleExport", {"image", "regions"}, "written");
+  h.set("truth", f.truth);
+  h.set("directory", dir);
+  h.set("negatives", "10");
+  // a sign; a region on no sign (a hard negative); one over part of a sign (neither: not written)
+  const auto found = regions(f.mat.size(), {{22, 31, 78, 88}, {150, 5, 30, 20}, {250, 150, 60, 60}});
+  const Message m = h.run(feed(h, image(f.mat), found));
+  ASSERT_FALSE(m.isNothing()) << h.error();
+  EXPECT_EQ(*m.as<int>(), 2);
+  const cv::Mat negative = cv::imread(dir + "/10/1000000000_1.png", cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(negative.empty());
+  EXPECT_EQ(cv::norm(negative, f.mat(cv::Rect(150, 5, 30, 20)), cv::NORM_INF), 0);
+  EXPECT_EQ(read(dir + "/index.csv"),
+            "file,label,stamp_ns,x,y,width,height\n"
+            "10/1000000000_1.png,10,1000000000,150,5,30,20\n"
+            "3/1000000000_0.png,3,1000000000,22,31,78,88\n");
+}
+
 TEST(SampleExport, AFileAtASamplesNameThatTheIndexDoesNotListIsLeftAsItIsUnlessOverwrite) {
   Frame f;
   const std::string dir = tempPath("not_samples");
@@ -261,6 +282,42 @@ TEST(DigitClassifier, LabelsEachRegionAndDrawRegionsShowsTheLabels) {
   cv::compare(plain, labelled, differs, cv::CMP_NE);
   cv::extractChannel(differs, differs, 0);
   EXPECT_GT(cv::countNonZero(differs), 100);  // the labels, above the boxes
+}
+
+TEST(DigitClassifier, ARegionOfTheRejectLabelIsDropped) {
+  // A model with an eleventh class, 10: what is no sign (light walls, dark plates without a digit).
+  std::vector<cv::Mat> x;
+  std::vector<int> y;
+  samples(styles({0.7}, {0.0}), x, y);
+  cv::RNG rng(3);
+  for (int i = 0; i < 40; ++i) {
+    cv::Mat wall(90, 80, CV_8U, cv::Scalar(i % 2 ? rng.uniform(150, 220) : rng.uniform(20, 45)));
+    cv::Mat noise(wall.size(), CV_8U);
+    rng.fill(noise, cv::RNG::UNIFORM, 0, 12);
+    x.push_back(wall + noise);
+    y.push_back(10);
+  }
+  apex_nodes::TrainSettings settings;
+  settings.epochs = 150;
+  const std::string path = tempPath("model_with_negatives.yaml");
+  DigitModel::train(x, y, {}, settings).save(path);
+
+  Frame f;
+  NodeHarness h("apex_nodes/DigitClassifier", {"image", "regions"}, "regions");
+  h.set("model", path);
+  const auto found = regions(f.mat.size(), {f.boxes[0], {110, 140, 80, 90}, f.boxes[1]});  // the middle one: the wall
+  Message m = h.run(feed(h, image(f.mat), found));
+  ASSERT_FALSE(m.isNothing()) << h.error();
+  ASSERT_EQ(m.as<apex_nodes::Regions>()->regions.size(), 3u) << "without reject_label, every region goes on";
+  EXPECT_EQ(m.as<apex_nodes::Regions>()->regions[1].label, 10);
+  h.set("reject_label", "10");
+  m = h.run(feed(h, image(f.mat), found));
+  const auto& kept = m.as<apex_nodes::Regions>()->regions;
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0].box, f.boxes[0]);
+  EXPECT_EQ(kept[0].label, 3);
+  EXPECT_EQ(kept[1].box, f.boxes[1]);
+  EXPECT_EQ(kept[1].label, 7);
 }
 
 TEST(DigitClassifier, AMissingOrDamagedModelIsAnErrorAndTheRegionsGoOnUnlabelled) {
