@@ -9,59 +9,22 @@
 
 #include "apex/core/registry.hpp"
 #include "apex_nodes/search.hpp"
+#include "tuned_dimension.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
 
 namespace {
 
-/** One entry of `dimensions`: "name [min max] [int]". */
-struct DimensionText {
-  std::string name;
-  bool has_range = false;
-  double min = 0, max = 0;
-  bool integer = false;
-};
-
-bool readNumber(const std::string& word, double& out) {
-  std::istringstream in(word);
-  return (in >> out) && in.peek() == EOF && std::isfinite(out);
-}
-
-apex::Result<DimensionText> parseDimension(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<std::string> words;
-  for (std::string w; in >> w;) words.push_back(w);
-  const std::string how = "write 'name', 'name min max', 'name int' or 'name min max int', e.g. 'block_size 3 51 int'";
-  if (words.empty()) return apex::Status::error("an empty dimension: " + how);
-  DimensionText d;
-  d.name = words[0];
-  std::size_t i = 1;
-  if (words.size() >= 3 && readNumber(words[1], d.min) && readNumber(words[2], d.max)) {
-    d.has_range = true;
-    i = 3;
-    if (d.min > d.max) return apex::Status::error("dimension '" + text + "': min is above max");
-  }
-  if (i < words.size() && words[i] == "int") d.integer = true, ++i;
-  if (i != words.size()) return apex::Status::error("dimension '" + text + "': cannot read '" + words[i] + "'; " + how);
-  return d;
-}
-
-/** One output per dimension: int or double, as the parameter it feeds. */
+/** One output per dimension, of the type of the parameter it tunes. */
 apex::Status shapeDimensions(const apex::ParamValues& p, apex::Manifest& m) {
   for (const auto& text : p.get<std::vector<std::string>>("dimensions")) {
-    auto d = parseDimension(text);
+    auto d = tuning::parseDimension(text);
     if (!d) return d.status();
-    m.outputs.push_back({d->name, d->integer ? apex::typeOf<int>() : apex::typeOf<double>(), false,
+    m.outputs.push_back({d->name, tuning::outputType(d->kind), false,
                          "the candidate's value of '" + d->name + "': connect it to the parameter it tunes"});
   }
   return apex::Status::ok();
-}
-
-std::string number(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
 }
 
 }  // namespace
@@ -83,8 +46,9 @@ class Optimizer : public apex::Node {
   static inline const apex::ParamDecl<std::vector<std::string>> kDimensions =
       param::textList("dimensions")
           .describe(
-              "one output each: 'name [min max] [int]', e.g. 'c 0 60' or 'block_size int'; without "
-              "min and max, the range of the parameter its output is connected to")
+              "one output each: 'name [min max] [int]', 'name interval [min max]' (both ends), 'name choice "
+              "[option ...]' or 'name bool', e.g. 'c 0 60', 'block_size int', 'area interval 500 20000', 'method "
+              "choice'; without min and max (options), the range (options) of the parameter it is connected to")
           .shapesInterface();
   static inline const apex::ParamDecl<std::string> kAlgorithm =
       param::choice("algorithm", {"differential_evolution", "random", "grid"});
@@ -180,7 +144,7 @@ class Optimizer : public apex::Node {
     error_.clear();
     auto dims = resolveDimensions();
     std::vector<search::Dimension> ranges;
-    for (const auto& d : dims) ranges.push_back(d.range);
+    for (const auto& d : dims) ranges.insert(ranges.end(), d.coordinates.begin(), d.coordinates.end());
     search::Settings s;
     s.budget = budget_.get();
     s.seed = static_cast<unsigned>(seed_.get());
@@ -203,73 +167,47 @@ class Optimizer : public apex::Node {
   void applyBest() {
     if (running_) throw std::invalid_argument("a run is in progress (" + state_.get() + "): stop it first, or wait for it");
     if (!search_ || search_->best().empty()) throw std::invalid_argument("no best values yet: run the optimiser first");
-    for (std::size_t i = 0; i < dims_.size(); ++i) send(dims_[i], snap(dims_[i], search_->best()[i]));
+    sendAll(search_->best());
     setState("applied the best values " + bestText());
   }
 
  private:
-  struct Dim {
-    std::string port;
-    search::Dimension range;
-    double step = 0, origin = 0;  // integers on a grid (e.g. odd sizes: 3, 5, ...): the target's step
-    apex::ParamValue before;  // what the (first) target held when the run started
-  };
-
-  /** Every dimension with its range (given, or the target's) and the value to give back. */
-  std::vector<Dim> resolveDimensions() const {
-    std::vector<Dim> out;
+  /** Every dimension resolved against the parameter it tunes (the first, if it tunes several). */
+  std::vector<tuning::TunedDimension> resolveDimensions() const {
+    std::vector<tuning::TunedDimension> out;
     for (const auto& text : dimensions_.get()) {
-      const DimensionText d = parseDimension(text).value();  // the interface function read it already
+      const tuning::DimensionText d = tuning::parseDimension(text).value();  // the interface function read it already
       const auto targets = parameterTargets(d.name);
       if (targets.empty())
         throw std::invalid_argument("dimension '" + d.name +
                                     "': its output feeds no parameter; connect it to the "
                                     "parameter it tunes");
       const apex::ParamSpec& spec = targets.front().spec;
-      const std::string where = targets.front().node + "/" + spec.name;
-      Dim dim;
-      dim.port = d.name;
-      dim.range = {d.name, d.min, d.max, d.integer};
-      dim.before = targets.front().value;
-      if (spec.max > spec.min) {  // within the parameter's range, whatever the dimension says
-        dim.range.min = d.has_range ? std::max(d.min, spec.min) : spec.min;
-        dim.range.max = d.has_range ? std::min(d.max, spec.max) : spec.max;
-        if (dim.range.min > dim.range.max)
-          throw std::invalid_argument("dimension '" + text + "' lies outside the range of " + where + " [" + number(spec.min) +
-                                      ", " + number(spec.max) + "]");
-      } else if (!d.has_range) {
-        throw std::invalid_argument("dimension '" + d.name + "': " + where + " has no range; give one, e.g. '" + d.name +
-                                    " 0 10'");
-      }
-      if (d.integer && spec.step > 1) dim.step = spec.step, dim.origin = spec.min;
-      out.push_back(dim);
+      out.push_back(tuning::resolve(d, text, spec, targets.front().node + "/" + spec.name, targets.front().value));
     }
     if (out.empty()) throw std::invalid_argument("no dimensions: add one per parameter to tune, e.g. 'c 0 60'");
     return out;
   }
 
-  /** On the target's grid and within the range. */
-  static double snap(const Dim& d, double x) {
-    if (d.range.integer) x = std::round(x);
-    if (d.step <= 0) return x;
-    double v = d.origin + std::round((x - d.origin) / d.step) * d.step;
-    while (v > d.range.max && v - d.step >= d.origin) v -= d.step;
-    while (v < d.range.min) v += d.step;
-    return v;
+  /** The values at the search's point `x`, one per dimension. */
+  std::vector<apex::ParamValue> valuesAt(const std::vector<double>& x) const {
+    std::vector<apex::ParamValue> out;
+    std::size_t at = 0;
+    for (const auto& d : dims_) {
+      out.push_back(d.value(x.data() + at));
+      at += d.coordinates.size();
+    }
+    return out;
   }
 
-  void send(const Dim& d, double v) {
-    if (d.range.integer) {
-      publishMessage(d.port, apex::Message::make<int>(static_cast<int>(std::lround(v))));
-    } else {
-      publishMessage(d.port, apex::Message::make<double>(v));
-    }
+  void sendAll(const std::vector<double>& x) {
+    const auto values = valuesAt(x);
+    for (std::size_t i = 0; i < dims_.size(); ++i) publishMessage(dims_[i].port, apex::toMessage(values[i]));
   }
 
   /** The next candidate out, then `evaluate` (events leave after the messages). */
   void propose() {
-    const auto x = search_->ask();
-    for (std::size_t i = 0; i < dims_.size(); ++i) send(dims_[i], snap(dims_[i], x[i]));
+    sendAll(search_->ask());
     waiting_ = true;
     setState("running: evaluation " + std::to_string(search_->evaluations() + 1) + " of " + std::to_string(search_->budget()));
     evaluate_.fire();
@@ -303,12 +241,10 @@ class Optimizer : public apex::Node {
   }
 
   std::string bestText() const {
+    if (search_->best().empty()) return "{}";
+    const auto values = valuesAt(search_->best());
     std::string out = "{";
-    for (std::size_t i = 0; i < dims_.size() && i < search_->best().size(); ++i) {
-      const double v = snap(dims_[i], search_->best()[i]);
-      out += (i ? ", " : "") + dims_[i].port + ": " +
-             (dims_[i].range.integer ? apex::toText(static_cast<int>(std::lround(v))) : apex::toText(v));
-    }
+    for (std::size_t i = 0; i < dims_.size(); ++i) out += (i ? ", " : "") + dims_[i].port + ": " + apex::toText(values[i]);
     return out + "}";
   }
 
@@ -338,7 +274,7 @@ class Optimizer : public apex::Node {
   apex::Param<bool> minimize_param_{this, kMinimize};
   apex::Param<std::string> state_{this, kState};
 
-  std::vector<Dim> dims_;
+  std::vector<tuning::TunedDimension> dims_;
   std::unique_ptr<search::Search> search_;
   bool running_ = false;
   bool waiting_ = false;  // a candidate is out; its fitness is not back yet

@@ -29,6 +29,14 @@ std::string yamlList(const std::vector<std::string>& items) {
   return out.c_str();
 }
 
+/** A value as a parameter's text: a scalar as it is, an interval as "[low, high]". */
+std::string flowText(const YAML::Node& value) {
+  if (value.IsScalar()) return value.Scalar();
+  YAML::Emitter out;
+  out << YAML::Flow << value;
+  return out.c_str();
+}
+
 }  // namespace
 
 std::vector<std::string> GraphModel::optimizers() const {
@@ -113,7 +121,7 @@ std::optional<Edit> GraphModel::applyBest(const std::string& opt) const {
     if (c.from_node != opt || !best[c.from_port]) continue;
     const apex::ParamInfo* target = parameter(c.to_node, c.to_port);
     if (!target) continue;
-    e.apply.push_back(setParam(c.to_node, c.to_port, best[c.from_port].Scalar()));
+    e.apply.push_back(setParam(c.to_node, c.to_port, flowText(best[c.from_port])));
     e.revert.push_back(setParam(c.to_node, c.to_port, target->value));
   }
   if (e.apply.empty()) return std::nullopt;

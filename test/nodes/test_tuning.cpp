@@ -4,6 +4,9 @@
 // is its own value exactly when its values were in effect for every frame of its evaluation.
 #include <gmock/gmock.h>
 
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
 #include <fstream>
 #include <thread>
 
@@ -33,10 +36,29 @@ class Probe : public Node {
   }
 };
 
+/** Per frame, scores its interval, choice and flag: 2 at window [20, 60], mode b and on. */
+class ShapeProbe : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("scores its interval, choice and flag per frame")
+        .input<int>("in")
+        .output<double>("out")
+        .param(param::interval("window", 0.0, 100.0, 0.0, 100.0, 1.0).makeInteractive())
+        .param(param::options("mode", {"a", "b", "c"}, "a").makeInteractive())
+        .param(param::boolean("on", false).makeInteractive());
+  }
+  void process() override {
+    const auto w = param<Interval>("window");
+    publish("out", (param<std::string>("mode") == "b" ? 1.0 : 0.0) + (param<bool>("on") ? 1.0 : 0.0) -
+                       (std::abs(w.low - 20) + std::abs(w.high - 60)) / 100.0);
+  }
+};
+
 const NodeRegistry& registry() {
   static NodeRegistry* r = [] {
     auto* reg = new NodeRegistry(pluginRegistry());
     EXPECT_TRUE(reg->add<Probe>("test/Probe"));
+    EXPECT_TRUE(reg->add<ShapeProbe>("test/ShapeProbe"));
     return reg;
   }();
   return *r;
@@ -153,6 +175,73 @@ TEST(Optimizer, RangesAndStepsComeFromTheTunedParameter) {
   for (double v : doubles(loop.seen())) EXPECT_TRUE(v >= 0 && v <= 100) << v;
   for (int v : object<Collector>(g, "sizes")->ints())
     if (v != -999) EXPECT_TRUE(v >= 3 && v <= 101 && v % 2 == 1) << v;
+}
+
+/** sequence → shape probe → mean → optimiser, which tunes the probe's window, mode and on. */
+struct ShapeLoop {
+  Graph g{registry()};
+  explicit ShapeLoop(const std::string& dims) {
+    add(g, "test/Sequence", "seq", "player");
+    add(g, "test/ShapeProbe", "shape", "one");
+    add(g, "apex_nodes/SequenceMean", "mean");
+    add(g, "apex_nodes/Optimizer", "opt");
+    add(g, "test/Collector", "windows");
+    EXPECT_TRUE(g.setParameter("seq", "frames", "2"));
+    EXPECT_TRUE(g.setParameter("opt", "dimensions", dims));
+    link(g, "seq", "out", "shape", "in");
+    link(g, "shape", "out", "mean", "value");
+    link(g, "mean", "mean", "opt", "fitness");
+    for (const char* p : {"window", "mode", "on"}) link(g, "opt", p, "shape", p);
+    link(g, "opt", "window", "windows", "in");
+    link(g, "opt", "evaluate", "seq", "restart");
+    link(g, "opt", "evaluate", "mean", "reset");
+  }
+};
+
+TEST(Optimizer, TunesBothEndsOfAnIntervalAChoiceAndAFlag) {
+  ShapeLoop loop("[window interval 10 90, mode choice, on bool]");
+  Graph& g = loop.g;
+  ASSERT_TRUE(g.setParameter("opt", "budget", "400"));
+  ASSERT_TRUE(g.setParameter("opt", "population", "20"));
+  g.start();
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(waitState(g, "finished", 120)) << param(g, "opt", "state");
+  ASSERT_TRUE(g.waitIdle(kWait));
+  std::vector<Interval> windows;
+  for (const auto& m : object<Collector>(g, "windows")->messages())
+    if (auto w = m.as<Interval>()) windows.push_back(*w);
+  ASSERT_EQ(windows.size(), 401u) << "400 candidates, then the value from before the run";
+  for (std::size_t i = 0; i + 1 < windows.size(); ++i) {
+    const Interval& w = windows[i];
+    ASSERT_TRUE(w.low >= 10 && w.low <= w.high && w.high <= 90 && w.low == std::round(w.low)) << w.low << " " << w.high;
+  }
+  EXPECT_EQ(param(g, "shape", "window"), "[0.0, 100.0]") << "the run gives the parameters their values back";
+  EXPECT_EQ(param(g, "shape", "mode"), "a");
+
+  const YAML::Node best = YAML::Load(param(g, "opt", "best_values"));
+  EXPECT_EQ(best["mode"].as<std::string>(), "b");
+  EXPECT_TRUE(best["on"].as<bool>());
+  EXPECT_NEAR(best["window"][0].as<double>(), 20, 5);
+  EXPECT_NEAR(best["window"][1].as<double>(), 60, 5);
+  ASSERT_TRUE(g.fireSlot("opt", "apply_best"));
+  ASSERT_TRUE(waitState(g, "applied"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(param(g, "shape", "mode"), "b");
+  EXPECT_EQ(param(g, "shape", "on"), "true");
+  EXPECT_EQ(YAML::Load(param(g, "shape", "window")).as<std::vector<double>>(), best["window"].as<std::vector<double>>());
+}
+
+TEST(Optimizer, AChoiceOfAnOptionTheParameterLacksIsRefusedAtStart) {
+  ShapeLoop loop("[window interval, mode choice a x, on bool]");
+  Graph& g = loop.g;
+  g.start();
+  ASSERT_TRUE(g.fireSlot("opt", "start"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  std::string error;
+  for (const auto& s : g.nodeStats())
+    if (s.name == "opt") error = s.error;
+  EXPECT_THAT(error, HasSubstr("dimension 'mode choice a x': 'x' is not an option of shape/mode"));
+  EXPECT_THAT(g.setParameter("opt", "dimensions", "[on bool 0 1]").message(), HasSubstr("cannot read '0'"));
 }
 
 TEST(Optimizer, ThreeHundredEvaluationsOfAOneFrameSequenceRunThrough) {
