@@ -1,7 +1,8 @@
 // The demo's summary: starts playback once it listens, counts the regions found
-// per frame (through ~inspect of blobs/count), compares them with the ground
-// truth, and prints per-node timing from ~status.
-//   apex_demo_report TRUTH.yaml [source: bag|topic]
+// per frame (through ~inspect of COUNT_NODE/count), compares them with the ground
+// truth, and prints per-node timing from ~status. OK: every frame processed, and every
+// frame's count right (on photographs, a truth with `backgrounds: real`: 95% of them).
+//   apex_demo_report TRUTH.yaml [source: bag|topic] [COUNT_NODE]
 #include <algorithm>
 #include <apex/Inspect.h>
 #include <apex/RuntimeStatus.h>
@@ -11,6 +12,7 @@
 #include <std_srvs/SetBool.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <mutex>
@@ -32,16 +34,19 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "apex_demo_report");
   if (argc < 2) {
     std::fprintf(stderr,
-                 "usage: apex_demo_report TRUTH.yaml [bag|topic] [BLOB_NODE]\n"
-                 "  BLOB_NODE: the BlobDetection node whose count is compared (default blobs;\n"
-                 "             in the grouped demo graph camera_detector/blobs)\n");
+                 "usage: apex_demo_report TRUTH.yaml [bag|topic] [COUNT_NODE]\n"
+                 "  COUNT_NODE: the node whose count output is compared (default blobs;\n"
+                 "              in the demo graph camera_detector/regions)\n");
     return 2;
   }
   const std::string source = argc > 2 ? argv[2] : "bag";
   const std::string blobs = argc > 3 ? argv[3] : "blobs";
   std::vector<int> truth;
+  bool photographs = false;  // no detector is perfect on photographs: 95% of the frames right will do
   try {
-    for (const auto& f : YAML::LoadFile(argv[1])["frames"]) truth.push_back(f["signs"].as<int>());
+    const YAML::Node file = YAML::LoadFile(argv[1]);
+    for (const auto& f : file["frames"]) truth.push_back(f["signs"].as<int>());
+    photographs = file["backgrounds"] && file["backgrounds"].as<std::string>() == "real";
   } catch (const YAML::Exception& e) {
     std::fprintf(stderr, "demo: cannot read the ground truth '%s': %s\n", argv[1], e.what());
     return 1;
@@ -92,10 +97,12 @@ int main(int argc, char** argv) {
     expected += truth[i];
     if (i < found.size()) seen += found[i], matching += found[i] == truth[i];
   }
-  std::printf("\n=== APEX demo: the paper's camera pipeline (Fig. 2) on %zu frames\n", truth.size());
+  const int needed = photographs ? static_cast<int>(std::ceil(0.95 * truth.size())) : static_cast<int>(truth.size());
+  std::printf("\n=== APEX demo: the sign detector (graphs/camera_detector.yaml) on %zu frames%s\n", truth.size(),
+              photographs ? " of photographs" : "");
   std::printf("frames processed:   %zu of %zu%s\n", found.size(), truth.size(), all ? "" : " (timed out)");
-  std::printf("regions found:      %d, ground truth %d; frames with the right count: %d of %zu\n", seen, expected, matching,
-              truth.size());
+  std::printf("regions found:      %d, ground truth %d; frames with the right count: %d of %zu (needs %d)\n", seen, expected,
+              matching, truth.size(), needed);
   int width = 14;  // inner nodes of subgraphs have longer names: camera_detector/threshold
   for (const auto& n : status.nodes) width = std::max(width, static_cast<int>(n.name.size()));
   std::printf("%-*s %9s %10s %10s %10s\n", width, "node", "firings", "mean ms", "max ms", "state");
@@ -105,7 +112,7 @@ int main(int argc, char** argv) {
   for (const auto& g : status.groups)
     std::printf("thread group %-10s load %5.1f%%, %lu firings\n", g.name.c_str(), 100 * g.load,
                 static_cast<unsigned long>(g.firings));
-  const bool ok = all && matching == static_cast<int>(truth.size());
+  const bool ok = all && matching >= needed;
   std::printf("demo: %s\n", ok ? "OK" : "FAILED");
   std::fflush(stdout);
   return ok ? 0 : 1;

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The sign detector on photographs, as `scripts/demo --backgrounds real` and `scripts/demo
+# --numbers --backgrounds real` run it (shortened: 80 training and 30 held-out frames for the
+# numbers): the demo's frames with the right count at least 38 of 40, detection F1 at least 0.90
+# and digit accuracy at least 0.97 on the held-out bag. Writes a JUnit result.
+#   photographs_check.sh RESULT_XML WORK_DIR [TRAIN_FRAMES] [FRAMES]   (with this package's devel space sourced)
+set -u
+source "$(dirname "$0")/junit.sh"
+export PATH=/usr/bin:/bin:$PATH
+out=$1
+mkdir -p "$2" && work=$(cd "$2" && pwd)
+train_frames=${3:-80} frames=${4:-30}
+failures=()
+fail() { failures+=("$1"); }
+make_bag() {  # name args...
+  local name=$1
+  shift
+  rosrun apex apex_make_demo_bag "$work/$name.bag" "$work/${name}_truth.yaml" --backgrounds real "$@" >>"$work/make.log" 2>&1 ||
+    fail "apex_make_demo_bag $name failed: $(tail -2 "$work/make.log")"
+}
+rm -f "$work/make.log"
+make_bag demo --frames 40  # the demo's own bag: its default seed
+make_bag train --seed 1 --frames "$train_frames"
+make_bag test --seed 2 --frames "$frames"
+rm -rf "$work/samples" "$work/digits.yaml"
+port=$((20000 + RANDOM % 20000))
+export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
+if [ ${#failures[@]} -eq 0 ]; then
+  timeout 300 roslaunch -p "$port" apex demo.launch bag:="$work/demo.bag" truth:="$work/demo_truth.yaml" >"$work/demo.log" 2>&1
+  right=$(sed -n 's/.*frames with the right count: \([0-9]*\) of 40.*/\1/p' "$work/demo.log")
+  [ "${right:-0}" -ge 38 ] && grep -q '^demo: OK' "$work/demo.log" ||
+    fail "the demo on photographs: $(grep -E '^(regions found|demo:)' "$work/demo.log" | tr '\n' ' ') (needs 38 of 40 frames right)"
+  launch() {  # log mode args...
+    local log=$1
+    shift
+    timeout 300 roslaunch -p "$port" apex numbers.launch data:="$work" "$@" >"$work/$log" 2>&1
+  }
+  launch export.log mode:=export bag:="$work/train.bag" truth:="$work/train_truth.yaml"
+  grep -q '^exported: [1-9]' "$work/export.log" || fail "no samples exported: $(grep -E '^export' "$work/export.log" | tr '\n' ' ')"
+  rosrun apex apex_train_mlp "$work/samples" "$work/digits.yaml" >"$work/train.log" 2>&1 ||
+    fail "apex_train_mlp failed: $(tail -2 "$work/train.log")"
+  launch classify.log mode:=classify bag:="$work/test.bag" truth:="$work/test_truth.yaml"
+  f1=$(sed -n 's/^detection: *F1 \([0-9.]*\).*/\1/p' "$work/classify.log")
+  accuracy=$(sed -n 's/^digits: *accuracy \([0-9.]*\).*/\1/p' "$work/classify.log")
+  awk -v f="${f1:-0}" -v a="${accuracy:-0}" 'BEGIN { exit !(f >= 0.90 && a >= 0.97) }' ||
+    fail "the numbers on photographs: detection F1 ${f1:-?} (needs 0.90), digit accuracy ${accuracy:-?} (needs 0.97)"
+fi
+
+failure="${failures[*]:-}"
+junit_result "$out" photographs Photographs "DetectorAndNumbersOnPhotographsAt38Of40FramesF1090Accuracy097" "$failure"
+grep -E '^(regions found|demo:)' "$work/demo.log" 2>/dev/null
+grep -E '^(exported|detection|digits|numbers)' "$work/export.log" "$work/classify.log" 2>/dev/null
+[ -z "$failure" ] && echo "photographs: OK" || { echo "photographs: $failure"; exit 1; }
