@@ -57,11 +57,16 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
   }
   QMenu* slot_menu = menu.addMenu("Fire slot");
   QMenu* inspect = menu.addMenu("Inspect");
+  QMenu* label = nullptr;  // "Label frames" of each image output, if it has any
   for (const auto& p : info.ports) {
     const QString port = QString::fromStdString(p.name);
     if (p.kind == "slot") slot_menu->addAction(port, this, [this, node, port] { emit fireSlotRequested(node, port); });
     if (p.kind == "output" || p.kind == "param_out")
       inspect->addAction(port, this, [this, node, port] { emit inspectRequested(node, port); });
+    if (p.kind == "output" && carriesImages(p)) {
+      if (!label) label = menu.addMenu("Label frames");
+      label->addAction(port, this, [this, node, port] { emit labelRequested(node, port); });
+    }
   }
   menu.addSeparator();
   menu.addAction("Help (F1)", this, [this, node] { showNodeHelp(node); });  // what its type does, its ports and parameters
@@ -79,6 +84,11 @@ void GraphEditor::fillPortMenu(QMenu& menu, const QString& node, const QString& 
   if (p) {
     menu.addAction("Inspect " + port, this, [this, node, port] { emit inspectRequested(node, port); });
     addShowInRviz(menu, node, port, p->port().type);
+    if (p->port().kind == "output" && carriesImages(p->port())) {
+      QAction* label = menu.addAction("Label frames...", this, [this, node, port] { emit labelRequested(node, port); });
+      label->setObjectName("label_frames");
+      label->setToolTip("draw boxes on its frames and save them as ground truth for RegionScore");
+    }
   } else if (item && item->port(port.toStdString(), false) && item->port(port.toStdString(), false)->port().kind == "slot") {
     menu.addAction("Fire " + port, this, [this, node, port] { emit fireSlotRequested(node, port); });
   }
@@ -96,6 +106,11 @@ void GraphEditor::addShowInRviz(QMenu& menu, const QString& node, const QString&
   show->setEnabled(display.has_value());
   show->setToolTip(QString::fromStdString(display ? "as " + display->rviz_class + " (" + known->second + ")"
                                                   : "not in rviz: " + noRvizDisplayReason(known->second)));
+}
+
+bool GraphEditor::carriesImages(const apex::PortInfo& port) const {
+  const auto known = message_types_.find(port.type);  // a port of any type, once inspected
+  return port.type == "apex_nodes/Image" || (known != message_types_.end() && known->second == "sensor_msgs/Image");
 }
 
 void GraphEditor::showMessageType(const QString& node, const QString& port, const std::string& message_type) {

@@ -29,6 +29,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
   connect(&link_, &RuntimeLink::imageReceived, editor_->scene(), &GraphScene::showImage);
   connect(&link_, &RuntimeLink::aboutReceived, editor_->scene(), &GraphScene::showAbout);
+  connect(&link_, &RuntimeLink::frameReceived, this, &PanelWidget::onFrameReceived);  // panel_labels.cpp
   preview_timer_ = new QTimer(this);
   connect(preview_timer_, &QTimer::timeout, this, &PanelWidget::updatePreviews);
   connect(&link_, &RuntimeLink::answerOverdue, this, [this](const QString& text) { editor_->showConnection(true, text); });
@@ -105,6 +106,7 @@ void PanelWidget::connectEditor() {
   connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
   // what is shown: inspections, previews, presets, the level
   connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
+  connect(e, &GraphEditor::labelRequested, this, &PanelWidget::labelFrames);
   connect(e, &GraphEditor::previewsToggled, this, &PanelWidget::onPreviewsToggled);
   connect(e, &GraphEditor::presetSaveRequested, this, &PanelWidget::savePreset);
   connect(e, &GraphEditor::presetRestoreRequested, this, &PanelWidget::onPresetRestoreRequested);
@@ -317,6 +319,7 @@ void PanelWidget::inspectAgain() {
   watchOptimizers();  // the loaded graph may be shown already: no other ~graph may follow
   for (const auto& [node, port] : inspected_)  // displays showing a port go on if the new graph has it
     link_.inspect(node, port, [](bool, const std::string&, const std::string&, const std::string&) {});
+  watchLabelledAgain();
 }
 
 void PanelWidget::report(bool ok, const std::string& message, const QString& what) {
@@ -331,6 +334,7 @@ void PanelWidget::forgetRuntime() {
 void PanelWidget::meetRuntime() {
   refreshTypes(), editor_->fitNextGraph(), untangle_ = true;
   askRecovery();  // a copy its previous run left: the bar at once
+  watchLabelledAgain();  // a runtime started anew inspects nothing
   // Its graph as it is now: the latched ~graph may have come before this (and no other until it changes).
   link_.runThenRead({}, [this](bool, const std::string&, const apex::GraphState& g) {
     if (g.revision > 0) onGraph(g);

@@ -141,7 +141,7 @@ bool RuntimeLink::setNamespace(const std::string& ns) {
     return false;
   }
   if (spinner_) spinner_->stop();
-  graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear(), preview_subs_.clear();
+  graph_sub_.shutdown(), status_sub_.shutdown(), scalar_subs_.clear(), preview_subs_.clear(), frame_subs_.clear();
   if (nh_) {  // calls to the runtime left go on on a thread of their own: one that hangs holds up no other
     jobs_->retire();
     retired_.erase(std::remove_if(retired_.begin(), retired_.end(), [](const auto& j) { return j->finished(); }), retired_.end());
@@ -410,6 +410,21 @@ void RuntimeLink::watchPreview(const std::string& node, const std::string& port,
 void RuntimeLink::unwatchPreview(const std::string& node, const std::string& port) {
   preview_subs_.erase(node + "/" + port);  // no subscriber left: the runtime publishes nothing
 }
+
+void RuntimeLink::watchFrames(const std::string& node, const std::string& port, const std::string& topic) {
+  if (!nh_) return;
+  const QString n = QString::fromStdString(node), p = QString::fromStdString(port);
+  const std::uint64_t gen = generation_;
+  frame_subs_[node + "/" + port] =
+      nh_->subscribe<sensor_msgs::Image>(topic, 1, [this, n, p, gen](const sensor_msgs::Image::ConstPtr& m) {
+        const QImage image = toQImage(*m);  // whole, converted here, on the link's spinner
+        const quint64 stamp = m->header.stamp.toNSec();
+        const QString encoding = QString::fromStdString(m->encoding);
+        deliver(gen, [this, n, p, image, stamp, encoding] { emit frameReceived(n, p, image, stamp, encoding); });
+      });
+}
+
+void RuntimeLink::unwatchFrames(const std::string& node, const std::string& port) { frame_subs_.erase(node + "/" + port); }
 
 ros::Subscriber RuntimeLink::subscribeScalar(const std::string& topic, const std::string& type,
                                              std::function<void(const QString&)> show) {

@@ -51,7 +51,8 @@ class GraphEditor : public QWidget {
   void fillLinkMenu(QMenu& menu, const apex::Connection& link);
   /** @brief The menu of a right-click on a port: inspect (an output) or fire (a slot), and for an
    *  output "Show in rviz", disabled with the reason as its tooltip once the port's ROS message
-   *  type is known to have no rviz display. Filled for tests to read; shown by a right-click. */
+   *  type is known to have no rviz display; for an image output "Label frames...". Filled for
+   *  tests to read; shown by a right-click. */
   void fillPortMenu(QMenu& menu, const QString& node, const QString& port);
   /** @brief The runtime inspects node/port as `message_type` (empty: not known): remembered for
    *  every port of its type, which the runtime inspects alike, for "Show in rviz". */
@@ -150,6 +151,8 @@ class GraphEditor : public QWidget {
   void groupRequested(const QString& node, const QString& group);
   void fireSlotRequested(const QString& node, const QString& slot);
   void inspectRequested(const QString& node, const QString& port);
+  /** Label the frames of image output node/port (a LabelView). */
+  void labelRequested(const QString& node, const QString& port);
   /** Tune node/param with an Optimizer; an empty `optimizer`: a new one. */
   void optimiseRequested(const QString& node, const QString& param, const QString& optimizer);
   void applyBestRequested(const QString& optimizer);
@@ -187,6 +190,9 @@ class GraphEditor : public QWidget {
   void showProperties();
   void showNodeMenu(const QString& node, QPoint at);
   void showPortMenu(const QString& node, const QString& port, QPoint at);
+  /** Whether an output carries images (its type, or the ROS type an inspection answered): it can
+   *  be labelled. */
+  bool carriesImages(const apex::PortInfo& port) const;
   /** "Show in rviz" for an output of `port_type`: see fillPortMenu. */
   void addShowInRviz(QMenu& menu, const QString& node, const QString& port, const std::string& port_type);
   void showParamMenu(const QString& node, const QString& param, QPoint at);

@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 
+#include <QPointer>
 #include <QTimer>
 #include <QWidget>
 
@@ -18,6 +19,7 @@
 
 namespace apex_rviz_plugin {
 
+class LabelView;
 class RecoveryBar;
 
 class PanelWidget : public QWidget {
@@ -41,6 +43,12 @@ class PanelWidget : public QWidget {
   QSize sizeHint() const override { return QSize(1000, 650); }  ///< room for a few nodes side by side
   /** @brief Inspects node/port as a double-click on it does (an rviz display of it, if it has one). */
   void inspect(const QString& node, const QString& port) { onInspect(node, port); }
+  /** @brief Opens the labelling window of image output node/port, as its menu's "Label frames..."
+   *  does (panel_labels.cpp): its frames come as the runtime inspects the port; its player, if a
+   *  BagReader feeds it, is paused and stepped from the window. */
+  void labelFrames(const QString& node, const QString& port);
+  /** @brief The labelling window of node/port, or nullptr before it was opened. */
+  LabelView* labelView(const QString& node, const QString& port) const;
 
  signals:
   void namespaceChanged(const QString& ns);
@@ -183,6 +191,15 @@ class PanelWidget : public QWidget {
   void onPresetCompareRequested(const QString& name);
   /** Another subgraph shown: its nodes without a position get one once shown. */
   void onLevelChanged();
+  // --- labelling frames (panel_labels.cpp) ---
+  /** The player (a node with a transport bar) whose frames reach `node` through data links, the
+   *  node itself if it is one; "" if none does. */
+  QString playerFeeding(const std::string& node) const;
+  /** Inspects the window's port and sends its images to it; a refusal is said in the window. */
+  void watchFrames(LabelView* view);
+  /** The open labelling windows' ports inspected again (the runtime ended every inspection). */
+  void watchLabelledAgain();
+  void onFrameReceived(const QString& node, const QString& port, const QImage& image, quint64 stamp, const QString& encoding);
   // --- the unsaved graph a previous run of the runtime left (panel_recovery.cpp) ---
   /** Asks the runtime just connected: the bar offers its copy, if it has one. */
   void askRecovery();
@@ -208,6 +225,7 @@ class PanelWidget : public QWidget {
   QTimer* preview_timer_ = nullptr;
   std::set<std::string> previewing_;  // "node/port" whose preview is asked for or watched
   RecoveryBar* recovery_ = nullptr;  // above the editor, hidden unless a copy is offered
+  std::map<std::string, QPointer<LabelView>> label_views_;  // "node/port": labelling windows, hidden when closed
   bool untangle_ = true;  // next graph shown: boxes on top of each other are laid out (a Load, a new level)
   int replaying_ = 0;  // undo and redo steps sent, not answered yet
   /** The graph a redo applies to: its revision and shape (panel_history.cpp) right after the last

@@ -76,6 +76,11 @@ class RuntimeLink : public QObject {
    *  scalarReceived. Until unwatchPreview. */
   void watchPreview(const std::string& node, const std::string& port, const std::string& topic, const std::string& type);
   void unwatchPreview(const std::string& node, const std::string& port);
+  /** @brief Shows a port's whole images (an inspection's topic, sensor_msgs/Image) as they come,
+   *  as frameReceived: for labelling them (LabelView). One subscription per port, until
+   *  unwatchFrames. */
+  void watchFrames(const std::string& node, const std::string& port, const std::string& topic);
+  void unwatchFrames(const std::string& node, const std::string& port);
   bool watchingPreview(const std::string& node, const std::string& port) const {
     return preview_subs_.count(node + "/" + port) > 0;
   }
@@ -108,6 +113,9 @@ class RuntimeLink : public QObject {
   void scalarReceived(const QString& node, const QString& port, const QString& text);
   void imageReceived(const QString& node, const QString& port, const QImage& image);
   void aboutReceived(const QString& node, const QString& port, const QString& text);
+  /** A whole image of a port watched with watchFrames: `image` null for an encoding not drawn here
+   *  (bgr8, rgb8, mono8 and bgra8 are), `stamp` its header's (ns). */
+  void frameReceived(const QString& node, const QString& port, const QImage& image, quint64 stamp, const QString& encoding);
 
  private:
   /** Runs `work` on the job thread and `then` with its result on the GUI thread. */
@@ -151,6 +159,7 @@ class RuntimeLink : public QObject {
   ros::Subscriber graph_sub_, status_sub_;
   std::map<std::string, ros::Subscriber> scalar_subs_;  // "node/port"
   std::map<std::string, std::vector<ros::Subscriber>> preview_subs_;  // "node/port"
+  std::map<std::string, ros::Subscriber> frame_subs_;  // "node/port": whole images, for labelling
   /** A subscription to a port's numbers or strings, shown as scalarReceived. */
   ros::Subscriber watchValues(const std::string& node, const std::string& port, const std::string& topic,
                               const std::string& type);
