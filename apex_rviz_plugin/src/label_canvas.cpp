@@ -1,5 +1,6 @@
 #include "apex_rviz_plugin/label_canvas.hpp"
 
+#include <QKeyEvent>
 #include <QMouseEvent>
 #include <QPainter>
 
@@ -18,7 +19,7 @@ QColor boxColour(bool selected) { return selected ? QColor(255, 210, 0) : QColor
 LabelCanvas::LabelCanvas(QWidget* parent) : QWidget(parent) {
   setObjectName("label_canvas");
   setMinimumSize(320, 240);
-  setMouseTracking(false);
+  setFocusPolicy(Qt::ClickFocus);  // a click on the frame: the arrows, Delete and typing are the canvas's
   setCursor(Qt::CrossCursor);
   setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Expanding);
 }
@@ -123,6 +124,13 @@ void LabelCanvas::mouseReleaseEvent(QMouseEvent* event) {
   const int x1 = static_cast<int>(std::lround(std::max(a.x(), b.x()))),
             y1 = static_cast<int>(std::lround(std::max(a.y(), b.y())));
   emit boxDrawn(QRect(x0, y0, x1 - x0, y1 - y0));
+}
+
+void LabelCanvas::keyPressEvent(QKeyEvent* event) {
+  const QString text = event->text();
+  if (text.isEmpty() || !text.at(0).isPrint() || (event->modifiers() & (Qt::ControlModifier | Qt::AltModifier)))
+    return QWidget::keyPressEvent(event);
+  emit textTyped(text);
 }
 
 }  // namespace apex_rviz_plugin

@@ -3,6 +3,7 @@
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
+#include <QHideEvent>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
@@ -48,11 +49,18 @@ LabelView::LabelView(const QString& node, const QString& port, QWidget* parent)
   column->addWidget(status_);
   connect(canvas_, &LabelCanvas::boxDrawn, this, &LabelView::onBoxDrawn);
   connect(canvas_, &LabelCanvas::boxClicked, this, &LabelView::onBoxClicked);
-  // as labelImg: D and A step, Delete removes the selected box, Ctrl+S saves
+  connect(canvas_, &LabelCanvas::textTyped, this, [this](const QString& text) {  // a class name begun on the frame
+    class_->setFocus();
+    class_->setEditText(text);
+  });
+  // Keys (the class field keeps those it edits with while it has the focus): the arrows step,
+  // Delete removes the selected box, Ctrl+S saves.
   for (const auto& key : {QKeySequence(Qt::Key_Delete), QKeySequence(Qt::Key_Backspace)})
     connect(new QShortcut(key, this), &QShortcut::activated, this, &LabelView::deleteSelected);
-  connect(new QShortcut(QKeySequence(Qt::Key_D), this), &QShortcut::activated, this, [this] { step("next"); });
-  connect(new QShortcut(QKeySequence(Qt::Key_A), this), &QShortcut::activated, this, [this] { step("previous"); });
+  for (const auto& key : {QKeySequence(Qt::Key_Right), QKeySequence(Qt::Key_PageDown)})
+    connect(new QShortcut(key, this), &QShortcut::activated, this, [this] { step("next"); });
+  for (const auto& key : {QKeySequence(Qt::Key_Left), QKeySequence(Qt::Key_PageUp)})
+    connect(new QShortcut(key, this), &QShortcut::activated, this, [this] { step("previous"); });
   connect(new QShortcut(QKeySequence::Save, this), &QShortcut::activated, this, [this] { save(); });
   setPlayer("");
   refresh(-1);
@@ -123,8 +131,8 @@ void LabelView::setPlayer(const QString& player) {
   const QString why = "no player (BagReader) feeds " + node_ + ": step its source yourself";
   previous_->setEnabled(!player.isEmpty());
   next_->setEnabled(!player.isEmpty());
-  previous_->setToolTip(player.isEmpty() ? why : "the previous frame of " + player + " (A)");
-  next_->setToolTip(player.isEmpty() ? why : "the next frame of " + player + " (D)");
+  previous_->setToolTip(player.isEmpty() ? why : "the previous frame of " + player + " (←)");
+  next_->setToolTip(player.isEmpty() ? why : "the next frame of " + player + " (→)");
 }
 
 void LabelView::showFrame(const QImage& image, quint64 stamp, const QString& encoding) {
@@ -257,7 +265,7 @@ QString LabelView::status() const { return status_->text(); }
 
 void LabelView::hideEvent(QHideEvent* event) {
   QDialog::hideEvent(event);
-  emit closed();
+  if (!event->spontaneous()) emit closed();  // closed, not minimised
 }
 
 void LabelView::refresh(int selected) {

@@ -1,6 +1,7 @@
 // The frame in the labelling view (LabelView), scaled to fit the widget, with its boxes and their
 // classes. A drag with the left button draws a box; a click on a box selects it, a click beside
-// every box selects none. Boxes are in the image's pixels; the canvas maps them to the widget.
+// every box selects none; a letter typed on it starts a class name (the view's class field takes
+// it). Boxes are in the image's pixels; the canvas maps them to the widget.
 #pragma once
 
 #include <QImage>
@@ -35,12 +36,15 @@ class LabelCanvas : public QWidget {
   void boxDrawn(const QRect& box);
   /** A click selected box `index` (-1: a click beside every box). */
   void boxClicked(int index);
+  /** Text typed while the canvas has the focus (a class name begun). */
+  void textTyped(const QString& text);
 
  protected:
   void paintEvent(QPaintEvent* event) override;
   void mousePressEvent(QMouseEvent* event) override;
   void mouseMoveEvent(QMouseEvent* event) override;
   void mouseReleaseEvent(QMouseEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
 
  private:
   /** Where the image is drawn: centred, as large as fits, its shape kept. */
