@@ -1,16 +1,18 @@
 // Writes the demo's bag: camera frames of dark number signs on textured
 // backgrounds, seen by a camera mounted on its side (as in the paper's SICK
 // Robot Day setup), and a point cloud per frame; plus the ground truth.
-//   apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|hard]
+//   apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|medium|hard]
 //                      [--backgrounds synthetic|real]
 // Each sign's digit is drawn in one of five fonts, with its own size, stroke, slant and turn
 // (the truth lists the digits), so that reading it takes a trained classifier.
 // Deterministic: the same files for the same options. Hard frames add uneven
 // light, shadows, blur, noise, faint and partly hidden signs, and dark shapes
 // that are not signs: data on which the shipped parameters do poorly and tuned
-// ones do well. With --backgrounds real, each frame's background is a crop of one of opencv-doc's
-// photographs (demo_backgrounds.hpp; $APEX_OPENCV_DATA overrides its folder) instead of the
-// texture; the signs, digits and clouds stay those of the same seed's synthetic frames.
+// ones do well. Medium frames are the easy scene as a robot's camera sees it: the same
+// signs at full contrast, some partly hidden, among the dark shapes, with the light, blur
+// and noise of hard frames (on photographs, faint signs are beyond any of our detectors). With --backgrounds real, each frame's
+// background is a crop of one of opencv-doc's photographs (demo_backgrounds.hpp; $APEX_OPENCV_DATA overrides its folder) instead
+// of the texture; the signs, digits and clouds stay those of the same seed's synthetic frames.
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl_conversions/pcl_conversions.h>
@@ -40,7 +42,7 @@ struct Options {
   std::string bag, truth;
   int frames = 40;
   std::uint64_t seed = 20261121;  // the demo's: its checks expect these exact frames
-  bool hard = false;
+  enum class Difficulty { Easy, Medium, Hard } difficulty = Difficulty::Easy;
   bool real = false;  // backgrounds: opencv-doc's photographs instead of the generated texture
 };
 
@@ -68,8 +70,11 @@ Options parse(int argc, char** argv) {
     if (arg == "--seed") o.seed = number("--seed", value, 0, std::numeric_limits<std::uint64_t>::max());
     if (arg == "--frames") o.frames = static_cast<int>(number("--frames", value, 1, 100000));
     if (arg == "--difficulty") {
-      if (value != "easy" && value != "hard") throw std::invalid_argument("--difficulty is easy or hard, not '" + value + "'");
-      o.hard = value == "hard";
+      if (value != "easy" && value != "medium" && value != "hard")
+        throw std::invalid_argument("--difficulty is easy, medium or hard, not '" + value + "'");
+      o.difficulty = value == "hard"     ? Options::Difficulty::Hard
+                     : value == "medium" ? Options::Difficulty::Medium
+                                         : Options::Difficulty::Easy;
     }
     if (arg == "--backgrounds") {
       if (value != "synthetic" && value != "real")
@@ -281,10 +286,14 @@ void photograph(cv::Mat& scene, cv::RNG& rng) {
   f.convertTo(scene, CV_8UC3);
 }
 
-/** A hard frame's signs drawn faint, some partly hidden, among distractors, photographed badly. */
-void drawHardFrame(cv::Mat& scene, const std::vector<cv::Rect>& boxes, const std::vector<int>& numbers, cv::RNG& rng,
+/** A hard frame's signs drawn faint (medium: as easy frames draw them), some partly hidden,
+ *  among distractors, photographed badly. */
+void drawHardFrame(cv::Mat& scene, const std::vector<cv::Rect>& boxes, const std::vector<int>& numbers, bool faint, cv::RNG& rng,
                    cv::RNG& style) {
-  for (std::size_t i = 0; i < boxes.size(); ++i) drawFaintSign(scene, boxes[i], numbers[i], rng, style);
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    if (faint) drawFaintSign(scene, boxes[i], numbers[i], rng, style);
+    else drawSign(scene, boxes[i], numbers[i], rng, style);
+  }
   for (const auto& b : boxes)
     if (rng.uniform(0.0, 1.0) < 0.3) occlude(scene, b, rng);
   drawDistractors(scene, boxes, rng);
@@ -319,11 +328,22 @@ cv::Mat frameBackground(cv::RNG& rng, cv::RNG& crops, const std::vector<apex_too
   return scene;
 }
 
+const char* difficultyName(const Options& opt) {
+  switch (opt.difficulty) {
+    case Options::Difficulty::Hard:
+      return "hard";
+    case Options::Difficulty::Medium:
+      return "medium";
+    default:
+      return "easy";
+  }
+}
+
 void writeTruthHeader(std::ostream& truth, const Options& opt) {
   truth << "# ground truth of " << opt.bag << ": per image frame, the signs in the upright scene\n"
         << "image_topic: /camera/image_raw\ncloud_topic: /camera/points\n"
         << "scene_size: [" << kWidth << ", " << kHeight << "]\ncamera_rotation: " << kCameraRotation << "\n"
-        << "difficulty: " << (opt.hard ? "hard" : "easy") << "\n"
+        << "difficulty: " << difficultyName(opt) << "\n"
         << (opt.real ? "backgrounds: real\n" : "") << "seed: " << opt.seed << "\nframes:\n";
 }
 
@@ -359,7 +379,7 @@ int main(int argc, char** argv) {
     opt = parse(argc, argv);
   } catch (const std::invalid_argument& e) {
     std::cerr << "apex_make_demo_bag: " << e.what()
-              << "\nusage: apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|hard]"
+              << "\nusage: apex_make_demo_bag OUT.bag TRUTH.yaml [frames] [--frames N] [--seed N] [--difficulty easy|medium|hard]"
                  " [--backgrounds synthetic|real]\n";
     return 2;
   }
@@ -382,6 +402,7 @@ int main(int argc, char** argv) {
   std::ofstream truth(opt.truth);
   writeTruthHeader(truth, opt);
   const ros::Time start(1700000000, 0);
+  const bool easy = opt.difficulty == Options::Difficulty::Easy;
   for (int f = 0; f < opt.frames; ++f) {
     std_msgs::Header header;
     header.seq = f;
@@ -393,10 +414,10 @@ int main(int argc, char** argv) {
     std::vector<int> numbers;
     for (const auto& b : boxes) {
       numbers.push_back(rng.uniform(0, 10));
-      if (!opt.hard) drawSign(scene, b, numbers.back(), rng, style);  // easy: the RNG calls the demo's checks rely on
+      if (easy) drawSign(scene, b, numbers.back(), rng, style);  // easy: the RNG calls the demo's checks rely on
     }
     writeFrameTruth(truth, header.stamp, boxes, numbers, where);
-    if (opt.hard) drawHardFrame(scene, boxes, numbers, rng, style);
+    if (!easy) drawHardFrame(scene, boxes, numbers, opt.difficulty == Options::Difficulty::Hard, rng, style);
     cv::Mat seen;
     cv::rotate(scene, seen, cv::ROTATE_90_CLOCKWISE);  // the camera lies on its side
     bag.write("/camera/image_raw", header.stamp, cv_bridge::CvImage(header, "bgr8", seen).toImageMsg());
@@ -405,7 +426,7 @@ int main(int argc, char** argv) {
     bag.write("/camera/points", cloud_header.stamp, cloud(rng, cloud_header));
   }
   bag.close();
-  std::cout << "wrote " << opt.frames << (opt.hard ? " hard" : "") << " frames" << (opt.real ? " on photographs" : "") << " to "
-            << opt.bag << " and the ground truth to " << opt.truth << "\n";
+  std::cout << "wrote " << opt.frames << (easy ? "" : std::string(" ") + difficultyName(opt)) << " frames"
+            << (opt.real ? " on photographs" : "") << " to " << opt.bag << " and the ground truth to " << opt.truth << "\n";
   return truth ? 0 : 1;
 }
