@@ -17,6 +17,8 @@ class RegionScore : public apex::Node {
       "the ground truth: apex_make_demo_bag's, or a labelling tool's (COCO, Pascal VOC, YOLO, labelme; images named by stamp)");
   static inline const apex::ParamDecl<double> kIou =
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a truth box");
+  static inline const apex::ParamDecl<bool> kOnlyLabelled = param::flag("only_labelled").describe(
+      "frames the truth does not list send Nothing (scores over the labelled frames of a bag); off: they are an error");
   static apex::Manifest manifest() {
     return apex::Manifest("Scores a frame's regions against the ground truth (apex_make_demo_bag's, or a labelling tool's)")
         .inCategory("evaluation")
@@ -25,14 +27,17 @@ class RegionScore : public apex::Node {
         .output(kRecall)
         .output(kF1)
         .param(kTruth)
-        .param(kIou);
+        .param(kIou)
+        .param(kOnlyLabelled);
   }
   void parameterChanged(const std::string& name) override {
     if (name == kTruth.name()) truth_file_.reset();  // read on the next frame, where an error shows
   }
   void process() override {
     const Regions& in = *regions_.get();
-    const std::vector<TruthSign> signs = truth_file_.get(truth_.get()).signsFor(in, truth_.get());
+    const Truth& truth = truth_file_.get(truth_.get());
+    if (only_labelled_.get() && !truth.frameAt(in.header.stamp.toNSec())) return;  // not labelled: Nothing, no score
+    const std::vector<TruthSign> signs = truth.signsFor(in, truth_.get());
     const auto n = static_cast<double>(matchSigns(signs, in.regions, iou_.get()).size());
     const double precision = in.regions.empty() ? 1.0 : n / in.regions.size();
     const double recall = signs.empty() ? 1.0 : n / signs.size();
@@ -48,6 +53,7 @@ class RegionScore : public apex::Node {
   apex::Output<double> f1_{this, kF1};
   apex::Param<std::string> truth_{this, kTruth};
   apex::Param<double> iou_{this, kIou};
+  apex::Param<bool> only_labelled_{this, kOnlyLabelled};
   TruthFile truth_file_;
 };
 

@@ -413,6 +413,12 @@ TEST(RegionScore, MatchesBoxesByStampAndOverlapThroughTheCameraRotation) {
   h.set("truth", writeTruth("frames: [oops"));
   EXPECT_EQ(scoreOf(h, regions(1000000000, upright, {})), -1);
   EXPECT_THAT(h.error(), HasSubstr("cannot read the ground truth"));
+  // only_labelled: a frame the truth lacks (a bag labelled in part) gives Nothing and no error
+  h.set("truth", truth);
+  h.set("only_labelled", "true");
+  EXPECT_EQ(scoreOf(h, regions(5000000000, upright, {})), -1);
+  EXPECT_EQ(h.error(), "");
+  EXPECT_DOUBLE_EQ(scoreOf(h, regions(1000000000, upright, {{100, 50, 80, 60}, {0, 0, 10, 10}})), 0.5);
 }
 
 }  // namespace
