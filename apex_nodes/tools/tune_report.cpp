@@ -125,6 +125,23 @@ std::pair<double, std::string> finalBest() {
   }
 }
 
+/** Whether two values are the same: numbers as numbers (30 is 30.0), words as words, an
+ *  interval's ends one by one. */
+bool sameValue(const YAML::Node& a, const YAML::Node& b) {
+  if (a.IsSequence() && b.IsSequence()) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!sameValue(a[i], b[i])) return false;
+    return true;
+  }
+  if (!a.IsScalar() || !b.IsScalar()) return false;
+  try {
+    return a.as<double>() == b.as<double>();
+  } catch (const YAML::Exception&) {
+    return a.Scalar() == b.Scalar();
+  }
+}
+
 /** Waits until every tuned parameter holds the best value (apply_best works through the graph).
  *  An error of the optimiser's (a value it could not send) fails at once; the deadline only
  *  bounds a hang, on a loaded machine too. */
@@ -136,8 +153,7 @@ void waitApplied(const std::map<std::string, std::string>& tuned, const std::str
     bool all = true;
     for (const auto& [dim, target] : tuned) {
       const auto slash = target.find('/');
-      const double have = YAML::Load(valueOf(g, target.substr(0, slash), target.substr(slash + 1))).as<double>();
-      all = all && have == best[dim].as<double>();
+      all = all && sameValue(YAML::Load(valueOf(g, target.substr(0, slash), target.substr(slash + 1))), best[dim]);
     }
     if (all) return;
     for (const auto& n : g.nodes)
@@ -168,7 +184,7 @@ int main(int argc, char** argv) {
     for (const auto& [dim, target] : tuned)
       shipped[target] = valueOf(g0, target.substr(0, target.find('/')), target.substr(target.find('/') + 1));
     const int budget = std::stoi(valueOf(g0, "optimizer", "budget"));
-    std::printf("\n=== APEX tune: %s over %zu parameters of the paper's pipeline, budget %d evaluations\n",
+    std::printf("\n=== APEX tune: %s over %zu parameters of the detector, budget %d evaluations\n",
                 valueOf(g0, "optimizer", "algorithm").c_str(), tuned.size(), budget);
 
     // A pass with the shipped parameters first: the player plays once its bag is set.
