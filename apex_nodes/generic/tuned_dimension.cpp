@@ -145,7 +145,9 @@ apex::ParamValue TunedDimension::value(const double* x) const {
   const auto snap = [&](double v, const search::Dimension& c) {
     if (c.integer) v = std::round(v);
     if (step > 0) {
-      v = origin + std::round((v - origin) / step) * step;
+      const double k = std::round((v - origin) / step), per_unit = std::round(1 / step);
+      // a step of 1/n as k/n: 0.83, not 83 * 0.01 = 0.8300000000000001
+      v = std::abs(per_unit * step - 1) < 1e-9 ? origin + k / per_unit : origin + k * step;
       while (v > c.max && v - step >= origin) v -= step;
       while (v < c.min) v += step;
     }
