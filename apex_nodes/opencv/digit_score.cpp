@@ -23,7 +23,7 @@ class DigitScore : public apex::Node {
   static inline const apex::OutputPort<std::string> kConfusion{
       "confusion", "at the end of a sequence: the confusion matrix, a row per true digit, a column per label ('?': rejected)"};
   static inline const apex::ParamDecl<std::string> kTruth =
-      param::path("truth").describe("the ground truth with each sign's digit");
+      param::path("truth").mode(apex::PathMode::ReadFileOrFolder).describe("the ground truth with each sign's digit");
   static inline const apex::ParamDecl<double> kIou =
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a sign");
   static apex::Manifest manifest() {

@@ -13,12 +13,18 @@ class RegionScore : public apex::Node {
   static inline const apex::OutputPort<double> kPrecision{"precision", "matched regions / regions (1 if none were found)"};
   static inline const apex::OutputPort<double> kRecall{"recall", "matched truth boxes / truth boxes (1 if the frame has none)"};
   static inline const apex::OutputPort<double> kF1{"f1", "2 precision recall / (precision + recall); 0 if both are 0"};
-  static inline const apex::ParamDecl<std::string> kTruth = param::path("truth").describe(
-      "the ground truth: apex_make_demo_bag's, or a labelling tool's (COCO, Pascal VOC, YOLO, labelme; images named by stamp)");
+  static inline const apex::ParamDecl<std::string> kTruth =
+      param::path("truth")
+          .mode(apex::PathMode::ReadFileOrFolder)
+          .describe(
+              "the ground truth: apex_make_demo_bag's, or a labelling tool's (COCO, Pascal VOC, YOLO, labelme; images named by "
+              "stamp)");
   static inline const apex::ParamDecl<double> kIou =
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a truth box");
-  static inline const apex::ParamDecl<bool> kOnlyLabelled = param::flag("only_labelled").describe(
-      "frames the truth does not list send Nothing (scores over the labelled frames of a bag); off: they are an error");
+  static inline const apex::ParamDecl<bool> kOnlyLabelled =
+      param::flag("only_labelled")
+          .describe(
+              "frames the truth does not list send Nothing (scores over the labelled frames of a bag); off: they are an error");
   static apex::Manifest manifest() {
     return apex::Manifest("Scores a frame's regions against the ground truth (apex_make_demo_bag's, or a labelling tool's)")
         .inCategory("evaluation")

@@ -33,7 +33,7 @@ class SampleExport : public apex::Node {
           .describe("where the samples go (made if missing): DIGIT/STAMP_REGION.png and index.csv")
           .mode(apex::PathMode::Directory);
   static inline const apex::ParamDecl<std::string> kTruth =
-      param::path("truth").describe("the ground truth with each sign's digit");
+      param::path("truth").mode(apex::PathMode::ReadFileOrFolder).describe("the ground truth with each sign's digit");
   static inline const apex::ParamDecl<double> kIou =
       param::number("iou").range(0.05, 1.0).step(0.05).init(0.5).describe("overlap a region needs to match a sign");
   static inline const apex::ParamDecl<int> kNegatives =

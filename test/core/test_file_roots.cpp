@@ -71,6 +71,12 @@ TEST_F(Roots, EachModeChecksWhatItNeeds) {
   EXPECT_TRUE(roots.check(root + "/graphs", PathMode::Directory));
   EXPECT_TRUE(roots.check(root + "/export", PathMode::Directory)) << "a folder a node will make";
   EXPECT_TRUE(Contains(roots.check(root + "/graphs/g.yaml", PathMode::Directory).message(), {"not a folder"}));
+  // a labelling tool's truth: one file, or a folder of one file per image
+  EXPECT_TRUE(roots.check(root + "/graphs/g.yaml", PathMode::ReadFileOrFolder));
+  EXPECT_TRUE(roots.check(root + "/graphs", PathMode::ReadFileOrFolder));
+  EXPECT_TRUE(Contains(roots.check(root + "/labels", PathMode::ReadFileOrFolder).message(), {"no such file or folder"}));
+  EXPECT_TRUE(Contains(roots.check(root + "/pipe", PathMode::ReadFileOrFolder).message(), {"not a file or a folder"}));
+  EXPECT_TRUE(Contains(roots.check("/etc", PathMode::ReadFileOrFolder).message(), {"outside"}));
 }
 
 TEST_F(Roots, ARelativePathIsTakenInsideTheFirstWritableRoot) {

@@ -153,6 +153,27 @@ TEST_F(Services, PathsFromServicesStayInTheRoots) {  // services.test: ~file_roo
   ::unlink(load.path.c_str());
 }
 
+TEST_F(Services, ATruthIsAFileOrALabellingToolsFolder) {  // Pascal VOC, YOLO, labelme: a file per image
+  ASSERT_TRUE(addNode("apex_nodes/RegionScore", "score").success);
+  const std::string labels = tempPath("labels");
+  ::mkdir(labels.c_str(), 0755);
+  apex::SetParameter::Request set;
+  set.node = "score", set.parameter = "truth", set.value = labels;
+  auto res = call<apex::SetParameter>("set_parameter", set);
+  EXPECT_TRUE(res.success) << res.message;
+  set.value = tempPath("no_labels");
+  res = call<apex::SetParameter>("set_parameter", set);
+  EXPECT_FALSE(res.success);
+  EXPECT_THAT(res.message, HasSubstr("no such file or folder"));
+  set.value = "/etc";
+  EXPECT_THAT(call<apex::SetParameter>("set_parameter", set).message, HasSubstr("is outside"));
+  const auto info = call<apex::GetGraph>("get_graph").graph.nodes.at(0).parameters;
+  const auto truth = std::find_if(info.begin(), info.end(), [](const auto& p) { return p.name == "truth"; });
+  ASSERT_NE(truth, info.end());
+  EXPECT_EQ(truth->path_mode, "read_file_or_folder");
+  ::rmdir(labels.c_str());
+}
+
 TEST_F(Services, ARelativePathGoesToTheFirstRootAndShippedGraphsAreReadOnly) {
   ASSERT_TRUE(addNode("apex_nodes/Clock", "clock").success);
   apex::SaveGraph::Request save;

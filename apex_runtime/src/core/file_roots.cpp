@@ -136,7 +136,8 @@ Result<std::string> FileRoots::resolve(const std::string& path, Access access) c
 }
 
 Result<std::string> FileRoots::check(const std::string& path, PathMode mode) const {
-  auto resolved = resolve(path, mode == PathMode::Read ? Access::Read : Access::Write);
+  const bool reads = mode == PathMode::Read || mode == PathMode::ReadFileOrFolder;
+  auto resolved = resolve(path, reads ? Access::Read : Access::Write);
   if (!resolved) return resolved;
   const std::string& p = resolved.value();
   struct stat st {};
@@ -156,6 +157,10 @@ Result<std::string> FileRoots::check(const std::string& path, PathMode mode) con
     }
     case PathMode::Directory:
       if (exists && !S_ISDIR(st.st_mode)) return Status::error("path '" + path + "': not a folder");
+      break;
+    case PathMode::ReadFileOrFolder:
+      if (!exists) return Status::error("path '" + path + "': no such file or folder");
+      if (!S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) return Status::error("path '" + path + "': not a file or a folder");
       break;
   }
   return resolved;

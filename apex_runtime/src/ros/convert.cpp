@@ -25,6 +25,8 @@ const char* pathMode(PathMode m) {
       return "write";
     case PathMode::Directory:
       return "directory";
+    case PathMode::ReadFileOrFolder:
+      return "read_file_or_folder";
   }
   return "";
 }

@@ -115,9 +115,11 @@ void pathFolders(const NodeRegistry& types, const GraphDescription& g, LaunchFol
       auto value = spec->parse(text);
       const std::string path = value ? std::get<std::string>(value.value()) : "";
       if (path.empty()) continue;
-      const std::string folder =
-          spec->path_mode == PathMode::Directory ? path : std::filesystem::path(path).parent_path().string();
-      (spec->path_mode == PathMode::Read ? folders.read_only : folders.writable).push_back(folder);
+      const bool folder_itself = spec->path_mode == PathMode::Directory ||
+                                 (spec->path_mode == PathMode::ReadFileOrFolder && std::filesystem::is_directory(path));
+      const std::string folder = folder_itself ? path : std::filesystem::path(path).parent_path().string();
+      const bool reads = spec->path_mode == PathMode::Read || spec->path_mode == PathMode::ReadFileOrFolder;
+      (reads ? folders.read_only : folders.writable).push_back(folder);
     }
   }
 }

@@ -49,7 +49,9 @@ enum class ParamKind {
   List,
   TextList
 };
-enum class PathMode { Read, Write, Directory };
+/** @brief What a path parameter's file is for: read (a regular file), written (its folder exists),
+ *  a folder a node writes into, or read as a file or a folder of files (a labelling tool's). */
+enum class PathMode { Read, Write, Directory, ReadFileOrFolder };
 
 /** @brief A parameter's declaration: what a node type says about one parameter. */
 struct ParamSpec {
