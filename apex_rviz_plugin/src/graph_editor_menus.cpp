@@ -132,7 +132,7 @@ void GraphEditor::fillParamMenu(QMenu& menu, const QString& node, const QString&
   QAction* pin = menu.addAction(pinned ? "Unpin from the compact box" : "Pin to the compact box", this,
                                 [this, node, param, pinned] { emit pinRequested(node, param, !pinned); });
   pin->setObjectName("pin");
-  if (p->type != "int" && p->type != "double") return;  // a number can be tuned
+  if (!tunedAs(*p)) return;  // a number, an interval, a choice or a flag can be tuned
   QMenu* with = menu.addMenu("Tune automatically with");
   with->setObjectName("optimise_with");
   with->setToolTipsVisible(true);

@@ -39,6 +39,16 @@ std::string flowText(const YAML::Node& value) {
 
 }  // namespace
 
+std::optional<std::string> tunedAs(const apex::ParamInfo& p) {
+  if (p.shapes_ports) return std::nullopt;
+  if (p.type == "double") return std::string();
+  if (p.type == "int") return std::string(" int");
+  if (p.kind == "interval") return std::string(" interval");
+  if (p.kind == "set") return std::string(" choice");
+  if (p.kind == "bool") return std::string(" bool");
+  return std::nullopt;
+}
+
 std::vector<std::string> GraphModel::optimizers() const {
   std::vector<std::string> out;
   for (const auto& n : graph_.nodes)
@@ -49,7 +59,8 @@ std::vector<std::string> GraphModel::optimizers() const {
 std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std::string& param, const std::string& optimizer,
                                          double x, double y, const apex::NodeTypeInfo* optimizer_type) const {
   const apex::ParamInfo* p = parameter(node_name, param);
-  if (!p || (p->type != "int" && p->type != "double") || p->shapes_ports) return std::nullopt;
+  const auto how = p ? tunedAs(*p) : std::nullopt;
+  if (!how) return std::nullopt;
   for (const auto& c : graph_.connections)  // a parameter input has one source
     if (c.to_node == node_name && c.to_port == param) return std::nullopt;
   const bool make = optimizer.empty();
@@ -80,7 +91,7 @@ std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std
   std::string dim = param;
   for (int k = 2; taken(dim); ++k) dim = node_name + "_" + param + (k > 2 ? "_" + std::to_string(k - 1) : "");
   const std::string old_dims = yamlList(dims);
-  dims.push_back(dim + (p->type == "int" ? " int" : ""));
+  dims.push_back(dim + *how);
 
   Edit e{"Optimise " + node_name + "/" + param + " with " + opt, {}, {}};
   if (make) e.apply = addNode(kOptimizerType, opt, x, y).apply;

@@ -358,6 +358,29 @@ TEST(GraphModel, OptimisingAParameterWithANewOptimizerIsOneEdit) {
   EXPECT_FALSE(m.optimise("clock", "nothing", "", 0, 0, &type));
 }
 
+TEST(GraphModel, IntervalsChoicesAndFlagsAreTunedAsTheirKind) {
+  auto g = tunable(false);
+  const auto add = [&](const char* name, const char* kind, const char* type, const char* value) {
+    g.nodes[0].parameters.push_back(param(name, value));
+    g.nodes[0].parameters.back().kind = kind, g.nodes[0].parameters.back().type = type;
+  };
+  add("area", "interval", "interval", "[0.0, 100.0]");
+  add("method", "set", "string", "mean");
+  add("on", "bool", "bool", "false");
+  add("colour", "color", "color", "{r: 1, g: 2, b: 3}");
+  GraphModel m;
+  m.update(g);
+  const apex::NodeTypeInfo type = optimizerType();
+  const auto dimension = [&](const char* name) {
+    const auto e = m.optimise("clock", name, "", 0, 0, &type);
+    return e ? std::get<apex::SetParameter::Request>(e->apply[3].request).value : "(refused)";
+  };
+  EXPECT_EQ(dimension("area"), "[area interval]");
+  EXPECT_EQ(dimension("method"), "[method choice]");
+  EXPECT_EQ(dimension("on"), "[on bool]");
+  EXPECT_EQ(dimension("colour"), "(refused)");
+}
+
 TEST(GraphModel, ADimensionIsNamedAfterNoneOfTheOptimizersOwnPortsOrParameters) {
   auto g = tunable(true);
   for (const char* name : {"seed", "fitness"}) {  // as the Optimizer's manifest names a parameter and an input

@@ -27,6 +27,11 @@
 
 namespace apex_rviz_plugin {
 
+/** @brief How an Optimizer tunes `p`: the words of its dimension after the name ("" a double,
+ *  " int", " interval" both ends, " choice" its options, " bool"); nothing for what it cannot
+ *  tune (text, paths, colours, lists) or a parameter that shapes its node's ports. */
+std::optional<std::string> tunedAs(const apex::ParamInfo& p);
+
 /** @brief The node type that tunes parameters (apex_nodes/generic/optimizer.cpp). */
 inline constexpr const char* kOptimizerType = "apex_nodes/Optimizer";
 
@@ -218,13 +223,13 @@ class GraphModel {
   std::optional<Edit> setThreadGroups(const std::vector<std::pair<std::string, std::string>>& moves,
                                       const std::string& label) const;
   std::optional<Edit> setInteractive(const std::string& node, const std::string& param, bool interactive) const;
-  /** @brief Tunes a number parameter with an Optimizer (`optimizer`, or a new one at (x, y) if
+  /** @brief Tunes a parameter with an Optimizer (`optimizer`, or a new one at (x, y) if
    *  empty): the parameter gets ports, the Optimizer a dimension named after it (its range and
    *  step from the parameter) and the two are connected; one edit. A dimension is an output of
    *  the Optimizer, so never named after one of its own ports, events or parameters: those of
    *  `optimizer_type` (the Optimizer node type as the runtime lists it; nullptr if not known),
-   *  and those the Optimizer node in the graph has. Nothing for a parameter that is not an int
-   *  or a double, shapes the node's ports or is linked already, an Optimizer that is not there,
+   *  and those the Optimizer node in the graph has. Nothing for a parameter it cannot tune
+   *  (tunedAs), one that is linked already, an Optimizer that is not there,
    *  or a new Optimizer while its type is not known (its names are not guessed). */
   std::optional<Edit> optimise(const std::string& node, const std::string& param, const std::string& optimizer, double x,
                                double y, const apex::NodeTypeInfo* optimizer_type) const;
