@@ -9,6 +9,7 @@
 
 #include "apex/core/registry.hpp"
 #include "apex_nodes/search.hpp"
+#include "study_file.hpp"
 #include "tuned_dimension.hpp"
 
 namespace apex_nodes {
@@ -73,6 +74,12 @@ class Optimizer : public apex::Node {
           .describe(
               "the best values so far as YAML, {dimension: value} (it sets this; the panel's "
               "'Apply best values' sets them on the tuned parameters as one undoable edit)");
+  static inline const apex::ParamDecl<std::string> kStudy =
+      param::path("study")
+          .mode(apex::PathMode::Write)
+          .describe(
+              "a file where each evaluation is written as it ends: a run started again with the same settings "
+              "(after a stop, a crash or a kill) continues from it; empty: none");
   static apex::Manifest manifest() {
     return apex::Manifest(
                "Tunes other nodes' parameters: one output per dimension, connected to the parameter it tunes; "
@@ -97,6 +104,7 @@ class Optimizer : public apex::Node {
         .param(kMinimize)
         .param(kState)
         .param(kBestValues)
+        .param(kStudy)
         .shapedBy(shapeDimensions);
   }
 
@@ -105,7 +113,9 @@ class Optimizer : public apex::Node {
     if (saved.rfind("running", 0) != 0) return;
     updateParam(kState.name(), "interrupted (" + saved + ")");
     fail("this graph was saved while a run was in progress (" + saved +
-         "): the tuned parameters hold that candidate's values, not tuned ones; start a new run");
+         "): the tuned parameters hold that candidate's values, not tuned ones; " +
+         (study_path_.get().empty() ? std::string("start a new run")
+                                    : "start it again: it continues from its study '" + study_path_.get() + "'"));
   }
 
   /** The end of a sequence stops here: the outputs are values, not frames. */
@@ -131,6 +141,13 @@ class Optimizer : public apex::Node {
     }
     const double f = *fitness_.get();
     search_->tell(minimize_ ? -f : f);
+    if (study_) try {
+        study_->append({asked_, f});
+      } catch (const std::runtime_error& e) {
+        end("stopped");
+        fail(std::string(e.what()) + ": the run stopped after " + std::to_string(search_->evaluations()) + " evaluations");
+        return;
+      }
     best_fitness_.publish(minimize_ ? -search_->bestFitness() : search_->bestFitness());
     evaluations_.publish(search_->evaluations());
     best_.publish(bestText());
@@ -151,12 +168,19 @@ class Optimizer : public apex::Node {
     s.population = population_.get();
     s.F = f_.get();
     s.CR = cr_.get();
-    auto made = search::makeSearch(algorithm_.get(), std::move(ranges), s);
+    auto made = search::makeSearch(algorithm_.get(), ranges, s);
     if (!made) throw std::invalid_argument(made.message());
-    search_ = std::move(made).value();
+    auto search = std::move(made).value();
+    auto study = openStudy(ranges);
+    const int resumed = study ? replay(*study, *search) : 0;
+    search_ = std::move(search);
+    study_ = std::move(study);
     dims_ = std::move(dims);
     minimize_ = minimize_param_.get();
     running_ = true;
+    if (resumed > 0)
+      log(apex::LogLevel::Info, "resumed from the study '" + study_->path() + "': " + std::to_string(resumed) + " evaluations");
+    if (search_->done()) return end("finished");
     propose();
   }
 
@@ -205,9 +229,43 @@ class Optimizer : public apex::Node {
     for (std::size_t i = 0; i < dims_.size(); ++i) publishMessage(dims_[i].port, apex::toMessage(values[i]));
   }
 
+  /** The run's settings as the study file's header states them. */
+  std::string settingsText() const {
+    std::string dims;
+    for (const auto& d : dimensions_.get()) dims += (dims.empty() ? "" : ", ") + d;
+    return "algorithm " + algorithm_.get() + ", budget " + std::to_string(budget_.get()) + ", seed " +
+           std::to_string(seed_.get()) + ", population " + std::to_string(population_.get()) + ", F " + apex::toText(f_.get()) +
+           ", CR " + apex::toText(cr_.get()) + ", minimize " + (minimize_param_.get() ? "true" : "false") + ", dimensions [" +
+           dims + "]";
+  }
+
+  /** The study of this run, if `study` names one. */
+  std::unique_ptr<tuning::StudyFile> openStudy(const std::vector<search::Dimension>& coordinates) const {
+    if (study_path_.get().empty()) return nullptr;
+    std::vector<std::string> columns;
+    for (const auto& c : coordinates) columns.push_back(c.name);
+    return std::make_unique<tuning::StudyFile>(study_path_.get(), settingsText(), columns);
+  }
+
+  /** The study's evaluations told to `search` again, each checked to be its candidate; how many. */
+  int replay(tuning::StudyFile& study, search::Search& search) const {
+    int n = 0;
+    const bool minimize = minimize_param_.get();
+    for (const auto& e : study.read()) {
+      if (search.done()) break;
+      if (!tuning::samePoint(search.ask(), e.point))
+        throw std::invalid_argument("the study '" + study.path() + "': evaluation " + std::to_string(n + 1) +
+                                    " is not this run's candidate (the search was changed?): name another file, or move it away");
+      search.tell(minimize ? -e.fitness : e.fitness);
+      ++n;
+    }
+    return n;
+  }
+
   /** The next candidate out, then `evaluate` (events leave after the messages). */
   void propose() {
-    sendAll(search_->ask());
+    asked_ = search_->ask();
+    sendAll(asked_);
     waiting_ = true;
     setState("running: evaluation " + std::to_string(search_->evaluations() + 1) + " of " + std::to_string(search_->budget()));
     evaluate_.fire();
@@ -273,9 +331,12 @@ class Optimizer : public apex::Node {
   apex::Param<double> cr_{this, kCR};
   apex::Param<bool> minimize_param_{this, kMinimize};
   apex::Param<std::string> state_{this, kState};
+  apex::Param<std::string> study_path_{this, kStudy};
 
   std::vector<tuning::TunedDimension> dims_;
   std::unique_ptr<search::Search> search_;
+  std::unique_ptr<tuning::StudyFile> study_;  // the run's, if it has one
+  std::vector<double> asked_;  // the candidate out: its point in the search
   bool running_ = false;
   bool waiting_ = false;  // a candidate is out; its fitness is not back yet
   bool minimize_ = false;

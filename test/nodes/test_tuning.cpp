@@ -244,6 +244,71 @@ TEST(Optimizer, AChoiceOfAnOptionTheParameterLacksIsRefusedAtStart) {
   EXPECT_THAT(g.setParameter("opt", "dimensions", "[on bool 0 1]").message(), HasSubstr("cannot read '0'"));
 }
 
+/** The lines of a file. */
+std::vector<std::string> lines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> out;
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+TEST(Optimizer, ARunKilledHalfWayContinuesFromItsStudyToTheSameEnd) {
+  const std::string study = ::testing::TempDir() + "/apex_study_" + std::to_string(::getpid()) + ".csv";
+  std::remove(study.c_str());
+  const auto settle = [](Loop& loop, const std::string& file) {
+    EXPECT_TRUE(loop.g.setParameter("opt", "budget", "40"));
+    EXPECT_TRUE(loop.g.setParameter("opt", "population", "8"));
+    if (!file.empty()) EXPECT_TRUE(loop.g.setParameter("opt", "study", file));
+  };
+  std::vector<double> whole;  // an unbroken run's candidates, and the value from before it
+  std::string best;
+  {
+    Loop loop(3);
+    settle(loop, "");
+    loop.g.start();
+    ASSERT_TRUE(loop.g.fireSlot("opt", "start"));
+    ASSERT_TRUE(waitState(loop.g, "finished"));
+    ASSERT_TRUE(loop.g.waitIdle(kWait));
+    whole = doubles(loop.candidates());
+    best = param(loop.g, "opt", "best_values");
+  }
+  ASSERT_EQ(whole.size(), 41u);
+  {  // the same run, its graph gone half-way with no end (as a kill)
+    Loop loop(3);
+    settle(loop, study);
+    loop.g.start();
+    ASSERT_TRUE(loop.g.fireSlot("opt", "start"));
+    ASSERT_TRUE(waitUntil([&] { return doubles(loop.candidates()).size() >= 15u; }));
+  }
+  const std::size_t done = lines(study).size() - 2;  // the header and the column names
+  ASSERT_GE(done, 10u);
+  ASSERT_LT(done, 40u);
+  EXPECT_EQ(lines(study)[1], "evaluation,fitness,gain");
+  Loop loop(3);
+  settle(loop, study);
+  loop.g.start();
+  ASSERT_TRUE(loop.g.fireSlot("opt", "start"));
+  ASSERT_TRUE(waitState(loop.g, "finished"));
+  ASSERT_TRUE(loop.g.waitIdle(kWait));
+  EXPECT_EQ(doubles(loop.candidates()), std::vector<double>(whole.begin() + done, whole.end()))
+      << "the evaluations of the study are not made again; the rest are the unbroken run's";
+  EXPECT_EQ(loop.seen()->size(), (40 - done) * 3);
+  EXPECT_EQ(param(loop.g, "opt", "best_values"), best);
+  EXPECT_EQ(lines(study).size(), 42u);
+
+  // Another seed is another run: its study is refused, naming both
+  ASSERT_TRUE(loop.g.setParameter("opt", "seed", "2"));
+  ASSERT_TRUE(loop.g.fireSlot("opt", "start"));
+  ASSERT_TRUE(loop.g.waitIdle(kWait));
+  std::string error;
+  for (const auto& st : loop.g.nodeStats())
+    if (st.name == "opt") error = st.error;
+  EXPECT_THAT(
+      error, HasSubstr("the study '" + study + "' was made by another run (algorithm differential_evolution, budget 40, seed 1"));
+  EXPECT_THAT(error, HasSubstr("this run is algorithm differential_evolution, budget 40, seed 2"));
+  std::remove(study.c_str());
+}
+
 TEST(Optimizer, ThreeHundredEvaluationsOfAOneFrameSequenceRunThrough) {
   // The loop's own cost per evaluation (values, rewind, reset, tell) is a figure of
   // bench/loop_bench.cpp (~0.1 ms); here, printed: a test asserts no time, only that the run ends.

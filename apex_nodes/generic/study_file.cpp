@@ -1,0 +1,89 @@
+// The Optimizer's study file (study_file.hpp).
+#include "study_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "apex/core/graph_file.hpp"
+
+namespace apex_nodes {
+namespace tuning {
+
+namespace {
+
+const char* const kMagic = "# apex optimizer study: ";
+
+std::string exact(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+}  // namespace
+
+StudyFile::StudyFile(std::string path, std::string settings, std::vector<std::string> columns)
+    : path_(std::move(path)), settings_(std::move(settings)), columns_(std::move(columns)) {}
+
+std::string StudyFile::header() const {
+  std::string out = kMagic + settings_ + "\nevaluation,fitness";
+  for (const auto& c : columns_) out += "," + c;
+  return out + "\n";
+}
+
+std::vector<Evaluation> StudyFile::read() {
+  lines_.clear();
+  std::ifstream in(path_);
+  if (!in) return {};
+  const std::string want = header();
+  std::string line, head;
+  for (int i = 0; i < 2 && std::getline(in, line); ++i) head += line + "\n";
+  if (head != want)
+    throw std::invalid_argument("the study '" + path_ + "' was made by another run (" +
+                                (head.rfind(kMagic, 0) == 0
+                                     ? head.substr(std::string(kMagic).size(), head.find('\n') - std::string(kMagic).size())
+                                     : std::string("not a study file")) +
+                                "); this run is " + settings_ + ": name another file, or move it away to start anew");
+  std::vector<Evaluation> out;
+  for (int n = 3; std::getline(in, line); ++n) {
+    if (line.empty()) continue;
+    std::istringstream fields(line);
+    std::string field;
+    std::vector<double> values;
+    while (std::getline(fields, field, ',')) {
+      char* end = nullptr;
+      const double v = std::strtod(field.c_str(), &end);
+      if (field.empty() || *end)
+        throw std::invalid_argument("the study '" + path_ + "' line " + std::to_string(n) + ": '" + field + "' is not a number");
+      values.push_back(v);
+    }
+    if (values.size() != columns_.size() + 2 || values[0] != static_cast<double>(out.size() + 1))
+      throw std::invalid_argument("the study '" + path_ + "' line " + std::to_string(n) + ": not evaluation " +
+                                  std::to_string(out.size() + 1) + " with a fitness and " + std::to_string(columns_.size()) +
+                                  " values");
+    out.push_back({std::vector<double>(values.begin() + 2, values.end()), values[1]});
+    lines_ += line + "\n";
+  }
+  return out;
+}
+
+void StudyFile::append(const Evaluation& e) {
+  std::string line = std::to_string(std::count(lines_.begin(), lines_.end(), '\n') + 1) + "," + exact(e.fitness);
+  for (double v : e.point) line += "," + exact(v);
+  lines_ += line + "\n";
+  const apex::Status st = apex::writeFileAtomically(path_, header() + lines_);
+  if (!st) throw std::runtime_error("cannot write the study: " + st.message());
+}
+
+bool samePoint(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (!(a[i] == b[i])) return false;
+  return true;
+}
+
+}  // namespace tuning
+}  // namespace apex_nodes
