@@ -2,7 +2,8 @@
 # The tuning demo's path, shortened: hard training and held-out bags (seeds 1 and 2), then
 # launch/tune.launch as `scripts/demo --tune` runs it. Passes if it ends with "tune: OK" (the
 # tuned parameters beat the shipped ones on the held-out bag) and the tuned graph it wrote holds
-# the applied best values. Writes a JUnit result.
+# the applied best values; and if the same run with a study file, its runtime killed (SIGKILL)
+# half-way and launched again, ends with the same best as the unbroken one. Writes a JUnit result.
 #   tune_check.sh RESULT_XML WORK_DIR [FRAMES] [BUDGET]   (with this package's devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"
@@ -26,8 +27,40 @@ if [ -z "$failure" ]; then
   grep -q '^tune: OK' "$work/tune.log" || fail "the tuning demo did not end with 'tune: OK': $(grep -E '^(tune|held-out|best)' "$work/tune.log" | tr '\n' ' ')"
   grep -qE "state: [\"']?applied the best values" "$work/tuned_paper_pipeline.yaml" 2>/dev/null ||
     fail "the tuned graph $work/tuned_paper_pipeline.yaml is missing or does not hold the applied best values"
+
+  # The same run with a study file, its runtime killed half-way, then launched again
+  rm -f "$work/study.csv"
+  timeout 600 roslaunch -p "$port" apex tune.launch data:="$work" budget:="$budget" study:="$work/study.csv" \
+    >"$work/killed.log" 2>&1 &
+  launch=$!
+  half=$((2 + budget / 2))  # the header, the column names, half the evaluations
+  lines() { cat "$work/study.csv" 2>/dev/null | wc -l; }
+  pid=
+  for _ in $(seq 15000); do  # the runtime's pid first (rosnode takes a while), then half the run
+    [ -n "$pid" ] || pid=$(rosnode info /apex 2>/dev/null | sed -n 's/^Pid: //p')
+    [ -n "$pid" ] && [ "$(lines)" -ge "$half" ] && break
+    kill -0 "$launch" 2>/dev/null || break
+    sleep 0.02
+  done
+  if [ -n "$pid" ] && [ "$(lines)" -lt $((2 + budget)) ]; then
+    kill -9 "$pid"
+    wait "$launch"
+    killed_at=$(($(wc -l <"$work/study.csv") - 2))
+    timeout 600 roslaunch -p "$port" apex tune.launch data:="$work" budget:="$budget" study:="$work/study.csv" \
+      >"$work/resumed.log" 2>&1
+    unbroken=$(grep '^best on the training bag' "$work/tune.log") resumed=$(grep '^best on the training bag' "$work/resumed.log")
+    [ -n "$unbroken" ] && [ "$unbroken" = "$resumed" ] ||
+      fail "killed after $killed_at evaluations and launched again, the run ended with '$resumed', not '$unbroken'"
+    [ "$(lines)" -eq $((2 + budget)) ] || fail "the resumed run's study holds $(($(lines) - 2)) evaluations, not $budget"
+    grep -rqs "resumed from the study '$work/study.csv': $killed_at evaluations" "$ROS_HOME/log" ||
+      fail "the run launched again did not resume from its study's $killed_at evaluations (the runtime's log says nothing of it)"
+  else
+    wait "$launch"
+    fail "the run with a study file did not reach half its budget alive: $(grep -E '^(tune|best)' "$work/killed.log" | tr '\n' ' ')"
+  fi
 fi
 
-junit_result "$out" tune Tuning "TheOptimizerTunesThePipelineOnHardDataAndTheHeldOutScoreImproves" "$failure"
+junit_result "$out" tune Tuning "TheOptimizerTunesThePipelineOnHardDataAndTheHeldOutScoreImprovesAndAKilledRunResumes" "$failure"
 grep -E '^(training|best|held-out|tune)' "$work/tune.log" 2>/dev/null
+[ -z "${killed_at:-}" ] || echo "killed after $killed_at of $budget evaluations, launched again: $(grep '^best on' "$work/resumed.log")"
 [ -z "$failure" ] && echo "tuning: OK" || { echo "tuning: $failure"; exit 1; }
