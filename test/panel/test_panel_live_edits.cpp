@@ -211,7 +211,8 @@ TEST_F(PanelWidgetTest, OnAHeldFrameANodeThatLearnsFromEveryFrameSaysThatReRunsC
   for (const char* n : {"held_player", "held_mog", "held_blur"}) waitPlaced(n);
   GraphScene* scene = panel.editor()->scene();
   EXPECT_TRUE(scene->node("held_mog")->heldNote().contains("re-runs")) << "MOG2 on a held frame says nothing";
-  EXPECT_TRUE(scene->node("held_mog")->toolTip().contains("background model"))
+  // what the type keeps comes with the types' list, which may arrive after the box is placed
+  EXPECT_TRUE(QTest::qWaitFor([&] { return scene->node("held_mog")->toolTip().contains("background model"); }, kWaitMs))
       << scene->node("held_mog")->toolTip().toStdString();
   EXPECT_TRUE(scene->node("held_blur")->heldNote().isEmpty()) << "a blur keeps nothing from frame to frame";
   scene->node("held_mog")->setSelected(true);
