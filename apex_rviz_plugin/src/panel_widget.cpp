@@ -336,8 +336,14 @@ void PanelWidget::meetRuntime() {
   askRecovery();  // a copy its previous run left: the bar at once
   watchLabelledAgain();  // a runtime started anew inspects nothing
   // Its graph as it is now: the latched ~graph may have come before this (and no other until it changes).
-  link_.runThenRead({}, [this](bool, const std::string&, const apex::GraphState& g) {
-    if (g.revision > 0) onGraph(g);
+  readGraph(40);
+}
+
+void PanelWidget::readGraph(int tries) {
+  link_.runThenRead({}, [this, tries](bool, const std::string&, const apex::GraphState& g) {
+    if (g.revision > 0) return onGraph(g);  // revision 0: get_graph did not answer
+    if (tries > 0 && link_.connected() && !model_.hasGraph())
+      QTimer::singleShot(250, this, [this, tries] { readGraph(tries - 1); });
   });
 }
 

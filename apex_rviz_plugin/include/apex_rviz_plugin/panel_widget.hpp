@@ -121,6 +121,9 @@ class PanelWidget : public QWidget {
   void forgetRuntime();
   /** A runtime to show (connected, or started anew): its types, its graph, a copy its last run left. */
   void meetRuntime();
+  /** Reads the runtime's graph; a read that fails (a runtime just started may not answer yet) is
+   *  tried again every 250 ms, `tries` times, while it is connected and no graph is shown. */
+  void readGraph(int tries);
   void onInspect(const QString& node, const QString& port);
   /** The nodes `calls` move (a rename, a group, an ungroup), about to be sent, as renameSent; the
    *  ports inspected follow them. */
