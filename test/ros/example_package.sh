@@ -6,6 +6,7 @@
 #   example_package.sh RESULT_XML WORK_DIR   (with this package's devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"
+source "$(dirname "$0")/master.sh"
 export PATH=/usr/bin:/bin:$PATH   # catkin needs Debian's python3
 out=$1
 mkdir -p "$2" && work=$(cd "$2" && pwd)
@@ -25,11 +26,8 @@ fi
 
 if [ -z "$failure" ]; then
   set +u; source "$work/devel/setup.bash"; set -u
-  port=$((20000 + RANDOM % 20000))
-  export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
-  roscore -p "$port" >/dev/null 2>&1 &
-  core=$!
-  timeout 30 bash -c 'until rostopic list >/dev/null 2>&1; do sleep 0.2; done' || fail "the master never started"
+  export ROS_HOME=${ROS_HOME:-$(mktemp -d)}
+  start_master "$work/roscore.log" || fail "$master_failure"
   rosrun apex apex_runtime_node >"$work/runtime.log" 2>&1 &
   node=$!
   timeout 30 bash -c 'until rosservice list 2>/dev/null | grep -q /apex/add_node; do sleep 0.2; done' || fail "the runtime never offered its services"

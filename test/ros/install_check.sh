@@ -10,6 +10,7 @@
 #   install_check.sh RESULT_XML BUILD_DIR WORK_DIR BAG
 set -u
 source "$(dirname "$0")/junit.sh"
+source "$(dirname "$0")/master.sh"
 export PATH=/usr/bin:/bin:$PATH
 out=$1 bag=$(realpath "$4")
 build=$(cd "$2" && pwd)
@@ -30,7 +31,7 @@ in_install() {
   env -i HOME="$HOME" PATH=/usr/bin:/bin ROS_HOME="$work/ros_home" ROS_MASTER_URI="http://localhost:$port" \
     bash -c "source '$prefix/setup.bash' && $1"
 }
-port=$((20000 + RANDOM % 20000))
+port=$(free_port)
 if [ -z "$failure" ]; then
   found=$(in_install "rospack find apex" 2>&1)
   [ "$found" = "$prefix/share/apex" ] || fail "rospack finds apex at '$found', not in the install space $prefix/share/apex"

@@ -8,9 +8,10 @@
 #   master_restart.sh RESULT_XML BAG   (with the devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"  # xml_text
+source "$(dirname "$0")/master.sh"
 export PATH=/usr/bin:/bin:$PATH  # dynparam needs Debian's python3
 out=$1 bag=$2
-port=$((20000 + RANDOM % 10000))  # (below the ephemeral ports, 32768 up: the restart binds it again)
+port=$(free_port)
 export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
 work=$(mktemp -d)
 cases=() failures=()
@@ -23,7 +24,7 @@ stop_all() {
 }
 trap stop_all EXIT
 
-start_master() {  # [bare]: roscore, or a bare rosmaster (no /run_id, no rosout); fails if not up within 30 s
+master_on_port() {  # [bare]: roscore (or a bare rosmaster: no /run_id, no rosout) on $port; fails if not up within 30 s
   if [ "${1:-}" = bare ]; then
     rosmaster --core -p "$port" >>"$work/roscore.log" 2>&1 &
   else
@@ -47,7 +48,7 @@ ms_until() {
 check() {
   local name=$1 restart=$2 manager=${3:-} failure="" log="$work/$1.log"
   cases+=("$name")
-  start_master || failure="the first master did not come up"
+  master_on_port || failure="the first master did not come up"
   if [ -n "$manager" ]; then
     rosrun apex apex_nodelet_manager __name:="$manager" >"$work/$name.manager.log" 2>&1 &
     pids+=($!)
@@ -67,7 +68,7 @@ check() {
   ms_until 60 "[ \$(wc -l <'$before') -gt $((gone + 5)) ]" >/dev/null ||
     failure="${failure:-no overlay reached the subscriber while no master ran}"
 
-  start_master "$restart" || failure="${failure:-the new master did not come up}"
+  master_on_port "$restart" || failure="${failure:-the new master did not come up}"
   local took
   # (deadlines that only bound a hang: the times are printed; a loaded machine takes longer)
   took=$(ms_until 60 rosservice call /apex/get_graph) || failure="${failure:-get_graph unanswered 60 s after the new master}"

@@ -12,6 +12,7 @@
 #   nodelet_interrupts.sh RESULT_XML BAG [ROUNDS] [TOOLS] [CYCLES]   (with the devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"  # xml_text
+source "$(dirname "$0")/master.sh"
 export PATH=/usr/bin:/bin:$PATH
 out=$1 bag=$2 rounds=${3:-100} tools=${4:-apex} cycles=${5:-50}
 if [ "$tools" = apex ]; then
@@ -19,14 +20,11 @@ if [ "$tools" = apex ]; then
 else
   manager_command=(nodelet nodelet manager) load_command=(nodelet nodelet load)
 fi
-port=$((20000 + RANDOM % 10000))  # (below the ephemeral ports, 32768 up)
-export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)} ROSCONSOLE_STDOUT_LINE_BUFFERED=1
+export ROS_HOME=${ROS_HOME:-$(mktemp -d)} ROSCONSOLE_STDOUT_LINE_BUFFERED=1
 work=$(mktemp -d)
-roscore -p "$port" >"$work/roscore.log" 2>&1 &
-core=$!
+start_master "$work/roscore.log" || rounds=0 cycles=0  # (both cases fail with $master_failure)
 all=()  # every process started: a timeout from outside must leave none behind (job control gives each its own group)
 trap 'for p in "${all[@]}"; do kill -9 "$p" 2>/dev/null; done; kill -INT $core; wait $core 2>/dev/null' EXIT
-timeout 30 bash -c 'until rosparam list >/dev/null 2>&1; do sleep 0.1; done'
 rosparam set /apex/graph "$(rospack find apex)/graphs/demo.yaml"
 rosparam set /apex/overrides "{bag: {file: '$bag', loop: true}}"
 
@@ -92,7 +90,7 @@ done
 start /dev/null rosrun "${manager_command[@]}" __name:=mgr
 manager=$started
 timeout 20 bash -c 'until rosservice list 2>/dev/null | grep -q /mgr/load_nodelet; do sleep 0.05; done'
-cycles_done=0 cycle_failure=""
+cycles_done=0 cycle_failure=$master_failure
 for ((c = 0; c < cycles; c++)); do
   [ -z "$cycle_failure" ] || break
   start "$work/cycle.log" rosrun "${load_command[@]}" apex/Runtime mgr __name:=apex
@@ -117,7 +115,7 @@ echo "$cycles_done loads and unloads in one manager: ${cycle_failure:-OK}"
 summary="$rounds_done rounds with ${tools}'s manager and loader: $aborts aborts, $lingering processes alive 14 s after they should have gone, $deaf managers deaf"
 echo "$summary"
 for n in "${notes[@]+"${notes[@]}"}"; do echo "  $n"; done
-failure=""
+failure=$master_failure
 [ $((aborts + lingering + deaf)) -eq 0 ] || failure="$summary; ${notes[*]:0:5}"
 cases="  <testcase classname=\"NodeletInterrupts\" name=\"LoaderAndManagerInterruptedAtRandomMomentsExitCleanly\">"
 cases+=$([ -z "$failure" ] || echo "<failure message=\"$(xml_text "$failure")\"/>")"</testcase>"

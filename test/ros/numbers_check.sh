@@ -8,6 +8,7 @@
 #   numbers_check.sh RESULT_XML WORK_DIR [TRAIN_FRAMES] [FRAMES]   (with this package's devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"
+source "$(dirname "$0")/master.sh"
 export PATH=/usr/bin:/bin:$PATH
 out=$1
 mkdir -p "$2" && work=$(cd "$2" && pwd)
@@ -19,7 +20,7 @@ rosrun apex apex_make_demo_bag "$work/train.bag" "$work/train_truth.yaml" --seed
   rosrun apex apex_make_demo_bag "$work/test.bag" "$work/test_truth.yaml" --seed 2 --frames "$frames" >>"$work/make.log" 2>&1 ||
   fail "apex_make_demo_bag failed: $(tail -2 "$work/make.log")"
 rm -rf "$work/samples" "$work/digits.yaml"
-port=$((20000 + RANDOM % 20000))
+port=$(free_port)
 export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
 launch() {  # log mode args...
   local log=$1

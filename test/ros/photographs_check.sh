@@ -7,6 +7,7 @@
 #   photographs_check.sh RESULT_XML WORK_DIR [TRAIN_FRAMES] [FRAMES]   (with this package's devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"
+source "$(dirname "$0")/master.sh"
 export PATH=/usr/bin:/bin:$PATH
 out=$1
 mkdir -p "$2" && work=$(cd "$2" && pwd)
@@ -26,7 +27,7 @@ make_bag test --seed 2 --frames "$frames"
 make_bag tune_train --seed 1 --frames 40
 make_bag tune_test --seed 2 --frames 40
 rm -rf "$work/samples" "$work/digits.yaml"
-port=$((20000 + RANDOM % 20000))
+port=$(free_port)
 export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
 if [ ${#failures[@]} -eq 0 ]; then
   timeout 300 roslaunch -p "$port" apex demo.launch bag:="$work/demo.bag" truth:="$work/demo_truth.yaml" >"$work/demo.log" 2>&1

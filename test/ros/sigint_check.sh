@@ -6,16 +6,13 @@
 #   sigint_check.sh RESULT_XML BAG   (with the devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"  # xml_text
+source "$(dirname "$0")/master.sh"
 out=$1 bag=$2
-port=$((20000 + RANDOM % 20000))
-export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
+export ROS_HOME=${ROS_HOME:-$(mktemp -d)}
 here=$(cd "$(dirname "$0")" && pwd)
 log=$(mktemp)
 declare -A failure
 cases=()
-
-roscore -p "$port" >/dev/null 2>&1 &
-core=$!
 
 # check NAME SIGNAL READY-LINE GRAPH: starts the runtime with GRAPH, waits until it answers
 # (and until READY-LINE, if any, is in its log), sends SIGNAL, measures the exit.
@@ -23,7 +20,8 @@ check() {
   local name=$1 sig=$2 ready=$3 graph=$4
   local case="${name}_SIG${sig}"
   cases+=("$case")
-  failure[$case]=""
+  failure[$case]=$master_failure
+  [ -z "$master_failure" ] || return
   stdbuf -oL rosrun apex apex_runtime_node _graph:="$graph" >"$log" 2>&1 &  # (-oL: its log lines at once)
   local node=$!
   # (--wait gives up at once while the master itself is still starting: retry until answered)
@@ -58,7 +56,7 @@ check() {
   wait "$node" 2>/dev/null
 }
 
-timeout 30 bash -c 'until rosparam list >/dev/null 2>&1; do sleep 0.2; done'  # the master is up
+start_master "$ROS_HOME/roscore.log"
 # (lists and maps as private parameters: rosrun's _name:= would give roscpp strings)
 rosparam set /apex/extra_plugin_xml "[$here/test_plugins.xml]"
 rosparam set /apex/overrides "{bag: {file: '$bag'}}"

@@ -6,17 +6,15 @@
 #   startup_loop.sh RESULT_XML BAG [N]   (with the devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"
+source "$(dirname "$0")/master.sh"
 out=$1 bag=$2 rounds=${3:-50}
-port=$((20000 + RANDOM % 20000))
-export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
+export ROS_HOME=${ROS_HOME:-$(mktemp -d)}
 graph=$(rospack find apex)/graphs/paper_pipeline.yaml
 failure=""
 # why LOG: the line of a log that tells why the runtime stopped (a crash's own line), else its last
 why() { grep -m1 -E 'terminate|Segmentation|Assertion|Aborted|free\(\)|unload|No plugins' "$1" || tail -n 1 "$1"; }
 
-roscore -p "$port" >/dev/null 2>&1 &
-core=$!
-timeout 30 bash -c 'until rostopic list >/dev/null 2>&1; do sleep 0.2; done' || failure="the master never started"
+start_master "$ROS_HOME/roscore.log" || failure=$master_failure
 rosparam set /apex/graph "$graph"
 rosparam set /apex/overrides "{bag: {file: '$bag', loop: true, rate: 0.0}}"
 
