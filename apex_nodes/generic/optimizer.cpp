@@ -3,12 +3,17 @@
 // the node sends a candidate and fires `evaluate` (its events leave after its messages, so the
 // values are in effect before the replay starts), the graph replays and scores the data, and the
 // mean arrives at `fitness` (after the pass's last frame: the end-of-sequence token), which
-// tells the search and sends the next candidate. No thread ever waits for an evaluation.
+// tells the search and sends the next candidate. No thread ever waits for an evaluation. With
+// `workers` above 1, that many candidates are out at once, each in a copy of the evaluated part
+// beside the graph (evaluation_copies.hpp) on threads of its own; the graph itself then rests.
 #include <cmath>
+#include <map>
 #include <sstream>
+#include <utility>
 
 #include "apex/core/registry.hpp"
 #include "apex_nodes/search.hpp"
+#include "evaluation_copies.hpp"
 #include "study_file.hpp"
 #include "tuned_dimension.hpp"
 
@@ -33,7 +38,9 @@ apex::Status shapeDimensions(const apex::ParamValues& p, apex::Manifest& m) {
 class Optimizer : public apex::Node {
  public:
   static inline const apex::InputPort<double> kFitness{
-      "fitness", "the candidate's score, e.g. SequenceMean's mean; larger is better unless minimize"};
+      "fitness", "the candidate's score, e.g. SequenceMean's mean; larger is better unless minimize", true};
+  static inline const apex::InputPort<double> kRunning{
+      "running", "for racing: each frame, the candidate's mean so far (SequenceMean's running)", true};
   static inline const apex::OutputPort<double> kBestFitness{"best_fitness", "after each evaluation: the best fitness so far"};
   static inline const apex::OutputPort<int> kEvaluations{"evaluations", "after each evaluation: how many are done"};
   static inline const apex::OutputPort<std::string> kBest{
@@ -42,6 +49,10 @@ class Optimizer : public apex::Node {
       "evaluate",
       "a candidate's values are in effect: replay the data (a player's restart) and start the "
       "score (SequenceMean's reset)"};
+  static inline const apex::TriggerPort kCut{
+      "cut",
+      "racing: the candidate cannot reach what it needs to (the best so far, or the member it competes with): end its "
+      "pass now (a player's end_pass)"};
   static inline const apex::TriggerPort kFinished{"finished",
                                                   "the run ended (its budget is spent, or stop): the best values are known"};
   static inline const apex::ParamDecl<std::vector<std::string>> kDimensions =
@@ -74,25 +85,45 @@ class Optimizer : public apex::Node {
           .describe(
               "the best values so far as YAML, {dimension: value} (it sets this; the panel's "
               "'Apply best values' sets them on the tuned parameters as one undoable edit)");
+  static inline const apex::ParamDecl<std::string> kSpace = param::text("space").describe(
+      "what describe_space found: each dimension as resolved against the parameter it tunes, as YAML (it sets "
+      "this; python/apex/tuning.py samples it with Optuna)");
   static inline const apex::ParamDecl<std::string> kStudy =
       param::path("study")
           .mode(apex::PathMode::Write)
           .describe(
               "a file where each evaluation is written as it ends: a run started again with the same settings "
               "(after a stop, a crash or a kill) continues from it; empty: none");
+  static inline const apex::ParamDecl<int> kWorkers = param::integer("workers").range(1, 64).step(1).init(1).describe(
+      "candidates evaluated at once (e.g. one per core); above 1, each in a copy of the part the fitness comes "
+      "from, made when a run starts, on threads of its own, while the graph rests; differential evolution then "
+      "replaces members once a generation is scored (scipy's deferred updating)");
+  static inline const apex::ParamDecl<bool> kRacing = param::flag("racing").describe(
+      "stop scoring a candidate once even the best frame scores for the rest of its pass could not make it count (cut "
+      "fires): the run takes the same course on fewer frames; needs running and cut connected");
+  static inline const apex::ParamDecl<double> kFrameBound =
+      param::number("frame_score_bound")
+          .range(-1e9, 1e9)
+          .step(0.1)
+          .init(1.0)
+          .describe("racing: the best score a single frame can have (1 for F1 or accuracy; with minimize, the least)");
   static apex::Manifest manifest() {
     return apex::Manifest(
                "Tunes other nodes' parameters: one output per dimension, connected to the parameter it tunes; "
                "each candidate is evaluated by the graph (evaluate: replay and score; the score comes back at fitness)")
         .inCategory("optimisation")
         .input(kFitness)
+        .input(kRunning)
         .output(kBestFitness)
         .output(kEvaluations)
         .output(kBest)
         .slot("start", &Optimizer::start, "starts a run with the settings as they are now")
         .slot("stop", &Optimizer::stop, "ends the run; the tuned parameters get their values from before it back")
         .slot("apply_best", &Optimizer::applyBest, "sets the tuned parameters to the best values found")
+        .slot("describe_space", &Optimizer::describeSpace,
+              "sets space: the dimensions resolved against the parameters they tune, for a search outside the runtime")
         .trigger(kEvaluate)
+        .trigger(kCut)
         .trigger(kFinished)
         .param(kDimensions)
         .param(kAlgorithm)
@@ -104,13 +135,19 @@ class Optimizer : public apex::Node {
         .param(kMinimize)
         .param(kState)
         .param(kBestValues)
+        .param(kSpace)
         .param(kStudy)
+        .param(kWorkers)
+        .param(kRacing)
+        .param(kFrameBound)
         .shapedBy(shapeDimensions);
   }
 
+  ~Optimizer() override { copies_.reset(); }  // first: the copies' taps call in until they stop
+
   void setup() override {
     const std::string saved = state_.get();
-    if (saved.rfind("running", 0) != 0) return;
+    if (saved.rfind("running", 0) != 0 && saved.rfind("starting", 0) != 0) return;
     updateParam(kState.name(), "interrupted (" + saved + ")");
     fail("this graph was saved while a run was in progress (" + saved +
          "): the tuned parameters hold that candidate's values, not tuned ones; " +
@@ -123,37 +160,27 @@ class Optimizer : public apex::Node {
 
   void parameterChanged(const std::string& name) override {
     if (name != kDimensions.name() || !running_) return;
-    running_ = waiting_ = false;  // its outputs are not the run's any more: nothing to give back through them
+    drop();  // its outputs are not the run's any more: nothing to give back through them
     setState("stopped: the dimensions changed during the run");
     fail("the dimensions changed during a run: it stopped after " + std::to_string(search_->evaluations()) +
          " evaluations; the tuned parameters keep the last candidate's values");
   }
 
-  /** A fitness arrived: the evaluation asked for last is done. */
+  /** A fitness arrived (the evaluation asked for last is done), or a frame's mean so far. */
   void process() override {
-    if (!running_ || !waiting_) return again();  // a score nobody asked for (e.g. a pass before the run): ignored
-    waiting_ = false;
+    if (!running_ || copies_ || out_[0] < 0) return again();  // a score nobody asked for (e.g. a pass before the run)
+    if (!hasInput(kFitness.name)) {
+      if (hasInput(kRunning.name)) frameScored(0, *running_in_.get());
+      return;
+    }
     if (const std::string lost = lostTarget(); !lost.empty()) {
+      out_[0] = -1;
       end("stopped");
       fail(lost + ": the run stopped after " + std::to_string(search_->evaluations()) +
            " evaluations (the other tuned parameters got their values back)");
       return;
     }
-    const double f = *fitness_.get();
-    search_->tell(minimize_ ? -f : f);
-    if (study_) try {
-        study_->append({asked_, f});
-      } catch (const std::runtime_error& e) {
-        end("stopped");
-        fail(std::string(e.what()) + ": the run stopped after " + std::to_string(search_->evaluations()) + " evaluations");
-        return;
-      }
-    best_fitness_.publish(minimize_ ? -search_->bestFitness() : search_->bestFitness());
-    evaluations_.publish(search_->evaluations());
-    best_.publish(bestText());
-    updateParam(kBestValues.name(), bestText());
-    if (search_->done()) return end("finished");
-    propose();
+    scored(0, *fitness_.get());
   }
 
   void start() {
@@ -168,6 +195,7 @@ class Optimizer : public apex::Node {
     s.population = population_.get();
     s.F = f_.get();
     s.CR = cr_.get();
+    s.deferred = workers_.get() > 1;
     auto made = search::makeSearch(algorithm_.get(), ranges, s);
     if (!made) throw std::invalid_argument(made.message());
     auto search = std::move(made).value();
@@ -178,14 +206,28 @@ class Optimizer : public apex::Node {
     dims_ = std::move(dims);
     minimize_ = minimize_param_.get();
     running_ = true;
+    out_.assign(workers_.get(), -1);
+    race_.assign(out_.size(), Race{});
+    racing_ = racing_asked_ = racing_param_.get();
+    frame_bound_ = frame_bound_param_.get();
+    full_frames_ = cuts_ = 0;
+    points_.clear(), scores_.clear();
     if (resumed > 0)
       log(apex::LogLevel::Info, "resumed from the study '" + study_->path() + "': " + std::to_string(resumed) + " evaluations");
     if (search_->done()) return end("finished");
-    propose();
+    if (out_.size() == 1) return propose();
+    setState("starting: copying the evaluated part for " + std::to_string(out_.size()) + " workers");
+    describeGraph([this, run = run_](const apex::GraphSnapshot& graph) { makeCopies(graph, run); });
   }
 
   void stop() {
     if (running_) end("stopped");
+  }
+
+  void describeSpace() {
+    std::string text;
+    for (const auto& d : resolveDimensions()) text += (text.empty() ? "" : ", ") + d.spaceText();
+    updateParam(kSpace.name(), "[" + text + "]");
   }
 
   void applyBest() {
@@ -196,6 +238,14 @@ class Optimizer : public apex::Node {
   }
 
  private:
+  /** A pass's racing: how far it got, and whether it was cut. */
+  struct Race {
+    int frames = 0;  // of the pass so far
+    double mean = 0;  // their mean
+    bool cut = false;  // cut fired for it
+    double bound = 0;  // the most it could score, as the search counts it (when cut: the value told)
+  };
+
   /** Every dimension resolved against the parameter it tunes (the first, if it tunes several). */
   std::vector<tuning::TunedDimension> resolveDimensions() const {
     std::vector<tuning::TunedDimension> out;
@@ -236,7 +286,7 @@ class Optimizer : public apex::Node {
     return "algorithm " + algorithm_.get() + ", budget " + std::to_string(budget_.get()) + ", seed " +
            std::to_string(seed_.get()) + ", population " + std::to_string(population_.get()) + ", F " + apex::toText(f_.get()) +
            ", CR " + apex::toText(cr_.get()) + ", minimize " + (minimize_param_.get() ? "true" : "false") + ", dimensions [" +
-           dims + "]";
+           dims + "]" + (workers_.get() > 1 && algorithm_.get() == "differential_evolution" ? ", updating deferred" : "");
   }
 
   /** The study of this run, if `study` names one. */
@@ -262,22 +312,146 @@ class Optimizer : public apex::Node {
     return n;
   }
 
-  /** The next candidate out, then `evaluate` (events leave after the messages). */
+  /** The copies for workers beyond the graph, then the first candidates out. */
+  void makeCopies(const apex::GraphSnapshot& graph, int run) {
+    if (!running_ || run != run_) return;  // stopped meanwhile
+    auto part = tuning::evaluatedPart(graph.description, name());
+    auto sent = [this, run](int copy, const std::string& input, double v) {
+      runLater([this, run, copy, fitness = input == kFitness.name, v] {
+        if (!running_ || run != run_ || out_[copy] < 0) return;  // a run that ended, or a pass nobody asked for
+        fitness ? scored(copy, v) : frameScored(copy, v);
+      });
+    };
+    auto copies = part ? tuning::EvaluationCopies::make(part.value(), graph.makeGraph, static_cast<int>(out_.size()), sent)
+                       : apex::Result<std::unique_ptr<tuning::EvaluationCopies>>(part.status());
+    if (!copies) {
+      end("stopped");
+      return fail("workers " + std::to_string(out_.size()) + ": " + copies.message());
+    }
+    copies_ = std::move(copies).value();
+    propose();
+  }
+
+  /** Racing: one more frame of worker `w`'s pass scored, its mean so far `mean`; cut it once it
+   *  cannot reach what the search needs of it. */
+  void frameScored(std::size_t w, double mean) {
+    Race& r = race_[w];
+    if (!racing_ || r.cut) return;
+    if (minimize_ ? mean < frame_bound_ : mean > frame_bound_)
+      return stopRacing("a mean so far of " + apex::toText(mean) + " is beyond frame_score_bound " + apex::toText(frame_bound_) +
+                        ": set it to the best a frame can score");
+    ++r.frames, r.mean = mean;
+    if (full_frames_ == 0 || r.frames >= full_frames_) return;
+    r.bound = bound(r);
+    if (r.bound >= search_->threshold(out_[w])) return;
+    r.cut = true;
+    ++cuts_;
+    if (!copies_) return cut_.fire();
+    if (auto st = copies_->fire(static_cast<int>(w), kCut.name); !st) {
+      end("stopped");
+      fail("worker " + std::to_string(w + 1) + ": " + st.message());
+    }
+  }
+
+  /** The most the pass could score (as the search counts it) with the frames left at their best. */
+  double bound(const Race& r) const {
+    const int left = std::max(0, full_frames_ - r.frames);
+    const double most = (r.frames * r.mean + left * frame_bound_) / std::max(full_frames_, r.frames);
+    return minimize_ ? -most : most;
+  }
+
+  /** Worker `w`'s pass ended with `f`: a whole pass's mean, or a cut one's, which counts as the
+   *  bound it was cut at (the most it could have scored, below what it needed). */
+  void scored(std::size_t w, double f) {
+    const Race r = std::exchange(race_[w], Race{});
+    const int id = std::exchange(out_[w], -1);
+    if (r.cut) return told(id, minimize_ ? -r.bound : r.bound);
+    if (racing_ && r.frames == 0) stopRacing("no frame's mean so far arrived: connect the mean's running to running");
+    if (racing_ && full_frames_ == 0) full_frames_ = r.frames;
+    if (racing_ && r.frames != full_frames_)
+      stopRacing("passes scored " + std::to_string(full_frames_) + " and " + std::to_string(r.frames) +
+                 " frames: the bound needs the same number each time");
+    told(id, f);
+  }
+
+  /** Racing is off for the rest of the run; why is logged once. */
+  void stopRacing(const std::string& why) {
+    racing_ = false;
+    log(apex::LogLevel::Warn, "racing is off for this run: " + why);
+  }
+
+  /** Candidate `id` scored `f`: the search told, each evaluation it takes written to the study. */
+  void told(int id, double f) {
+    const int before = search_->evaluations();
+    search_->tell(id, minimize_ ? -f : f);
+    scores_[id] = f;
+    for (int k = before; k < search_->evaluations(); ++k) {
+      const tuning::Evaluation e{points_.at(k), scores_.at(k)};
+      points_.erase(k), scores_.erase(k);
+      if (study_) try {
+          study_->append(e);
+        } catch (const std::runtime_error& err) {
+          end("stopped");
+          return fail(std::string(err.what()) + ": the run stopped after " + std::to_string(k) + " evaluations");
+        }
+    }
+    best_fitness_.publish(minimize_ ? -search_->bestFitness() : search_->bestFitness());
+    evaluations_.publish(search_->evaluations());
+    best_.publish(bestText());
+    updateParam(kBestValues.name(), bestText());
+    if (search_->done()) return end("finished");
+    propose();
+  }
+
+  /** A candidate to each idle worker the search has one for: into the graph through the outputs,
+   *  then `evaluate` (events leave after the messages); into a copy through its parameters. */
   void propose() {
-    asked_ = search_->ask();
-    sendAll(asked_);
-    waiting_ = true;
-    setState("running: evaluation " + std::to_string(search_->evaluations() + 1) + " of " + std::to_string(search_->budget()));
-    evaluate_.fire();
+    for (std::size_t w = 0; w < out_.size() && search_->canAsk(); ++w) {
+      if (out_[w] >= 0) continue;
+      const int id = search_->asked();
+      const auto x = search_->ask();
+      points_[id] = x;
+      out_[w] = id;
+      if (!copies_) {
+        sendAll(x);
+        evaluate_.fire();
+      } else if (auto st = copies_->evaluate(static_cast<int>(w), texts(x)); !st) {
+        end("stopped");
+        return fail("worker " + std::to_string(w + 1) + ": " + st.message());
+      }
+    }
+    const std::string at_once = out_.size() > 1 ? ", " + std::to_string(out_.size()) + " workers" : "";
+    setState("running: evaluation " + std::to_string(search_->evaluations() + 1) + " of " + std::to_string(search_->budget()) +
+             at_once);
+  }
+
+  /** The values at `x` as YAML text, by output. */
+  std::vector<std::pair<std::string, std::string>> texts(const std::vector<double>& x) const {
+    const auto values = valuesAt(x);
+    std::vector<std::pair<std::string, std::string>> out;
+    for (std::size_t i = 0; i < dims_.size(); ++i) out.emplace_back(dims_[i].port, apex::toText(values[i]));
+    return out;
+  }
+
+  /** The run is over: nothing out counts any more, the copies go. */
+  void drop() {
+    running_ = false;
+    ++run_;
+    out_.assign(out_.size(), -1);
+    race_.assign(out_.size(), Race{});
+    copies_.reset();
   }
 
   /** Gives the targets their values back and says how the run ended. */
   void end(const std::string& how) {
-    running_ = waiting_ = false;
-    for (const auto& d : dims_)
-      if (!targetsOf(d.port).empty()) publishMessage(d.port, apex::toMessage(d.before));
+    const bool workers_used = out_.size() > 1;
+    drop();
+    if (!workers_used)  // with workers the graph rested: nothing to give back
+      for (const auto& d : dims_)
+        if (!targetsOf(d.port).empty()) publishMessage(d.port, apex::toMessage(d.before));
     const int n = search_->evaluations();
     setState(how + " after " + std::to_string(n) + " evaluation" + (n == 1 ? "" : "s") +
+             (racing_asked_ ? " (" + std::to_string(cuts_) + " cut short)" : "") +
              (search_->best().empty() ? ""
                                       : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
                                             " at " + bestText()));
@@ -317,6 +491,10 @@ class Optimizer : public apex::Node {
   }
 
   apex::Input<double> fitness_{this, kFitness};
+  apex::Input<double> running_in_{this, kRunning};
+  apex::Trigger cut_{this, kCut};
+  apex::Param<bool> racing_param_{this, kRacing};
+  apex::Param<double> frame_bound_param_{this, kFrameBound};
   apex::Output<double> best_fitness_{this, kBestFitness};
   apex::Output<int> evaluations_{this, kEvaluations};
   apex::Output<std::string> best_{this, kBest};
@@ -332,13 +510,22 @@ class Optimizer : public apex::Node {
   apex::Param<bool> minimize_param_{this, kMinimize};
   apex::Param<std::string> state_{this, kState};
   apex::Param<std::string> study_path_{this, kStudy};
+  apex::Param<int> workers_{this, kWorkers};
 
   std::vector<tuning::TunedDimension> dims_;
   std::unique_ptr<search::Search> search_;
   std::unique_ptr<tuning::StudyFile> study_;  // the run's, if it has one
-  std::vector<double> asked_;  // the candidate out: its point in the search
+  std::unique_ptr<tuning::EvaluationCopies> copies_;  // the workers, if more than one (else the graph evaluates)
+  std::vector<int> out_{-1};  // per worker: the candidate it evaluates, -1: idle
+  std::map<int, std::vector<double>> points_;  // candidates asked for and not yet written to the study
+  std::map<int, double> scores_;  // their fitnesses, as they come (in any order)
+  int run_ = 0;  // grows as a run ends: a copy's score of an earlier run is ignored
+  std::vector<Race> race_{1};  // per worker
+  bool racing_ = false, racing_asked_ = false;  // racing now; asked for at start
+  double frame_bound_ = 1;
+  int full_frames_ = 0;  // frames of a whole pass (0: none seen yet; racing waits for one)
+  int cuts_ = 0;  // candidates cut in this run
   bool running_ = false;
-  bool waiting_ = false;  // a candidate is out; its fitness is not back yet
   bool minimize_ = false;
   std::string error_;  // why the last run stopped, or the graph was saved mid-run
 };

@@ -10,20 +10,35 @@ namespace search {
 
 Search::Search(std::vector<Dimension> dims, const Settings& s) : dims_(std::move(dims)), rng_(s.seed), budget_(s.budget) {}
 
+bool Search::canAsk() const { return asked_count_ < budget_ && evaluations_ >= waitsFor(asked_count_); }
+
+double Search::threshold(int) const { return best_.empty() ? -HUGE_VAL : best_fitness_; }
+
 std::vector<double> Search::ask() {
-  if (pending_) throw std::logic_error("ask() twice without tell()");
-  asked_ = fit(next());
-  pending_ = true;
-  return asked_;
+  if (!canAsk())
+    throw std::logic_error(asked_count_ >= budget_ ? "ask() with the whole budget asked for"
+                                                   : "ask() while the search waits for fitnesses");
+  auto x = fit(next(asked_count_));
+  out_[asked_count_++] = x;
+  return x;
 }
 
 void Search::tell(double fitness) {
-  if (!pending_) throw std::logic_error("tell() without ask()");
-  pending_ = false;
-  ++evaluations_;
+  if (out_.size() != 1) throw std::logic_error("tell(fitness) needs exactly one candidate out; say which");
+  tell(out_.begin()->first, fitness);
+}
+
+void Search::tell(int id, double fitness) {
+  if (!out_.count(id) || told_.count(id)) throw std::logic_error("tell() of candidate " + std::to_string(id) + ", not out");
   if (!std::isfinite(fitness)) fitness = -HUGE_VAL;  // a failed evaluation is the worst there is
-  if (best_.empty() || fitness > best_fitness_) best_ = asked_, best_fitness_ = fitness;
-  result(asked_, fitness);
+  told_[id] = fitness;
+  for (auto it = told_.begin(); it != told_.end() && it->first == evaluations_; it = told_.erase(it)) {
+    const std::vector<double> x = std::move(out_.at(it->first));
+    out_.erase(it->first);
+    ++evaluations_;
+    if (best_.empty() || it->second > best_fitness_) best_ = x, best_fitness_ = it->second;
+    result(x, it->second);
+  }
 }
 
 std::vector<double> Search::fit(std::vector<double> x) const {
@@ -42,7 +57,7 @@ class RandomSearch : public Search {
   RandomSearch(std::vector<Dimension> d, const Settings& s) : Search(std::move(d), s) {}
 
  private:
-  std::vector<double> next() override {
+  std::vector<double> next(int) override {
     std::vector<double> x(dims_.size());
     for (std::size_t j = 0; j < x.size(); ++j) x[j] = uniform(dims_[j].min, dims_[j].max);
     return x;
@@ -64,9 +79,9 @@ class GridSearch : public Search {
   }
 
  private:
-  std::vector<double> next() override {
+  std::vector<double> next(int index) override {
     std::vector<double> x(dims_.size());
-    long k = index_++;
+    long k = index;
     for (std::size_t j = 0; j < x.size(); ++j) {
       const int n = points_[j];
       const int i = static_cast<int>(k % n);
@@ -77,16 +92,17 @@ class GridSearch : public Search {
   }
   void result(const std::vector<double>&, double) override {}
   std::vector<int> points_;
-  long index_ = 0;
 };
 
-/** Differential evolution, rand/1/bin, updating at once (as scipy's default): a population
- *  from a Latin hypercube; then for each member in turn a trial = a + F (b - c) of three
- *  others, crossed with the member (each value with probability CR, one for sure); the trial
- *  replaces the member if it is at least as fit. Out of range: a random value in range. */
+/** Differential evolution, rand/1/bin: a population from a Latin hypercube; then for each
+ *  member in turn a trial = a + F (b - c) of three others, crossed with the member (each value
+ *  with probability CR, one for sure); the trial replaces the member if it is at least as fit,
+ *  at once (scipy's default), or deferred: at the end of the generation, so that all of its
+ *  trials can be out at once. Out of range: a random value in range. */
 class DifferentialEvolution : public Search {
  public:
-  DifferentialEvolution(std::vector<Dimension> d, const Settings& s) : Search(std::move(d), s), F_(s.F), CR_(s.CR) {
+  DifferentialEvolution(std::vector<Dimension> d, const Settings& s)
+      : Search(std::move(d), s), F_(s.F), CR_(s.CR), deferred_(s.deferred) {
     const int n = s.population > 0 ? s.population : std::max(5, 15 * static_cast<int>(dims_.size()));
     population_.resize(n, std::vector<double>(dims_.size()));
     fitness_.assign(n, -HUGE_VAL);
@@ -100,20 +116,31 @@ class DifferentialEvolution : public Search {
   }
 
  private:
-  std::vector<double> next() override {
+  /** Immediate: each candidate waits for the one before; deferred: for the generation before. */
+  int waitsFor(int index) const override {
     const int n = static_cast<int>(population_.size());
-    if (initialised_ < n) return population_[initialised_];
+    return deferred_ ? index / n * n : index;
+  }
+  /** A trial competes with its member only (whose fitness is at most the best). */
+  double threshold(int id) const override {
+    const int n = static_cast<int>(population_.size());
+    return id < n ? -HUGE_VAL : fitness_[(id - n) % n];
+  }
+  std::vector<double> next(int index) override {
+    const int n = static_cast<int>(population_.size());
+    if (index < n) return population_[index];
+    const int target = (index - n) % n;
     std::uniform_int_distribution<int> pick(0, n - 1);
     int a, b, c;
     do a = pick(rng_);
-    while (a == target_);
+    while (a == target);
     do b = pick(rng_);
-    while (b == target_ || b == a);
+    while (b == target || b == a);
     do c = pick(rng_);
-    while (c == target_ || c == a || c == b);
+    while (c == target || c == a || c == b);
     const std::size_t dims = dims_.size();
     const std::size_t forced = std::uniform_int_distribution<std::size_t>(0, dims - 1)(rng_);
-    std::vector<double> trial = population_[target_];
+    std::vector<double> trial = population_[target];
     for (std::size_t j = 0; j < dims; ++j) {
       if (j != forced && uniform(0, 1) >= CR_) continue;
       double v = population_[a][j] + F_ * (population_[b][j] - population_[c][j]);
@@ -129,13 +156,20 @@ class DifferentialEvolution : public Search {
       fitness_[initialised_++] = fitness;
       return;
     }
-    if (fitness >= fitness_[target_]) population_[target_] = candidate, fitness_[target_] = fitness;
-    target_ = (target_ + 1) % n;
+    trials_.push_back({candidate, fitness});
+    if (deferred_ && static_cast<int>(trials_.size()) < n) return;
+    for (auto& [trial, f] : trials_) {
+      if (f >= fitness_[target_]) population_[target_] = std::move(trial), fitness_[target_] = f;
+      target_ = (target_ + 1) % n;
+    }
+    trials_.clear();
   }
   double F_, CR_;
+  bool deferred_;
   std::vector<std::vector<double>> population_;
   std::vector<double> fitness_;
-  int initialised_ = 0, target_ = 0;
+  std::vector<std::pair<std::vector<double>, double>> trials_;  // scored, not yet selected (deferred)
+  int initialised_ = 0, target_ = 0;  // members scored; the member the next selection is for
 };
 
 }  // namespace

@@ -14,6 +14,8 @@ class SequenceMean : public apex::Node {
   static inline const apex::OutputPort<double> kMean{"mean",
                                                      "at the end of a sequence: the mean of its values (0 if it had none)"};
   static inline const apex::OutputPort<int> kCount{"count", "at the end of a sequence: how many values it had"};
+  static inline const apex::OutputPort<double> kRunning{
+      "running", "each value: the mean of the sequence so far (for the Optimizer's racing)"};
   static apex::Manifest manifest() {
     return apex::Manifest("Averages a value over a sequence; sends mean and count at its end, then starts the next")
         .inCategory("evaluation")
@@ -21,6 +23,7 @@ class SequenceMean : public apex::Node {
         .input(kValue)
         .output(kMean)
         .output(kCount)
+        .output(kRunning)
         .slot("reset", &SequenceMean::reset, "forgets the values so far: a new sequence starts")
         .slot("finish", &SequenceMean::finish, "ends the sequence now, as its end-of-sequence token does: sends mean and count");
   }
@@ -29,6 +32,7 @@ class SequenceMean : public apex::Node {
     if (!std::isfinite(v)) throw std::invalid_argument("value " + std::to_string(v) + " is not a number: not counted");
     sum_ += v;
     ++count_;
+    running_.publish(sum_ / count_);
   }
   void endOfSequence() override { finish(); }
   void finish() {
@@ -46,6 +50,7 @@ class SequenceMean : public apex::Node {
   apex::Input<double> value_{this, kValue};
   apex::Output<double> mean_{this, kMean};
   apex::Output<int> count_out_{this, kCount};
+  apex::Output<double> running_{this, kRunning};
   double sum_ = 0;
   int count_ = 0;
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace apex_nodes {
 namespace tuning {
@@ -55,6 +56,28 @@ void requireKind(const std::string& text, const apex::ParamSpec& spec, const std
                  const char* words) {
   if (spec.kind != kind)
     throw std::invalid_argument("dimension '" + text + "': " + where + " is a " + spec.kindName() + " parameter, not " + words);
+}
+
+/** Point `k` of the grid from `origin` by `step`: a step of 1/n as k/n (0.83, not 83 * 0.01 =
+ *  0.8300000000000001). */
+double gridPoint(double origin, double step, double k) {
+  const double per_unit = std::round(1 / step);
+  return std::abs(per_unit * step - 1) < 1e-9 ? origin + k / per_unit : origin + k * step;
+}
+
+/** The indices of the first and last grid points within [lo, hi] (first > last: none). */
+std::pair<double, double> gridSpan(double lo, double hi, double step, double origin) {
+  return {std::ceil((lo - origin) / step - 1e-9), std::floor((hi - origin) / step + 1e-9)};
+}
+
+/** Throws unless a value of the dimension lies in [lo, hi] (an integer; a point of the step's grid). */
+void requireValue(const std::string& text, double lo, double hi, bool integer, double step, double origin) {
+  const bool none = step > 0 ? gridSpan(lo, hi, step, origin).first > gridSpan(lo, hi, step, origin).second
+                             : integer && std::ceil(lo) > std::floor(hi);
+  if (none)
+    throw std::invalid_argument(
+        "dimension '" + text + "': no value of the parameter lies between " + number(lo) + " and " + number(hi) +
+        (step > 0 ? " (it goes in steps of " + number(step) + " from " + number(origin) + ")" : " (it is an integer)"));
 }
 
 }  // namespace
@@ -116,6 +139,7 @@ TunedDimension resolve(const DimensionText& d, const std::string& text, const ap
       narrow(d, text, spec, where, lo, hi);
       t.coordinates.push_back({d.name, lo, hi, d.kind == Kind::Integer});
       if (d.kind == Kind::Integer && spec.step > 1) t.step = spec.step, t.origin = spec.min;
+      requireValue(text, lo, hi, d.kind == Kind::Integer, t.step, t.origin);
       break;
     case Kind::Interval:
       requireKind(text, spec, where, apex::ParamKind::Interval, "an interval");
@@ -123,6 +147,7 @@ TunedDimension resolve(const DimensionText& d, const std::string& text, const ap
       t.coordinates.push_back({d.name + ".low", lo, hi, false});
       t.coordinates.push_back({d.name + ".high", lo, hi, false});
       if (spec.step > 0) t.step = spec.step, t.origin = spec.min;
+      requireValue(text, lo, hi, false, t.step, t.origin);
       break;
     case Kind::Choice:
       requireKind(text, spec, where, apex::ParamKind::Set, "a choice");
@@ -145,9 +170,7 @@ apex::ParamValue TunedDimension::value(const double* x) const {
   const auto snap = [&](double v, const search::Dimension& c) {
     if (c.integer) v = std::round(v);
     if (step > 0) {
-      const double k = std::round((v - origin) / step), per_unit = std::round(1 / step);
-      // a step of 1/n as k/n: 0.83, not 83 * 0.01 = 0.8300000000000001
-      v = std::abs(per_unit * step - 1) < 1e-9 ? origin + k / per_unit : origin + k * step;
+      v = gridPoint(origin, step, std::round((v - origin) / step));
       while (v > c.max && v - step >= origin) v -= step;
       while (v < c.min) v += step;
     }
@@ -169,6 +192,50 @@ apex::ParamValue TunedDimension::value(const double* x) const {
     default:
       return snap(x[0], coordinates[0]);
   }
+}
+
+namespace {
+
+/** "low: a, high: b[, step: s]": the coordinate's range on the grid from `origin` by `step` (0: none). */
+std::string gridText(const search::Dimension& c, double step, double origin) {
+  double lo = c.min, hi = c.max;
+  if (step > 0) {
+    const auto [first, last] = gridSpan(c.min, c.max, step, origin);
+    lo = gridPoint(origin, step, first), hi = gridPoint(origin, step, last);
+  } else if (c.integer) {
+    lo = std::ceil(c.min), hi = std::floor(c.max), step = 1;
+  }
+  const auto text = [&](double v) { return c.integer ? std::to_string(std::llround(v)) : apex::toText(v); };
+  return "low: " + text(lo) + ", high: " + text(hi) + (step > 0 ? ", step: " + text(step) : "");
+}
+
+/** A word as YAML reads it back as that word: quoted ("8", "on" and "1.50" stay text). */
+std::string quoted(const std::string& word) {
+  std::string out = "\"";
+  for (char c : word) out += c == '"' || c == '\\' ? std::string("\\") + c : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string TunedDimension::spaceText() const {
+  std::string out = "{name: " + port + ", kind: ";
+  switch (kind) {
+    case Kind::Number:
+      return out + "number, " + gridText(coordinates[0], step, origin) + "}";
+    case Kind::Integer:
+      return out + "integer, " + gridText(coordinates[0], step, origin) + "}";
+    case Kind::Interval:
+      return out + "interval, " + gridText(coordinates[0], step, origin) + "}";
+    case Kind::Choice: {
+      std::string options;
+      for (const auto& o : this->options) options += (options.empty() ? "" : ", ") + quoted(o);
+      return out + "choice, options: [" + options + "]}";
+    }
+    case Kind::Flag:
+      return out + "flag}";
+  }
+  return out + "number}";
 }
 
 }  // namespace tuning

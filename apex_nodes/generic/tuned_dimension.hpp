@@ -42,6 +42,12 @@ struct TunedDimension {
 
   /** @brief The value at `x` (this dimension's coordinates, from the first), on the grid and in range. */
   apex::ParamValue value(const double* x) const;
+
+  /** @brief This dimension as a search outside the runtime samples it (Optuna's distributions:
+   *  python/apex/tuning.py), as YAML: {name, kind: number|integer|interval|choice|flag}, with low and
+   *  high (their grid's first and last points) and step (none: continuous) for the first three and
+   *  options for a choice. Every value sampled from it is one value() gives. */
+  std::string spaceText() const;
 };
 
 /** @brief `d` (written as `text`) against the parameter `spec` at `where` (node/parameter) that

@@ -134,6 +134,9 @@ class BagReader : public apex::Node {
         .slot("restart", &BagReader::restart, "back to the first frame (and send it)")
         .slot("next", &BagReader::next, "send the next frame")
         .slot("previous", &BagReader::previous, "send the previous frame")
+        .slot("end_pass", &BagReader::endPass,
+              "ends a pass in progress now: its end of the sequence follows the frames already sent (the "
+              "Optimizer's racing cuts a poor candidate's pass so)")
         .param(kFile)
         .param(kTopics)
         .param(kImageTopic)
@@ -222,6 +225,19 @@ class BagReader : public apex::Node {
   void next() {
     const int at = request_ >= 0 ? request_ : current_;
     request(at < 0 ? next_ : std::min(at + 1, static_cast<int>(frames_.size()) - 1));
+  }
+  void endPass() {
+    if (!bag_ || frames_.empty() || end_pending_ || next_ > last_ || current_ < 0) return;  // no pass in progress
+    next_ = last_ + 1;
+    request_ = -1;
+    end_pending_ = true;
+    // At the end of the pass, as if played through: the frame held (sent again after an edit) is
+    // the last, and a bag opened next plays from its start, not from where this pass was cut
+    // (open() keeps a position inside the bag).
+    current_ = last_;
+    updateParam(kFrame.name(), last_);
+    updateParam(kTime.name(), (frames_[last_].start - frames_.front().start).toSec());
+    notifyNewData();
   }
   void previous() { request(std::max((request_ >= 0 ? request_ : current_) - 1, 0)); }
 

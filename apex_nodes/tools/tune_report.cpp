@@ -47,9 +47,14 @@ class Watch {
       while (s.getNumPublishers() == 0 && ros::ok()) ros::WallDuration(0.01).sleep();
   }
   /** The mean of the next pass to end after now. */
-  double nextMean(double timeout_s) {
+  /** How many means have come so far: take it before the edit that starts a pass. */
+  int means() {
+    std::lock_guard<std::mutex> l(m_);
+    return means_;
+  }
+  /** The first mean after the `seen`th (the pass's, however soon it ended). */
+  double meanAfter(int seen, double timeout_s) {
     std::unique_lock<std::mutex> l(m_);
-    const int seen = means_;
     if (!cv_.wait_for(l, std::chrono::duration<double>(timeout_s), [&] { return means_ > seen || !ros::ok(); }) || !ros::ok())
       throw std::runtime_error("no pass ended within " + std::to_string(static_cast<int>(timeout_s)) + " s");
     return mean_;
@@ -118,6 +123,7 @@ std::pair<double, std::string> finalBest() {
       const auto at = state.find("; best "), in = state.find(" at {");
       const double fitness =
           at != std::string::npos && in != std::string::npos ? std::stod(state.substr(at + 7, in - at - 7)) : 0;
+      std::printf("optimiser: %s\n", state.c_str());
       return {fitness, YAML::Load(valueOf(g, "optimizer", "best_values")).as<std::string>()};
     }
     if (Clock::now() > until) throw std::runtime_error("the optimiser did not finish: " + state);
@@ -189,14 +195,17 @@ int main(int argc, char** argv) {
 
     // A pass with the shipped parameters first: the player plays once its bag is set.
     set("score", "truth", train_truth);
+    int seen = watch.means();
     set("bag", "file", train_bag);
-    const double train_shipped = watch.nextMean(120);
+    const double train_shipped = watch.meanAfter(seen, 120);
     std::printf("training bag, shipped parameters: F1 %.3f\n", train_shipped);
     std::fflush(stdout);
 
+    const auto run_start = Clock::now();
     runOptimizer(watch, budget, t0);
     const auto [best_fitness, best] = finalBest();
     std::printf("best on the training bag: F1 %.3f at %s\n", best_fitness, best.c_str());
+    std::printf("the run took %.1f s with %s worker(s)\n", seconds(run_start), valueOf(g0, "optimizer", "workers").c_str());
     fire("optimizer", "apply_best");
     waitApplied(tuned, best);
     apex::SaveGraph::Request save;
@@ -205,13 +214,15 @@ int main(int argc, char** argv) {
 
     // Held out: the tuned values (applied), then the shipped ones, on a bag the search never saw.
     set("score", "truth", test_truth);
+    seen = watch.means();
     set("bag", "file", test_bag);
-    const double test_tuned = watch.nextMean(120);
+    const double test_tuned = watch.meanAfter(seen, 120);
     for (const auto& [target, value] : shipped)
       set(target.substr(0, target.find('/')), target.substr(target.find('/') + 1), value);
     fire("mean", "reset");
+    seen = watch.means();
     fire("bag", "restart");
-    const double test_shipped = watch.nextMean(120);
+    const double test_shipped = watch.meanAfter(seen, 120);
 
     std::printf("held-out bag:  shipped parameters F1 %.3f  ->  tuned F1 %.3f\n", test_shipped, test_tuned);
     std::printf("tuned graph:   %s\n", out.c_str());

@@ -18,6 +18,9 @@ After sourcing the devel (or install) space::
         print(e.message)    # node 'clock': parameter 'rate': 5000 is out of range [0.01, 1000]
     rt.save_graph('counting.yaml')                # -> '/home/you/.ros/apex/counting.yaml'
 
+Tuning a graph with an Optuna study (what its Optimizer tunes, scored as it scores):
+:class:`apex.tuning.Tuning` (``from apex.tuning import Tuning``; needs python3-optuna).
+
 Values are Python values: they travel as the YAML text the services take (:func:`encode`), and
 parameter values come back decoded (:func:`decode`). The generated messages and services stay
 where they are: ``apex.msg`` (GraphState, NodeInfo, NodeStatus, ...) and ``apex.srv``.

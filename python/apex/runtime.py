@@ -71,6 +71,14 @@ def decode(text):
         return text
 
 
+def ros_node():
+    """Starts an anonymous ROS node (``apex_script_...``) for subscriptions, unless the script
+    has started its own with ``rospy.init_node``."""
+    if not rospy.core.is_initialized():
+        rospy.init_node('apex_script', anonymous=True,
+                        disable_signals=threading.current_thread() is not threading.main_thread())
+
+
 class Runtime:
     """One APEX runtime, reached through its services under ``namespace``.
 
@@ -287,10 +295,15 @@ class Runtime:
 
     def _subscribe(self):
         if self._status_sub is None:
-            if not rospy.core.is_initialized():
-                rospy.init_node('apex_script', anonymous=True,
-                                disable_signals=threading.current_thread() is not threading.main_thread())
+            ros_node()
             self._status_sub = rospy.Subscriber(self._name('status'), RuntimeStatus, self._received, queue_size=1)
+
+    def latest_status(self):
+        """The newest ``apex/RuntimeStatus`` received, at once; None before the first (it starts
+        listening to ``~status`` at the first call)."""
+        self._subscribe()
+        with self._status_changed:
+            return self._status
 
     def _received(self, msg):
         with self._status_changed:

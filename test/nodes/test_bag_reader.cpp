@@ -59,6 +59,13 @@ class Player {
     for (const auto& m : sink("stamps").messages()) out.push_back(m.isNothing() ? -1 : *m.as<double>());
     return out;
   }
+  /** The stamps of the frames sent (a wake-up with nothing to send sends Nothing). */
+  std::vector<double> sent() {
+    std::vector<double> out;
+    for (double t : stamps())
+      if (t >= 0) out.push_back(t);
+    return out;
+  }
 
  private:
   Graph g_;
@@ -127,6 +134,31 @@ TEST(BagReader, TheMessagesOfAFrameLeaveInOneFiringAndFinishedFiresOncePerPass) 
   EXPECT_EQ(object<Counter>(p.graph(), "passes")->resets, 2);
 }
 
+TEST(BagReader, EndPassEndsThePassAfterTheFramesSentAndTheNextBagPlaysFromItsStart) {
+  Player p(200, "rate=1");  // 200 frames at the recorded pace: the pass is cut long before its end
+  const auto sent = [&] { return p.sent(); };
+  ASSERT_TRUE(waitUntil([&] { return sent().size() >= 3; }));
+  ASSERT_TRUE(p.graph().fireSlot("bag", "end_pass"));
+  ASSERT_TRUE(waitUntil([&] { return object<Counter>(p.graph(), "passes")->resets == 1; })) << "finished, as at an end";
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  const std::size_t cut_at = sent().size();
+  EXPECT_LT(cut_at, 100u);
+  ASSERT_FALSE(p.sink("pass_lengths").ints().empty());
+  EXPECT_EQ(p.sink("pass_lengths").ints().back(), static_cast<int>(cut_at)) << "every frame sent is in the pass, then its end";
+  EXPECT_EQ(std::get<int>(p.graph().parameterValue("bag", "frame").value()), 199) << "at the end, as if played through";
+  ASSERT_TRUE(p.graph().fireSlot("bag", "end_pass"));  // no pass in progress: nothing happens
+  add(p.graph(), "test/Gain", "gain");
+  link(p.graph(), "bag", "frame", "gain", "in");  // an edit downstream: the frame held, sent again, is the last
+  ASSERT_TRUE(waitUntil([&] { return sent().size() == cut_at + 1; }));
+  EXPECT_EQ(sent().back(), frameTime(199).toSec());
+  p.set("rate", "0");
+  p.set("file", writeBag(50));
+  ASSERT_TRUE(waitUntil([&] { return sent().size() == cut_at + 1 + 50; }));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  EXPECT_EQ(sent()[cut_at + 1], frameTime(0).toSec()) << "another bag plays from its start, not from where the pass was cut";
+  EXPECT_EQ(object<Counter>(p.graph(), "passes")->resets, 2);
+}
+
 TEST(BagReader, SeekingSendsExactlyTheFramesAskedFor) {
   Player p(40, "playing=false");
   int n = 0;
@@ -183,6 +215,32 @@ TEST(BagReader, AHeldFrameIsSentAgainWhenSomethingDownstreamChanges) {
   ASSERT_TRUE(p.graph().waitIdle(kWait));
   EXPECT_LE(p.stamps().size(), 2u + 20u);
   for (double t : p.stamps()) EXPECT_EQ(t, frameTime(7).toSec());
+}
+
+TEST(BagReader, WithoutRerunsOnEditsAHeldFrameIsNotSentAgain) {
+  // The Optimizer's copies replay whole passes and set each candidate by edits: the last frame,
+  // held at the end of a pass, sent again would be counted into the next pass (Graph::setRerunOnEdit).
+  Graph g(pluginRegistry());
+  g.setRerunOnEdit(false);  // first, as the copies do: no re-run of an earlier edit is pending either
+  ASSERT_TRUE(g.addNode(Player::description(writeBag(40), "")));
+  add(g, "test/Collector", "stamps");
+  add(g, "test/Gain", "gain");
+  link(g, "bag", "stamp", "stamps", "in");
+  link(g, "bag", "frame", "gain", "in");
+  g.start();
+  auto& stamps = *object<Collector>(g, "stamps");
+  const auto sent = [&] {  // frames, not the Nothing of a wake-up with nothing to send
+    const auto got = stamps.messages();
+    return std::count_if(got.begin(), got.end(), [](const Message& m) { return !m.isNothing(); });
+  };
+  ASSERT_TRUE(waitUntil([&] { return sent() == 40; }));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  for (int v = 1; v <= 5; ++v) ASSERT_TRUE(g.setParameter("gain", "gain", std::to_string(v)));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_FALSE(waitUntil([&] { return sent() > 40; }, 0.6)) << "the held frame went out again";
+  g.setRerunOnEdit(true);  // as by default: the next edit shows on the held frame
+  ASSERT_TRUE(g.setParameter("gain", "gain", "6"));
+  EXPECT_TRUE(waitUntil([&] { return sent() == 41; }));
 }
 
 TEST(BagReader, AtTheEndOfAPassTheLastFrameIsHeldAndANodeConnectedAfterGetsIt) {

@@ -100,11 +100,41 @@ TEST(Search, AFailedEvaluationCountsAsTheWorst) {
   EXPECT_EQ(search->bestFitness(), 0.5);
 }
 
-TEST(Search, AskAndTellMustAlternate) {
-  auto search = make("random", {{"x", 0, 1}});
+TEST(Search, ImmediateDifferentialEvolutionWaitsForEachFitness) {
+  auto search = make("differential_evolution", {{"x", 0, 1}});
   EXPECT_THROW(search->tell(1), std::logic_error);
   search->ask();
+  EXPECT_FALSE(search->canAsk());
   EXPECT_THROW(search->ask(), std::logic_error);
+}
+
+TEST(Search, ManyCandidatesOutAtOnceToldInAnyOrderGiveTheSameRun) {
+  Settings s;
+  s.budget = 50, s.seed = 3, s.population = 10, s.deferred = true;
+  const std::vector<Dimension> box{{"a", -1, 1}, {"b", 0, 10, true}};
+  for (const char* algorithm : {"differential_evolution", "random", "grid"}) {
+    auto serial = make(algorithm, box, s);
+    const auto expected = run(*serial, minusSphere);
+    auto batched = make(algorithm, box, s);
+    std::vector<std::vector<double>> asked;
+    std::size_t most_out = 0;
+    while (!batched->done()) {
+      std::vector<int> out;
+      while (batched->canAsk()) {
+        out.push_back(batched->asked());
+        asked.push_back(batched->ask());
+      }
+      most_out = std::max(most_out, out.size());
+      for (auto it = out.rbegin(); it != out.rend(); ++it) batched->tell(*it, minusSphere(asked[*it]));  // last first
+    }
+    EXPECT_EQ(asked, expected) << algorithm;
+    EXPECT_EQ(batched->best(), serial->best()) << algorithm;
+    EXPECT_EQ(most_out, std::string(algorithm) == "differential_evolution" ? 10u : 50u)
+        << algorithm << ": a generation, or everything";
+  }
+  auto search = make("random", {{"x", 0, 1}});
+  search->ask();
+  EXPECT_THROW(search->tell(3, 1.0), std::logic_error) << "a candidate not out";
 }
 
 TEST(Search, BadSettingsAreRefusedWithTheReason) {

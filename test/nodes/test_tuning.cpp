@@ -1,7 +1,5 @@
-// The tuning loop's nodes: Optimizer, SequenceMean, RegionScore. The loop runs as in
-// graphs/tune_paper_pipeline.yaml, with a short sequence in place of the bag and a probe in
-// place of the detector: each frame reports the probe's parameter, so the score of a candidate
-// is its own value exactly when its values were in effect for every frame of its evaluation.
+// The tuning loop's nodes: Optimizer, SequenceMean, RegionScore, on the loop of tuning_loop.hpp
+// (workers and racing: test_tuning_workers).
 #include <gmock/gmock.h>
 
 #include <yaml-cpp/yaml.h>
@@ -12,104 +10,14 @@
 
 #include "apex_nodes/types.hpp"
 #include "apex_test/node_harness.hpp"
+#include "tuning_loop.hpp"
 
 using namespace apex_test;
+using namespace apex_test::tuning;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
 namespace {
-
-/** Per frame, sends the value of its parameter `gain`; `size` steps by 2 (odd sizes). */
-class Probe : public Node {
- public:
-  static Manifest manifest() {
-    return Manifest("reports its parameters per frame")
-        .input<int>("in")
-        .output<double>("out")
-        .output<int>("size_out")
-        .param(param::range("gain", 0.0, 100.0, 0.0, 5.0).makeInteractive())
-        .param(param::range("size", 3, 101, 2, 3).makeInteractive());
-  }
-  void process() override {
-    publish("out", param<double>("gain"));
-    publish("size_out", param<int>("size"));
-  }
-};
-
-/** Per frame, scores its interval, choice and flag: 2 at window [20, 60], mode b and on. */
-class ShapeProbe : public Node {
- public:
-  static Manifest manifest() {
-    return Manifest("scores its interval, choice and flag per frame")
-        .input<int>("in")
-        .output<double>("out")
-        .param(param::interval("window", 0.0, 100.0, 0.0, 100.0, 1.0).makeInteractive())
-        .param(param::options("mode", {"a", "b", "c"}, "a").makeInteractive())
-        .param(param::boolean("on", false).makeInteractive());
-  }
-  void process() override {
-    const auto w = param<Interval>("window");
-    publish("out", (param<std::string>("mode") == "b" ? 1.0 : 0.0) + (param<bool>("on") ? 1.0 : 0.0) -
-                       (std::abs(w.low - 20) + std::abs(w.high - 60)) / 100.0);
-  }
-};
-
-const NodeRegistry& registry() {
-  static NodeRegistry* r = [] {
-    auto* reg = new NodeRegistry(pluginRegistry());
-    EXPECT_TRUE(reg->add<Probe>("test/Probe"));
-    EXPECT_TRUE(reg->add<ShapeProbe>("test/ShapeProbe"));
-    return reg;
-  }();
-  return *r;
-}
-
-/** A parameter's value as text; a string as it is. */
-std::string param(Graph& g, const std::string& node, const std::string& name) {
-  const ParamValue v = g.parameterValue(node, name).value();
-  if (const auto* s = std::get_if<std::string>(&v)) return *s;
-  return toText(v);
-}
-
-/** Waits until the optimiser's state starts with `prefix`. */
-bool waitState(Graph& g, const std::string& prefix, double timeout = kWait) {
-  return waitUntil([&] { return param(g, "opt", "state").rfind(prefix, 0) == 0; }, timeout);
-}
-
-std::vector<double> doubles(Collector* c) {
-  std::vector<double> out;
-  for (const auto& m : c->messages())
-    if (auto v = m.as<double>()) out.push_back(*v);
-  return out;
-}
-
-/** sequence → relay → probe → mean → optimiser, the optimiser's `gain` → the probe's gain;
- *  evaluate → restart and reset. Four thread groups. */
-struct Loop {
-  Graph g{registry()};
-  explicit Loop(int frames = 20, const std::string& dims = "[gain 0 100]") {
-    add(g, "test/Sequence", "seq", "player");
-    add(g, "test/Relay", "relay", "one");
-    add(g, "test/Probe", "probe", "two");
-    add(g, "apex_nodes/SequenceMean", "mean");
-    add(g, "apex_nodes/Optimizer", "opt");
-    add(g, "test/Collector", "seen");  // what the probe reports, per frame
-    add(g, "test/Collector", "candidates");  // what the optimiser sends
-    EXPECT_TRUE(g.setParameter("seq", "frames", std::to_string(frames)));
-    EXPECT_TRUE(g.setParameter("opt", "dimensions", dims));
-    link(g, "seq", "out", "relay", "in");
-    link(g, "relay", "out", "probe", "in");
-    link(g, "probe", "out", "mean", "value");
-    link(g, "probe", "out", "seen", "in");
-    link(g, "mean", "mean", "opt", "fitness");
-    link(g, "opt", "gain", "probe", "gain");
-    link(g, "opt", "gain", "candidates", "in");
-    link(g, "opt", "evaluate", "seq", "restart");
-    link(g, "opt", "evaluate", "mean", "reset");
-  }
-  Collector* seen() { return object<Collector>(g, "seen"); }
-  Collector* candidates() { return object<Collector>(g, "candidates"); }
-};
 
 TEST(Optimizer, EachCandidateIsInEffectForEveryFrameOfItsEvaluationAndNoneOfThePrevious) {
   Loop loop(20);
@@ -118,20 +26,20 @@ TEST(Optimizer, EachCandidateIsInEffectForEveryFrameOfItsEvaluationAndNoneOfTheP
   ASSERT_TRUE(g.setParameter("opt", "budget", "15"));
   g.start();
   ASSERT_TRUE(g.fireSlot("opt", "start"));
-  ASSERT_TRUE(waitState(g, "finished")) << param(g, "opt", "state");
+  ASSERT_TRUE(waitState(g, "finished")) << paramText(g, "opt", "state");
   ASSERT_TRUE(g.waitIdle(kWait));
 
   const auto candidates = doubles(loop.candidates());
   ASSERT_EQ(candidates.size(), 16u) << "15 candidates, then the value from before the run";
   EXPECT_EQ(candidates.back(), 5.0);
-  EXPECT_EQ(param(g, "probe", "gain"), "5.0") << "the run gives the tuned parameter its value back";
+  EXPECT_EQ(paramText(g, "probe", "gain"), "5.0") << "the run gives the tuned parameter its value back";
   const auto seen = doubles(loop.seen());
   ASSERT_EQ(seen.size(), 15u * 20u);
   for (std::size_t k = 0; k < 15; ++k)
     for (std::size_t f = 0; f < 20; ++f) ASSERT_EQ(seen[k * 20 + f], candidates[k]) << "evaluation " << k << ", frame " << f;
   const double best = *std::max_element(candidates.begin(), candidates.end() - 1);
-  EXPECT_THAT(param(g, "opt", "state"), HasSubstr("finished after 15 evaluations; best "));
-  EXPECT_THAT(param(g, "opt", "state"), HasSubstr("at {gain: " + toText(best) + "}"));
+  EXPECT_THAT(paramText(g, "opt", "state"), HasSubstr("finished after 15 evaluations; best "));
+  EXPECT_THAT(paramText(g, "opt", "state"), HasSubstr("at {gain: " + toText(best) + "}"));
   EXPECT_EQ(g.nodeStats()[4].error, "");
 }
 
@@ -157,8 +65,8 @@ TEST(Optimizer, TheSameSeedGivesTheSameCandidatesAndApplyBestSetsTheBest) {
   ASSERT_TRUE(g.fireSlot("opt", "apply_best"));
   ASSERT_TRUE(waitState(g, "applied"));
   ASSERT_TRUE(g.waitIdle(kWait));
-  EXPECT_EQ(param(g, "probe", "gain"), toText(best));
-  EXPECT_THAT(param(g, "opt", "state"), HasSubstr("{gain: " + toText(best) + "}"));
+  EXPECT_EQ(paramText(g, "probe", "gain"), toText(best));
+  EXPECT_THAT(paramText(g, "opt", "state"), HasSubstr("{gain: " + toText(best) + "}"));
 }
 
 TEST(Optimizer, RangesAndStepsComeFromTheTunedParameter) {
@@ -205,7 +113,7 @@ TEST(Optimizer, TunesBothEndsOfAnIntervalAChoiceAndAFlag) {
   ASSERT_TRUE(g.setParameter("opt", "population", "20"));
   g.start();
   ASSERT_TRUE(g.fireSlot("opt", "start"));
-  ASSERT_TRUE(waitState(g, "finished", 120)) << param(g, "opt", "state");
+  ASSERT_TRUE(waitState(g, "finished", 120)) << paramText(g, "opt", "state");
   ASSERT_TRUE(g.waitIdle(kWait));
   std::vector<Interval> windows;
   for (const auto& m : object<Collector>(g, "windows")->messages())
@@ -215,10 +123,10 @@ TEST(Optimizer, TunesBothEndsOfAnIntervalAChoiceAndAFlag) {
     const Interval& w = windows[i];
     ASSERT_TRUE(w.low >= 10 && w.low <= w.high && w.high <= 90 && w.low == std::round(w.low)) << w.low << " " << w.high;
   }
-  EXPECT_EQ(param(g, "shape", "window"), "[0.0, 100.0]") << "the run gives the parameters their values back";
-  EXPECT_EQ(param(g, "shape", "mode"), "a");
+  EXPECT_EQ(paramText(g, "shape", "window"), "[0.0, 100.0]") << "the run gives the parameters their values back";
+  EXPECT_EQ(paramText(g, "shape", "mode"), "a");
 
-  const YAML::Node best = YAML::Load(param(g, "opt", "best_values"));
+  const YAML::Node best = YAML::Load(paramText(g, "opt", "best_values"));
   EXPECT_EQ(best["mode"].as<std::string>(), "b");
   EXPECT_TRUE(best["on"].as<bool>());
   EXPECT_NEAR(best["window"][0].as<double>(), 20, 5);
@@ -226,9 +134,9 @@ TEST(Optimizer, TunesBothEndsOfAnIntervalAChoiceAndAFlag) {
   ASSERT_TRUE(g.fireSlot("opt", "apply_best"));
   ASSERT_TRUE(waitState(g, "applied"));
   ASSERT_TRUE(g.waitIdle(kWait));
-  EXPECT_EQ(param(g, "shape", "mode"), "b");
-  EXPECT_EQ(param(g, "shape", "on"), "true");
-  EXPECT_EQ(YAML::Load(param(g, "shape", "window")).as<std::vector<double>>(), best["window"].as<std::vector<double>>());
+  EXPECT_EQ(paramText(g, "shape", "mode"), "b");
+  EXPECT_EQ(paramText(g, "shape", "on"), "true");
+  EXPECT_EQ(YAML::Load(paramText(g, "shape", "window")).as<std::vector<double>>(), best["window"].as<std::vector<double>>());
 }
 
 TEST(Optimizer, AChoiceOfAnOptionTheParameterLacksIsRefusedAtStart) {
@@ -244,12 +152,57 @@ TEST(Optimizer, AChoiceOfAnOptionTheParameterLacksIsRefusedAtStart) {
   EXPECT_THAT(g.setParameter("opt", "dimensions", "[on bool 0 1]").message(), HasSubstr("cannot read '0'"));
 }
 
-/** The lines of a file. */
-std::vector<std::string> lines(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::string> out;
-  for (std::string l; std::getline(in, l);) out.push_back(l);
-  return out;
+/** What describe_space says of the Optimizer's dimensions (python/apex/tuning.py samples it). */
+YAML::Node describedSpace(Graph& g) {
+  g.start();
+  EXPECT_TRUE(g.fireSlot("opt", "describe_space"));
+  EXPECT_TRUE(g.waitIdle(kWait));
+  return YAML::Load(paramText(g, "opt", "space"));
+}
+
+TEST(Optimizer, DescribeSpaceGivesEachDimensionOnItsParametersGrid) {
+  Loop loop(2, "[gain 10.5 20, size 4 50 int]");
+  link(loop.g, "opt", "size", "probe", "size");
+  const YAML::Node numbers = describedSpace(loop.g);
+  ASSERT_EQ(numbers.size(), 2u) << numbers;
+  EXPECT_EQ(numbers[0]["name"].as<std::string>(), "gain");
+  EXPECT_EQ(numbers[0]["kind"].as<std::string>(), "number");
+  EXPECT_EQ(numbers[0]["low"].as<double>(), 10.5);
+  EXPECT_EQ(numbers[0]["high"].as<double>(), 20);
+  EXPECT_FALSE(numbers[0]["step"]) << "a number is continuous";
+  // size is 3, 5, ... 101: within 4 and 50, the first and last of them
+  EXPECT_EQ(numbers[1]["kind"].as<std::string>(), "integer");
+  EXPECT_EQ(numbers[1]["low"].as<int>(), 5);
+  EXPECT_EQ(numbers[1]["high"].as<int>(), 49);
+  EXPECT_EQ(numbers[1]["step"].as<int>(), 2);
+
+  ShapeLoop shapes("[window interval 10.5 90.5, mode choice b c, on bool]");
+  const YAML::Node others = describedSpace(shapes.g);
+  ASSERT_EQ(others.size(), 3u) << others;
+  EXPECT_EQ(others[0]["kind"].as<std::string>(), "interval");
+  EXPECT_EQ(others[0]["low"].as<double>(), 11);
+  EXPECT_EQ(others[0]["high"].as<double>(), 90);
+  EXPECT_EQ(others[0]["step"].as<double>(), 1);
+  EXPECT_EQ(others[1]["kind"].as<std::string>(), "choice");
+  EXPECT_EQ(others[1]["options"].as<std::vector<std::string>>(), (std::vector<std::string>{"b", "c"}));
+  EXPECT_EQ(others[2]["kind"].as<std::string>(), "flag");
+
+  ASSERT_TRUE(shapes.g.setParameter("opt", "dimensions", "[window interval, mode choice, on bool, size 3 9 int]"));
+  EXPECT_TRUE(shapes.g.fireSlot("opt", "describe_space"));
+  ASSERT_TRUE(shapes.g.waitIdle(kWait));
+  std::string error;
+  for (const auto& s : shapes.g.nodeStats())
+    if (s.name == "opt") error = s.error;
+  EXPECT_THAT(error, HasSubstr("dimension 'size': its output feeds no parameter"));
+
+  // a range with no value of the parameter in it: refused, as the start of a run refuses it
+  ASSERT_TRUE(loop.g.setParameter("opt", "dimensions", "[gain, size 16 16 int]"));  // its links stay
+  EXPECT_TRUE(loop.g.fireSlot("opt", "describe_space"));
+  ASSERT_TRUE(loop.g.waitIdle(kWait));
+  for (const auto& s : loop.g.nodeStats())
+    if (s.name == "opt") error = s.error;
+  EXPECT_THAT(error, HasSubstr("dimension 'size 16 16 int': no value of the parameter lies between 16 and 16 (it goes in "
+                               "steps of 2 from 3)"));
 }
 
 TEST(Optimizer, ARunKilledHalfWayContinuesFromItsStudyToTheSameEnd) {
@@ -270,7 +223,7 @@ TEST(Optimizer, ARunKilledHalfWayContinuesFromItsStudyToTheSameEnd) {
     ASSERT_TRUE(waitState(loop.g, "finished"));
     ASSERT_TRUE(loop.g.waitIdle(kWait));
     whole = doubles(loop.candidates());
-    best = param(loop.g, "opt", "best_values");
+    best = paramText(loop.g, "opt", "best_values");
   }
   ASSERT_EQ(whole.size(), 41u);
   {  // the same run, its graph gone half-way with no end (as a kill)
@@ -293,7 +246,7 @@ TEST(Optimizer, ARunKilledHalfWayContinuesFromItsStudyToTheSameEnd) {
   EXPECT_EQ(doubles(loop.candidates()), std::vector<double>(whole.begin() + done, whole.end()))
       << "the evaluations of the study are not made again; the rest are the unbroken run's";
   EXPECT_EQ(loop.seen()->size(), (40 - done) * 3);
-  EXPECT_EQ(param(loop.g, "opt", "best_values"), best);
+  EXPECT_EQ(paramText(loop.g, "opt", "best_values"), best);
   EXPECT_EQ(lines(study).size(), 42u);
 
   // Another seed is another run: its study is refused, naming both
@@ -355,10 +308,10 @@ void loseATargetMidRun(const std::function<void(Graph&)>& cut) {
   ASSERT_TRUE(g.fireSlot("opt", "start"));
   ASSERT_TRUE(waitState(g, "running: evaluation 3"));
   cut(g);
-  ASSERT_TRUE(waitState(g, "stopped")) << param(g, "opt", "state");
+  ASSERT_TRUE(waitState(g, "stopped")) << paramText(g, "opt", "state");
   ASSERT_TRUE(g.waitIdle(kWait));
   EXPECT_THAT(g.nodeStats()[4].error, HasSubstr("dimension 'other' lost its parameter"));
-  EXPECT_EQ(param(g, "probe", "gain"), "5.0") << "the parameter still tuned gets its value back";
+  EXPECT_EQ(paramText(g, "probe", "gain"), "5.0") << "the parameter still tuned gets its value back";
   // the graph still runs: the sequence plays when asked
   const auto before = loop.seen()->size();
   ASSERT_TRUE(g.fireSlot("seq", "restart"));
@@ -390,7 +343,7 @@ TEST(Optimizer, AGraphSavedMidRunLoadsWithAClearErrorAndTheRunGoesOn) {
   for (const auto& s : copy.nodeStats())
     if (s.name == "opt") error = s.error;
   EXPECT_THAT(error, HasSubstr("saved while a run was in progress (running: evaluation"));
-  EXPECT_THAT(param(copy, "opt", "state"), StartsWith("interrupted (running: evaluation"));
+  EXPECT_THAT(paramText(copy, "opt", "state"), StartsWith("interrupted (running: evaluation"));
   ASSERT_TRUE(copy.fireSlot("seq", "restart"));  // a score nobody asked for leaves the error as it is
   ASSERT_TRUE(object<Collector>(copy, "seen")->waitFor(30));
   ASSERT_TRUE(copy.waitIdle(kWait));

@@ -3,10 +3,12 @@
 # launch/tune.launch as `scripts/demo --tune` runs it. Passes if it ends with "tune: OK" (the
 # tuned parameters beat the shipped ones on the held-out bag) and the tuned graph it wrote holds
 # the applied best values; and if the same run with a study file, its runtime killed (SIGKILL)
-# half-way and launched again, ends with the same best as the unbroken one. Writes a JUnit result.
+# half-way and launched again, ends with the same best as the unbroken one; and if two workers with
+# racing end as two workers without, with candidates cut short. Writes a JUnit result.
 #   tune_check.sh RESULT_XML WORK_DIR [FRAMES] [BUDGET]   (with this package's devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"
+source "$(dirname "$0")/master.sh"
 export PATH=/usr/bin:/bin:$PATH
 out=$1
 mkdir -p "$2" && work=$(cd "$2" && pwd)
@@ -21,7 +23,7 @@ for set in "train 1" "test 2"; do
 done
 rm -f "$work/tuned_paper_pipeline.yaml"
 if [ -z "$failure" ]; then
-  port=$((20000 + RANDOM % 20000))
+  port=$(free_port)
   export ROS_MASTER_URI=http://localhost:$port ROS_HOME=${ROS_HOME:-$(mktemp -d)}
   timeout 600 roslaunch -p "$port" apex tune.launch data:="$work" budget:="$budget" >"$work/tune.log" 2>&1
   grep -q '^tune: OK' "$work/tune.log" || fail "the tuning demo did not end with 'tune: OK': $(grep -E '^(tune|held-out|best)' "$work/tune.log" | tr '\n' ' ')"
@@ -58,9 +60,24 @@ if [ -z "$failure" ]; then
     wait "$launch"
     fail "the run with a study file did not reach half its budget alive: $(grep -E '^(tune|best)' "$work/killed.log" | tr '\n' ' ')"
   fi
+
+  # Two workers (copies of the evaluated part), without and with racing: the same best, some cut short
+  for v in "false workers2" "true raced"; do
+    read -r racing name <<<"$v"
+    timeout 600 roslaunch -p "$port" apex tune.launch data:="$work" budget:="$budget" workers:=2 racing:="$racing" \
+      tuned:="tuned_$name.yaml" >"$work/$name.log" 2>&1
+    grep -q '^tune: OK' "$work/$name.log" || fail "with 2 workers (racing $racing) the demo did not end with 'tune: OK'"
+  done
+  two=$(grep '^best on the training bag' "$work/workers2.log") raced=$(grep '^best on the training bag' "$work/raced.log")
+  [ -n "$two" ] && [ "$two" = "$raced" ] || fail "2 workers with racing ended with '$raced', not as without: '$two'"
+  grep -qE '^optimiser: finished after [0-9]+ evaluations \([1-9][0-9]* cut short\)' "$work/raced.log" ||
+    fail "racing cut no candidate short: $(grep '^optimiser' "$work/raced.log")"
 fi
 
 junit_result "$out" tune Tuning "TheOptimizerTunesThePipelineOnHardDataAndTheHeldOutScoreImprovesAndAKilledRunResumes" "$failure"
 grep -E '^(training|best|held-out|tune)' "$work/tune.log" 2>/dev/null
 [ -z "${killed_at:-}" ] || echo "killed after $killed_at of $budget evaluations, launched again: $(grep '^best on' "$work/resumed.log")"
+for name in workers2 raced; do
+  [ -f "$work/$name.log" ] && echo "$name: $(grep -E '^(the run took|optimiser)' "$work/$name.log" | tr '\n' ' ')"
+done
 [ -z "$failure" ] && echo "tuning: OK" || { echo "tuning: $failure"; exit 1; }

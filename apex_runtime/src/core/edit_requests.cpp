@@ -13,7 +13,15 @@ void EditRequests::push(std::weak_ptr<NodeState> node, std::string param, ParamV
       r.value = std::move(value);
       return;
     }
-  queue_.push_back({std::move(node), std::move(param), std::move(value)});
+  queue_.push_back({std::move(node), std::move(param), std::move(value), nullptr});
+  if (!worker_.joinable()) worker_ = std::thread([this] { run(); });
+  cv_.notify_one();
+}
+
+void EditRequests::describe(std::function<void(GraphSnapshot)> done) {
+  std::lock_guard<std::mutex> lock(m_);
+  if (stopped_) return;
+  queue_.push_back({{}, "", ParamValue(), std::move(done)});
   if (!worker_.joinable()) worker_ = std::thread([this] { run(); });
   cv_.notify_one();
 }
@@ -37,6 +45,16 @@ void EditRequests::run() {
     if (stopped_) return;
     Request r = std::move(queue_.front());
     queue_.pop_front();
+    if (r.described) {
+      lock.unlock();
+      try {
+        r.described(describe_());
+      } catch (const std::exception& e) {
+        log(LogLevel::Error, "", std::string("a node's request for the graph's description failed: ") + e.what());
+      }
+      lock.lock();
+      continue;
+    }
     auto node = r.node.lock();
     if (!node) continue;
     lock.unlock();  // the edit waits for thread groups, whose nodes may push meanwhile

@@ -1,7 +1,8 @@
 // Edits a node asks for itself (Node::requestEdit): e.g. a plugin host that learns what its
 // plugin offers only once loaded, in setup(), and must change its own parameters then. Node
 // code runs on a thread group, where an edit cannot be made (it would wait for that very
-// group), so the request waits here and one thread of the graph's applies it as an edit.
+// group), so the request waits here and one thread of the graph's applies it as an edit. The same
+// thread describes the graph for a node that asks (Node::describeGraph).
 #pragma once
 
 #include <condition_variable>
@@ -12,6 +13,7 @@
 #include <string>
 #include <thread>
 
+#include "apex/core/node.hpp"
 #include "apex/core/param.hpp"
 
 namespace apex {
@@ -24,7 +26,10 @@ class EditRequests {
   /** Makes the edit; the node may be gone from the graph by then (check). */
   using Apply = std::function<void(const std::shared_ptr<NodeState>& node, const std::string& param, const ParamValue& value)>;
 
-  explicit EditRequests(Apply apply) : apply_(std::move(apply)) {}
+  /** The graph as plain data, and a maker of graphs like it (Node::describeGraph). */
+  using Describe = std::function<GraphSnapshot()>;
+
+  EditRequests(Apply apply, Describe describe) : apply_(std::move(apply)), describe_(std::move(describe)) {}
   ~EditRequests() { stop(); }
   EditRequests(const EditRequests&) = delete;
   EditRequests& operator=(const EditRequests&) = delete;
@@ -32,6 +37,8 @@ class EditRequests {
   /** Queues a request (replacing one of the same node and parameter not yet applied); its
    *  thread starts at the first. After stop(): dropped. */
   void push(std::weak_ptr<NodeState> node, std::string param, ParamValue value);
+  /** Queues a description of the graph for `done` (called on this thread). After stop(): dropped. */
+  void describe(std::function<void(GraphSnapshot)> done);
   /** Applies nothing more: waits for a request being applied, drops the rest. Idempotent. */
   void stop();
 
@@ -40,10 +47,12 @@ class EditRequests {
     std::weak_ptr<NodeState> node;
     std::string param;
     ParamValue value;
+    std::function<void(GraphSnapshot)> described;  // a description's, not an edit
   };
   void run();
 
   Apply apply_;
+  Describe describe_;
   std::mutex m_;
   std::condition_variable cv_;
   std::deque<Request> queue_;

@@ -30,8 +30,9 @@ constexpr const char* kDefaultGroup = "default";
 
 Graph::Impl::Impl(NodeRegistry registry)
     : registry_(std::move(registry)),
-      edits_(std::make_shared<detail::EditRequests>([this](const NodePtr& node, const std::string& param,
-                                                           const ParamValue& value) { applyRequested(node, param, value); })) {
+      edits_(std::make_shared<detail::EditRequests>(
+          [this](const NodePtr& node, const std::string& param, const ParamValue& value) { applyRequested(node, param, value); },
+          [this] { return snapshot(); })) {
   group(kDefaultGroup);
 }
 
@@ -235,6 +236,7 @@ void Graph::Impl::clearLocked() {
 // ------------------------------------------------------------------ node settings
 
 void Graph::Impl::changedDownstreamOf(NodeState* node, bool itself) {
+  if (!rerun_on_edit_.load()) return;
   std::vector<NodeState*> ups = detail::upstreamOf(node);
   if (itself) ups.push_back(node);
   for (NodeState* up : ups) {

@@ -10,6 +10,7 @@ Graph::~Graph() = default;  // Impl's destructor stops the graph
 const NodeRegistry& Graph::registry() const { return impl_->registry_; }
 NodeRegistry& Graph::registry() { return impl_->registry_; }
 void Graph::setHost(std::shared_ptr<const Host> host) { impl_->setHost(std::move(host)); }
+void Graph::setRerunOnEdit(bool on) { impl_->rerun_on_edit_.store(on); }
 std::uint64_t Graph::revision() const { return impl_->revisions_->visible.load(std::memory_order_relaxed); }
 std::uint64_t Graph::editRevision() const { return impl_->revisions_->edited.load(std::memory_order_relaxed); }
 

@@ -186,6 +186,7 @@ Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
     scope.involve(to.get());
     auto e = std::make_shared<EventEdge>();
     e->from = from.get(), e->trigger = s.index, e->to = to.get(), e->slot = d.index;
+    e->to_source = to->manifest().inputs.empty();
     from->trigger_edges[s.index].push_back(e);
     to->slot_edges[d.index].push_back(e);
     ++links_;

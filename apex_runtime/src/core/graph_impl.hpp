@@ -128,6 +128,7 @@ struct Graph::Impl {
 
   NodeRegistry registry_;
   std::shared_ptr<const Host> host_;  // edit_mutex_
+  std::atomic<bool> rerun_on_edit_{true};  // Graph::setRerunOnEdit
   mutable std::mutex edit_mutex_;  // serialises edits and reads of the structure
   std::map<std::string, NodePtr> nodes_;
   std::map<std::uint64_t, detail::NodeState*> order_;  // insertion order

@@ -69,6 +69,16 @@ GraphDescription Graph::Impl::describe() const {
   return describeLocked();
 }
 
+GraphSnapshot Graph::Impl::snapshot() const {
+  auto lock = lockEdits();
+  auto make = [registry = registry_, host = host_] {
+    auto g = std::make_unique<Graph>(registry);
+    if (host) g->setHost(host);
+    return g;
+  };
+  return {describeLocked(), make};
+}
+
 std::vector<ConnectionDescription> Graph::Impl::connections() const {
   auto lock = lockEdits();
   std::vector<ConnectionDescription> out;

@@ -93,6 +93,24 @@ void Node::requestEdit(std::string_view name, ParamValue value) {
   if (s.edits) s.edits->push(s.weak_from_this(), std::string(name), std::move(value));
 }
 
+void Node::runLater(std::function<void()> fn) {
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
+  s.postFromAnywhere([fn = std::move(fn)](detail::NodeState& n) { n.runHandler("a function it ran later", fn); });
+}
+
+void Node::describeGraph(std::function<void(const GraphSnapshot&)> done) {
+  auto& s = stateOf(state_.load(std::memory_order_acquire));
+  if (!s.edits) return;
+  std::weak_ptr<detail::NodeState> weak = s.weak_from_this();
+  s.edits->describe([weak, done = std::move(done)](GraphSnapshot d) {
+    auto n = weak.lock();
+    if (!n) return;
+    auto shared = std::make_shared<GraphSnapshot>(std::move(d));
+    n->postFromAnywhere(
+        [done, shared](detail::NodeState& state) { state.runHandler("its graph's description", [&] { done(*shared); }); });
+  });
+}
+
 void Node::trigger(std::string_view name) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findTrigger(name);

@@ -18,13 +18,17 @@ void NodeState::runSlot(int slot) {
     return;
   }
   if (slot >= static_cast<int>(manifest().slots.size())) return;  // posted before an interface change
-  const std::string& slot_name = manifest().slots[slot].name;
+  const auto& handler = manifest().slots[slot].handler;
+  runHandler("slot '" + manifest().slots[slot].name + "'", [&] { handler(*node); });
+}
+
+void NodeState::runHandler(const std::string& what, const std::function<void()>& fn) {
+  if (!node) return;  // a placeholder
   in_handler_ = true;
-  const std::string what = "slot '" + slot_name + "'";
-  const bool ok = guarded(what.c_str(), [&] { manifest().slots[slot].handler(*node); });
+  const bool ok = guarded(what.c_str(), fn);
   in_handler_ = false;
   reported_ = false;
-  if (ok && !sendFromSlot(slot_name)) held_triggers_.clear();  // its events would act on values that did not go out
+  if (ok && !sendFromSlot(what)) held_triggers_.clear();  // its events would act on values that did not go out
   if (!ok) {
     for (auto& out : outputs) out.pending = Message();
     held_triggers_.clear();
@@ -51,8 +55,8 @@ bool NodeState::sendFromSlot(const std::string& slot) {
     for (auto& e : out.edges)
       if (!e->to_param && e->unread.load(std::memory_order_acquire)) busy = e.get();
     if (busy) {
-      setError(nodeLabel(name, type->id) + " slot '" + slot + "' published on output '" + manifest().outputs[i].name +
-               "' while '" + busy->to->name + "' had not read its last message: not sent");
+      setError(nodeLabel(name, type->id) + " " + slot + " published on output '" + manifest().outputs[i].name + "' while '" +
+               busy->to->name + "' had not read its last message: not sent");
       all = false;
       continue;
     }
@@ -106,7 +110,7 @@ void NodeState::fireTrigger(int trigger) {
     held_triggers_.push_back(trigger);
     return;
   }
-  for (auto& e : trigger_edges[trigger]) {
+  const auto send = [&](const std::shared_ptr<EventEdge>& e) {
     // enable/disable set a state: one dropped would leave the node in the wrong one for good
     const bool sets_state = e->slot == kEnableIndex || e->slot == kDisableIndex;
     if (e->pending.fetch_add(1, std::memory_order_relaxed) >= kMaxPendingEvents && !sets_state) {  // the slot is far behind
@@ -116,13 +120,19 @@ void NodeState::fireTrigger(int trigger) {
             nodeLabel(e->to->name) + " slot '" + e->to->manifest().slots[e->slot].name + "' runs slower than " + nodeLabel(name) +
                 " fires '" + manifest().triggers[trigger].name + "': with " + std::to_string(kMaxPendingEvents) +
                 " events waiting, further ones are dropped until it catches up");
-      continue;
+      return;
     }
     e->to->post([e](NodeState& n) {
       e->pending.fetch_sub(1, std::memory_order_relaxed);
       n.runSlot(e->slot);
     });
-  }
+  };
+  // Sources last: what a source sends after its event (a player's restart) finds every node
+  // downstream already told (a mean's reset), since their mail is posted before its first frame is.
+  for (const auto& e : trigger_edges[trigger])
+    if (!e->to_source) send(e);
+  for (const auto& e : trigger_edges[trigger])
+    if (e->to_source) send(e);
 }
 
 }  // namespace detail

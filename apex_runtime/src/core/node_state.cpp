@@ -346,6 +346,17 @@ void NodeState::clearError() {
 
 void NodeState::post(std::function<void(NodeState&)> fn) { group->post(Mail{shared_from_this(), std::move(fn)}); }
 
+void NodeState::postFromAnywhere(std::function<void(NodeState&)> fn) {
+  auto self = weak_from_this().lock();
+  if (!self) return;  // being destroyed (the node's own members may call in while they stop)
+  std::lock_guard<std::mutex> lock(group_mutex);  // against a move to another group
+  if (!group) return;
+  // Posted even if the node was removed meanwhile: its group skips the mail, and the reference
+  // taken here goes on that thread. Dropped here, it could be the last one, destroying the node on
+  // the caller's thread: an Optimizer's copy's, which its destructor would have to join.
+  group->post(Mail{std::move(self), std::move(fn)});
+}
+
 void NodeState::notifyNewData() {
   if (!driven()) return;  // only a driven source waits for data (reserveAtZero relies on it)
   std::lock_guard<std::mutex> lock(group_mutex);

@@ -74,6 +74,7 @@ struct EventEdge {
   int trigger = 0;
   NodeState* to = nullptr;
   int slot = 0;
+  bool to_source = false;  ///< the receiver has no inputs (when connected): its events go last
   /** Events posted to the receiver and not yet run; beyond kMaxPendingEvents one is dropped
    *  (NodeState::fireTrigger). `dropped` counts them for the warning. */
   std::atomic<int> pending{0};
@@ -194,6 +195,9 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void runSetup();
   void applyEnabled();
   void runSlot(int slot);
+  /** Runs `fn` as a slot handler runs: what it publishes leaves when it returns, then its
+   *  events; a throw is the node's error, named by `what` (Node::runLater). */
+  void runHandler(const std::string& what, const std::function<void()>& fn);
   /** Node::downstreamChanged(); a throw is the node's error. */
   void runDownstreamChanged();
   /** Applies a value that came into a parameter (on its group's thread); `counted`: the mail that
@@ -222,6 +226,9 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
     }
   }
   void post(std::function<void(NodeState&)> fn);
+  /** post() from any thread, at any time (Node::runLater): nothing once the node is being
+   *  destroyed; skipped by its group once it is removed. */
+  void postFromAnywhere(std::function<void(NodeState&)> fn);
   void notifyNewData();
   void notifyAfter(double seconds);
   /** Something downstream changed (an edit): Node::downstreamChanged() on the group thread now,

@@ -478,6 +478,9 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
   installRosconsoleSink();
   for (auto& s : serveLoggerServices(impl_->pnh)) impl_->services.push_back(std::move(s));
   impl_->loadTypes();
+  bool rerun = true;  // ~rerun_on_edit: false for headless tuning, where every pass is a replay
+  impl_->pnh.param("rerun_on_edit", rerun, true);
+  impl_->graph.setRerunOnEdit(rerun);
   impl_->loadStartupGraph();  // trusted, like ~overrides: the operator's own launch file
   impl_->loadRoots();  // its folders among them
   impl_->recovery = std::make_unique<Recovery>(ownFolder() + "/recovery", impl_->pnh.getNamespace());

@@ -167,13 +167,15 @@ class Collector : public Node {
   std::vector<Message> got_;
 };
 
-/** A driven source playing 0..frames-1 on `restart`, then the end of the sequence. */
+/** A driven source playing 0..frames-1 on `restart`, then the end of the sequence (at once after
+ *  `end_pass`, as BagReader's). */
 class Sequence : public Node {
  public:
   static Manifest manifest() {
     return Manifest("plays a short sequence")
         .output<int>("out")
         .slot("restart", &Sequence::restart)
+        .slot("end_pass", &Sequence::endPass)
         .trigger("finished")
         .param(param::integer("frames", 3))
         .driven();
@@ -182,9 +184,14 @@ class Sequence : public Node {
     next_ = 0;
     notifyNewData();
   }
+  void endPass() {
+    if (next_ < 0) return;
+    next_ = param<int>("frames");
+    notifyNewData();
+  }
   void process() override {
     if (next_ < 0) return;
-    if (next_ == param<int>("frames")) {
+    if (next_ >= param<int>("frames")) {
       next_ = -1;
       endSequence();
       trigger("finished");

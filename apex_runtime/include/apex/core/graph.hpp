@@ -39,6 +39,11 @@ class Graph {
   NodeRegistry& registry();
   /** @brief What nodes added from now on see as Node::host(): set it before adding nodes. */
   void setHost(std::shared_ptr<const Host> host);
+  /** @brief Whether an edit downstream of a source that holds a frame (a paused player's, or
+   *  one at the end of its pass) has the source send that frame again, so the edit shows on it
+   *  (Node::downstreamChanged). On by default; off for a graph that replays whole passes (the
+   *  Optimizer's copies), where the frame sent again would be counted into the next pass. */
+  void setRerunOnEdit(bool on);
 
   // --- edits: each returns why it was refused; a refused edit changes nothing ---
   /** @brief Adds a node of a registered type. An empty name is generated from the

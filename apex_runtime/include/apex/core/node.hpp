@@ -4,18 +4,21 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "apex/core/description.hpp"
 #include "apex/core/log.hpp"
 #include "apex/core/message.hpp"
 #include "apex/core/param.hpp"
 
 namespace apex {
 struct Manifest;
-}
+class Graph;
+}  // namespace apex
 
 namespace apex {
 
@@ -28,6 +31,13 @@ struct ParamTarget {
   ParamSpec spec;  ///< its parameter's declaration (name, kind, range, step)
   ParamValue value;  ///< the value it holds now
 };
+/** @brief What Node::describeGraph hands over: the graph as plain data, and a maker of new empty
+ *  graphs with its node types and host, e.g. for copies of a part of it that run beside it. */
+struct GraphSnapshot {
+  GraphDescription description;
+  std::function<std::unique_ptr<Graph>()> makeGraph;
+};
+
 namespace detail {
 class NodeState;
 /** Resolves every typed handle of `node` against `iface`; the first error, naming the handle. */
@@ -85,6 +95,14 @@ class Node {
   /** @brief notifyNewData() after a delay, from the node's thread group's timer (no
    *  thread of its own): a source at a rate calls it from process(). */
   void notifyAfter(double seconds);
+  /** @brief Runs `fn` soon on the node's thread group as a slot handler runs (it may publish,
+   *  trigger and report errors), never beside process(). Callable from any thread once the node is
+   *  in a graph, e.g. from a worker it started or from another graph's tap; dropped if the node
+   *  has left its graph by then. */
+  void runLater(std::function<void()> fn);
+  /** @brief A source that keeps only the newest lost `n` frames: newer ones came before the graph
+   *  took them. Counted in its status (NodeStats::dropped). Callable from any thread. */
+  void countDropped(std::uint64_t n = 1);
 
  protected:
   /** @brief The message at an input this firing (Nothing if none). */
@@ -138,6 +156,12 @@ class Node {
    *  within the call, and then parameterChanged() runs as after any edit. Dropped if the node is
    *  gone by then; a value its interface refuses becomes the node's error. */
   void requestEdit(std::string_view name, ParamValue value);
+
+  /** @brief Asks for the whole graph as plain data (Graph::describe()) and a maker of graphs like
+   *  it: made soon by a thread of the graph's (node code cannot read its graph: an edit may be
+   *  waiting for its thread group) and handed to `done` as runLater() runs a function. From
+   *  setup(), process() or a slot handler; dropped if the node has left the graph by then. */
+  void describeGraph(std::function<void(const GraphSnapshot&)> done);
 
   /** @brief Sends the end-of-sequence token on every output this firing. */
   void endSequence();

@@ -6,8 +6,10 @@
 
 #include <ros/ros.h>
 
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "apex/core/message.hpp"
@@ -71,13 +73,21 @@ Inspector findInspector(const TypeInfo* type);
  *  about a type that has none. */
 std::vector<std::string> inspectedTypes();
 
+/** @brief How many messages an inspected port's topic keeps for a subscriber that is behind: a
+ *  number or a word is a series where each one counts (a plot, a script scoring every frame: with
+ *  1, a burst lost some), anything larger only its newest (a viewer of images or clouds). */
+template <class T>
+constexpr std::uint32_t inspectQueue() {
+  return std::is_arithmetic_v<T> || std::is_same_v<T, std::string> ? 1000 : 1;
+}
+
 template <class T, class RosMsg, class Convert>
 bool addInspector(Convert convert) {
   return registerInspector(
       typeOf<T>(),
       Inspector{ros::message_traits::datatype<RosMsg>(),
                 [](ros::NodeHandle& nh, const std::string& topic, const ros::SubscriberStatusCallback& connected) {
-                  return nh.advertise<RosMsg>(topic, 1, connected);
+                  return nh.advertise<RosMsg>(topic, inspectQueue<T>(), connected);
                 },
                 [convert](const ros::Publisher& pub, const Message& m) {
                   if (auto p = m.as<T>()) pub.publish(convert(*p));
