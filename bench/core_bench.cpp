@@ -181,9 +181,10 @@ double runChain(Graph& g, int k, long messages) {
   return seconds(t0, t1) * 1e9 / double(messages) / k;
 }
 
-double apexHopNs(int k, long messages, const char* relay = "bench/Relay") {
+double apexHopNs(int k, long messages, const char* relay = "bench/Relay", bool traced = false) {
   Graph g(registry());
   chain(g, "bench/Source", k, 1 << 30, relay);
+  g.setTracing(traced);
   return runChain(g, k, messages);
 }
 
@@ -345,6 +346,22 @@ int main(int argc, char** argv) {
     std::printf("| %d | %s | %s | %s | %s | %s | %.2fx | %.2fx | %.2fx |\n", k, apex_ns.text().c_str(), handles_ns.text().c_str(),
                 take_ns.text().c_str(), tbb.empty() ? "-" : tbb.text().c_str(), base.text("%.1f").c_str(), ratio(apex_ns),
                 ratio(handles_ns), ratio(take_ns));
+  }
+
+  std::printf("\n## The frame trace's cost per hop\n\n");
+  std::printf("The chain above (APEX, take: the cheapest hop, so the largest share) with the frame trace off and\n");
+  std::printf("on (Graph::setTracing: every firing timed and kept in its group's ring), interleaved, %d repetitions:\n", reps);
+  std::printf("median (min–max) ns per hop. A firing of a real node takes microseconds to milliseconds; the\n");
+  std::printf("demo's frame rate with the trace on and off is in \"What the panel's previews and the frame trace cost\".\n\n");
+  std::printf("| k | trace off | trace on | on / off |\n|---|---|---|---|\n");
+  for (int k : {1, 16}) {
+    const long m = std::max<long>(2000, hop_messages / k);
+    Spread off, on;
+    for (int r = 0; r < reps; ++r) {
+      off.add(apexHopNs(k, m, "bench/TakeRelay"));
+      on.add(apexHopNs(k, m, "bench/TakeRelay", true));
+    }
+    std::printf("| %d | %s | %s | %.2fx |\n", k, off.text().c_str(), on.text().c_str(), on.median() / off.median());
   }
   if (hop_only) return 0;
 

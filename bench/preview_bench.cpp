@@ -1,8 +1,10 @@
-// What the panel's previews cost the graph: the demo pipeline plays its bag as fast as it
-// can; every output that carries an image or a number is previewed (as the panel does with
-// Previews on and every node in view), and this node subscribes to all previews (on) or
-// to none (off), alternately. Throughput: frames per second of the overlay node, from
-// ~status. Run by scripts/bench through bench/previews.launch; writes a markdown section.
+// What the panel's previews and the frame trace cost the graph: the demo pipeline plays its bag
+// as fast as it can; every output that carries an image or a number is previewed (as the panel
+// does with Previews on and every node in view), and this node subscribes to all previews (on)
+// or to none (off); or the frame trace is on (~trace). The three interleaved. Throughput: frames
+// per second of the overlay node, from ~status. Run by scripts/bench through
+// bench/previews.launch; writes a markdown section.
+#include <apex/FrameTrace.h>
 #include <apex/GetGraph.h>
 #include <apex/Inspect.h>
 #include <apex/RuntimeStatus.h>
@@ -93,24 +95,36 @@ int main(int argc, char** argv) {
     }
     return subs;
   };
+  auto trace = [](const std::string& command) {
+    apex::FrameTrace t;
+    t.request.command = command;
+    return ros::service::call("/apex/trace", t) && t.response.success;
+  };
   throughput(2.0);  // warm up
-  apex_bench::Spread off, on;
-  for (int r = 0; r < reps; ++r) {  // interleaved: a slow moment of the machine hits both
+  apex_bench::Spread off, on, traced;
+  for (int r = 0; r < reps; ++r) {  // interleaved: a slow moment of the machine hits all three
     off.add(throughput(seconds));
-    auto subs = subscribeAll();
-    on.add(throughput(seconds));
+    {
+      auto subs = subscribeAll();
+      on.add(throughput(seconds));
+    }
+    if (!trace("start")) return 1;
+    traced.add(throughput(seconds));
+    if (!trace("stop")) return 1;
   }
   std::ofstream out(result);
-  out << "## What the panel's previews cost the graph\n\n"
+  out << "## What the panel's previews and the frame trace cost the graph\n\n"
       << "The demo pipeline (graphs/paper_pipeline.yaml) plays the demo bag as fast as it can. Every output that\n"
       << "carries an image or a number is previewed (" << topics.size()
       << " ports: what the panel's Previews ask for with every node\n"
       << "in view): at most 5 a second, images scaled to 160 px wide. A subscriber in another process takes all\n"
-      << "previews (on) or none (off), alternately, " << reps << " times " << seconds
-      << " s each: median (min–max) frames per second\n"
-      << "of the overlay node, from ~status; ratio of the medians. Target: a cost below 5% (ratio above 0.95).\n\n"
-      << "| previews off | previews on, all nodes | on / off |\n|---|---|---|\n"
-      << "| " << off.text("%.1f") << " | " << on.text("%.1f") << " | " << ratio(on.median() / off.median()) << "x |\n\n"
+      << "previews (on) or none (off); or, without previews, the frame trace is on (~trace start: every firing\n"
+      << "timed and kept). Interleaved, " << reps << " times " << seconds << " s each: median (min–max) frames per second\n"
+      << "of the overlay node, from ~status; ratios of the medians. Targets: previews cost below 5% (ratio\n"
+      << "above 0.95), the trace on at most 5%.\n\n"
+      << "| off | previews on, all nodes | trace on | previews / off | trace / off |\n|---|---|---|---|---|\n"
+      << "| " << off.text("%.1f") << " | " << on.text("%.1f") << " | " << traced.text("%.1f") << " | "
+      << ratio(on.median() / off.median()) << "x | " << ratio(traced.median() / off.median()) << "x |\n\n"
       << "(" << g_received << " previews received during the run.)\n";
   return 0;
 }

@@ -61,10 +61,13 @@ class TopicSource : public apex::Node {
   virtual void send(const MsgPtr& msg) = 0;
   /** For the subscription's callback, on a ROS thread. */
   void received(const MsgPtr& msg) {
+    bool lost;
     {
       std::lock_guard<std::mutex> lock(m_);
+      lost = latest_ != nullptr && !holding_;  // the graph had not taken the last one: it is dropped
       latest_ = msg;
     }
+    if (lost) countDropped();
     if (!holding_) notifyNewData();
   }
 

@@ -189,6 +189,15 @@ QWidget* GraphEditor::buildToolBar() {
     fillPresetMenu(*preset_menu);
   });
   presets->setMenu(preset_menu);
+  trace_ =
+      button("trace", "Trace", "the frame trace: every firing of every thread group, saved for Perfetto or chrome://tracing");
+  trace_->setPopupMode(QToolButton::InstantPopup);
+  auto* trace_menu = new QMenu(trace_);
+  connect(trace_menu, &QMenu::aboutToShow, this, [this, trace_menu] {
+    trace_menu->clear();
+    fillTraceMenu(*trace_menu);
+  });
+  trace_->setMenu(trace_menu);
   auto* fresh = button("new", "New", "remove every node: start from an empty graph (asks first; starts a fresh history)");
   connect(fresh, &QToolButton::clicked, this, [this] {
     const auto answer = QMessageBox::question(this, "New graph",
@@ -218,7 +227,7 @@ QWidget* GraphEditor::buildToolBar() {
   auto* buttons = new QToolBar;
   buttons->setObjectName("buttons");
   buttons->setToolButtonStyle(Qt::ToolButtonTextOnly);
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews, presets, fresh, save, load, whole_})
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews, presets, trace_, fresh, save, load, whole_})
     buttons->addWidget(b);
   rows->addWidget(buttons);
   return bar;

@@ -1,8 +1,11 @@
 // GraphEditor's menus and dialogs: a node's, a port's (with "Show in rviz"), a parameter's, the
 // canvas's and the presets' menus; asking a name for a preset or a node.
 #include "apex_rviz_plugin/graph_editor.hpp"
+#include "apex_rviz_plugin/file_dialog.hpp"
 #include "apex_rviz_plugin/rviz_displays.hpp"
 
+#include <QDir>
+#include <QFileInfo>
 #include <QInputDialog>
 #include <QMenu>
 #include <QMessageBox>
@@ -197,6 +200,27 @@ void GraphEditor::askPresetName(const QStringList& nodes) {
     if (!name.trimmed().isEmpty()) emit presetSaveRequested(name.trimmed(), nodes);
   });
   ask->open();
+}
+
+void GraphEditor::fillTraceMenu(QMenu& menu) {
+  if (tracing_) menu.addAction("Stop tracing", this, [this] { emit traceRequested("stop", "", 0); });
+  else menu.addAction("Start tracing", this, [this] { emit traceRequested("start", "", 0); });
+  auto save = [this](double seconds) {
+    const QString folder = QFileInfo(last_path_).dir().path();
+    const FileDialogSpec spec{"trace_dialog",           "Save trace", folder + "/trace.json", FileDialogSpec::Mode::Save,
+                              "Chrome traces (*.json)", "json"};
+    openFileDialog(file_dialog_, this, spec,
+                   [this, seconds](const QString& path) { emit traceRequested("save", path, seconds); });
+  };
+  menu.addAction("Save the last 10 s...", this, [save] { save(10); })->setObjectName("trace_save_10");
+  menu.addAction("Save all kept...", this, [save] { save(0); })->setObjectName("trace_save_all");
+}
+
+void GraphEditor::showTracing(bool on) {
+  if (on == tracing_) return;
+  tracing_ = on;
+  trace_->setText(on ? "Trace ●" : "Trace");
+  trace_->setStyleSheet(on ? "color: #c03030;" : "");
 }
 
 void GraphEditor::showPresetDiff(const QString& name, const QString& text) {

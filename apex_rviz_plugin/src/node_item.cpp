@@ -132,8 +132,7 @@ void NodeItem::update(const apex::NodeInfo& node) {
   if (!typing && paramsKey() != params_key_) return build();  // expanded, collapsed, pinned, or a value set
   if (!typing && wantedWidth() != width_) return build();  // a longer path, group or type: wider
   if (transport_) transport_->show(info_);
-  setToolTip(QString::fromStdString(info_.error + (info_.error.empty() || info_.keeps.empty() ? "" : "\n") +
-                                    (info_.keeps.empty() ? "" : "Keeps from frame to frame: " + info_.keeps)));
+  updateToolTip();
   QGraphicsObject::update();
 }
 
@@ -172,8 +171,7 @@ void NodeItem::build() {
     for (const auto& name : previewPorts()) height_ += imageType(port(name, true)->port().type) ? kThumb + 4 : kSpark;
   if (isOptimizer()) height_ += kPlot;  // its progress
   height_ += 2 * kRow;  // timing and error lines
-  setToolTip(QString::fromStdString(info_.error + (info_.error.empty() || info_.keeps.empty() ? "" : "\n") +
-                                    (info_.keeps.empty() ? "" : "Keeps from frame to frame: " + info_.keeps)));
+  updateToolTip();
 }
 
 QWidget* NodeItem::buildParams() {
@@ -270,17 +268,15 @@ double NodeItem::textWidth() const {
 }
 
 void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
-  timing_ = QString("%1 ms (max %2) · %3 Hz · %4 firings")
-                .arg(s.mean_ms, 0, 'f', 2)
-                .arg(s.max_ms, 0, 'f', 2)
-                .arg(rate_hz, 0, 'f', 1)
-                .arg(s.firings);
+  timing_ = QString("%1 ms (p95 %2) · %3 Hz · ").arg(s.mean_ms, 0, 'f', 2).arg(s.p95_ms, 0, 'f', 2).arg(rate_hz, 0, 'f', 1);
+  // live frames: how old they are (since their stamp) when this node is done with them
+  timing_ += s.latency_ms >= 0 ? QString("stamp +%1 ms").arg(s.latency_p50_ms, 0, 'f', 1) : QString("%1 firings").arg(s.firings);
   firings_ = s.firings;
   rate_hz_ = rate_hz;
   info_.state = s.state;
   info_.error = s.error;
   waiting_ = QString::fromStdString(s.waiting_for);
-  setToolTip(QString::fromStdString(s.error.empty() ? s.waiting_for : s.error));
+  updateToolTip();
   QGraphicsObject::update();
 }
 
@@ -522,6 +518,14 @@ void NodeItem::mouseReleaseEvent(QGraphicsSceneMouseEvent* e) {
   QGraphicsObject::mouseReleaseEvent(e);
   if (dragged_) emit moved(QString::fromStdString(info_.name), pos());
   dragged_ = false;
+}
+
+/** Its error, else what it waits for; then what it keeps from frame to frame (a status must not
+ *  drop that line: the type's list brings it once). */
+void NodeItem::updateToolTip() {
+  const std::string first = !info_.error.empty() ? info_.error : waiting_.toStdString();
+  const std::string keeps = info_.keeps.empty() ? "" : "Keeps from frame to frame: " + info_.keeps;
+  setToolTip(QString::fromStdString(first + (first.empty() || keeps.empty() ? "" : "\n") + keeps));
 }
 
 }  // namespace apex_rviz_plugin

@@ -24,6 +24,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   connect(&link_, &RuntimeLink::statusReceived, this, [this](const apex::RuntimeStatus& s) {
     editor_->scene()->showStatus(s);
     editor_->showUnsaved(s.unsaved);
+    editor_->showTracing(s.tracing);
     emit statusShown();
   });
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
@@ -102,6 +103,13 @@ void PanelWidget::connectEditor() {
   connect(e, &GraphEditor::fireSlotRequested, this, &PanelWidget::onFireSlotRequested);
   connect(e, &GraphEditor::saveRequested, this, &PanelWidget::onSaveRequested);
   connect(e, &GraphEditor::loadRequested, this, &PanelWidget::onLoadRequested);
+  connect(e, &GraphEditor::traceRequested, this, [this](const QString& command, const QString& path, double seconds) {
+    link_.trace(command.toStdString(), path.toStdString(), seconds, [this, command](bool ok, const std::string& m, bool on) {
+      if (!ok) return report(ok, m, "trace " + command);
+      editor_->showTracing(on);
+      editor_->showMessage(QString::fromStdString(m), false);
+    });
+  });
   connect(e, &GraphEditor::newRequested, this, &PanelWidget::onNewRequested);
   connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
   // what is shown: inspections, previews, presets, the level

@@ -4,6 +4,7 @@
 
 #include <apex/Control.h>
 #include <apex/FireSlot.h>
+#include <apex/FrameTrace.h>
 #include <apex/GetGraph.h>
 #include <apex/Inspect.h>
 #include <apex/ListNodeTypes.h>
@@ -285,6 +286,21 @@ void RuntimeLink::saveGraph(const std::string& path, Done done) {
   apex::SaveGraph::Request req;
   req.path = path;
   callOne<apex::SaveGraph>("save_graph", req, std::move(done));
+}
+
+void RuntimeLink::trace(const std::string& command, const std::string& path, double seconds,
+                        std::function<void(bool, const std::string&, bool tracing)> done) {
+  apex::FrameTrace::Request req;
+  req.command = command, req.path = path, req.seconds = seconds;
+  const std::string name = service("trace");
+  using Out = std::tuple<bool, std::string, bool>;
+  async<Out>(
+      [name, req] {
+        std::string m;
+        auto [ok, res] = callService<apex::FrameTrace>(name, req, &m);
+        return Out{ok, m, res.tracing};
+      },
+      [done](const Out& r) { done(std::get<0>(r), std::get<1>(r), std::get<2>(r)); });
 }
 
 void RuntimeLink::loadGraph(const std::string& path, std::function<void(bool, const std::string&, std::uint64_t revision)> done) {

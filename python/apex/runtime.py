@@ -8,8 +8,8 @@ import rospy
 import yaml
 
 from apex.msg import RuntimeStatus
-from apex.srv import (AddNode, Connect, Control, FireSlot, GetGraph, Group, Inspect, ListNodeTypes, LoadGraph,
-                      RemoveNode, RenameNode, SaveGraph, SetEnabled, SetInteractive, SetParameter, SetThreadGroup,
+from apex.srv import (AddNode, Connect, Control, FireSlot, FrameTrace, GetGraph, Group, Inspect, ListNodeTypes,
+                      LoadGraph, RemoveNode, RenameNode, SaveGraph, SetEnabled, SetInteractive, SetParameter, SetThreadGroup,
                       SetUi, Ungroup)
 
 _SERVICES = {
@@ -17,7 +17,7 @@ _SERVICES = {
     'disconnect': Connect, 'set_parameter': SetParameter, 'set_interactive': SetInteractive,
     'set_enabled': SetEnabled, 'set_thread_group': SetThreadGroup, 'set_ui': SetUi, 'fire_slot': FireSlot,
     'group': Group, 'ungroup': Ungroup, 'rename_node': RenameNode, 'get_graph': GetGraph,
-    'load_graph': LoadGraph, 'save_graph': SaveGraph, 'control': Control, 'inspect': Inspect,
+    'load_graph': LoadGraph, 'save_graph': SaveGraph, 'control': Control, 'inspect': Inspect, 'trace': FrameTrace,
 }
 
 
@@ -240,6 +240,17 @@ class Runtime:
         ``('/apex/inspect/count/count', 'std_msgs/Int32')``."""
         res = self._call('inspect', node=node, port=port, enable=enable, preview=preview)
         return res.topic, res.message_type
+
+    def trace(self, command):
+        """The frame trace: ``'start'`` (each thread group keeps its last firings), ``'stop'`` or
+        ``'status'``; returns whether it is on. See :meth:`save_trace`."""
+        return self._call('trace', command=command).tracing
+
+    def save_trace(self, path='', seconds=0):
+        """Saves the firings traced in the last ``seconds`` (0: every one kept) as Chrome trace
+        event JSON (Perfetto, chrome://tracing) to a file in the runtime's file roots (empty:
+        ``trace_<date>_<time>.json`` in the first). Returns the absolute path written."""
+        return self._call('trace', command='save', path=path, seconds=seconds).path
 
     # ------------------------------------------------------------------ reading the graph
 

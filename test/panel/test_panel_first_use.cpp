@@ -14,7 +14,9 @@
 #include <QScrollBar>
 
 #include <algorithm>
+#include <fstream>
 #include <functional>
+#include <iterator>
 
 #include "apex_rviz_plugin/quick_add.hpp"
 
@@ -59,6 +61,25 @@ class FirstUseTest : public PanelWidgetTest {
     (void)QTest::qWaitFor([&] { return shown; }, 3000);  // the caller checks what showed
     return seen;
   }
+  /** Clicks tool button `name` and, in the menu it pops up, the entry whose text starts with `entry`
+   *  (as a person does: the menu shows, the entry is picked, the menu closes). */
+  bool pickFromButtonMenu(const char* name, const QString& entry) {
+    QAction* picked = nullptr;
+    QTimer poll;
+    poll.setInterval(10);
+    QObject::connect(&poll, &QTimer::timeout, [&] {
+      auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
+      if (!menu) return;
+      for (QAction* a : menu->actions())
+        if (a->text().startsWith(entry)) picked = a;
+      menu->close();
+    });
+    poll.start();
+    QTest::mouseClick(panel.editor()->findChild<QToolButton*>(name), Qt::LeftButton);  // returns once the menu closed
+    poll.stop();
+    if (picked) picked->trigger();
+    return picked != nullptr;
+  }
   /** A right-click's menu event at scene point `at` (as the window system sends after the press). */
   void contextMenuAt(QPointF at) {
     const QPoint p = view->mapFromScene(at);
@@ -99,6 +120,43 @@ TEST_F(FirstUseTest, SaveAddsYamlToANameTypedWithoutIt) {
   ASSERT_TRUE(QTest::qWaitFor([&] { return fs::exists(fs::path(g_bag).parent_path() / "blur_canny.yaml"); }, kWaitMs))
       << panel.editor()->message().toStdString();
   EXPECT_FALSE(fs::exists(fs::path(g_bag).parent_path() / "blur_canny"));
+}
+
+TEST_F(FirstUseTest, TheTraceButtonStartsTheTraceAndSavesItAsChromeTraceJson) {
+  emptyGraph();
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "traced_clock", "{rate: 50.0}"));
+  waitPlaced("traced_clock");
+  auto* trace = panel.editor()->findChild<QToolButton*>("trace");
+  ASSERT_TRUE(trace);
+  ASSERT_TRUE(pickFromButtonMenu("trace", "Start tracing"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return trace->text() == "Trace ●"; }, kWaitMs)) << panel.editor()->message().toStdString();
+  const fs::path file = fs::path(g_bag).parent_path() / "clock_trace.json";
+  fs::remove(file);
+  QString asked;
+  QObject::connect(panel.editor(), &GraphEditor::traceRequested, &panel,
+                   [&](const QString& command, const QString& path, double) { asked = command == "save" ? path : asked; });
+  ASSERT_TRUE(pickFromButtonMenu("trace", "Save all kept"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !fileDialogs().empty(); }, kWaitMs)) << "no Save trace dialog opened";
+  QPointer<QFileDialog> dialog = fileDialogs().front();
+  EXPECT_EQ(dialog->defaultSuffix().toStdString(), "json");
+  dialog->setDirectory(QString::fromStdString(file.parent_path().string()));
+  dialog->selectFile("clock_trace");
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {
+        if (asked.isEmpty() && dialog && dialog->isVisible()) static_cast<QDialog*>(dialog.data())->accept();
+        return !asked.isEmpty();
+      },
+      kWaitMs));
+  // the runtime's answer: the file written, and where to open it
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.editor()->message().contains("open it in https://ui.perfetto.dev"); }, kWaitMs))
+      << panel.editor()->message().toStdString();
+  ASSERT_TRUE(fs::exists(file));
+  std::ifstream in(file);
+  const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"traceEvents\""), std::string::npos);
+  EXPECT_NE(json.find("{\"ph\":\"X\",\"name\":\"traced_clock\",\"cat\":\"apex_nodes/Clock\""), std::string::npos);
+  ASSERT_TRUE(pickFromButtonMenu("trace", "Stop tracing"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return trace->text() == "Trace"; }, kWaitMs));
 }
 
 TEST_F(FirstUseTest, UndoSaysWhatItUndidAndAnEditMadeElsewhereDropsRedo) {

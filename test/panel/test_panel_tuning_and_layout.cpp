@@ -242,8 +242,8 @@ TEST_F(PanelWidgetTest, FitsANarrowDock) {
   EXPECT_LE(panel.minimumSizeHint().height(), 300) << "rviz's default layout gives a bottom dock about 300 px";
   auto* buttons = panel.editor()->findChild<QToolBar*>("buttons");
   ASSERT_TRUE(buttons);
-  for (const char* b :
-       {"pause", "step", "undo", "redo", "fit", "tidy", "balance", "previews", "presets", "new", "save", "load", "whole_window"})
+  for (const char* b : {"pause", "step", "undo", "redo", "fit", "tidy", "balance", "previews", "presets", "trace", "new", "save",
+                        "load", "whole_window"})
     EXPECT_TRUE(buttons->findChild<QToolButton*>(b)) << b << " is not in the tool bar";
 }
 

@@ -210,7 +210,8 @@ TEST_F(PanelWidgetTest, ANodeThatCannotFireSaysWhatItWaitsFor) {
   ASSERT_TRUE(counter);
   ASSERT_TRUE(QTest::qWaitFor([&] { return !counter->waiting().isEmpty(); }, kWaitMs)) << "no waiting_for from ~status";
   EXPECT_EQ(counter->waiting().toStdString(), "cut off: input 'in' is not connected");
-  EXPECT_EQ(counter->toolTip(), counter->waiting());
+  EXPECT_TRUE(counter->toolTip().startsWith(counter->waiting()))
+      << "first, then what it keeps: " << counter->toolTip().toStdString();
 }
 
 TEST_F(PanelWidgetTest, APlayerHasATransportBar) {

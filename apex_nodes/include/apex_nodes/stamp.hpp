@@ -70,6 +70,23 @@ inline std::optional<apex::Message> withHeader(const apex::Message& m, const std
   return out;
 }
 
+namespace detail {
+template <class T>
+std::int64_t headerStampNs(const void* payload) {
+  return static_cast<std::int64_t>(static_cast<const T*>(payload)->header.stamp.toNSec());
+}
+template <class... Ts>
+bool readStamps(TypeList<Ts...>) {
+  (apex::readStampWith<Ts>(&headerStampNs<Ts>), ...);
+  return true;
+}
+}  // namespace detail
+
+/** @brief Each of StampedTypes names its frame by its header's stamp (apex::Message::frame: what the
+ *  frame trace and the latencies follow). Set as a library including this header loads: each
+ *  node library's library.cpp does. */
+inline const bool kStampsRead = detail::readStamps(StampedTypes{});
+
 /** @brief The names of StampedTypes, for messages: "apex_nodes/Image, apex_nodes/Cloud, ...". */
 inline std::string stampedTypeNames() { return detail::typeNames(StampedTypes{}); }
 

@@ -72,6 +72,7 @@ ThreadGroup* Graph::Impl::group(const std::string& name) {
   if (!g) {
     g = std::make_shared<ThreadGroup>(name, this);
     if (paused_) g->hold(true);
+    if (tracing_) g->setTracing(true, kTraceFirings);
     if (running_) g->start();
   }
   return g.get();

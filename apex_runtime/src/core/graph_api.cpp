@@ -67,6 +67,12 @@ std::vector<ConnectionDescription> Graph::connections() const { return impl_->co
 Result<LoadReport> Graph::load(const GraphDescription& description) { return impl_->load(description); }
 std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const { return impl_->nodeStats(stall_after_s); }
 std::vector<GroupStats> Graph::groupStats() const { return impl_->groupStats(); }
+void Graph::setTracing(bool on) { impl_->setTracing(on); }
+bool Graph::tracing() const {
+  auto lock = impl_->lockEdits();
+  return impl_->tracing_;
+}
+Trace Graph::trace(double seconds) const { return impl_->trace(seconds); }
 std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const { return impl_->nodeType(node); }
 std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const { return impl_->nodeInterface(node); }
 Node* Graph::nodeObject(const std::string& node) const { return impl_->nodeObject(node); }

@@ -61,10 +61,14 @@ struct Graph::Impl {
   void step();
   Status stepFrame(double timeout_s);
   GraphDescription describe() const;
+  /** The description, and a maker of empty graphs with these node types and host. */
+  GraphSnapshot snapshot() const;
   std::vector<ConnectionDescription> connections() const;
   Result<LoadReport> load(const GraphDescription& description);
   std::vector<NodeStats> nodeStats(double stall_after_s) const;
   std::vector<GroupStats> groupStats() const;
+  void setTracing(bool on);
+  Trace trace(double seconds) const;
   std::shared_ptr<const NodeType> nodeType(const std::string& node) const;
   std::shared_ptr<const Manifest> nodeInterface(const std::string& node) const;
   Node* nodeObject(const std::string& node) const;
@@ -141,6 +145,7 @@ struct Graph::Impl {
   bool running_ = false;
   bool ran_ = false;  // started at least once: messages may be in flight
   bool paused_ = false;
+  bool tracing_ = false;  // Graph::setTracing: new groups trace too
   std::shared_ptr<detail::Revisions> revisions_ = std::make_shared<detail::Revisions>();
   /** Node::requestEdit's queue; stopped first when the graph goes. */
   std::shared_ptr<detail::EditRequests> edits_;

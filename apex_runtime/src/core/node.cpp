@@ -36,6 +36,10 @@ void Node::notifyNewData() {
   if (auto* s = state_.load(std::memory_order_acquire)) s->notifyNewData();
 }
 
+void Node::countDropped(std::uint64_t n) {
+  if (auto* s = state_.load(std::memory_order_acquire)) s->dropped_.fetch_add(n, std::memory_order_relaxed);
+}
+
 const Host* Node::host() const {
   auto* s = state_.load(std::memory_order_acquire);
   return s ? s->host.get() : nullptr;

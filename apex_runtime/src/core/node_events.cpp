@@ -38,6 +38,7 @@ void NodeState::runHandler(const std::string& what, const std::function<void()>&
 
 bool NodeState::sendFromSlot(const std::string& slot) {
   bool all = true;
+  nameFrames(0);
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     OutputState& out = outputs[i];
     if (out.pending.isNothing()) continue;

@@ -164,6 +164,7 @@ void NodeState::adjust(int delta) {
     const Message& m = inputs[i]->current;
     f.end = f.end || m.isEndOfSequence();
     f.data = f.data || (!m.isNothing() && !m.isEndOfSequence());
+    if (m.frame() > f.frame) f.frame = m.frame();
   }
   return f;
 }
@@ -197,7 +198,9 @@ void NodeState::adjust(int delta) {
   to->unblock(1, here);  // releases the writes above to whoever fires `to`
 }
 
-[[gnu::always_inline]] inline void NodeState::deliverOutputs(bool data) {
+[[gnu::always_inline]] inline void NodeState::deliverOutputs(const Firing& f) {
+  bool data = f.data;
+  nameFrames(f.frame);
   for (auto& out : outputs) {
     data = data || (!out.pending.isNothing() && !out.pending.isEndOfSequence());
     if (out.tap) out.tap(out.pending);
@@ -222,7 +225,7 @@ bool NodeState::fireIfReady() {
   reserve();
   Firing f = takeInputs();
   run(f);
-  deliverOutputs(f.data);
+  deliverOutputs(f);
   for (auto& in : inputs) in->current = Message();
   if (f.read_later) readAfterFiring();
   if (!held_triggers_.empty()) releaseTriggers();  // checked here: most firings need neither call
@@ -235,36 +238,6 @@ void NodeState::readAfterFiring() {
     Edge* e = in->edge.get();
     if (e && e->read_after_firing && e->unread.exchange(false, std::memory_order_acq_rel)) e->from->unblock(1, group);
   }
-}
-
-void NodeState::recordTimedOrNothing(bool timed, std::int64_t t) {
-  const auto relaxed = std::memory_order_relaxed;
-  if (!timed) --untimed_left_;
-  if (!last_had_data_) {  // only Nothing in and out: counted apart, not in the rate or the times
-    nothing_firings_.store(nothing_firings_.load(relaxed) + 1, relaxed);
-    return;
-  }
-  firings_.store(firings_.load(relaxed) + 1, relaxed);
-  untimed_left_ = t >= kSlowTicks ? 0 : kTimeEvery - 1;
-  timed_firings_.store(timed_firings_.load(relaxed) + 1, relaxed);
-  last_t_.store(t, relaxed);
-  total_t_.store(total_t_.load(relaxed) + t, relaxed);
-  if (t > max_t_.load(relaxed)) max_t_.store(t, relaxed);
-}
-
-NodeStats NodeState::stats() const {
-  NodeStats s;
-  s.name = name;
-  s.firings = firings_.load(std::memory_order_relaxed);
-  s.nothing_firings = nothing_firings_.load(std::memory_order_relaxed);
-  s.last_ns = ticksToNs(last_t_.load(std::memory_order_relaxed));
-  s.max_ns = ticksToNs(max_t_.load(std::memory_order_relaxed));
-  const std::uint64_t timed = timed_firings_.load(std::memory_order_relaxed);
-  s.mean_ns = timed ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / timed : 0;
-  std::lock_guard<std::mutex> lock(state_mutex);
-  s.error = error_;
-  s.enabled = enabled && outer_enabled;
-  return s;
 }
 
 void NodeState::deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGroup* here) { deliverTo(edge, std::move(m), here); }

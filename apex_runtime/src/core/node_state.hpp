@@ -21,6 +21,7 @@
 //    the error text, the enabled flag, UI metadata.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -30,6 +31,7 @@
 #include <vector>
 
 #include "apex/core/description.hpp"
+#include "apex/core/histogram.hpp"
 #include "apex/core/node_names.hpp"
 #include "apex/core/registry.hpp"
 #include "readiness.hpp"
@@ -181,12 +183,29 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Whether the next firing should be timed: the first, every one of a node that took at least
    *  kSlowTicks, else one in kTimeEvery (a clock read costs ~10 ns here, a trivial hop ~40). */
   bool timeNext() const { return untimed_left_ == 0; }
+  /** The frame its last firing took in or, for a source, sent (Message::frame); 0 if unknown. */
+  std::int64_t frame() const { return frame_; }
+  /** Whether its last firing began a frame (took none in, sent a stamped message): a source's. */
+  bool startsFrame() const { return starts_frame_; }
+  /** Names the frame of each message about to leave (Message::frame): `taken`, the newest frame the
+   *  firing took in, or if none (a source) the stamp of its first message that has one. */
+  void nameFrames(std::int64_t taken) {
+    frame_ = taken;
+    starts_frame_ = false;
+    if (frame_ == 0)
+      for (auto& out : outputs)
+        if ((frame_ = out.pending.payloadStamp()) != 0) {
+          starts_frame_ = true;
+          break;
+        }
+    for (auto& out : outputs) out.pending.setFrame(frame_);
+  }
   /** A firing took `t` ticks (if `timed`) and ended at tick `end` (if untimed: the group's
    *  newest clock read, a little earlier); one that only passed Nothing is counted apart. */
   void recordFiring(bool timed, std::int64_t t, std::int64_t end) {  // inline: every firing
     const auto relaxed = std::memory_order_relaxed;  // one writer: no locked instructions
     last_fired_.store(end, relaxed);
-    if (timed || !last_had_data_) return recordTimedOrNothing(timed, t);
+    if (timed || !last_had_data_ || frame_ > 0) return recordTimedOrNothing(timed, t);
     --untimed_left_;
     firings_.store(firings_.load(relaxed) + 1, relaxed);
   }
@@ -294,6 +313,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // written by the group thread only (load + store, no read-modify-write), read by anyone
   std::atomic<std::uint64_t> firings_{0}, nothing_firings_{0}, timed_firings_{0};
   bool last_had_data_ = false;  // group thread: the firing recorded next moved a message
+  std::int64_t frame_ = 0;  // group thread: the frame of the firing recorded next (Message::frame)
+  bool starts_frame_ = false;  // group thread: ... which that firing began
   void recordTimedOrNothing(bool timed, std::int64_t t);  // recordFiring's other cases
   std::uint8_t untimed_left_ = 0;  // group thread: firings before the next timed one
   static constexpr int kTimeEvery = 8;
@@ -308,12 +329,14 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
     bool end = false;  // an input holds the end of a sequence
     bool data = false;  // an input holds a frame (not Nothing, not the end token): for rates
     bool read_later = false;  // an input's edge is read when the firing ends (Edge::read_after_firing)
+    std::int64_t frame = 0;  // the newest frame its inputs belong to (Message::frame)
   };
   inline void reserve();
   inline Firing takeInputs();
   inline void run(const Firing& f);
-  /** `data`: the firing consumed a frame; with what it sends, that is last_had_data_. */
-  inline void deliverOutputs(bool data);
+  /** `data`: the firing consumed a frame; with what it sends, that is last_had_data_. Names
+   *  each message's frame (Message::frame) from its payload or from `f.frame`. */
+  inline void deliverOutputs(const Firing& f);
 
  public:
   // Cold and large: after everything a firing reads, so that fits in fewer cache lines
@@ -330,6 +353,28 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::chrono::steady_clock::time_point last_resend_;  // state_mutex
   std::string error_;  // state_mutex
   std::chrono::steady_clock::time_point error_logged_;  // state_mutex
+  // The distributions: written by the group thread (timed firings), read by stats(). The window
+  // is the counts since `window_[0]`, a reading 5 to 10 s old (state_mutex).
+  Histogram time_hist_, latency_hist_;
+  std::atomic<std::int64_t> latency_total_{0};
+
+ public:
+  std::atomic<std::uint64_t> dropped_{0};  // Node::countDropped, from any thread
+
+ private:
+  std::atomic<std::uint64_t> latency_count_{0};
+  struct Reading {
+    HistogramCounts time, latency;
+    std::int64_t latency_total = 0;
+    std::uint64_t latency_count = 0;
+    std::chrono::steady_clock::time_point at{};
+  };
+  mutable std::array<Reading, 2> window_;  // state_mutex: the older and the newer reading
+  /** A firing with a frame from now: its latency (Message::frame to `wall_ns`) counted. */
+  void recordLatency(std::int64_t wall_ns);
+  void fillDistributions(NodeStats& s) const;  // under state_mutex
+  static constexpr std::chrono::seconds kWindowStep{5};
+  static constexpr std::int64_t kLiveFrameNs = 3600LL * 1000000000LL;  // a frame an hour old is no live one
 };
 
 template <class F>

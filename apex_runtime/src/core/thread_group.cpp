@@ -185,6 +185,11 @@ std::uint64_t ThreadGroup::activity() const {
   return activity_;
 }
 
+void ThreadGroup::setTracing(bool on, std::size_t capacity) {
+  if (on && !ring_) ring_ = std::make_unique<TraceRing>(capacity);
+  tracing_.store(on ? ring_.get() : nullptr, std::memory_order_release);
+}
+
 GroupStats ThreadGroup::stats() const {
   GroupStats s;
   s.name = name_;
@@ -221,8 +226,9 @@ void ThreadGroup::runFirings(NodeState* node) {
   bool fresh = true;  // nothing ran since `now`
   const auto relaxed = std::memory_order_relaxed;
   std::uint64_t fired = 0;
+  TraceRing* const ring = tracing_.load(std::memory_order_acquire);  // tracing: every firing timed and kept
   for (int run = 0; node; ++run) {
-    const bool timed = node->timeNext();
+    const bool timed = ring || node->timeNext();
     if (timed && !fresh) now = ticks();
     const std::int64_t t0 = now;
     const bool ok = node->fireIfReady();
@@ -230,6 +236,7 @@ void ThreadGroup::runFirings(NodeState* node) {
     fresh = timed;
     if (ok) {
       node->recordFiring(timed, now - t0, now);
+      if (ring) ring->write({node->seq | (node->startsFrame() ? TraceRecord::kStartsFrame : 0), t0, now, node->frame()});
       ++fired;
     }
     node = inline_next_;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "apex/core/description.hpp"
+#include "trace_ring.hpp"
 
 namespace apex {
 namespace detail {
@@ -88,6 +89,12 @@ class ThreadGroup {
   /** @brief Counts pushes and posts: unchanged between two idle checks means no work moved. */
   std::uint64_t activity() const;
   GroupStats stats() const;
+  /** @brief The frame trace: while on, each firing here goes into a ring of `capacity` firings,
+   *  made when first turned on and kept when turned off (its firings can still be read). Call
+   *  under the graph's edit lock. */
+  void setTracing(bool on, std::size_t capacity);
+  /** @brief Its trace ring; nullptr if it never traced. Under the graph's edit lock. */
+  const TraceRing* traceRing() const { return ring_.get(); }
 
  private:
   void run();
@@ -146,6 +153,8 @@ class ThreadGroup {
 
   std::atomic<std::uint64_t> firings_{0}, wakeups_{0};
   std::atomic<std::int64_t> busy_t_{0};  // ticks (ticks.hpp)
+  std::unique_ptr<TraceRing> ring_;  // the graph's edit lock
+  std::atomic<TraceRing*> tracing_{nullptr};  // ring_ while tracing: read once per runFirings
   std::chrono::steady_clock::time_point started_{};
 };
 

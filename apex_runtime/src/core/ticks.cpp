@@ -1,5 +1,6 @@
 #include "ticks.hpp"
 
+#include <atomic>
 #include <thread>
 
 namespace apex {
@@ -13,8 +14,14 @@ struct Origin {
   std::int64_t tick = ticks();
 };
 const Origin kOrigin;  // at load time
+std::atomic<double> g_cached{0.0};
 
 }  // namespace
+
+double nsPerTickCached() {
+  const double cached = g_cached.load(std::memory_order_relaxed);
+  return cached > 0 ? cached : nsPerTick();
+}
 
 double nsPerTick() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -24,7 +31,9 @@ double nsPerTick() {
   const std::int64_t t = ticks();
   elapsed = Clock::now() - kOrigin.time;
   const double ns = double(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count());
-  return t > kOrigin.tick ? ns / double(t - kOrigin.tick) : 1.0;
+  const double per_tick = t > kOrigin.tick ? ns / double(t - kOrigin.tick) : 1.0;
+  g_cached.store(per_tick, std::memory_order_relaxed);
+  return per_tick;
 #else
   return 1.0;
 #endif

@@ -27,5 +27,9 @@ double nsPerTick();
 
 inline std::int64_t ticksToNs(std::int64_t t) { return static_cast<std::int64_t>(double(t) * nsPerTick()); }
 
+/** @brief nsPerTick() as last computed (once, if never): for the firing path, which cannot afford
+ *  its two clock reads. */
+double nsPerTickCached();
+
 }  // namespace detail
 }  // namespace apex

@@ -187,6 +187,7 @@ GraphState toGraphState(const Graph& graph, std::uint64_t revision) {
 RuntimeStatus toStatus(const Graph& graph) {
   RuntimeStatus s;
   s.stamp = ros::Time::now();
+  s.tracing = graph.tracing();
   for (const auto& n : graph.nodeStats()) {
     NodeStatus ns;
     ns.name = n.name;
@@ -197,6 +198,15 @@ RuntimeStatus toStatus(const Graph& graph) {
     ns.last_ms = n.last_ns / 1e6;
     ns.mean_ms = n.mean_ns / 1e6;
     ns.max_ms = n.max_ns / 1e6;
+    ns.dropped = n.dropped;
+    ns.p50_ms = n.p50_ns / 1e6;
+    ns.p95_ms = n.p95_ns / 1e6;
+    auto ms = [](std::int64_t ns) { return ns < 0 ? -1.0 : ns / 1e6; };
+    ns.latency_ms = ms(n.latency_mean_ns);
+    ns.latency_p50_ms = ms(n.latency_p50_ns);
+    ns.latency_p95_ms = ms(n.latency_p95_ns);
+    ns.latency_max_ms = ms(n.latency_max_ns);
+    ns.latency_frames = n.latency_frames;
     ns.waiting_for = n.waiting_for;
     ns.idle_s = n.idle_s;
     s.nodes.push_back(ns);

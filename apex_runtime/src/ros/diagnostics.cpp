@@ -113,6 +113,14 @@ void Diagnostics::nodeStatus(const std::string& node, diagnostic_updater::Diagno
   out.add("mean time (ms)", fixed(n.mean_ms, 3));
   out.add("max time (ms)", fixed(n.max_ms, 3));
   out.add("last time (ms)", fixed(n.last_ms, 3));
+  if (n.dropped > 0) out.add("dropped frames", n.dropped);
+  out.add("p50 time (ms)", fixed(n.p50_ms, 3));
+  out.add("p95 time (ms)", fixed(n.p95_ms, 3));
+  if (n.latency_ms >= 0) {  // from its frame's stamp to the end of its firing
+    out.add("latency p50 (ms)", fixed(n.latency_p50_ms, 2));
+    out.add("latency p95 (ms)", fixed(n.latency_p95_ms, 2));
+    out.add("latency max (ms)", fixed(n.latency_max_ms, 2));
+  }
   out.add("idle (s)", fixed(n.idle_s, 1));
   if (!n.waiting_for.empty()) out.add("waiting for", n.waiting_for);
   const auto expected = expected_.find(node);

@@ -60,6 +60,11 @@ class GraphEditor : public QWidget {
   /** @brief The Presets button's menu: save all, and per saved preset restore or compare.
    *  Filled for tests to read; shown by the button. */
   void fillPresetMenu(QMenu& menu);
+  /** @brief The Trace button's menu: start or stop the frame trace, save the last 10 s or all kept
+   *  (a file dialog, then the runtime writes Chrome trace JSON). Filled for tests to read. */
+  void fillTraceMenu(QMenu& menu);
+  /** @brief Whether the runtime traces (RuntimeStatus::tracing): the Trace button says so. */
+  void showTracing(bool on);
   /** @brief The presets saved (names), for the Presets menu. */
   void showPresets(const QStringList& names) { presets_ = names; }
   /** @brief What differs between a preset and the graph now, in a window of its own. */
@@ -161,6 +166,8 @@ class GraphEditor : public QWidget {
   void redoRequested();
   void saveRequested(const QString& path);
   void loadRequested(const QString& path);
+  /** The frame trace (FrameTrace.srv): "start", "stop", or "save" the last `seconds` (0: all) to `path`. */
+  void traceRequested(const QString& command, const QString& path, double seconds);
   /** New: the person confirmed that every node goes. */
   void newRequested();
   void typesRequested();
@@ -241,7 +248,8 @@ class GraphEditor : public QWidget {
   QLabel* message_;
   QLabel* connection_;
   QLabel* unsaved_;  ///< "● unsaved" while the graph differs from its file
-  QToolButton *pause_, *undo_, *redo_, *whole_;
+  QToolButton *pause_, *undo_, *redo_, *whole_, *trace_;
+  bool tracing_ = false;
   int added_ = 0;
   QStringList select_when_shown_;
   QStringList presets_;

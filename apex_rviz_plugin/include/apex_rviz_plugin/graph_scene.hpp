@@ -108,7 +108,7 @@ class NodeItem : public QGraphicsObject {
   ParamEditor* editor(const std::string& param) const;
   /** @brief The toggle between the compact and the expanded box, nullptr if it has none. */
   QToolButton* expandToggle() const { return toggle_; }
-  /** @brief What the box shows from ~status, e.g. "0.12 ms (max 0.50) · 10.0 Hz · 42 firings". */
+  /** @brief What the box shows from ~status, e.g. "0.12 ms (p95 0.50) · 10.0 Hz · 42 firings". */
   const QString& timing() const { return timing_; }
   const QString& waiting() const { return waiting_; }
   std::uint64_t firings() const { return firings_; }
@@ -140,6 +140,7 @@ class NodeItem : public QGraphicsObject {
 
  private:
   void build();
+  void updateToolTip();
   /** The editors of the parameters shown (BoxView), a player's transport bar and the toggle
    *  between compact and expanded, in one widget, not yet placed. */
   QWidget* buildParams();

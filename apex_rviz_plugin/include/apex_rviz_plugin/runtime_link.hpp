@@ -57,6 +57,10 @@ class RuntimeLink : public QObject {
   void listTypes(std::function<void(bool, const std::string&, const std::vector<apex::NodeTypeInfo>&)> done);
   void control(const std::string& command, Done done);
   void saveGraph(const std::string& path, Done done);
+  /** ~trace: `command` start, stop or save (the last `seconds`, 0 all, to `path`); `done` gets the
+   *  answer's message and whether the runtime traces now. */
+  void trace(const std::string& command, const std::string& path, double seconds,
+             std::function<void(bool, const std::string&, bool tracing)> done);
   /** `done` also gets the loaded graph's revision: the ~graph with it or a later one shows that graph. */
   void loadGraph(const std::string& path, std::function<void(bool, const std::string&, std::uint64_t revision)> done);
   void fireSlot(const std::string& node, const std::string& slot, Done done);

@@ -75,10 +75,19 @@ struct NodeStats {
   std::string name;
   std::uint64_t firings = 0;  ///< firings that took or sent a message: frames
   std::uint64_t nothing_firings = 0;  ///< firings that only passed Nothing (not in the rate or times)
+  std::uint64_t dropped = 0;  ///< frames a source keeping the newest lost (Node::countDropped)
   /** Firing times: every firing of a node that takes about a microsecond or more; one firing
    *  in 8 of a faster one (a clock read would cost a quarter of its hop), so there max_ns is the
    *  largest sampled time. */
   std::uint64_t last_ns = 0, mean_ns = 0, max_ns = 0;
+  /** The timed firings' median and 95th percentile over the last 5 to 10 seconds (within 1/16). */
+  std::uint64_t p50_ns = 0, p95_ns = 0;
+  /** Latency over the last 5 to 10 seconds: from the stamp of the frame a firing worked on
+   *  (Message::frame) to the end of that firing (when what it sent left), for each firing
+   *  whose frame is live (stamped within the last hour: not a bag played at its recorded stamps).
+   *  -1: none in the window. Quantiles within 1/16; the mean exact. */
+  std::int64_t latency_mean_ns = -1, latency_p50_ns = -1, latency_p95_ns = -1, latency_max_ns = -1;
+  std::uint64_t latency_frames = 0;  ///< how many the latency figures are over
   std::string error;
   bool enabled = true;
   /** Set when the node is stalled: it has not fired for a while although data

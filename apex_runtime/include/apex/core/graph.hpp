@@ -14,6 +14,7 @@
 #include "apex/core/description.hpp"
 #include "apex/core/registry.hpp"
 #include "apex/core/result.hpp"
+#include "apex/core/trace.hpp"
 
 namespace apex {
 
@@ -132,6 +133,14 @@ class Graph {
    *  source) says what it waits for in `waiting_for`; 0 says it for every node. */
   std::vector<NodeStats> nodeStats(double stall_after_s = 1.0) const;
   std::vector<GroupStats> groupStats() const;
+  /** @brief The frame trace (trace.hpp), off at first: while on, each thread group keeps its last
+   *  kTraceFirings firings (node, start, end, frame), written by its own thread without a lock;
+   *  turned off, what was kept can still be read. Off, it costs one flag read per run of firings. */
+  void setTracing(bool on);
+  bool tracing() const;
+  /** @brief The firings kept that ended in the last `seconds` (every one kept if `seconds` <= 0),
+   *  each group's oldest first, nodes named as they are now. */
+  Trace trace(double seconds = 0) const;
   /** @brief A node's type, or nullptr if there is no such node (or it is a placeholder). */
   std::shared_ptr<const NodeType> nodeType(const std::string& node) const;
   /** @brief A node's ports, events and parameters as they are now (its type's manifest, or

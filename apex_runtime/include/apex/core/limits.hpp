@@ -10,6 +10,7 @@ namespace apex {
 inline constexpr std::size_t kMaxGraphNodes = 20000;  ///< in the whole graph, inside subgraphs too
 inline constexpr std::size_t kMaxGraphConnections = 100000;  ///< data, parameter and event links
 inline constexpr std::size_t kMaxGraphGroups = 256;  ///< thread groups: each is an OS thread
+inline constexpr std::size_t kTraceFirings = 1 << 16;  ///< kept per thread group while tracing (2 MiB)
 inline constexpr std::size_t kMaxNameLength = 200;  ///< a node's, a group's, one part of a path
 inline constexpr int kMaxSubgraphDepth = 16;  ///< subgraphs within subgraphs, inline or from files
 inline constexpr long kMaxGraphFileBytes = 16L << 20;  ///< a graph file, checked before reading

@@ -2,6 +2,8 @@
 // One output feeding N inputs hands the same object to all N: no copies.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <typeindex>
@@ -11,10 +13,15 @@
 
 namespace apex {
 
+/** @brief Reads a payload's own stamp, ns since the epoch (a ROS header's), or 0 if it has none. */
+using StampReader = std::int64_t (*)(const void* payload);
+
 /** @brief A port or message type: one instance per C++ type in the process. */
 struct TypeInfo {
   std::string name;  ///< readable, e.g. "int", "cv::Mat"
   std::type_index index;  ///< the C++ type
+  /** How a payload of this type tells its frame's stamp (readStampWith); none: it inherits one. */
+  mutable std::atomic<StampReader> stamp{nullptr};
 };
 
 /** @brief Marker type for ports that accept or send any message (e.g. a relay). */
@@ -51,6 +58,13 @@ const TypeInfo* typeOf() {
   return info;
 }
 
+/** @brief Payloads of type T carry their own stamp, read by `reader` (e.g. a ROS header's): a
+ *  message of T names its frame by it (Message::frame). Once per type, by the library defining it. */
+template <class T>
+void readStampWith(StampReader reader) {
+  typeOf<T>()->stamp.store(reader, std::memory_order_relaxed);
+}
+
 /** @brief True when an output of type `from` may feed an input of type `to`. */
 inline bool compatible(const TypeInfo* from, const TypeInfo* to) {
   return from == to || from == typeOf<Any>() || to == typeOf<Any>();
@@ -65,10 +79,11 @@ class Message {
   Message(const Message&) = default;
   Message& operator=(const Message&) = default;
   /** @brief A moved-from message is Nothing. */
-  Message(Message&& o) noexcept : data_(std::move(o.data_)), type_(o.type_) { o.type_ = nullptr; }
+  Message(Message&& o) noexcept : data_(std::move(o.data_)), type_(o.type_), frame_(o.frame_) { o.type_ = nullptr; }
   Message& operator=(Message&& o) noexcept {
     data_ = std::move(o.data_);
     type_ = o.type_;
+    frame_ = o.frame_;
     if (&o != this) o.type_ = nullptr;
     return *this;
   }
@@ -103,10 +118,24 @@ class Message {
   }
   const void* raw() const { return data_.get(); }
 
+  /** @brief The stamp (ns since the epoch) of the frame this message belongs to, 0 if unknown: the
+   *  newest of the frames its sender's firing took in or, from a source, the payload stamp
+   *  (readStampWith) of the first message that firing sent with one. So everything one firing of
+   *  a source causes is one frame (a bag's image and cloud alike). Set by the graph as the message
+   *  leaves its node; the trace and latencies follow frames by it. */
+  std::int64_t frame() const { return frame_; }
+  void setFrame(std::int64_t frame) { frame_ = frame; }
+  /** @brief The payload's own stamp (readStampWith), 0 if its type has none. */
+  std::int64_t payloadStamp() const {
+    const StampReader read = type_ ? type_->stamp.load(std::memory_order_relaxed) : nullptr;
+    return read ? read(data_.get()) : 0;
+  }
+
  private:
   Message(std::shared_ptr<const void> d, const TypeInfo* t) : data_(std::move(d)), type_(t) {}
   std::shared_ptr<const void> data_;
   const TypeInfo* type_ = nullptr;
+  std::int64_t frame_ = 0;
 };
 
 }  // namespace apex

@@ -1,0 +1,79 @@
+// A node's profile (NodeState::stats): firing counts and times, their percentiles, the latency
+// from its frames' stamps, dropped frames. The group thread records; any thread reads.
+#include <algorithm>
+#include <chrono>
+
+#include "node_state.hpp"
+
+namespace apex {
+namespace detail {
+
+void NodeState::recordTimedOrNothing(bool timed, std::int64_t t) {
+  const auto relaxed = std::memory_order_relaxed;
+  if (!timed) --untimed_left_;
+  if (!last_had_data_) {  // only Nothing in and out: counted apart, not in the rate or the times
+    nothing_firings_.store(nothing_firings_.load(relaxed) + 1, relaxed);
+    return;
+  }
+  firings_.store(firings_.load(relaxed) + 1, relaxed);
+  if (frame_ > 0)  // every firing with a frame: a wall-clock read (~25 ns) beside what a stamped frame costs
+    recordLatency(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count());
+  if (!timed) return;
+  untimed_left_ = t >= kSlowTicks ? 0 : kTimeEvery - 1;
+  timed_firings_.store(timed_firings_.load(relaxed) + 1, relaxed);
+  time_hist_.add(static_cast<std::int64_t>(double(t) * nsPerTickCached()));
+  last_t_.store(t, relaxed);
+  total_t_.store(total_t_.load(relaxed) + t, relaxed);
+  if (t > max_t_.load(relaxed)) max_t_.store(t, relaxed);
+}
+
+void NodeState::recordLatency(std::int64_t wall_ns) {
+  const std::int64_t latency = wall_ns - frame_;
+  // a stamp from another time (a bag played at its recorded stamps, simulated time): not live
+  if (latency < 0 || latency > kLiveFrameNs) return;
+  const auto relaxed = std::memory_order_relaxed;
+  latency_hist_.add(latency);
+  latency_total_.store(latency_total_.load(relaxed) + latency, relaxed);
+  latency_count_.store(latency_count_.load(relaxed) + 1, relaxed);
+}
+
+void NodeState::fillDistributions(NodeStats& s) const {
+  const auto now = std::chrono::steady_clock::now();
+  Reading r{time_hist_.read(), latency_hist_.read(), latency_total_.load(std::memory_order_relaxed),
+            latency_count_.load(std::memory_order_relaxed), now};
+  if (window_[1].at == std::chrono::steady_clock::time_point{}) window_[0] = window_[1] = Reading{{}, {}, 0, 0, now};
+  if (now - window_[1].at >= kWindowStep) window_ = {window_[1], r};  // the window: 5 to 10 s
+  const Reading& base = window_[0];
+  const HistogramCounts time = r.time.since(base.time), latency = r.latency.since(base.latency);
+  // (a bucket's middle may lie above the largest time measured: never shown above it)
+  s.p50_ns = std::min(static_cast<std::uint64_t>(time.quantileNs(0.5)), s.max_ns);
+  s.p95_ns = std::min(static_cast<std::uint64_t>(time.quantileNs(0.95)), s.max_ns);
+  const std::uint64_t frames = r.latency_count - base.latency_count;
+  if (frames == 0) return;
+  s.latency_frames = frames;
+  s.latency_mean_ns = (r.latency_total - base.latency_total) / static_cast<std::int64_t>(frames);
+  s.latency_p50_ns = static_cast<std::int64_t>(latency.quantileNs(0.5));
+  s.latency_p95_ns = static_cast<std::int64_t>(latency.quantileNs(0.95));
+  s.latency_max_ns = static_cast<std::int64_t>(latency.quantileNs(1.0));
+}
+
+NodeStats NodeState::stats() const {
+  NodeStats s;
+  s.name = name;
+  s.firings = firings_.load(std::memory_order_relaxed);
+  s.nothing_firings = nothing_firings_.load(std::memory_order_relaxed);
+  s.dropped = dropped_.load(std::memory_order_relaxed);
+  s.last_ns = ticksToNs(last_t_.load(std::memory_order_relaxed));
+  s.max_ns = ticksToNs(max_t_.load(std::memory_order_relaxed));
+  const std::uint64_t timed = timed_firings_.load(std::memory_order_relaxed);
+  s.mean_ns = timed ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / timed : 0;
+  std::lock_guard<std::mutex> lock(state_mutex);
+  s.error = error_;
+  s.enabled = enabled && outer_enabled;
+  fillDistributions(s);
+  return s;
+}
+
+}  // namespace detail
+}  // namespace apex
