@@ -57,6 +57,38 @@ TEST(Events, ProcessedFiresAfterEachProcess) {
   EXPECT_EQ(object<Counter>(g, "c")->resets.load(), 5);
 }
 
+TEST(Events, ASlotsErrorStaysThroughDataUntilASlotRunsFine) {
+  // The Optimizer's start without a range: the panel polls the error; data flowing through the
+  // node meanwhile must not take it away before anyone saw it.
+  Graph g(testRegistry());
+  add(g, "test/Feeder", "src");
+  add(g, "test/Thrower", "t");
+  add(g, "test/Collector", "sink");
+  link(g, "src", "out", "t", "in");
+  link(g, "t", "out", "sink", "in");
+  g.start();
+  ASSERT_TRUE(g.fireSlot("t", "start"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats()[1].error, HasSubstr("slot 'start' threw: give throw_on first"));
+  object<Feeder>(g, "src")->feed(1);
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(1));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats()[1].error, HasSubstr("slot 'start' threw")) << "a good firing took the slot's error away";
+  ASSERT_TRUE(g.setParameter("t", "throw_on", "5"));
+  ASSERT_TRUE(g.fireSlot("t", "start"));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(g.nodeStats()[1].error, "") << "the slot ran fine";
+  // a firing's own error is a firing's: the next good one clears it, as before
+  object<Feeder>(g, "src")->feed(5);
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(2));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_THAT(g.nodeStats()[1].error, HasSubstr("bad value 5"));
+  object<Feeder>(g, "src")->feed(6);
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(3));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  EXPECT_EQ(g.nodeStats()[1].error, "");
+}
+
 TEST(Events, ADisabledNodeSendsNothingAndTheSlotsToggleIt) {
   Graph g(testRegistry());
   add(g, "test/Feeder", "src");

@@ -19,13 +19,16 @@ void NodeState::runSlot(int slot) {
   }
   if (slot >= static_cast<int>(manifest().slots.size())) return;  // posted before an interface change
   const auto& handler = manifest().slots[slot].handler;
-  runHandler("slot '" + manifest().slots[slot].name + "'", [&] { handler(*node); });
+  const bool ok = runHandler("slot '" + manifest().slots[slot].name + "'", [&] { handler(*node); });
+  if (!ok) slot_error_ = true;
+  else if (slot_error_ && has_error_.load(std::memory_order_relaxed)) clearError();
 }
 
-void NodeState::runHandler(const std::string& what, const std::function<void()>& fn) {
-  if (!node) return;  // a placeholder
+bool NodeState::runHandler(const std::string& what, const std::function<void()>& fn) {
+  if (!node) return false;  // a placeholder
   in_handler_ = true;
   const bool ok = guarded(what.c_str(), fn);
+  const bool failed = !ok || reported_;
   in_handler_ = false;
   reported_ = false;
   if (ok && !sendFromSlot(what)) held_triggers_.clear();  // its events would act on values that did not go out
@@ -34,6 +37,7 @@ void NodeState::runHandler(const std::string& what, const std::function<void()>&
     held_triggers_.clear();
   }
   releaseTriggers();
+  return !failed;
 }
 
 bool NodeState::sendFromSlot(const std::string& slot) {

@@ -178,7 +178,8 @@ void NodeState::adjust(int delta) {
     for (auto& out : outputs) out.pending = Message::endOfSequence();  // a disabled node passes the end on
   } else if (!f.skip) {
     ok = guarded("", [this] { node->process(); });
-    if (ok && !reported_ && has_error_.load(std::memory_order_relaxed)) clearError();
+    if (!ok || reported_) slot_error_ = false;  // the error shown is this firing's own
+    else if (!slot_error_ && has_error_.load(std::memory_order_relaxed)) clearError();
   }
   in_handler_ = false;
   reported_ = false;
@@ -311,6 +312,7 @@ void NodeState::clearError() {
     error_.clear();
     has_error_.store(false, std::memory_order_relaxed);
   }
+  slot_error_ = false;
   revisions->shown();
   log(LogLevel::Info, name, "recovered");
 }

@@ -213,10 +213,12 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Node::setup(), once; a throw is the node's error. */
   void runSetup();
   void applyEnabled();
+  /** A slot's error (the Optimizer's start without a range) stays until a slot runs fine: a data
+   *  firing between says nothing about it, and would take it away before anyone saw it. */
   void runSlot(int slot);
   /** Runs `fn` as a slot handler runs: what it publishes leaves when it returns, then its
-   *  events; a throw is the node's error, named by `what` (Node::runLater). */
-  void runHandler(const std::string& what, const std::function<void()>& fn);
+   *  events; a throw is the node's error, named by `what` (Node::runLater). False if it failed. */
+  bool runHandler(const std::string& what, const std::function<void()>& fn);
   /** Node::downstreamChanged(); a throw is the node's error. */
   void runDownstreamChanged();
   /** Applies a value that came into a parameter (on its group's thread); `counted`: the mail that
@@ -301,6 +303,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void releaseTriggers();
   bool in_handler_ = false;  // group thread: process() or a slot handler runs
   bool reported_ = false;  // group thread: reportError() in this firing
+  bool slot_error_ = false;  // group thread: the error shown came from a slot, not a firing
   std::vector<int> held_triggers_;  // group thread: fired there, sent after its messages
 
   const bool driven_;  // the type's source mode: an interface keeps it

@@ -96,15 +96,20 @@ class OptionalSum : public Node {
   }
 };
 
-/** Throws when the input equals `throw_on`, else passes it on. */
+/** Throws when the input equals `throw_on`, else passes it on; its slot `start` throws while
+ *  `throw_on` is negative, as a run started without its settings does. */
 class Thrower : public Node {
  public:
   static Manifest manifest() {
     return Manifest("throws on one value, or on all")
         .input<int>("in")
         .output<int>("out")
+        .slot("start", &Thrower::start, "throws while throw_on is negative")
         .param(param::integer("throw_on", -1))
         .param(param::boolean("throw_always", false));
+  }
+  void start() {
+    if (param<int>("throw_on") < 0) throw std::runtime_error("give throw_on first");
   }
   void process() override {
     const int v = *input<int>("in");
