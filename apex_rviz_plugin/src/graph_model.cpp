@@ -280,13 +280,16 @@ bool GraphModel::hasPosition(const std::string& name) const {
 }
 
 std::optional<Edit> GraphModel::arrange(const std::map<std::string, std::pair<double, double>>& positions,
-                                        const std::string& label) const {
+                                        const std::string& label,
+                                        const std::map<std::string, std::pair<double, double>>& shown) const {
   Edit e(label, {}, {});
   for (const auto& [name, at] : positions) {
     const apex::NodeInfo* n = node(name);
     if (!n) continue;
     e.apply.push_back(setUi(name, withPosition(n->ui, at.first, at.second)));
-    e.revert.push_back(setUi(name, n->ui.empty() ? ui(0, 0) : n->ui));
+    const auto was = shown.find(name);
+    if (was != shown.end()) e.revert.push_back(setUi(name, withPosition(n->ui, was->second.first, was->second.second)));
+    else e.revert.push_back(setUi(name, n->ui.empty() ? ui(0, 0) : n->ui));
   }
   if (e.apply.empty()) return std::nullopt;
   return e;

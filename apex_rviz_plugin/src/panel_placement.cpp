@@ -12,10 +12,11 @@ void PanelWidget::tidy() {
   const auto boxes = editor_->scene()->boxes();
   if (boxes.empty()) return;
   double left = 1e18, top = 1e18;
-  for (const auto& [name, b] : boxes) left = std::min(left, b.x), top = std::min(top, b.y);
+  std::map<std::string, std::pair<double, double>> shown;  // Undo puts back what the user saw
+  for (const auto& [name, b] : boxes) left = std::min(left, b.x), top = std::min(top, b.y), shown[name] = {b.x, b.y};
   auto at = layeredLayout(boxes, editor_->scene()->edges());
   for (auto& [name, p] : at) p.first += left, p.second += top;
-  perform(model_.arrange(at, "Tidy"));
+  perform(model_.arrange(at, "Tidy", shown));
 }
 
 void PanelWidget::balance() {

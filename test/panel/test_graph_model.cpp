@@ -52,6 +52,19 @@ TEST(GraphModel, PositionsComeFromUiMetadata) {
   EXPECT_EQ(std::get<apex::SetUi::Request>(move->revert[0].request).ui, "{x: 10, y: 20}");
 }
 
+TEST(GraphModel, ArrangingIsUndoneToWhereThePanelShowedTheBoxes) {
+  // Tidy right after a drag: the runtime's graph may not show the drag yet; Undo puts the box
+  // back where the user dropped it, not where it was before (CI: the panel's Tidy test).
+  GraphModel m;
+  m.update(graph(1));
+  auto tidy = m.arrange({{"clock", {300, 0}}, {"relay", {400, 0}}}, "Tidy", {{"clock", {55, 66}}});
+  ASSERT_TRUE(tidy);
+  ASSERT_EQ(tidy->revert.size(), 2u);
+  EXPECT_EQ(std::get<apex::SetUi::Request>(tidy->revert[0].request).ui, "{x: 55, y: 66}") << "where the panel showed it";
+  EXPECT_EQ(std::get<apex::SetUi::Request>(tidy->revert[1].request).ui, "{x: 0, y: 0}") << "where the graph has it";
+  EXPECT_EQ(std::get<apex::SetUi::Request>(tidy->apply[0].request).ui, "{x: 300, y: 0}");
+}
+
 TEST(GraphModel, RemovingANodeIsUndoneWithItsSettingsAndConnections) {
   GraphModel m;
   m.update(graph(1));

@@ -188,8 +188,11 @@ class GraphModel {
   std::optional<Edit> setExpanded(const std::string& node, bool expanded) const;
   /** @brief A parameter pinned to (or unpinned from) the node's compact box, one edit. */
   std::optional<Edit> setPinned(const std::string& node, const std::string& param, bool pinned) const;
-  /** @brief Nodes moved to new positions (name -> x, y) as one edit, e.g. "Tidy". */
-  std::optional<Edit> arrange(const std::map<std::string, std::pair<double, double>>& positions, const std::string& label) const;
+  /** @brief Nodes moved to new positions (name -> x, y) as one edit, e.g. "Tidy". Its undo puts
+   *  each back where `shown` has it (where the panel shows the box: a drag the runtime's graph does
+   *  not show yet), else where the graph has it. */
+  std::optional<Edit> arrange(const std::map<std::string, std::pair<double, double>>& positions, const std::string& label,
+                              const std::map<std::string, std::pair<double, double>>& shown = {}) const;
   /** @brief `nodes` (of one level) as graph file text, for the clipboard: types, parameters,
    *  ports shown, enabled, groups, positions (from `shown_at` where it has them: where the panel
    *  shows the boxes) and the connections among them. An inline
