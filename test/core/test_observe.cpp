@@ -182,6 +182,26 @@ TEST(Observe, RatesCountFramesAndFiringsThatOnlyPassNothingAreCountedApart) {
   }
 }
 
+TEST(Observe, EachOutputCountsTheMessagesItSentNotTheNothingOfAFailedFiring) {
+  // the rate the panel writes on a link: what its output sent, over time
+  Graph g(testRegistry());
+  add(g, "test/Feeder", "src");
+  add(g, "test/Thrower", "t");
+  add(g, "test/Collector", "sink");
+  ASSERT_EQ(g.setParameter("t", "throw_on", "2").value(), "2");
+  link(g, "src", "out", "t", "in");
+  link(g, "t", "out", "sink", "in");
+  g.start();
+  for (int v = 1; v <= 4; ++v) object<Feeder>(g, "src")->feed(v);
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(4));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  using Sent = std::vector<std::pair<std::string, std::uint64_t>>;
+  const auto stats = g.nodeStats(0);
+  EXPECT_EQ(stats[0].sent, (Sent{{"out", 4}}));
+  EXPECT_EQ(stats[1].sent, (Sent{{"out", 3}})) << "the failed firing sent Nothing";
+  EXPECT_EQ(stats[2].sent, Sent{}) << "a sink has no outputs";
+}
+
 TEST(Timers, ASourceAtARateUsesTheGroupsTimerAndSetup) {
   Graph g(testRegistry());
   ASSERT_TRUE(g.registry().add<Tick>("test/Tick"));

@@ -76,6 +76,7 @@ bool NodeState::sendFromSlot(const std::string& slot) {
       counted += behind[k] ? 0 : 1;
     }
     if (out.tap) out.tap(m);
+    if (!m.isEndOfSequence()) out.sent.add();
     readiness.block(counted);  // released as the receivers read, as after a firing
     for (std::size_t k = 0; k < out.edges.size(); ++k) {
       const auto& e = out.edges[k];

@@ -203,7 +203,7 @@ void NodeState::adjust(int delta) {
   bool data = f.data;
   nameFrames(f.frame);
   for (auto& out : outputs) {
-    data = data || (!out.pending.isNothing() && !out.pending.isEndOfSequence());
+    if (!out.pending.isNothing() && !out.pending.isEndOfSequence()) data = true, out.sent.add();
     if (out.tap) out.tap(out.pending);
     const std::size_t n = out.edges.size();
     if (n == 0) {

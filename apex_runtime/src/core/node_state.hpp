@@ -99,10 +99,25 @@ struct InputState {
 /** Sees every message of a port (inspection); runs on the node's group thread. */
 using Tap = std::function<void(const Message&)>;
 
+/** A count its group thread adds to and any thread reads; copied and moved as a number (an
+ *  interface change moves the outputs while their group is paused). */
+struct RelaxedCount {
+  std::atomic<std::uint64_t> n{0};
+  RelaxedCount() = default;
+  RelaxedCount(const RelaxedCount& o) : n(o.get()) {}
+  RelaxedCount& operator=(const RelaxedCount& o) {
+    n.store(o.get(), std::memory_order_relaxed);
+    return *this;
+  }
+  void add() { n.store(n.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed); }  // one writer
+  std::uint64_t get() const { return n.load(std::memory_order_relaxed); }
+};
+
 struct OutputState {
   std::vector<std::shared_ptr<Edge>> edges;
   Message pending;
   Tap tap;
+  RelaxedCount sent;  // messages sent (not Nothing, not an end of sequence): the rate on its links
 };
 
 struct ParamState {

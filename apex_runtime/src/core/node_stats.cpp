@@ -71,6 +71,8 @@ NodeStats NodeState::stats() const {
   std::lock_guard<std::mutex> lock(state_mutex);
   s.error = error_;
   s.enabled = enabled && outer_enabled;
+  s.sent.reserve(outputs.size());
+  for (std::size_t i = 0; i < outputs.size(); ++i) s.sent.emplace_back(manifest().outputs[i].name, outputs[i].sent.get());
   fillDistributions(s);
   return s;
 }

@@ -199,6 +199,7 @@ RuntimeStatus toStatus(const Graph& graph) {
     ns.mean_ms = n.mean_ns / 1e6;
     ns.max_ms = n.max_ns / 1e6;
     ns.dropped = n.dropped;
+    for (const auto& [output, count] : n.sent) ns.outputs.push_back(output), ns.sent.push_back(count);
     ns.p50_ms = n.p50_ns / 1e6;
     ns.p95_ms = n.p95_ns / 1e6;
     auto ms = [](std::int64_t ns) { return ns < 0 ? -1.0 : ns / 1e6; };

@@ -76,6 +76,9 @@ struct NodeStats {
   std::uint64_t firings = 0;  ///< firings that took or sent a message: frames
   std::uint64_t nothing_firings = 0;  ///< firings that only passed Nothing (not in the rate or times)
   std::uint64_t dropped = 0;  ///< frames a source keeping the newest lost (Node::countDropped)
+  /** Messages each output has sent (not Nothing, not an end of sequence), by output name in
+   *  the node's order: the rate on its links is their change over time. */
+  std::vector<std::pair<std::string, std::uint64_t>> sent;
   /** Firing times: every firing of a node that takes about a microsecond or more; one firing
    *  in 8 of a faster one (a clock read would cost a quarter of its hop), so there max_ns is the
    *  largest sampled time. */
