@@ -72,6 +72,14 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
     }
   }
   menu.addSeparator();
+  const bool shown = scene_->criticalTarget() == node.toStdString();
+  QAction* critical = menu.addAction(shown ? "Hide the critical path" : "Critical path to here", this, [this, node, shown] {
+    const std::string path = scene_->showCriticalPath(shown ? "" : node.toStdString());
+    showMessage(shown ? "critical path hidden" : QString::fromStdString("critical path to " + node.toStdString() + ": " + path),
+                false);
+  });
+  critical->setObjectName("critical_path");
+  critical->setToolTip("colours the chain of links whose frames come last to this node (by live latency, else by firing time)");
   menu.addAction("Help (F1)", this, [this, node] { showNodeHelp(node); });  // what its type does, its ports and parameters
 }
 

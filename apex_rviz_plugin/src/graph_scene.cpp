@@ -6,11 +6,13 @@
 
 #include <QGraphicsSceneContextMenuEvent>
 #include <QGraphicsSceneMouseEvent>
+#include <QGraphicsSimpleTextItem>
 #include <QGraphicsView>
 #include <QLabel>
 #include <QPainterPath>
 #include <QPen>
 
+#include "apex_rviz_plugin/critical_path.hpp"
 #include "apex_rviz_plugin/param_editor.hpp"
 
 #include <algorithm>
@@ -35,19 +37,55 @@ bool onCurve(const ConnectionItem* c, QPointF pos) { return c->shape().contains(
 // ------------------------------------------------------------ ConnectionItem
 
 ConnectionItem::ConnectionItem(const apex::Connection& c, PortItem* from, PortItem* to) : c_(c), from_(from), to_(to) {
-  QPen pen(c.kind == "event"       ? QColor(230, 160, 40)
-           : c.kind == "parameter" ? QColor(150, 110, 200)
-                                   : QColor(140, 190, 230),
-           c.kind == "data" ? 2.5 : 1.8);
-  if (c.kind == "event") pen.setStyle(Qt::DashLine);
-  setPen(pen);
-  setZValue(0);
+  restyle();
   setToolTip(QString::fromStdString(c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port +
                                     "\n(right-click: delete it)"));
   reroute();
 }
 
-void ConnectionItem::reroute() { setPath(curve(from_->scenePos(), to_->scenePos())); }
+void ConnectionItem::reroute() {
+  setPath(curve(from_->scenePos(), to_->scenePos()));
+  if (rate_) rate_->setPos(path().pointAtPercent(0.5) - QPointF(rate_->boundingRect().width() / 2, 16));
+}
+
+void ConnectionItem::showRate(double per_s) {
+  if (c_.kind != "data") return;
+  if (per_s < 0) {
+    delete rate_;
+    rate_ = nullptr;
+    return;
+  }
+  if (!rate_) {
+    rate_ = new QGraphicsSimpleTextItem(this);
+    rate_->setBrush(QColor(170, 200, 225));
+    QFont f;
+    f.setPointSizeF(7.5);
+    rate_->setFont(f);
+  }
+  rate_->setText(QString("%1/s").arg(per_s, 0, 'f', per_s < 10 ? 1 : 0));
+  reroute();
+}
+
+QString ConnectionItem::rateText() const { return rate_ ? rate_->text() : QString(); }
+
+void ConnectionItem::setCritical(bool on) {
+  if (on == critical_) return;
+  critical_ = on;
+  restyle();
+}
+
+void ConnectionItem::restyle() {
+  QPen pen(critical_                ? QColor(255, 140, 0)
+           : c_.kind == "event"     ? QColor(230, 160, 40)
+           : c_.kind == "parameter" ? QColor(150, 110, 200)
+                                    : QColor(140, 190, 230),
+           critical_           ? 4.5
+           : c_.kind == "data" ? 2.5
+                               : 1.8);
+  if (c_.kind == "event") pen.setStyle(Qt::DashLine);
+  setPen(pen);
+  setZValue(critical_ ? 0.5 : 0);
+}
 
 QPainterPath ConnectionItem::shape() const {
   QPainterPathStroker near;  // the drawn line is 2 wide: at a small zoom a click would rarely land on it
@@ -139,6 +177,7 @@ void GraphScene::show(const GraphModel& model) {
     connections_.push_back(new ConnectionItem(c, a, b));
     addItem(connections_.back());
   }
+  markLinks();
   resumeDrag(dragging);
 }
 
@@ -218,6 +257,41 @@ void GraphScene::showStatus(const apex::RuntimeStatus& status) {
     last_status_[s.name] = {s.firings, now};
     item->showStatus(s, rate);
   }
+  for (const auto& s : status.nodes) {  // each output's messages per second: the rate on its links
+    statuses_[s.name] = s;
+    for (std::size_t i = 0; i < s.outputs.size() && i < s.sent.size(); ++i) {
+      const std::string key = s.name + "/" + s.outputs[i];
+      auto it = last_sent_.find(key);
+      if (it != last_sent_.end() && now > it->second.second && s.sent[i] >= it->second.first)
+        link_rates_[key] = (s.sent[i] - it->second.first) / (now - it->second.second);
+      last_sent_[key] = {s.sent[i], now};
+    }
+  }
+  markLinks();
+}
+
+std::string GraphScene::showCriticalPath(const std::string& node) {
+  critical_to_ = node;
+  markLinks();
+  if (node.empty() || !model_) return "";
+  return describeCriticalPath(criticalPath(model_->graph(), statuses_, node), statuses_, node);
+}
+
+void GraphScene::markLinks() {
+  std::vector<apex::Connection> path;
+  if (!critical_to_.empty() && model_) path = criticalPath(model_->graph(), statuses_, critical_to_);
+  const auto same = [](const apex::Connection& a, const apex::Connection& b) {
+    return a.from_node == b.from_node && a.from_port == b.from_port && a.to_node == b.to_node && a.to_port == b.to_port;
+  };
+  std::set<std::string> on_path;
+  for (const auto& c : path) on_path.insert(c.from_node), on_path.insert(c.to_node);
+  for (auto* item : connections_) {
+    const auto& c = item->connection();
+    const auto rate = link_rates_.find(c.from_node + "/" + c.from_port);
+    item->showRate(rate == link_rates_.end() ? -1 : rate->second);
+    item->setCritical(std::any_of(path.begin(), path.end(), [&](const apex::Connection& p) { return same(p, c); }));
+  }
+  for (auto& [name, item] : nodes_) item->setCritical(on_path.count(name) > 0);
 }
 
 void GraphScene::showValue(const QString& node_name, const QString& port, const QString& text) {

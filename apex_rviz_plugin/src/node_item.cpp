@@ -267,6 +267,12 @@ double NodeItem::textWidth() const {
   return wide + 2 * kPad;
 }
 
+void NodeItem::setCritical(bool on) {
+  if (on == critical_) return;
+  critical_ = on;
+  QGraphicsObject::update();
+}
+
 void NodeItem::showStatus(const apex::NodeStatus& s, double rate_hz) {
   timing_ = QString("%1 ms (p95 %2) · %3 Hz · ").arg(s.mean_ms, 0, 'f', 2).arg(s.p95_ms, 0, 'f', 2).arg(rate_hz, 0, 'f', 1);
   // live frames: how old they are (since their stamp) when this node is done with them
@@ -399,7 +405,11 @@ QRectF NodeItem::boundingRect() const { return QRectF(-2, -2, width_ + 4, height
 void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
   p->setRenderHint(QPainter::Antialiasing);
   const bool error = info_.state == "error", off = !info_.enabled || info_.state == "placeholder";
-  p->setPen(QPen(error ? QColor(230, 40, 40) : isSelected() ? QColor(255, 220, 80) : QColor(20, 20, 20), error ? 3 : 1.5));
+  p->setPen(QPen(error          ? QColor(230, 40, 40)
+                 : isSelected() ? QColor(255, 220, 80)
+                 : critical_    ? QColor(255, 140, 0)
+                                : QColor(20, 20, 20),
+                 error || critical_ ? 3 : 1.5));
   p->setBrush(off ? QColor(70, 70, 70) : QColor(45, 48, 55));
   p->drawRoundedRect(QRectF(0, 0, width_, height_), 6, 6);
   p->setBrush(groupColor(info_.thread_group));

@@ -58,6 +58,32 @@ QPoint handleOf(QSlider* slider) {
   return slider->style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider).center();
 }
 
+/** A right-click on `node`'s title, its menu held open until three graphs came, then the item
+ *  `text` chosen in it. Returns the graphs shown while it was open; negated if `text` was not
+ *  chosen (the menu closed before, or has no such item). */
+int chooseInNodeMenu(PanelWidget& panel, QGraphicsView* view, const std::string& node, const QString& text) {
+  int shown = 0;
+  const auto counting = QObject::connect(&panel, &PanelWidget::graphShown, [&] { ++shown; });
+  bool chose = false;
+  QTimer chooser;  // inside the menu's own event loop
+  chooser.setInterval(20);
+  QObject::connect(&chooser, &QTimer::timeout, [&] {
+    auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
+    if (!menu || shown < 3 || chose) return;
+    for (QAction* a : menu->actions())
+      if (a->text() == text) chose = true, menu->hide(), a->trigger();
+    if (!chose) menu->hide();
+  });
+  chooser.start();
+  NodeItem* item = panel.editor()->scene()->node(node);
+  const QPoint at = view->mapFromScene(item->scenePos() + QPointF(40, 8));
+  QContextMenuEvent right(QContextMenuEvent::Mouse, at, view->viewport()->mapToGlobal(at));
+  QApplication::sendEvent(view->viewport(), &right);  // returns once the menu is closed
+  chooser.stop();
+  QObject::disconnect(counting);
+  return chose ? shown : -shown;
+}
+
 bool disconnectLink(const std::string& a, const std::string& ap, const std::string& b, const std::string& bp) {
   apex::Connect srv;
   srv.request.from_node = a, srv.request.from_port = ap, srv.request.to_node = b, srv.request.to_port = bp;
@@ -113,26 +139,8 @@ TEST_F(PanelWidgetTest, ALinkDraggedToEmptyCanvasAndAMenuBothWorkWhileABagPlays)
       << panel.editor()->message().toStdString();
 
   // a right-click menu held open while graphs come, then "Disable" chosen in it
-  int shown = 0;
-  const auto counting = QObject::connect(&panel, &PanelWidget::graphShown, [&] { ++shown; });
-  bool chose = false;
-  QTimer chooser;  // inside the menu's own event loop
-  chooser.setInterval(20);
-  QObject::connect(&chooser, &QTimer::timeout, [&] {
-    auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
-    if (!menu || shown < 3 || chose) return;
-    for (QAction* a : menu->actions())
-      if (a->text() == "Disable") chose = true, menu->hide(), a->trigger();
-  });
-  shown = 0;
-  chooser.start();
-  NodeItem* clock = panel.editor()->scene()->node("menu_clock");
-  const QPoint at = view->mapFromScene(clock->scenePos() + QPointF(40, 8));
-  QContextMenuEvent right(QContextMenuEvent::Mouse, at, view->viewport()->mapToGlobal(at));
-  QApplication::sendEvent(view->viewport(), &right);  // returns once the menu is closed
-  chooser.stop();
-  QObject::disconnect(counting);
-  ASSERT_TRUE(chose) << "the node's menu did not stay open through " << shown << " graphs";
+  const int shown = chooseInNodeMenu(panel, view, "menu_clock", "Disable");
+  ASSERT_GE(shown, 3) << "the node's menu did not stay open through " << -shown << " graphs";
   ASSERT_TRUE(QTest::qWaitFor(
       [&] {
         const auto* n = find(runtimeGraph(), "menu_clock");
@@ -224,6 +232,52 @@ TEST_F(PanelWidgetTest, OnAHeldFrameANodeThatLearnsFromEveryFrameSaysThatReRunsC
   ASSERT_TRUE(setParameter("held_player", "playing", "false"));
   ASSERT_TRUE(QTest::qWaitFor([&] { return !scene->node("held_mog")->heldNote().isEmpty(); }, kWaitMs));
   scene->clearSelection();
+  emptyGraph();
+}
+
+TEST_F(PanelWidgetTest, WhileABagPlaysLinksShowTheirRateAndANodesMenuColoursItsCriticalPath) {
+  emptyGraph();
+  startPlaying("rate_player");
+  ASSERT_TRUE(addNode("apex_nodes/GaussianBlur", "rate_blur", ""));
+  ASSERT_TRUE(addNode("apex_nodes/Counter", "rate_count", ""));
+  for (const char* n : {"rate_blur", "rate_count"}) waitPlaced(n);
+  ASSERT_TRUE(link("rate_player", "camera_image_raw", "rate_blur", "image") && link("rate_blur", "image", "rate_count", "in"));
+  GraphScene* scene = panel.editor()->scene();
+  // each link says how many messages a second its output sends (from two statuses, 0.5 s apart)
+  const auto rates = [&] {
+    std::map<std::string, double> out;
+    for (const ConnectionItem* c : scene->connections()) {
+      const QString text = c->rateText();
+      if (text.endsWith("/s")) out[c->connection().from_node] = text.chopped(2).toDouble();
+    }
+    return out;
+  };
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {
+        const auto r = rates();
+        return r.size() == 2 && r.at("rate_player") > 0 && r.at("rate_blur") > 0;
+      },
+      kWaitMs))
+      << rates().size() << " links with a rate";
+
+  // Right-click on the counter, "Critical path to here" chosen while graphs come: the chain is coloured
+  const int shown = chooseInNodeMenu(panel, view, "rate_count", "Critical path to here");
+  ASSERT_GE(shown, 3) << "not chosen in the node's menu (" << -shown << " graphs shown while it was open)";
+  EXPECT_TRUE(panel.editor()->message().startsWith("critical path to rate_count: rate_player → rate_blur → rate_count: "))
+      << panel.editor()->message().toStdString();
+  const auto critical = [&] {
+    int n = 0;
+    for (const ConnectionItem* c : scene->connections()) n += c->critical() ? 1 : 0;
+    return n;
+  };
+  ASSERT_TRUE(QTest::qWaitFor([&] { return critical() == 2; }, kWaitMs)) << critical() << " links coloured";
+  for (const char* n : {"rate_player", "rate_blur", "rate_count"}) EXPECT_TRUE(scene->node(n)->critical()) << n;
+  QTest::qWait(600);  // a status and graphs later (the bag plays on), it is still shown
+  EXPECT_EQ(critical(), 2);
+  EXPECT_LT(chooseInNodeMenu(panel, view, "rate_blur", "Hide the critical path"), 0) << "only its target's menu hides it";
+  ASSERT_GE(chooseInNodeMenu(panel, view, "rate_count", "Hide the critical path"), 3);
+  EXPECT_EQ(critical(), 0);
+  EXPECT_FALSE(scene->node("rate_count")->critical());
   emptyGraph();
 }
 

@@ -20,6 +20,7 @@
 #include "apex_rviz_plugin/layout.hpp"
 
 class QGraphicsProxyWidget;
+class QGraphicsSimpleTextItem;
 class QToolButton;
 
 namespace apex_rviz_plugin {
@@ -65,6 +66,9 @@ class NodeItem : public QGraphicsObject {
   double width() const { return width_; }
   /** @brief Shows a newer description; rebuilds the ports and widgets only if they changed. */
   void update(const apex::NodeInfo& node);
+  /** @brief An orange outline: on the critical path the panel shows. */
+  void setCritical(bool on);
+  bool critical() const { return critical_; }
   void showStatus(const apex::NodeStatus& status, double rate_hz);
   void showValue(const QString& port, const QString& text);
   /** @brief Draws previews of the outputs that carry images (thumbnails) or numbers
@@ -170,6 +174,7 @@ class NodeItem : public QGraphicsObject {
   QGraphicsProxyWidget* params_ = nullptr;
   QString timing_, values_;
   QString waiting_;  // what a stalled node waits for (the runtime says)
+  bool critical_ = false;  // on the critical path the panel shows: an orange outline
   std::uint64_t firings_ = 0;
   std::map<QString, QString> scalar_values_;
   std::vector<double> fitness_;  // Optimizer: best fitness per evaluation of the current run
@@ -196,11 +201,23 @@ class ConnectionItem : public QGraphicsPathItem {
   /** A band 8 units wide along the curve: a click that near it is on it (hit tests, menus). */
   QPainterPath shape() const override;
   QRectF boundingRect() const override;
+  /** @brief Writes the messages per second its output sends beside the curve's middle (a data
+   *  link; a negative rate: none known yet, nothing written). */
+  void showRate(double per_s);
+  /** @brief The rate written on it ("12/s"), empty if none. */
+  QString rateText() const;
+  /** @brief Drawn thick and orange: on the critical path the panel shows. */
+  void setCritical(bool on);
+  bool critical() const { return critical_; }
 
  private:
+  void restyle();
+
   apex::Connection c_;
   PortItem* from_;
   PortItem* to_;
+  QGraphicsSimpleTextItem* rate_ = nullptr;  // a child: moves and goes with the link
+  bool critical_ = false;
 };
 
 class GraphScene : public QGraphicsScene {
@@ -210,6 +227,10 @@ class GraphScene : public QGraphicsScene {
   /** @brief Draws the model's graph, keeping the items (and widgets being used) of unchanged nodes. */
   void show(const GraphModel& model);
   void showStatus(const apex::RuntimeStatus& status);
+  /** @brief Colours the critical path to `node` (critical_path.hpp), followed live as statuses
+   *  come; "" takes it off. Returns the path as the message says it. */
+  std::string showCriticalPath(const std::string& node);
+  const std::string& criticalTarget() const { return critical_to_; }
   void showValue(const QString& node, const QString& port, const QString& text);
   void showImage(const QString& node, const QString& port, const QImage& image);
   void showAbout(const QString& node, const QString& port, const QString& text);
@@ -302,6 +323,12 @@ class GraphScene : public QGraphicsScene {
   double zoom_ = 1;
   std::vector<ConnectionItem*> connections_;
   std::map<std::string, std::pair<std::uint64_t, double>> last_status_;  ///< firings at a stamp
+  std::map<std::string, std::pair<std::uint64_t, double>> last_sent_;  ///< "node/output": messages at a stamp
+  std::map<std::string, double> link_rates_;  ///< "node/output": messages per second, from the last two statuses
+  std::map<std::string, apex::NodeStatus> statuses_;  ///< the newest of each node
+  std::string critical_to_;  ///< the node whose critical path is coloured ("" none)
+  /** Rates and the critical path onto the links (rebuilt with every graph shown). */
+  void markLinks();
   PortItem* drag_from_ = nullptr;
   QGraphicsPathItem* drag_line_ = nullptr;
 };
