@@ -14,11 +14,20 @@
 
 namespace apex_test {
 
-/** A directory of this test process's own under the temp directory. */
+/** A directory of this test process's own under the temp directory, removed when the process
+ *  ends normally (by that process alone: not by a child it forked). */
 inline std::filesystem::path bagDirectory() {
-  const auto dir = std::filesystem::temp_directory_path() / ("apex_bag_test_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  struct Owned {
+    pid_t owner = getpid();
+    std::filesystem::path dir = std::filesystem::temp_directory_path() / ("apex_bag_test_" + std::to_string(owner));
+    ~Owned() {
+      std::error_code ignored;
+      if (getpid() == owner) std::filesystem::remove_all(dir, ignored);
+    }
+  };
+  static const Owned owned;
+  std::filesystem::create_directories(owned.dir);
+  return owned.dir;
 }
 
 const ros::Time kBegin(1000, 0);
