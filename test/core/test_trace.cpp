@@ -181,14 +181,19 @@ NodeStats statsOf(const Graph& g, const std::string& node) {
   return {};
 }
 
-TEST(Latency, FromTheFramesStampToTheEndOfEachFiringThatWorkedOnIt) {
-  Graph g(registry());
+/** The graph built, started, and 20 frames sent through it, each stamped 30 ms ago. */
+void sendTwentyFramesStamped30msAgo(Graph& g) {
   build(g);
   g.start();
-  auto* source = object<FrameSource>(g, "source");
-  for (int i = 0; i < 20; ++i) source->send(wallNs() - 30000000, i);  // each stamped 30 ms ago
+  for (int i = 0; i < 20; ++i) object<FrameSource>(g, "source")->send(wallNs() - 30000000, i);
   ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(20));
   ASSERT_TRUE(g.waitIdle(kWait));
+}
+
+TEST(Latency, FromTheFramesStampToTheEndOfEachFiringThatWorkedOnIt) {
+  Graph g(registry());
+  ASSERT_NO_FATAL_FAILURE(sendTwentyFramesStamped30msAgo(g));
+  auto* source = object<FrameSource>(g, "source");
   const std::int64_t waited = 1000000000;  // what a loaded machine may add, at most (a passing run: < 1 ms)
   for (const char* node : {"source", "unwrap", "gain", "sink"}) {
     const NodeStats s = statsOf(g, node);
@@ -206,6 +211,37 @@ TEST(Latency, FromTheFramesStampToTheEndOfEachFiringThatWorkedOnIt) {
   source->countDropped(3);  // a source that keeps the newest lost three (any thread may say so)
   EXPECT_EQ(statsOf(g, "source").dropped, 3u);
   EXPECT_EQ(statsOf(g, "sink").dropped, 0u);
+}
+
+TEST(Latency, ANodesProfileIsItsHistogramsOverTheStatusWindow) {
+  Graph g(registry());
+  ASSERT_NO_FATAL_FAILURE(sendTwentyFramesStamped30msAgo(g));
+  auto profile = g.nodeProfile("sink");
+  ASSERT_TRUE(profile) << profile.message();
+  const NodeProfile& p = profile.value();
+  EXPECT_EQ(p.name, "sink");
+  EXPECT_GT(p.window_s, 0);
+  std::uint64_t frames = 0, timed = 0;
+  for (const auto& b : p.latency) {
+    frames += b.count;
+    EXPECT_LT(b.lower_ns, b.upper_ns);
+    EXPECT_GE(b.upper_ns, 30000000) << "no frame is younger than its 30 ms";
+  }
+  EXPECT_EQ(frames, statsOf(g, "sink").latency_frames);
+  EXPECT_EQ(frames, 20u);
+  for (const auto& b : p.time) timed += b.count;
+  EXPECT_GT(timed, 0u);
+  for (std::size_t i = 1; i < p.latency.size(); ++i) EXPECT_LE(p.latency[i - 1].upper_ns, p.latency[i].lower_ns) << "in order";
+  EXPECT_THAT(g.nodeProfile("ghost").message(), HasSubstr("no node named 'ghost'"));
+}
+
+TEST(Histogram, ABucketsBoundsHoldWhatItCounts) {
+  for (std::int64_t ns : {0LL, 1023LL, 1024LL, 5000LL, 8191LL, 8192LL, 123456789LL}) {
+    const int b = HistogramCounts::bucket(ns);
+    EXPECT_LE(HistogramCounts::lowerNs(b), double(ns)) << ns;
+    EXPECT_GT(HistogramCounts::upperNs(b), double(ns)) << ns;
+    EXPECT_EQ(HistogramCounts::upperNs(b), HistogramCounts::lowerNs(b + 1)) << ns;
+  }
 }
 
 TEST(Latency, NoneForFramesStampedLongAgoAsABagPlayedAtItsRecordedTimes) {

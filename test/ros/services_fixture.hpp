@@ -12,6 +12,7 @@
 #include <apex/Inspect.h>
 #include <apex/ListNodeTypes.h>
 #include <apex/LoadGraph.h>
+#include <apex/GetNodeProfile.h>
 #include <apex/RemoveNode.h>
 #include <apex/RenameNode.h>
 #include <apex/SaveGraph.h>

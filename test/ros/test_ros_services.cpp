@@ -198,6 +198,35 @@ TEST_F(Services, EveryServiceNamesANodeThatIsNotThere) {
   apex::RenameNode::Request rn;
   rn.name = "ghost", rn.new_name = "spirit";
   refused(call<apex::RenameNode>("rename_node", rn), before, ghost);
+  apex::GetNodeProfile::Request np;
+  np.node = "ghost";
+  refused(call<apex::GetNodeProfile>("node_profile", np), before, ghost);
+}
+
+TEST_F(Services, NodeProfileGivesAFiringNodesHistogramAsBars) {
+  ASSERT_TRUE(addNode("apex_nodes/Clock", "profiled", "{rate: 200}").success);
+  apex::GetNodeProfile::Request req;
+  req.node = "profiled";
+  apex::GetNodeProfile::Response res;
+  const auto until = ros::WallTime::now() + ros::WallDuration(30);
+  std::uint64_t firings = 0;
+  while (firings < 20 && ros::WallTime::now() < until) {  // a clock at 200 Hz: a few tenths of a second
+    res = call<apex::GetNodeProfile>("node_profile", req);
+    ASSERT_TRUE(res.success) << res.message;
+    firings = 0;
+    for (auto c : res.time_counts) firings += c;
+    if (firings < 20) ros::WallDuration(0.05).sleep();
+  }
+  ASSERT_GE(firings, 20u);
+  ASSERT_EQ(res.time_lower_ms.size(), res.time_counts.size());
+  ASSERT_EQ(res.time_upper_ms.size(), res.time_counts.size());
+  for (std::size_t i = 0; i < res.time_counts.size(); ++i) {
+    EXPECT_LT(res.time_lower_ms[i], res.time_upper_ms[i]);
+    EXPECT_GT(res.time_counts[i], 0u) << "only bars that hold any";
+  }
+  EXPECT_GT(res.window_s, 0);
+  EXPECT_TRUE(res.latency_counts.empty()) << "a clock's numbers carry no stamp";
+  EXPECT_THAT(res.message, ::testing::HasSubstr("no latency"));
 }
 
 TEST_F(Services, EveryServiceRefusesTextThatIsNotUtf8NamingTheField) {

@@ -471,6 +471,13 @@ Node* Graph::Impl::nodeObject(const std::string& node) const {
   return n ? n->node.get() : nullptr;
 }
 
+Result<NodeProfile> Graph::Impl::nodeProfile(const std::string& node) const {
+  auto lock = lockEdits();
+  auto n = require(node);
+  if (!n) return n.status();
+  return n.value()->profile();
+}
+
 Result<ParamValue> Graph::Impl::parameterValue(const std::string& outer, const std::string& outer_param) const {
   auto lock = lockEdits();
   auto at = subgraphs_.exportedParam(outer, outer_param);

@@ -66,6 +66,7 @@ GraphDescription Graph::describe() const { return impl_->describe(); }
 std::vector<ConnectionDescription> Graph::connections() const { return impl_->connections(); }
 Result<LoadReport> Graph::load(const GraphDescription& description) { return impl_->load(description); }
 std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const { return impl_->nodeStats(stall_after_s); }
+Result<NodeProfile> Graph::nodeProfile(const std::string& node) const { return impl_->nodeProfile(node); }
 std::vector<GroupStats> Graph::groupStats() const { return impl_->groupStats(); }
 void Graph::setTracing(bool on) { impl_->setTracing(on); }
 bool Graph::tracing() const {

@@ -66,6 +66,7 @@ struct Graph::Impl {
   std::vector<ConnectionDescription> connections() const;
   Result<LoadReport> load(const GraphDescription& description);
   std::vector<NodeStats> nodeStats(double stall_after_s) const;
+  Result<NodeProfile> nodeProfile(const std::string& node) const;
   std::vector<GroupStats> groupStats() const;
   void setTracing(bool on);
   Trace trace(double seconds) const;

@@ -19,6 +19,17 @@ double HistogramCounts::middleNs(int b) {
   return (low + 0.5 * double(1ull << (octave - 3))) * 1024.0;
 }
 
+double HistogramCounts::lowerNs(int b) {
+  if (b == 0) return 0;
+  return 2 * middleNs(b) - upperNs(b);
+}
+
+double HistogramCounts::upperNs(int b) {
+  if (b < kSub) return (b + 1) * 1024.0;
+  const int octave = 3 + (b - kSub) / kSub;
+  return middleNs(b) + 0.5 * double(1ull << (octave - 3)) * 1024.0;
+}
+
 std::uint64_t HistogramCounts::total() const {
   std::uint64_t n = 0;
   for (auto c : counts) n += c;

@@ -281,6 +281,8 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Its receivers read its messages when their firing ends (SourceMode::Newest). */
   bool sendsNewest() const { return iface->source_mode == SourceMode::Newest; }
   NodeStats stats() const;
+  /** Its histograms over the window stats() keeps (NodeProfile). */
+  NodeProfile profile() const;
   /** When the node last fired, or was made if never (ticks.hpp). */
   std::int64_t lastFired() const { return last_fired_.load(std::memory_order_relaxed); }
   /** What keeps it from firing now, as a sentence ("" if nothing). Any thread. */
@@ -371,6 +373,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::chrono::steady_clock::time_point last_resend_;  // state_mutex
   std::string error_;  // state_mutex
   std::chrono::steady_clock::time_point error_logged_;  // state_mutex
+  const std::chrono::steady_clock::time_point added_at_ = std::chrono::steady_clock::now();  // what profile() is over at first
   // The distributions: written by the group thread (timed firings), read by stats(). The window
   // is the counts since `window_[0]`, a reading 5 to 10 s old (state_mutex).
   Histogram time_hist_, latency_hist_;

@@ -77,5 +77,28 @@ NodeStats NodeState::stats() const {
   return s;
 }
 
+namespace {
+std::vector<HistogramBucket> bars(const HistogramCounts& h) {
+  std::vector<HistogramBucket> out;
+  for (int b = 0; b < HistogramCounts::kBuckets; ++b)
+    if (h.counts[b] > 0) out.push_back({HistogramCounts::lowerNs(b), HistogramCounts::upperNs(b), h.counts[b]});
+  return out;
+}
+}  // namespace
+
+NodeProfile NodeState::profile() const {
+  NodeProfile p;
+  p.name = name;
+  const auto now = std::chrono::steady_clock::now();
+  std::lock_guard<std::mutex> lock(state_mutex);
+  const bool windowed = window_[0].at != std::chrono::steady_clock::time_point{};
+  const Reading none{};
+  const Reading& base = windowed ? window_[0] : none;
+  p.window_s = std::chrono::duration<double>(now - (windowed ? base.at : added_at_)).count();
+  p.time = bars(time_hist_.read().since(base.time));
+  p.latency = bars(latency_hist_.read().since(base.latency));
+  return p;
+}
+
 }  // namespace detail
 }  // namespace apex

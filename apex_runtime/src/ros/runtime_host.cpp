@@ -32,6 +32,7 @@
 #include "apex/core/graph_file.hpp"
 #include "apex/core/log.hpp"
 #include "balance_service.hpp"
+#include "profile_service.hpp"
 #include "trace_service.hpp"
 #include "convert.hpp"
 #include "diagnostics.hpp"
@@ -381,6 +382,7 @@ struct RuntimeHost::Impl {
     serve("control", &Impl::control);
     serve("inspect", &Impl::inspect);
     services.push_back(serveTrace(pnh, graph, roots, ros::this_node::getName()));
+    services.push_back(serveProfile(pnh, graph));
     bool reconfigurable = true, diagnosed = true;
     pnh.param("dynamic_reconfigure", reconfigurable, true);
     pnh.param("diagnostics", diagnosed, true);

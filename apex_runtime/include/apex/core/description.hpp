@@ -100,6 +100,21 @@ struct NodeStats {
   double idle_s = 0;  ///< seconds since it last fired (or since it was added)
 };
 
+/** @brief One bar of a histogram: durations in [lower_ns, upper_ns), how many. */
+struct HistogramBucket {
+  double lower_ns = 0, upper_ns = 0;
+  std::uint64_t count = 0;
+};
+
+/** @brief A node's distributions over the window NodeStats' percentiles are over (the last 5 to
+ *  10 s, or since it was added if no status was read yet): its firing times and its latency from
+ *  its frames' stamps, the buckets that hold any (log-linear, 8 per power of two). */
+struct NodeProfile {
+  std::string name;
+  double window_s = 0;  ///< how many seconds the counts are over
+  std::vector<HistogramBucket> time, latency;
+};
+
 /** @brief Profiling of one thread group: busy time against wall time since start. */
 struct GroupStats {
   std::string name;

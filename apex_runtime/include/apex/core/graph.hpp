@@ -133,6 +133,9 @@ class Graph {
    *  source) says what it waits for in `waiting_for`; 0 says it for every node. */
   std::vector<NodeStats> nodeStats(double stall_after_s = 1.0) const;
   std::vector<GroupStats> groupStats() const;
+  /** @brief A node's histograms of firing time and latency (NodeProfile), over the window of
+   *  nodeStats()' percentiles; an error naming the node if there is none such. */
+  Result<NodeProfile> nodeProfile(const std::string& node) const;
   /** @brief The frame trace (trace.hpp), off at first: while on, each thread group keeps its last
    *  kTraceFirings firings (node, start, end, frame), written by its own thread without a lock;
    *  turned off, what was kept can still be read. Off, it costs one flag read per run of firings. */

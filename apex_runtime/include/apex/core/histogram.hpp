@@ -20,6 +20,9 @@ struct HistogramCounts {
   static int bucket(std::int64_t ns);
   /** The middle of a bucket, ns. */
   static double middleNs(int bucket);
+  /** A bucket's lower and upper bound, ns: it holds durations in [lower, upper). */
+  static double lowerNs(int bucket);
+  static double upperNs(int bucket);
   std::uint64_t total() const;
   /** What `later` counted since this reading (a window). */
   HistogramCounts since(const HistogramCounts& earlier) const;
