@@ -79,6 +79,9 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
                 false);
   });
   critical->setObjectName("critical_path");
+  QAction* histogram = menu.addAction("Latency histogram...", this, [this, node] { emit profileRequested(node); });
+  histogram->setObjectName("latency_histogram");
+  histogram->setToolTip("its latency from the frame's stamp and its firing time over the last 5-10 s, updated every second");
   critical->setToolTip("colours the chain of links whose frames come last to this node (by live latency, else by firing time)");
   menu.addAction("Help (F1)", this, [this, node] { showNodeHelp(node); });  // what its type does, its ports and parameters
 }

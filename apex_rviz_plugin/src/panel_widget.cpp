@@ -1,5 +1,6 @@
 #include "apex_rviz_plugin/panel_widget.hpp"
 
+#include <QPointer>
 #include <QDir>
 #include <QFileInfo>
 #include <QGraphicsView>
@@ -8,6 +9,7 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "apex_rviz_plugin/histogram_view.hpp"
 #include "apex_rviz_plugin/recovery_bar.hpp"
 #include "apex_rviz_plugin/rviz_displays.hpp"
 
@@ -110,6 +112,7 @@ void PanelWidget::connectEditor() {
       editor_->showMessage(QString::fromStdString(m), false);
     });
   });
+  connect(e, &GraphEditor::profileRequested, this, &PanelWidget::showProfile);
   connect(e, &GraphEditor::newRequested, this, &PanelWidget::onNewRequested);
   connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
   // what is shown: inspections, previews, presets, the level
@@ -410,6 +413,20 @@ void PanelWidget::onInspect(const QString& node, const QString& port) {
         else link_.watchScalar(node.toStdString(), port.toStdString(), topic, type);
         report(true, "", "inspecting " + name + " on " + t + (type.empty() ? "" : " (" + QString::fromStdString(type) + ")"));
       });
+}
+
+void PanelWidget::showProfile(const QString& node) {
+  auto* view = findChild<HistogramView*>("histogram_" + node);
+  if (!view) {
+    view = new HistogramView(node, this);
+    connect(view, &HistogramView::refreshRequested, this, [this, view = QPointer<HistogramView>(view)](const QString& name) {
+      link_.profile(name.toStdString(), [view](bool ok, const std::string& m, const apex::GetNodeProfile::Response& res) {
+        if (view) view->showProfile(ok, m, res);
+      });
+    });
+  }
+  view->show();
+  view->raise();
 }
 
 }  // namespace apex_rviz_plugin

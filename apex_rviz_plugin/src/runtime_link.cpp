@@ -351,6 +351,13 @@ void RuntimeLink::balance(int frames, int groups,
   callWithAnswer<apex::Balance>("balance", req, std::move(done));
 }
 
+void RuntimeLink::profile(const std::string& node,
+                          std::function<void(bool, const std::string&, const apex::GetNodeProfile::Response&)> done) {
+  apex::GetNodeProfile::Request req;
+  req.node = node;
+  callWithAnswer<apex::GetNodeProfile>("node_profile", req, std::move(done));
+}
+
 void RuntimeLink::inspect(const std::string& node, const std::string& port,
                           std::function<void(bool, const std::string&, const std::string&, const std::string&)> done,
                           bool preview) {

@@ -4,6 +4,7 @@
 
 #include <QContextMenuEvent>
 
+#include "apex_rviz_plugin/histogram_view.hpp"
 #include "apex_rviz_plugin/quick_add.hpp"
 
 namespace panel_test {
@@ -278,6 +279,22 @@ TEST_F(PanelWidgetTest, WhileABagPlaysLinksShowTheirRateAndANodesMenuColoursItsC
   ASSERT_GE(chooseInNodeMenu(panel, view, "rate_count", "Hide the critical path"), 3);
   EXPECT_EQ(critical(), 0);
   EXPECT_FALSE(scene->node("rate_count")->critical());
+
+  // "Latency histogram..." opens the blur's histograms, updated as it fires; the bag plays at its
+  // recorded stamps, so the latency says why it has none
+  ASSERT_GE(chooseInNodeMenu(panel, view, "rate_blur", "Latency histogram..."), 3);
+  auto* histogram = panel.findChild<HistogramView*>("histogram_rate_blur");
+  ASSERT_TRUE(histogram && histogram->isVisible());
+  ASSERT_TRUE(QTest::qWaitFor([&] { return histogram->timeChart()->bars().total() >= 5; }, kWaitMs))
+      << histogram->timeText().toStdString();
+  const std::uint64_t first = histogram->timeChart()->bars().total();
+  EXPECT_TRUE(histogram->timeText().contains(" · p50 ")) << histogram->timeText().toStdString();
+  EXPECT_TRUE(histogram->latencyText().startsWith("none: ")) << histogram->latencyText().toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return histogram->timeChart()->bars().total() > first; }, kWaitMs)) << "not updated";
+  histogram->grab().save(QString::fromStdString(g_shot).replace(".png", "_histogram.png"));  // the window, to look at
+  ASSERT_GE(chooseInNodeMenu(panel, view, "rate_blur", "Latency histogram..."), 3);
+  EXPECT_EQ(panel.findChildren<HistogramView*>().size(), 1u) << "one window per node";
+  histogram->close();
   emptyGraph();
 }
 

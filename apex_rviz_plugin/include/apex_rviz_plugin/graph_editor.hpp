@@ -168,6 +168,8 @@ class GraphEditor : public QWidget {
   void loadRequested(const QString& path);
   /** The frame trace (FrameTrace.srv): "start", "stop", or "save" the last `seconds` (0: all) to `path`. */
   void traceRequested(const QString& command, const QString& path, double seconds);
+  /** A node's menu: its latency and firing-time histograms in a window (HistogramView). */
+  void profileRequested(const QString& node);
   /** New: the person confirmed that every node goes. */
   void newRequested();
   void typesRequested();

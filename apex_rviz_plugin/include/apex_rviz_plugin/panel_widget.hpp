@@ -194,6 +194,8 @@ class PanelWidget : public QWidget {
   void onPresetCompareRequested(const QString& name);
   /** Another subgraph shown: its nodes without a position get one once shown. */
   void onLevelChanged();
+  /** A node's HistogramView, opened (or raised: one per node), fed by ~node_profile each second. */
+  void showProfile(const QString& node);
   // --- labelling frames (panel_labels.cpp) ---
   /** The player (a node with a transport bar) whose frames reach `node` through data links, the
    *  node itself if it is one; "" if none does. */

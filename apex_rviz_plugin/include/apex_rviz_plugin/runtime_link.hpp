@@ -11,6 +11,7 @@
 
 #include <apex/Balance.h>
 #include <apex/GraphState.h>
+#include <apex/GetNodeProfile.h>
 #include <apex/NodeTypeInfo.h>
 #include <apex/Recovery.h>
 #include <apex/RuntimeStatus.h>
@@ -71,6 +72,9 @@ class RuntimeLink : public QObject {
    *  cores) from the node times measured so far (`frames` 0) or over `frames` new frames; `done`
    *  gets the proposal. Only proposes: the panel applies it as an edit of its own. */
   void balance(int frames, int groups, std::function<void(bool, const std::string&, const apex::Balance::Response&)> done);
+  /** @brief ~node_profile: `node`'s histograms of firing time and latency. */
+  void profile(const std::string& node,
+               std::function<void(bool, const std::string&, const apex::GetNodeProfile::Response&)> done);
   /** @brief Asks the runtime to publish a port; `done` gets the topic and its message type. */
   void inspect(const std::string& node, const std::string& port,
                std::function<void(bool, const std::string& message, const std::string& topic, const std::string& type)> done,
