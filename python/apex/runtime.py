@@ -8,9 +8,9 @@ import rospy
 import yaml
 
 from apex.msg import RuntimeStatus
-from apex.srv import (AddNode, Connect, Control, FireSlot, FrameTrace, GetGraph, Group, Inspect, ListNodeTypes,
-                      LoadGraph, RemoveNode, RenameNode, SaveGraph, SetEnabled, SetInteractive, SetParameter, SetThreadGroup,
-                      SetUi, Ungroup)
+from apex.srv import (AddNode, Connect, Control, FireSlot, FrameTrace, GetGraph, GetNodeProfile, Group, Inspect,
+                      ListNodeTypes, LoadGraph, RemoveNode, RenameNode, SaveGraph, SetEnabled, SetInteractive,
+                      SetParameter, SetThreadGroup, SetUi, Ungroup)
 
 _SERVICES = {
     'list_node_types': ListNodeTypes, 'add_node': AddNode, 'remove_node': RemoveNode, 'connect': Connect,
@@ -18,6 +18,7 @@ _SERVICES = {
     'set_enabled': SetEnabled, 'set_thread_group': SetThreadGroup, 'set_ui': SetUi, 'fire_slot': FireSlot,
     'group': Group, 'ungroup': Ungroup, 'rename_node': RenameNode, 'get_graph': GetGraph,
     'load_graph': LoadGraph, 'save_graph': SaveGraph, 'control': Control, 'inspect': Inspect, 'trace': FrameTrace,
+    'node_profile': GetNodeProfile,
 }
 
 
@@ -251,6 +252,15 @@ class Runtime:
         event JSON (Perfetto, chrome://tracing) to a file in the runtime's file roots (empty:
         ``trace_<date>_<time>.json`` in the first). Returns the absolute path written."""
         return self._call('trace', command='save', path=path, seconds=seconds).path
+
+    def node_profile(self, node):
+        """``node``'s histograms over the last 5-10 s (``~node_profile``): a dict with ``window_s``
+        and ``time`` and ``latency``, each a list of ``(lower_ms, upper_ms, count)`` bars (the
+        buckets that hold any; ``latency`` empty without live stamps)."""
+        res = self._call('node_profile', node=node)
+        return {'window_s': res.window_s,
+                'time': list(zip(res.time_lower_ms, res.time_upper_ms, res.time_counts)),
+                'latency': list(zip(res.latency_lower_ms, res.latency_upper_ms, res.latency_counts))}
 
     # ------------------------------------------------------------------ reading the graph
 

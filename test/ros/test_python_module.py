@@ -59,6 +59,10 @@ class PythonModule(unittest.TestCase):
         self.assertEqual((status.name, status.state), ('count', 'ok'))
         self.assertEqual(self.rt.status('clock').name, 'clock')
         self.assertIn('count', [n.name for n in self.rt.status().nodes])
+        profile = self.rt.node_profile('count')  # its firing times as bars; a count carries no stamp
+        self.assertGreater(sum(count for _, _, count in profile['time']), 0)
+        self.assertTrue(all(lower < upper for lower, upper, _ in profile['time']))
+        self.assertEqual(profile['latency'], [])
 
         self.rt.disconnect('clock', 'count', 'count', 'in')
         self.assertEqual(self.rt.connections(), [])
