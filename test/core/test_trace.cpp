@@ -55,11 +55,25 @@ class Unwrap : public Node {
   void process() override { publish("out", input<Frame>("in")->value); }
 };
 
+/** A frame's value on `all`, and on `even` only when it is even (an output sending on some frames). */
+class Evens : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("a frame's value; the even ones apart").input<Frame>("in").output<int>("all").output<int>("even");
+  }
+  void process() override {
+    const int v = input<Frame>("in")->value;
+    publish("all", v);
+    if (v % 2 == 0) publish("even", v);
+  }
+};
+
 NodeRegistry registry() {
   readStampWith<Frame>([](const void* p) { return static_cast<const Frame*>(p)->stamp; });
   NodeRegistry r = testRegistry();
   EXPECT_TRUE(r.add<FrameSource>("test/FrameSource"));
   EXPECT_TRUE(r.add<Unwrap>("test/Unwrap"));
+  EXPECT_TRUE(r.add<Evens>("test/Evens"));
   return r;
 }
 
@@ -211,6 +225,39 @@ TEST(Latency, FromTheFramesStampToTheEndOfEachFiringThatWorkedOnIt) {
   source->countDropped(3);  // a source that keeps the newest lost three (any thread may say so)
   EXPECT_EQ(statsOf(g, "source").dropped, 3u);
   EXPECT_EQ(statsOf(g, "sink").dropped, 0u);
+}
+
+TEST(Latency, EachOutputHasItsOwnOverTheFiringsThatSentOnIt) {
+  Graph g(registry());
+  add(g, "test/FrameSource", "source");
+  add(g, "test/Evens", "evens");
+  add(g, "test/Collector", "sink");
+  link(g, "source", "out", "evens", "in");
+  link(g, "evens", "all", "sink", "in");
+  g.start();
+  for (int i = 0; i < 20; ++i) object<FrameSource>(g, "source")->send(wallNs() - 30000000, i);
+  ASSERT_TRUE(object<Collector>(g, "sink")->waitFor(20));
+  ASSERT_TRUE(g.waitIdle(kWait));
+  const NodeStats s = statsOf(g, "evens");
+  ASSERT_EQ(s.outputs.size(), 2u);
+  const OutputStats &all = s.outputs[0], &even = s.outputs[1];
+  EXPECT_EQ(all.name, "all");
+  EXPECT_EQ(even.name, "even");
+  EXPECT_EQ(s.latency_frames, 20u);
+  EXPECT_EQ(all.latency_frames, 20u);
+  EXPECT_EQ(even.sent, 10u);
+  EXPECT_EQ(even.latency_frames, 10u) << "only the firings that sent on it";
+  for (const OutputStats* o : {&all, &even}) {
+    EXPECT_GE(o->latency_p50_ns, 30000000 * 15 / 16) << o->name;
+    EXPECT_LE(o->latency_p50_ns, o->latency_p95_ns) << o->name;
+    EXPECT_LE(o->latency_p95_ns, o->latency_max_ns) << o->name;
+  }
+  EXPECT_EQ(all.latency_p95_ns, s.latency_p95_ns) << "every firing sent on it: the node's own";
+  const NodeStats sink = statsOf(g, "sink");
+  EXPECT_TRUE(sink.outputs.empty());
+  const NodeStats source = statsOf(g, "source");
+  ASSERT_EQ(source.outputs.size(), 2u);
+  EXPECT_EQ(source.outputs[1].latency_frames, 20u) << "unconnected, it still sent";
 }
 
 TEST(Latency, ANodesProfileIsItsHistogramsOverTheStatusWindow) {

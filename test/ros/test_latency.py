@@ -58,6 +58,10 @@ class Latency(unittest.TestCase):
         self.assertGreaterEqual(camera.latency_frames, 50)
         self.assertLessEqual(camera.latency_ms, blur.latency_ms)
         self.assertLessEqual(blur.latency_ms, inside.latency_ms + 0.01)
+        # each output has its own latency: the blur's one sends on every frame, so it is the node's
+        image = blur.outputs.index('image')
+        self.assertGreaterEqual(blur.output_latency_p50_ms[image], camera.latency_p50_ms)
+        self.assertEqual(blur.output_latency_p95_ms[image], blur.latency_p95_ms)
         self.assertGreater(blur.p95_ms, 0)
         self.assertLessEqual(blur.p50_ms, blur.p95_ms)
         self.assertEqual(camera.dropped, 0)  # 20 a second: each taken before the next came

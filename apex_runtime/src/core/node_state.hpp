@@ -113,11 +113,21 @@ struct RelaxedCount {
   std::uint64_t get() const { return n.load(std::memory_order_relaxed); }
 };
 
+/** An output's latency: that of the firings which sent on it (an output that sends on some
+ *  frames only has its own), and the readings its window is over (state_mutex). Shared, so it
+ *  moves with its output through an interface change. */
+struct OutputLatency {
+  Histogram hist;  // group thread adds, any thread reads
+  HistogramCounts base, newer;  // state_mutex: as NodeState::window_
+  std::uint64_t sent_seen = 0;  // group thread: OutputState::sent when a latency was last counted
+};
+
 struct OutputState {
   std::vector<std::shared_ptr<Edge>> edges;
   Message pending;
   Tap tap;
   RelaxedCount sent;  // messages sent (not Nothing, not an end of sequence): the rate on its links
+  std::shared_ptr<OutputLatency> latency = std::make_shared<OutputLatency>();
 };
 
 struct ParamState {

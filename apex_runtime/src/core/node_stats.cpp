@@ -36,14 +36,43 @@ void NodeState::recordLatency(std::int64_t wall_ns) {
   latency_hist_.add(latency);
   latency_total_.store(latency_total_.load(relaxed) + latency, relaxed);
   latency_count_.store(latency_count_.load(relaxed) + 1, relaxed);
+  for (auto& out : outputs) {  // the outputs this firing sent on
+    OutputLatency& l = *out.latency;
+    const std::uint64_t sent = out.sent.get();
+    if (sent == l.sent_seen) continue;
+    l.sent_seen = sent;
+    l.hist.add(latency);
+  }
 }
+
+namespace {
+/** p50, p95 and max of a window of latencies into `s`, if it holds any. */
+template <class Stats>
+void fillLatency(const HistogramCounts& window, Stats& s) {
+  const std::uint64_t frames = window.total();
+  if (frames == 0) return;
+  s.latency_frames = frames;
+  s.latency_p50_ns = static_cast<std::int64_t>(window.quantileNs(0.5));
+  s.latency_p95_ns = static_cast<std::int64_t>(window.quantileNs(0.95));
+  s.latency_max_ns = static_cast<std::int64_t>(window.quantileNs(1.0));
+}
+}  // namespace
 
 void NodeState::fillDistributions(NodeStats& s) const {
   const auto now = std::chrono::steady_clock::now();
   Reading r{time_hist_.read(), latency_hist_.read(), latency_total_.load(std::memory_order_relaxed),
             latency_count_.load(std::memory_order_relaxed), now};
   if (window_[1].at == std::chrono::steady_clock::time_point{}) window_[0] = window_[1] = Reading{{}, {}, 0, 0, now};
-  if (now - window_[1].at >= kWindowStep) window_ = {window_[1], r};  // the window: 5 to 10 s
+  const bool step = now - window_[1].at >= kWindowStep;
+  if (step) window_ = {window_[1], r};  // the window: 5 to 10 s
+  s.outputs.reserve(outputs.size());
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    OutputLatency& l = *outputs[i].latency;
+    const HistogramCounts counts = l.hist.read();
+    if (step) l.base = l.newer, l.newer = counts;
+    s.outputs.push_back({manifest().outputs[i].name, outputs[i].sent.get()});
+    fillLatency(counts.since(l.base), s.outputs.back());
+  }
   const Reading& base = window_[0];
   const HistogramCounts time = r.time.since(base.time), latency = r.latency.since(base.latency);
   // (a bucket's middle may lie above the largest time measured: never shown above it)
@@ -51,11 +80,9 @@ void NodeState::fillDistributions(NodeStats& s) const {
   s.p95_ns = std::min(static_cast<std::uint64_t>(time.quantileNs(0.95)), s.max_ns);
   const std::uint64_t frames = r.latency_count - base.latency_count;
   if (frames == 0) return;
+  fillLatency(latency, s);
   s.latency_frames = frames;
   s.latency_mean_ns = (r.latency_total - base.latency_total) / static_cast<std::int64_t>(frames);
-  s.latency_p50_ns = static_cast<std::int64_t>(latency.quantileNs(0.5));
-  s.latency_p95_ns = static_cast<std::int64_t>(latency.quantileNs(0.95));
-  s.latency_max_ns = static_cast<std::int64_t>(latency.quantileNs(1.0));
 }
 
 NodeStats NodeState::stats() const {
@@ -71,8 +98,6 @@ NodeStats NodeState::stats() const {
   std::lock_guard<std::mutex> lock(state_mutex);
   s.error = error_;
   s.enabled = enabled && outer_enabled;
-  s.sent.reserve(outputs.size());
-  for (std::size_t i = 0; i < outputs.size(); ++i) s.sent.emplace_back(manifest().outputs[i].name, outputs[i].sent.get());
   fillDistributions(s);
   return s;
 }

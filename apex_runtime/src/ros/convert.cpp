@@ -199,10 +199,16 @@ RuntimeStatus toStatus(const Graph& graph) {
     ns.mean_ms = n.mean_ns / 1e6;
     ns.max_ms = n.max_ns / 1e6;
     ns.dropped = n.dropped;
-    for (const auto& [output, count] : n.sent) ns.outputs.push_back(output), ns.sent.push_back(count);
     ns.p50_ms = n.p50_ns / 1e6;
     ns.p95_ms = n.p95_ns / 1e6;
     auto ms = [](std::int64_t ns) { return ns < 0 ? -1.0 : ns / 1e6; };
+    for (const auto& o : n.outputs) {
+      ns.outputs.push_back(o.name);
+      ns.sent.push_back(o.sent);
+      ns.output_latency_p50_ms.push_back(ms(o.latency_p50_ns));
+      ns.output_latency_p95_ms.push_back(ms(o.latency_p95_ns));
+      ns.output_latency_max_ms.push_back(ms(o.latency_max_ns));
+    }
     ns.latency_ms = ms(n.latency_mean_ns);
     ns.latency_p50_ms = ms(n.latency_p50_ns);
     ns.latency_p95_ms = ms(n.latency_p95_ns);

@@ -121,6 +121,11 @@ void Diagnostics::nodeStatus(const std::string& node, diagnostic_updater::Diagno
     out.add("latency p95 (ms)", fixed(n.latency_p95_ms, 2));
     out.add("latency max (ms)", fixed(n.latency_max_ms, 2));
   }
+  for (std::size_t i = 0; i < n.outputs.size() && i < n.output_latency_p50_ms.size(); ++i)
+    if (n.output_latency_p50_ms[i] >= 0 && n.outputs.size() > 1)  // with one output, the node's own
+      out.add("latency of '" + n.outputs[i] + "' p50 / p95 / max (ms)", fixed(n.output_latency_p50_ms[i], 2) + " / " +
+                                                                            fixed(n.output_latency_p95_ms[i], 2) + " / " +
+                                                                            fixed(n.output_latency_max_ms[i], 2));
   out.add("idle (s)", fixed(n.idle_s, 1));
   if (!n.waiting_for.empty()) out.add("waiting for", n.waiting_for);
   const auto expected = expected_.find(node);

@@ -70,15 +70,25 @@ struct GraphDescription {
   std::vector<ExportDescription> exports;  ///< used when the graph is a subgraph; ignored at the top
 };
 
+/** @brief One output of a node: what it sent, and the latency of the firings that sent on it. */
+struct OutputStats {
+  std::string name;
+  std::uint64_t sent = 0;  ///< messages sent (not Nothing, not an end of sequence): the rate on its links
+  /** As NodeStats' latency, over the firings that sent a message on this output (one that sends
+   *  on some frames only has its own figures); -1: none in the window. */
+  std::int64_t latency_p50_ns = -1, latency_p95_ns = -1, latency_max_ns = -1;
+  std::uint64_t latency_frames = 0;
+};
+
 /** @brief Profiling of one node; times in nanoseconds. */
 struct NodeStats {
   std::string name;
   std::uint64_t firings = 0;  ///< firings that took or sent a message: frames
   std::uint64_t nothing_firings = 0;  ///< firings that only passed Nothing (not in the rate or times)
   std::uint64_t dropped = 0;  ///< frames a source keeping the newest lost (Node::countDropped)
-  /** Messages each output has sent (not Nothing, not an end of sequence), by output name in
-   *  the node's order: the rate on its links is their change over time. */
-  std::vector<std::pair<std::string, std::uint64_t>> sent;
+  /** Its outputs in the node's order: the messages each sent (the rate on its links is their
+   *  change over time) and each one's latency. */
+  std::vector<OutputStats> outputs;
   /** Firing times: every firing of a node that takes about a microsecond or more; one firing
    *  in 8 of a faster one (a clock read would cost a quarter of its hop), so there max_ns is the
    *  largest sampled time. */
