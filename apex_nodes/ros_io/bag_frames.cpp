@@ -73,7 +73,7 @@ std::vector<BagFrame> indexFrames(rosbag::Bag& bag, const std::vector<std::strin
   return frames;
 }
 
-std::shared_ptr<const RosMessage> readMessage(const rosbag::MessageInstance& m) {
+std::shared_ptr<const RosMessage> readMessage(const rosbag::MessageInstance& m, const ros::Time* stamp) {
   auto out = std::make_shared<RosMessage>();
   out->datatype = m.getDataType();
   out->md5sum = m.getMD5Sum();
@@ -81,6 +81,7 @@ std::shared_ptr<const RosMessage> readMessage(const rosbag::MessageInstance& m) 
   out->bytes.resize(m.size());
   ros::serialization::OStream stream(out->bytes.data(), static_cast<std::uint32_t>(out->bytes.size()));
   m.write(stream);
+  if (stamp) out->setStamp(*stamp);
   return out;
 }
 

@@ -39,8 +39,9 @@ struct BagFrame {
  *  seconds after the frame's first one, or on a topic the frame already has. */
 std::vector<BagFrame> indexFrames(rosbag::Bag& bag, const std::vector<std::string>& topics, double window);
 
-/** @brief A message of the bag as it is stored: its connection's type and its bytes (one copy). */
-std::shared_ptr<const RosMessage> readMessage(const rosbag::MessageInstance& m);
+/** @brief A message of the bag as it is stored: its connection's type and its bytes (one copy);
+ *  with `stamp`, its header's stamp is that instead (a type without a header is left as it is). */
+std::shared_ptr<const RosMessage> readMessage(const rosbag::MessageInstance& m, const ros::Time* stamp = nullptr);
 
 /** @brief "/camera/image_raw" → "camera_image_raw": a port name for a topic. */
 std::string portForTopic(const std::string& topic);

@@ -107,6 +107,9 @@ class BagReader : public apex::Node {
   static inline const apex::ParamDecl<double> kRate =
       param::number("rate").range(0.0, 100.0).step(0.1).init(1.0).describe("times the recorded pace; 0: as fast as possible");
   static inline const apex::ParamDecl<bool> kLoop = param::flag("loop");
+  static inline const apex::ParamDecl<bool> kRestamp = param::flag("restamp").describe(
+      "stamp each frame's messages (their headers) with the time it is sent, as a live sensor would: latencies "
+      "are then live (the panel shows them); off: the recorded stamps");
   static inline const apex::ParamDecl<double> kStart =
       param::number("start").range(0.0, 1e6).step(0.1).describe("play from this many seconds into the bag");
   static inline const apex::ParamDecl<double> kEnd =
@@ -145,6 +148,7 @@ class BagReader : public apex::Node {
         .param(kPlaying)
         .param(kRate)
         .param(kLoop)
+        .param(kRestamp)
         .param(kStart)
         .param(kEnd)
         .param(kFrame)
@@ -320,10 +324,12 @@ class BagReader : public apex::Node {
     const BagFrame& f = frames_[k];
     updateParam(kFrame.name(), k);
     updateParam(kTime.name(), (f.start - frames_.front().start).toSec());
+    const ros::WallTime wall = ros::WallTime::now();
+    const ros::Time now(wall.sec, wall.nsec);  // the clock latencies are measured on
     for (const rosbag::MessageInstance& m : rosbag::View(*bag_, rosbag::TopicQuery(played_topics_), f.start, f.end)) {
       auto port = ports_.find(m.getTopic());
       if (port == ports_.end()) continue;
-      publishMessage(port->second, toPort(readMessage(m)));
+      publishMessage(port->second, toPort(readMessage(m, restamp_.get() ? &now : nullptr)));
     }
     stamp_.publish(f.start.toSec());
   }
@@ -350,6 +356,7 @@ class BagReader : public apex::Node {
   apex::Param<bool> playing_{this, kPlaying};
   apex::Param<double> rate_{this, kRate};
   apex::Param<bool> loop_{this, kLoop};
+  apex::Param<bool> restamp_{this, kRestamp};
   apex::Param<double> start_{this, kStart};
   apex::Param<double> end_{this, kEnd};
   apex::Param<int> frame_{this, kFrame};

@@ -34,6 +34,13 @@ ros::Time RosMessage::stamp() const {
   return h ? h->stamp : ros::Time();
 }
 
+bool RosMessage::setStamp(const ros::Time& stamp) {
+  if (!header()) return false;
+  const std::uint32_t fields[2] = {stamp.sec, stamp.nsec};  // after the seq, little-endian as ROS's wire
+  std::memcpy(bytes.data() + sizeof(std::uint32_t), fields, sizeof fields);
+  return true;
+}
+
 namespace {
 
 /** "nav_msgs/Odometry, 692 bytes, frame 'odom' at 1700000000.500000000". */

@@ -105,10 +105,14 @@ int main(int argc, char** argv) {
               matching, truth.size(), needed);
   int width = 14;  // inner nodes of subgraphs have longer names: camera_detector/threshold
   for (const auto& n : status.nodes) width = std::max(width, static_cast<int>(n.name.size()));
-  std::printf("%-*s %9s %10s %10s %10s\n", width, "node", "firings", "mean ms", "max ms", "state");
-  for (const auto& n : status.nodes)
-    std::printf("%-*s %9lu %10.3f %10.3f %10s\n", width, n.name.c_str(), static_cast<unsigned long>(n.firings), n.mean_ms,
-                n.max_ms, n.state.c_str());
+  // latency: from the frame's stamp (the bag restamps each frame as it sends it) to the firing's end
+  std::printf("%-*s %9s %10s %10s %14s %10s\n", width, "node", "firings", "mean ms", "max ms", "latency p50/p95", "state");
+  for (const auto& n : status.nodes) {
+    char latency[32] = "-";
+    if (n.latency_p50_ms >= 0) std::snprintf(latency, sizeof latency, "%.1f/%.1f", n.latency_p50_ms, n.latency_p95_ms);
+    std::printf("%-*s %9lu %10.3f %10.3f %14s %10s\n", width, n.name.c_str(), static_cast<unsigned long>(n.firings), n.mean_ms,
+                n.max_ms, latency, n.state.c_str());
+  }
   for (const auto& g : status.groups)
     std::printf("thread group %-10s load %5.1f%%, %lu firings\n", g.name.c_str(), 100 * g.load,
                 static_cast<unsigned long>(g.firings));

@@ -134,6 +134,40 @@ TEST(BagReader, TheMessagesOfAFrameLeaveInOneFiringAndFinishedFiresOncePerPass) 
   EXPECT_EQ(object<Counter>(p.graph(), "passes")->resets, 2);
 }
 
+TEST(BagReader, RestampStampsEachFrameWithTheTimeItIsSentSoLatenciesAreLive) {
+  const auto wall = [] {
+    const ros::WallTime w = ros::WallTime::now();
+    return ros::Time(w.sec, w.nsec);
+  };
+  const auto latencyFrames = [](const Graph& g) {
+    for (const auto& s : g.nodeStats(1e9))
+      if (s.name == "bag") return s.latency_frames;
+    return std::uint64_t{99};
+  };
+  {  // the recorded stamps: from long ago, no latency
+    Player p(3);
+    ASSERT_TRUE(p.sink("images").waitFor(3));
+    ASSERT_TRUE(p.graph().waitIdle(kWait));
+    EXPECT_EQ(p.sink("images").messages()[0].as<apex_nodes::Image>()->header.stamp, frameTime(0));
+    EXPECT_EQ(latencyFrames(p.graph()), 0u);
+  }
+  const ros::Time before = wall();
+  Player p(3, "restamp=true");
+  ASSERT_TRUE(p.sink("images").waitFor(3));
+  ASSERT_TRUE(p.graph().waitIdle(kWait));
+  const ros::Time after = wall();
+  ros::Time last;
+  for (const Message& m : p.sink("images").messages()) {
+    const ros::Time t = m.as<apex_nodes::Image>()->header.stamp;
+    EXPECT_GE(t, before);
+    EXPECT_LE(t, after);
+    EXPECT_GE(t, last) << "in the order sent";
+    last = t;
+  }
+  EXPECT_EQ(p.stamps()[0], frameTime(0).toSec()) << "`stamp` still tells the record time";
+  EXPECT_EQ(latencyFrames(p.graph()), 3u) << "each frame's latency is live";
+}
+
 TEST(BagReader, EndPassEndsThePassAfterTheFramesSentAndTheNextBagPlaysFromItsStart) {
   Player p(200, "rate=1");  // 200 frames at the recorded pace: the pass is cut long before its end
   const auto sent = [&] { return p.sent(); };

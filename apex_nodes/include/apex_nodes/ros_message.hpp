@@ -37,6 +37,8 @@ struct RosMessage {
   std::optional<std_msgs::Header> header() const;
   /** @brief header()'s stamp; zero without a header. */
   ros::Time stamp() const;
+  /** @brief Sets header()'s stamp in its bytes; false (nothing changed) without a header. */
+  bool setStamp(const ros::Time& stamp);
   bool operator==(const RosMessage& other) const {
     return datatype == other.datatype && md5sum == other.md5sum && definition == other.definition && bytes == other.bytes;
   }
