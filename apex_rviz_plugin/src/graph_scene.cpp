@@ -48,7 +48,7 @@ void ConnectionItem::reroute() {
   if (rate_) rate_->setPos(path().pointAtPercent(0.5) - QPointF(rate_->boundingRect().width() / 2, 16));
 }
 
-void ConnectionItem::showRate(double per_s) {
+void ConnectionItem::showRate(double per_s, double latency_p95_ms) {
   if (c_.kind != "data") return;
   if (per_s < 0) {
     delete rate_;
@@ -62,7 +62,10 @@ void ConnectionItem::showRate(double per_s) {
     f.setPointSizeF(7.5);
     rate_->setFont(f);
   }
-  rate_->setText(QString("%1/s").arg(per_s, 0, 'f', per_s < 10 ? 1 : 0));
+  QString text = QString("%1/s").arg(per_s, 0, 'f', per_s < 10 ? 1 : 0);
+  if (latency_p95_ms >= 0)  // from the frame's stamp to this output, 95 in 100 frames within
+    text += QString::fromUtf8(" \u00b7 p95 %1 ms").arg(latency_p95_ms, 0, 'f', latency_p95_ms < 10 ? 1 : 0);
+  rate_->setText(text);
   reroute();
 }
 
@@ -288,10 +291,19 @@ void GraphScene::markLinks() {
   for (auto* item : connections_) {
     const auto& c = item->connection();
     const auto rate = link_rates_.find(c.from_node + "/" + c.from_port);
-    item->showRate(rate == link_rates_.end() ? -1 : rate->second);
+    item->showRate(rate == link_rates_.end() ? -1 : rate->second, outputLatencyP95(c.from_node, c.from_port));
     item->setCritical(std::any_of(path.begin(), path.end(), [&](const apex::Connection& p) { return same(p, c); }));
   }
   for (auto& [name, item] : nodes_) item->setCritical(on_path.count(name) > 0);
+}
+
+double GraphScene::outputLatencyP95(const std::string& node, const std::string& output) const {
+  const auto s = statuses_.find(node);
+  if (s == statuses_.end()) return -1;
+  const auto& st = s->second;
+  for (std::size_t i = 0; i < st.outputs.size() && i < st.output_latency_p95_ms.size(); ++i)
+    if (st.outputs[i] == output) return st.output_latency_p95_ms[i];
+  return -1;
 }
 
 void GraphScene::showValue(const QString& node_name, const QString& port, const QString& text) {

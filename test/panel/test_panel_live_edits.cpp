@@ -236,6 +236,15 @@ TEST_F(PanelWidgetTest, OnAHeldFrameANodeThatLearnsFromEveryFrameSaysThatReRunsC
   emptyGraph();
 }
 
+namespace {
+/** The text on the link from `from`'s output ("" if none). */
+QString rateText(GraphScene* scene, const std::string& from) {
+  for (const ConnectionItem* c : scene->connections())
+    if (c->connection().from_node == from) return c->rateText();
+  return {};
+}
+}  // namespace
+
 TEST_F(PanelWidgetTest, WhileABagPlaysLinksShowTheirRateAndANodesMenuColoursItsCriticalPath) {
   emptyGraph();
   startPlaying("rate_player");
@@ -249,7 +258,7 @@ TEST_F(PanelWidgetTest, WhileABagPlaysLinksShowTheirRateAndANodesMenuColoursItsC
     std::map<std::string, double> out;
     for (const ConnectionItem* c : scene->connections()) {
       const QString text = c->rateText();
-      if (text.endsWith("/s")) out[c->connection().from_node] = text.chopped(2).toDouble();
+      if (text.contains("/s")) out[c->connection().from_node] = text.left(text.indexOf("/s")).toDouble();
     }
     return out;
   };
@@ -291,6 +300,15 @@ TEST_F(PanelWidgetTest, WhileABagPlaysLinksShowTheirRateAndANodesMenuColoursItsC
   EXPECT_TRUE(histogram->timeText().contains(" · p50 ")) << histogram->timeText().toStdString();
   EXPECT_TRUE(histogram->latencyText().startsWith("none: ")) << histogram->latencyText().toStdString();
   ASSERT_TRUE(QTest::qWaitFor([&] { return histogram->timeChart()->bars().total() > first; }, kWaitMs)) << "not updated";
+  EXPECT_FALSE(rateText(scene, "rate_blur").contains("p95")) << "no live latency yet";
+
+  // the bag restamped as it plays, as a live camera: the links and the histogram show live latency
+  ASSERT_TRUE(setParameter("rate_player", "restamp", "true"));
+  ASSERT_TRUE(QTest::qWaitFor([&] { return rateText(scene, "rate_blur").contains(" · p95 "); }, kWaitMs))
+      << rateText(scene, "rate_blur").toStdString();
+  EXPECT_TRUE(rateText(scene, "rate_blur").endsWith(" ms")) << rateText(scene, "rate_blur").toStdString();
+  ASSERT_TRUE(QTest::qWaitFor([&] { return !histogram->latencyText().startsWith("none"); }, kWaitMs))
+      << histogram->latencyText().toStdString();
   histogram->grab().save(QString::fromStdString(g_shot).replace(".png", "_histogram.png"));  // the window, to look at
   ASSERT_GE(chooseInNodeMenu(panel, view, "rate_blur", "Latency histogram..."), 3);
   EXPECT_EQ(panel.findChildren<HistogramView*>().size(), 1u) << "one window per node";

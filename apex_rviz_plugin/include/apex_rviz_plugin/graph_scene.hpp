@@ -201,10 +201,11 @@ class ConnectionItem : public QGraphicsPathItem {
   /** A band 8 units wide along the curve: a click that near it is on it (hit tests, menus). */
   QPainterPath shape() const override;
   QRectF boundingRect() const override;
-  /** @brief Writes the messages per second its output sends beside the curve's middle (a data
-   *  link; a negative rate: none known yet, nothing written). */
-  void showRate(double per_s);
-  /** @brief The rate written on it ("12/s"), empty if none. */
+  /** @brief Writes the messages per second its output sends beside the curve's middle, and the
+   *  95th percentile of that output's latency from its frames' stamps when it has one (a data
+   *  link; a negative rate: none known yet, nothing written; a negative latency: none shown). */
+  void showRate(double per_s, double latency_p95_ms = -1);
+  /** @brief The rate written on it ("12/s", "12/s · p95 8.5 ms"), empty if none. */
   QString rateText() const;
   /** @brief Drawn thick and orange: on the critical path the panel shows. */
   void setCritical(bool on);
@@ -329,6 +330,8 @@ class GraphScene : public QGraphicsScene {
   std::string critical_to_;  ///< the node whose critical path is coloured ("" none)
   /** Rates and the critical path onto the links (rebuilt with every graph shown). */
   void markLinks();
+  /** The p95 latency (ms) of an output in its node's newest status; -1 if none. */
+  double outputLatencyP95(const std::string& node, const std::string& output) const;
   PortItem* drag_from_ = nullptr;
   QGraphicsPathItem* drag_line_ = nullptr;
 };
