@@ -74,7 +74,7 @@ class TopicSubscriber : public TopicSource<RosMessage> {
 
  private:
   void subscribe() override {
-    sub_ = apex::nodeHandle(*this).subscribe<RosMessage>(topic_.get(), 1, [this](const MsgPtr& m) { received(m); });
+    sub_ = apex::nodeHandle(*this).subscribe<RosMessage>(topic_.get(), kQueue, [this](const MsgPtr& m) { received(m); });
   }
   void send(const MsgPtr& msg) override {
     const std::string& type = type_.get();

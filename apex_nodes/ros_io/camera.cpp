@@ -37,7 +37,7 @@ class CameraSubscriber : public TopicSource<CameraFrame> {
  private:
   void subscribe() override {
     sub_ = subscribeCamera(
-        apex::nodeHandle(*this), topic_.get(), 1,
+        apex::nodeHandle(*this), topic_.get(), kQueue,
         [this](const sensor_msgs::ImageConstPtr& image, const sensor_msgs::CameraInfoConstPtr& info) {
           received(boost::make_shared<const CameraFrame>(CameraFrame{image, info}));
         },

@@ -27,7 +27,8 @@ class LaserScanSubscriber : public TopicSource<sensor_msgs::LaserScan> {
 
  private:
   void subscribe() override {
-    sub_ = apex::nodeHandle(*this).subscribe<sensor_msgs::LaserScan>(topic_.get(), 1, [this](const MsgPtr& s) { received(s); });
+    sub_ =
+        apex::nodeHandle(*this).subscribe<sensor_msgs::LaserScan>(topic_.get(), kQueue, [this](const MsgPtr& s) { received(s); });
   }
   void send(const MsgPtr& scan) override {  // shared with ROS, not copied: boost to std ownership
     scan_.publish(std::shared_ptr<const sensor_msgs::LaserScan>(scan.get(), [scan](auto*) {}));

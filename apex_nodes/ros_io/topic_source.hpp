@@ -7,6 +7,7 @@
 #include <boost/shared_ptr.hpp>
 
 #include <atomic>
+#include <cstdint>
 #include <mutex>
 
 #include "apex/core/node.hpp"
@@ -19,6 +20,11 @@ template <class Msg>
 class TopicSource : public apex::Node {
  public:
   using MsgPtr = boost::shared_ptr<const Msg>;
+
+  /** roscpp's queue per subscription: a few, so that a moment when every spinner thread is busy
+   *  does not drop messages unseen in roscpp; they come one after another once it passes, and
+   *  received() keeps the newest and counts the others as dropped (NodeStats::dropped). */
+  static constexpr std::uint32_t kQueue = 4;
 
   /** The parameter every subscriber declares. */
   /** (A function, not a constant: a static member of a class template may be initialised after

@@ -31,7 +31,7 @@ class ImageSubscriber : public TopicSource<sensor_msgs::Image> {
  private:
   void subscribe() override {
     sub_ = subscribeImage(
-        apex::nodeHandle(*this), topic_.get(), 1, [this](const MsgPtr& msg) { received(msg); }, transport_.get());
+        apex::nodeHandle(*this), topic_.get(), kQueue, [this](const MsgPtr& msg) { received(msg); }, transport_.get());
   }
   void send(const MsgPtr& msg) override { image_.publish(fromRos(msg)); }
   apex::Output<Image> image_{this, kImage};
@@ -67,7 +67,7 @@ class PointCloudSubscriber : public TopicSource<Cloud> {
 
  private:
   void subscribe() override {
-    sub_ = apex::nodeHandle(*this).subscribe<Cloud>(topic_.get(), 1, [this](const MsgPtr& msg) { received(msg); });
+    sub_ = apex::nodeHandle(*this).subscribe<Cloud>(topic_.get(), kQueue, [this](const MsgPtr& msg) { received(msg); });
   }
   void send(const MsgPtr& msg) override { cloud_.publish(fromRos(msg)); }
   apex::Output<Cloud> cloud_{this, kCloud};
