@@ -1,7 +1,7 @@
 // Core benchmarks; every figure is a ratio against a baseline measured in the
 // same run. Prints a markdown report (docs/benchmarks.md is made from it by
 // scripts/bench).
-//   apex_bench_core [--quick] [--hop]   (--hop: only the overhead-per-hop table)
+//   apex_bench_core [--quick] [--hop] [--size]   (--hop, --size: only that table)
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
@@ -278,7 +278,7 @@ SizeRow graphSize(int n) {
   g.start();  // edits on a running graph (its threads idle)
   SizeRow row{n, 0, 0, 0, 0, 0, 0};
   const auto t0 = Clock::now();
-  for (int i = 0; i < n; ++i) (void)g.addNode("bench/Relay", "n" + std::to_string(i));
+  for (int i = 0; i < n; ++i) (void)g.addNode(i == 0 ? "bench/Feed" : "bench/Relay", "n" + std::to_string(i));
   const auto t1 = Clock::now();
   for (int i = 1; i < n; ++i) (void)g.connect("n" + std::to_string(i - 1), "out", "n" + std::to_string(i), "in");
   const auto t2 = Clock::now();
@@ -305,14 +305,37 @@ SizeRow graphSize(int n) {
   return row;
 }
 
+void printGraphSize() {
+  std::printf("\n## Graph size\n\n");
+  std::printf(
+      "A driven source and a chain of n - 1 relays edited on a started (idle) graph: time per edit, the whole build, and\n");
+  std::printf(
+      "saving/loading the file. Targets: ≤ 10 µs per edit, 10,000 nodes built in ≤ 100 ms, ≤ 50 µs per node saved or loaded.\n");
+  std::printf("Medians of 3 repetitions.\n\n");
+  std::printf(
+      "| n | add µs | connect µs | remove µs | build ms | save µs/node | load µs/node |\n|---|---|---|---|---|---|---|\n");
+  for (int n : {100, 1000, 10000}) {
+    Spread add, con, rem, build, save, load;
+    for (int r = 0; r < 3; ++r) {
+      const SizeRow row = graphSize(n);
+      add.add(row.add_us), con.add(row.connect_us), rem.add(row.remove_us);
+      build.add(row.build_ms), save.add(row.save_us), load.add(row.load_us);
+    }
+    std::printf("| %d | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f |\n", n, add.median(), con.median(), rem.median(), build.median(),
+                save.median(), load.median());
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, hop_only = false;
+  bool quick = false, hop_only = false, size_only = false;
   for (int i = 1; i < argc; ++i) {
     quick = quick || std::string(argv[i]) == "--quick";
     hop_only = hop_only || std::string(argv[i]) == "--hop";
+    size_only = size_only || std::string(argv[i]) == "--size";
   }
+  if (size_only) return printGraphSize(), 0;
   const long hop_messages = quick ? 20000 : 200000;
 
   const int reps = quick ? 5 : 7;
@@ -416,22 +439,6 @@ int main(int argc, char** argv) {
   std::printf("| layout | messages/s | ratio |\n|---|---|---|\n| 1 group | %s | 1.00x |\n| 2 groups | %s | %.2fx |\n",
               r1.text("%.1f").c_str(), r2.text("%.1f").c_str(), r2.median() / r1.median());
 
-  std::printf("\n## Graph size\n\n");
-  std::printf("A chain of n relays edited on a started (idle) graph: time per edit, the whole build, and\n");
-  std::printf(
-      "saving/loading the file. Targets: ≤ 10 µs per edit, 10,000 nodes built in ≤ 100 ms, ≤ 50 µs per node saved or loaded.\n");
-  std::printf("Medians of 3 repetitions.\n\n");
-  std::printf(
-      "| n | add µs | connect µs | remove µs | build ms | save µs/node | load µs/node |\n|---|---|---|---|---|---|---|\n");
-  for (int n : {100, 1000, 10000}) {
-    Spread add, con, rem, build, save, load;
-    for (int r = 0; r < 3; ++r) {
-      const SizeRow row = graphSize(n);
-      add.add(row.add_us), con.add(row.connect_us), rem.add(row.remove_us);
-      build.add(row.build_ms), save.add(row.save_us), load.add(row.load_us);
-    }
-    std::printf("| %d | %.2f | %.2f | %.2f | %.1f | %.1f | %.1f |\n", n, add.median(), con.median(), rem.median(), build.median(),
-                save.median(), load.median());
-  }
+  printGraphSize();
   return 0;
 }

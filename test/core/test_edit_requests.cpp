@@ -3,8 +3,10 @@
 #include <gmock/gmock.h>
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 
+#include "../../apex_runtime/src/core/edit_requests.hpp"
 #include "apex_test/test_nodes.hpp"
 
 using namespace apex_test;
@@ -163,6 +165,23 @@ TEST(EditRequests, AGraphGoesWhileItsNodesKeepAsking) {
     g.start();
     ASSERT_TRUE(waitUntil([&] { return hasParam(g, "asker", "gamma"); }));
   }  // each graph stops its requests first, then its nodes
+}
+
+TEST(EditRequests, ATimedTaskRunsWhenDueThoughItCameWhileTheThreadWaitedForNothing) {
+  // (how an edit has holding sources told of it, off the edit: Graph::Impl::changedDownstreamOf)
+  detail::EditRequests requests([](const std::shared_ptr<detail::NodeState>&, const std::string&, const ParamValue&) {},
+                                [] { return GraphSnapshot{}; });
+  std::atomic<int> ran{0};
+  const auto now = [] { return std::chrono::steady_clock::now(); };
+  ASSERT_TRUE(requests.runAt(now(), [&] { ran += 1; }));
+  ASSERT_TRUE(waitUntil([&] { return ran == 1; }));  // its thread now waits with nothing to do
+  const auto due = now() + std::chrono::milliseconds(50);
+  ASSERT_TRUE(requests.runAt(due, [&] { ran += 10; }));
+  EXPECT_FALSE(requests.runAt(now(), [&] { ran += 100; })) << "one waits already: it does the work of both";
+  ASSERT_TRUE(waitUntil([&] { return ran == 11; }));
+  EXPECT_GE(now(), due);
+  requests.stop();
+  EXPECT_FALSE(requests.runAt(now(), [&] { ran += 1000; }));
 }
 
 }  // namespace

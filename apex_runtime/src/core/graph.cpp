@@ -238,19 +238,60 @@ void Graph::Impl::clearLocked() {
 
 void Graph::Impl::changedDownstreamOf(NodeState* node, bool itself) {
   if (!rerun_on_edit_.load()) return;
-  std::vector<NodeState*> ups = detail::upstreamOf(node);
-  if (itself) ups.push_back(node);
+  std::lock_guard<std::mutex> lock(changed_mutex_);
+  changed_.push_back({node->weak_from_this(), itself, detail::ticks()});
+  if (changed_.size() == 1)  // the first since the last walk: the next walk sees all that follow
+    edits_->runAt(last_walk_ + kRerunGap, [this] { tellSourcesDownstreamChanged(); });
+}
+
+void Graph::Impl::tellSourcesDownstreamChanged() {
+  auto lock = lockEdits();
+  std::vector<ChangedAt> changed;
+  {
+    std::lock_guard<std::mutex> l(changed_mutex_);
+    changed.swap(changed_);
+    last_walk_ = std::chrono::steady_clock::now();
+    walking_ = true;
+  }
+  struct Walked {  // however it ends
+    Impl& g;
+    ~Walked() {
+      std::lock_guard<std::mutex> l(g.changed_mutex_);
+      g.walking_ = false;
+      g.walked_.notify_all();
+    }
+  } walked{*this};
+  std::vector<NodePtr> alive;  // held while walking
+  std::vector<NodeState*> at;
+  std::int64_t newest = 0;
+  for (const ChangedAt& c : changed) {
+    newest = std::max(newest, c.tick);
+    if (NodePtr n = c.node.lock(); n && !n->removed) at.push_back(n.get()), alive.push_back(std::move(n));
+  }
+  std::vector<NodeState*> ups = detail::upstreamOf(at);
+  for (const ChangedAt& c : changed)
+    if (NodePtr n = c.node.lock(); c.itself && n && !n->removed) ups.push_back(n.get());
+  std::sort(ups.begin(), ups.end());
+  ups.erase(std::unique(ups.begin(), ups.end()), ups.end());
   for (NodeState* up : ups) {
     if (!up->type || !up->isSource()) continue;  // a held frame starts at a source
+    // None sent yet: it holds none. One it began to send after the last change went through the
+    // graph as changed (a node connected before then got it, one tuned before then fires on it).
+    if (up->lastSent() == 0 || up->lastSent() > newest) continue;
     // At most one re-send per pass of a frame through what it feeds (the sum of those nodes'
     // mean firing times; 40 ms to 0.5 s, so at most 25 re-runs a second, which the eye cannot
     // tell from more): a burst of edits re-runs a held frame a few times, never a queue of
     // stale runs, and the last run sees the last change.
     std::uint64_t pass_ns = 0;
-    for (NodeState* down : detail::downstreamOf({up})) pass_ns += down->stats().mean_ns;
+    for (NodeState* down : detail::downstreamOf({up})) pass_ns += down->meanNs();
     const auto pass = std::chrono::nanoseconds(std::clamp<std::uint64_t>(pass_ns, 40'000'000, 500'000'000));
     up->downstreamChanged(pass);
   }
+}
+
+bool Graph::Impl::waitWalked(std::chrono::steady_clock::time_point deadline) const {
+  std::unique_lock<std::mutex> l(changed_mutex_);
+  return walked_.wait_until(l, deadline, [this] { return changed_.empty() && !walking_; });
 }
 
 Status Graph::Impl::setInteractive(const std::string& outer, const std::string& outer_param, bool on) {

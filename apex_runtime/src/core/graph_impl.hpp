@@ -6,6 +6,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <functional>
 #include <map>
 #include <memory>
@@ -120,9 +122,26 @@ struct Graph::Impl {
   /** The edit of one data or parameter connection between two nodes (see live.hpp). */
   detail::Restructure restructure(detail::NodeState* from, detail::NodeState* to, bool into_data_input) const;
   void removeEdge(std::shared_ptr<detail::Edge> edge);
-  /** Tells every node upstream of `node` (and `node` too if `itself`) that something downstream
-   *  of it changed (Node::downstreamChanged: a holding source re-sends its frame). */
+  /** Tells every source upstream of `node` (and `node` too if `itself`) that something downstream
+   *  of it changed (Node::downstreamChanged: a holding source re-sends its frame). Off the edit:
+   *  the edit only notes the node; the edit-requests thread walks upstream of every node noted,
+   *  at once and at most every kRerunGap (so an edit costs O(1), not O(what is upstream)). */
   void changedDownstreamOf(detail::NodeState* node, bool itself = false);
+  /** That walk (on the edit-requests thread). */
+  void tellSourcesDownstreamChanged();
+  struct ChangedAt {
+    std::weak_ptr<detail::NodeState> node;
+    bool itself;
+    std::int64_t tick;  // when (ticks.hpp): a source that sent a frame after it needs no re-send
+  };
+  mutable std::mutex changed_mutex_;  // after edit_mutex_
+  mutable std::condition_variable walked_;  // a walk ended
+  std::vector<ChangedAt> changed_;  // changed_mutex_: noted since the last walk
+  bool walking_ = false;  // changed_mutex_
+  std::chrono::steady_clock::time_point last_walk_;  // changed_mutex_
+  /** Until no walk is pending or under way (waitIdle: what an edit asked of sources is asked). */
+  bool waitWalked(std::chrono::steady_clock::time_point deadline) const;
+  static constexpr std::chrono::milliseconds kRerunGap{20};
   /** The node's interface if `param` had `value` (nullptr: as it is); refused with a message
    *  naming the node when the type's interface function fails or breaks a rule. */
   Result<std::shared_ptr<const Manifest>> interfaceFor(const detail::NodeState& node, const std::string& param,

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <unordered_set>
 
 namespace apex {
 namespace detail {
@@ -71,17 +72,18 @@ std::vector<NodeState*> downstreamOf(const std::vector<NodeState*>& roots) {
   return out;
 }
 
-std::vector<NodeState*> upstreamOf(NodeState* node) {
-  std::set<NodeState*> seen{node};
-  std::vector<NodeState*> out{node};
+std::vector<NodeState*> upstreamOf(const std::vector<NodeState*>& nodes) {
+  std::unordered_set<NodeState*> seen;
+  std::vector<NodeState*> out;
   auto visit = [&](const std::shared_ptr<Edge>& e) {
     if (e && seen.insert(e->from).second) out.push_back(e->from);
   };
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    for (auto& in : out[i]->inputs) visit(in->edge);
-    for (auto& p : out[i]->params) visit(p.in_edge);
-  }
-  out.erase(out.begin());
+  auto expand = [&](NodeState* n) {
+    for (auto& in : n->inputs) visit(in->edge);
+    for (auto& p : n->params) visit(p.in_edge);
+  };
+  for (NodeState* n : nodes) expand(n);
+  for (std::size_t i = 0; i < out.size(); ++i) expand(out[i]);
   return out;
 }
 

@@ -74,7 +74,16 @@ bool Graph::Impl::waitIdle(double timeout_s) const {
     auto lock = lockEdits();
     for (auto& [name, g] : groups_) groups.push_back(g);
   }
-  return allIdle(groups, timeout_s);
+  // The sources an edit told to re-send (off the edit) first, then what they sent.
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(timeout_s));
+  for (;;) {
+    if (!waitWalked(deadline)) return false;
+    const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    if (!allIdle(groups, std::max(0.0, left))) return false;
+    std::lock_guard<std::mutex> l(changed_mutex_);
+    if (changed_.empty() && !walking_) return true;  // (a node's own edit request may have made one)
+  }
 }
 
 bool Graph::Impl::allIdle(const std::vector<std::shared_ptr<ThreadGroup>>& groups, double timeout_s) {

@@ -16,8 +16,9 @@ namespace detail {
 
 /** @brief The nodes data reaches from `roots` (roots included), over edges into data inputs. */
 std::vector<NodeState*> downstreamOf(const std::vector<NodeState*>& roots);
-/** @brief The nodes whose data or parameter values reach `node` (without it). */
-std::vector<NodeState*> upstreamOf(NodeState* node);
+/** @brief The nodes whose data or parameter values reach any of `nodes` (a node of `nodes` only
+ *  if another reaches it), each once. */
+std::vector<NodeState*> upstreamOf(const std::vector<NodeState*>& nodes);
 /** @brief Every node joined to `roots` by data or parameter connections (events excluded). */
 std::vector<NodeState*> componentOf(const std::vector<NodeState*>& roots);
 

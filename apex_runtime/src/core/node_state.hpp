@@ -114,12 +114,10 @@ struct RelaxedCount {
 };
 
 /** An output's latency: that of the firings which sent on it (an output that sends on some
- *  frames only has its own), and the readings its window is over (state_mutex). Shared, so it
- *  moves with its output through an interface change. */
+ *  frames only has its own), and the readings its window is over (state_mutex). */
 struct OutputLatency {
   Histogram hist;  // group thread adds, any thread reads
   HistogramCounts base, newer;  // state_mutex: as NodeState::window_
-  std::uint64_t sent_seen = 0;  // group thread: OutputState::sent when a latency was last counted
 };
 
 struct OutputState {
@@ -127,7 +125,10 @@ struct OutputState {
   Message pending;
   Tap tap;
   RelaxedCount sent;  // messages sent (not Nothing, not an end of sequence): the rate on its links
-  std::shared_ptr<OutputLatency> latency = std::make_shared<OutputLatency>();
+  std::uint64_t latency_seen = 0;  // group thread: `sent` when a latency was last counted
+  /** Made by the group thread (under state_mutex) at its first live latency: 6 KiB that an output
+   *  without live frames does without. Shared: it moves with its output through an interface change. */
+  std::shared_ptr<OutputLatency> latency;
 };
 
 struct ParamState {
@@ -230,6 +231,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void recordFiring(bool timed, std::int64_t t, std::int64_t end) {  // inline: every firing
     const auto relaxed = std::memory_order_relaxed;  // one writer: no locked instructions
     last_fired_.store(end, relaxed);
+    if (last_had_data_) last_sent_.store(end - t, relaxed);  // its start (untimed: a read before it)
     if (timed || !last_had_data_ || frame_ > 0) return recordTimedOrNothing(timed, t);
     --untimed_left_;
     firings_.store(firings_.load(relaxed) + 1, relaxed);
@@ -291,10 +293,15 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Its receivers read its messages when their firing ends (SourceMode::Newest). */
   bool sendsNewest() const { return iface->source_mode == SourceMode::Newest; }
   NodeStats stats() const;
+  /** Its mean firing time, ns (0 before a timed firing): cheap, any thread, moves no window. */
+  std::uint64_t meanNs() const;
   /** Its histograms over the window stats() keeps (NodeProfile). */
   NodeProfile profile() const;
   /** When the node last fired, or was made if never (ticks.hpp). */
   std::int64_t lastFired() const { return last_fired_.load(std::memory_order_relaxed); }
+  /** When its last firing that took or sent data began, in ticks (0: none yet; untimed: a
+   *  clock read a little before). */
+  std::int64_t lastSent() const { return last_sent_.load(std::memory_order_relaxed); }
   /** What keeps it from firing now, as a sentence ("" if nothing). Any thread. */
   std::string waitingFor() const;
   /** Drops every message on its inputs and every unread mark on its outputs (groups paused). */
@@ -349,7 +356,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::uint8_t untimed_left_ = 0;  // group thread: firings before the next timed one
   static constexpr int kTimeEvery = 8;
   static constexpr std::int64_t kSlowTicks = 4096;  // ~1-4 µs at a TSC of 1-4 GHz (ticks.hpp)
-  std::atomic<std::int64_t> last_t_{0}, total_t_{0}, max_t_{0}, last_fired_{0};  // in ticks (ticks.hpp)
+  std::atomic<std::int64_t> last_t_{0}, total_t_{0}, max_t_{0}, last_fired_{0}, last_sent_{0};  // in ticks (ticks.hpp)
   inline void take(InputState& in, bool optional, bool& skip, bool& read_later);
   /** The firing has ended: the edges of its inputs read only now (Edge::read_after_firing). */
   void readAfterFiring();

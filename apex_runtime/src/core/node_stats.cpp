@@ -37,11 +37,15 @@ void NodeState::recordLatency(std::int64_t wall_ns) {
   latency_total_.store(latency_total_.load(relaxed) + latency, relaxed);
   latency_count_.store(latency_count_.load(relaxed) + 1, relaxed);
   for (auto& out : outputs) {  // the outputs this firing sent on
-    OutputLatency& l = *out.latency;
     const std::uint64_t sent = out.sent.get();
-    if (sent == l.sent_seen) continue;
-    l.sent_seen = sent;
-    l.hist.add(latency);
+    if (sent == out.latency_seen) continue;
+    out.latency_seen = sent;
+    if (!out.latency) {
+      auto made = std::make_shared<OutputLatency>();
+      std::lock_guard<std::mutex> lock(state_mutex);
+      out.latency = std::move(made);
+    }
+    out.latency->hist.add(latency);
   }
 }
 
@@ -67,10 +71,11 @@ void NodeState::fillDistributions(NodeStats& s) const {
   if (step) window_ = {window_[1], r};  // the window: 5 to 10 s
   s.outputs.reserve(outputs.size());
   for (std::size_t i = 0; i < outputs.size(); ++i) {
+    s.outputs.push_back({manifest().outputs[i].name, outputs[i].sent.get()});
+    if (!outputs[i].latency) continue;  // no live frame sent on it yet
     OutputLatency& l = *outputs[i].latency;
     const HistogramCounts counts = l.hist.read();
     if (step) l.base = l.newer, l.newer = counts;
-    s.outputs.push_back({manifest().outputs[i].name, outputs[i].sent.get()});
     fillLatency(counts.since(l.base), s.outputs.back());
   }
   const Reading& base = window_[0];
@@ -85,6 +90,11 @@ void NodeState::fillDistributions(NodeStats& s) const {
   s.latency_mean_ns = (r.latency_total - base.latency_total) / static_cast<std::int64_t>(frames);
 }
 
+std::uint64_t NodeState::meanNs() const {
+  const std::uint64_t timed = timed_firings_.load(std::memory_order_relaxed);
+  return timed ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / timed : 0;
+}
+
 NodeStats NodeState::stats() const {
   NodeStats s;
   s.name = name;
@@ -93,8 +103,7 @@ NodeStats NodeState::stats() const {
   s.dropped = dropped_.load(std::memory_order_relaxed);
   s.last_ns = ticksToNs(last_t_.load(std::memory_order_relaxed));
   s.max_ns = ticksToNs(max_t_.load(std::memory_order_relaxed));
-  const std::uint64_t timed = timed_firings_.load(std::memory_order_relaxed);
-  s.mean_ns = timed ? ticksToNs(total_t_.load(std::memory_order_relaxed)) / timed : 0;
+  s.mean_ns = meanNs();
   std::lock_guard<std::mutex> lock(state_mutex);
   s.error = error_;
   s.enabled = enabled && outer_enabled;
