@@ -93,6 +93,10 @@ class Split(unittest.TestCase):
                                    connected('/front/apex', '/front/sensors/points', '/back/apex'), 60),
                         'the first runtime never connected to the second')
 
+        # the demo graph stamps each frame as it sends it (restamp); the split one keeps the bag's
+        # stamps: both at the bag's, so that their frames pair up by stamp
+        answer = service('/single/apex', 'set_parameter', SetParameter)(node='bag', parameter='restamp', value='false')
+        self.assertTrue(answer.success, answer.message)
         for outputs, runtime in ((single, '/single/apex'), (split, '/front/apex')):  # one after the other
             answer = service(runtime, 'set_parameter', SetParameter)(node='bag', parameter='playing', value='true')
             self.assertTrue(answer.success, answer.message)
