@@ -63,6 +63,7 @@ bool Graph::waitIdle(double timeout_s) const { return impl_->waitIdle(timeout_s)
 // ------------------------------------------------------------------ reading
 
 GraphDescription Graph::describe() const { return impl_->describe(); }
+Result<NodeDescription> Graph::describeNode(const std::string& name) const { return impl_->describeNode(name); }
 std::vector<ConnectionDescription> Graph::connections() const { return impl_->connections(); }
 Result<LoadReport> Graph::load(const GraphDescription& description) { return impl_->load(description); }
 std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const { return impl_->nodeStats(stall_after_s); }

@@ -63,6 +63,7 @@ struct Graph::Impl {
   void step();
   Status stepFrame(double timeout_s);
   GraphDescription describe() const;
+  Result<NodeDescription> describeNode(const std::string& name) const;
   /** The description, and a maker of empty graphs with these node types and host. */
   GraphSnapshot snapshot() const;
   std::vector<ConnectionDescription> connections() const;

@@ -21,7 +21,7 @@ namespace {
 
 std::string at(int line) { return line > 0 ? "line " + std::to_string(line) + ": " : ""; }
 
-NodeDescription describeNode(const NodeState& n) {
+NodeDescription describeOne(const NodeState& n) {
   std::lock_guard<std::mutex> lock(n.state_mutex);
   if (!n.type) {
     NodeDescription d = n.placeholder;
@@ -69,6 +69,15 @@ GraphDescription Graph::Impl::describe() const {
   return describeLocked();
 }
 
+Result<NodeDescription> Graph::Impl::describeNode(const std::string& name) const {
+  auto lock = lockEdits();
+  const NodePtr n = find(name);
+  if (!n) return Status::error("no node named '" + name + "'");
+  NodeDescription d = describeOne(*n);
+  if (n->type) d.error = n->error();
+  return d;
+}
+
 GraphSnapshot Graph::Impl::snapshot() const {
   auto lock = lockEdits();
   auto make = [registry = registry_, host = host_] {
@@ -95,7 +104,7 @@ GraphDescription Graph::Impl::describeLocked() const {
   // subgraph grouped inside another from its first node has the same place: outer first, by path
   std::map<std::tuple<std::uint64_t, int, std::string>, NodeDescription> nodes;
   for (auto& [seq, n] : order_) {
-    auto& d = nodes[{seq, 1, ""}] = describeNode(*n);
+    auto& d = nodes[{seq, 1, ""}] = describeOne(*n);
     if (n->type) d.error = n->error();
   }
   for (auto& [path, sg] : subgraphs_.all()) {

@@ -32,6 +32,7 @@
 #include "apex/core/graph_file.hpp"
 #include "apex/core/log.hpp"
 #include "balance_service.hpp"
+#include "change_publisher.hpp"
 #include "profile_service.hpp"
 #include "trace_service.hpp"
 #include "convert.hpp"
@@ -79,6 +80,7 @@ struct RuntimeHost::Impl {
   std::mutex publish_mutex;
   std::uint64_t published_revision = ~0ull;
   GraphState published;  // publish_mutex: the last ~graph, for the servers still to make
+  ChangePublisher publisher{[this] { publishIfChanged(); }};  // calls wake it; it publishes
   const ros::Time started = ros::Time::now();  // in every ~status: a client tells a restarted runtime by it
 
   Impl(ros::NodeHandle n, ros::NodeHandle p) : nh(n), pnh(p), graph(NodeRegistry()), inspection(pnh), mirror(pnh) {
@@ -118,7 +120,7 @@ struct RuntimeHost::Impl {
   template <class Res>
   bool answered(Res& res, const Status& st) {
     answer(res, st);
-    publishIfChanged();
+    publisher.wake();  // ~graph follows on the publisher's thread: the call answers at once
     return true;
   }
 
@@ -175,11 +177,12 @@ struct RuntimeHost::Impl {
     auto added = graph.addNode(d);
     if (added) {
       res.name = added.value();
-      const GraphDescription now = graph.describe();
-      if (const NodeDescription* n = findNode(now, res.name)) {
+      if (d.type != kSubgraphType) {  // one node: described alone (the whole graph is O(graph))
+        if (auto n = graph.describeNode(res.name)) res.node = toNodeInfo(n.value());
+      } else if (const GraphDescription now = graph.describe(); const NodeDescription* n = findNode(now, res.name)) {
         res.node = toNodeInfo(*n);
-        res.node.name = res.name;
       }
+      res.node.name = res.name;
     }
     return answered(res, added.status());
   }
@@ -393,13 +396,13 @@ struct RuntimeHost::Impl {
           pnh, graph,
           [this](const std::string& node, const std::string& param, const std::string& text) {
             auto applied = setFromOutside(node, param, text);
-            publishIfChanged();  // parameter_updates, ~graph
+            publisher.wake();  // parameter_updates, ~graph
             return applied;
           },
           reconfigure_limit);
     if (diagnosed) diagnostics = std::make_unique<Diagnostics>(nh, pnh, graph);
     change_timer = pnh.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) {
-      publishIfChanged();
+      publisher.wake();  // what nodes changed themselves (errors, a player's position)
       recovery->tick(graph.editRevision(), [this] { return snapshot(); });
     });
     status_timer = pnh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
@@ -499,6 +502,7 @@ RuntimeHost::RuntimeHost(ros::NodeHandle nh, ros::NodeHandle pnh) : impl_(new Im
 
 RuntimeHost::~RuntimeHost() {
   impl_->change_timer.stop();
+  impl_->publisher.stop();
   impl_->recovery->close();  // first: a stop that then waits for a node in process() is still clean
   impl_->balance.reset();  // a balance waiting for frames ends
   impl_->master_watch.reset();

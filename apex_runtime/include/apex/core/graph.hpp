@@ -123,6 +123,9 @@ class Graph {
   // --- reading ---
   /** @brief The whole graph as plain data (nodes in insertion order). */
   GraphDescription describe() const;
+  /** @brief One node (by its path; not a subgraph's façade) as describe() gives it, without
+   *  describing the rest: O(1) in the graph's size. */
+  Result<NodeDescription> describeNode(const std::string& name) const;
   /** @brief Every connection between the nodes themselves, by their paths (what a subgraph's
    *  ports stand for, not the ports): the flat graph that runs. */
   std::vector<ConnectionDescription> connections() const;
