@@ -1,4 +1,5 @@
 #include "apex_rviz_plugin/box_view.hpp"
+#include "apex/core/description.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -93,7 +94,7 @@ std::string scalarText(double v) {
 }
 
 std::string kindLine(const std::string& type, const std::string& thread_group) {
-  return thread_group.empty() || thread_group == "default" ? type : type + "  · group " + thread_group;
+  return thread_group.empty() || thread_group == apex::kDefaultGroup ? type : type + "  · group " + thread_group;
 }
 
 std::string playerPlace(long frame, long last, bool last_known, double time_s, bool playing, bool loops) {

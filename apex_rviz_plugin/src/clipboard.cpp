@@ -10,6 +10,7 @@
 #include "apex/core/graph_file.hpp"
 #include "apex_rviz_plugin/graph_model.hpp"
 #include "calls.hpp"
+#include "apex/core/description.hpp"
 
 namespace apex_rviz_plugin {
 namespace {
@@ -48,7 +49,7 @@ std::string GraphModel::copy(const std::vector<std::string>& names, std::string*
     nd.name = rel(name);
     nd.type = n->subgraph.empty() ? n->type : apex::kSubgraphType;
     nd.source = n->subgraph;
-    nd.thread_group = n->thread_group.empty() ? "default" : n->thread_group;
+    nd.thread_group = n->thread_group.empty() ? apex::kDefaultGroup : n->thread_group;
     nd.enabled = n->enabled;
     nd.ui = n->ui;
     if (auto at = shown_at.find(name); at != shown_at.end()) nd.ui = ui(at->second.first, at->second.second);

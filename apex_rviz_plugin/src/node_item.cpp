@@ -14,6 +14,7 @@
 #include "apex_rviz_plugin/graph_scene.hpp"
 #include "apex_rviz_plugin/param_editor.hpp"
 #include "apex_rviz_plugin/transport_bar.hpp"
+#include "apex/core/description.hpp"
 
 namespace apex_rviz_plugin {
 namespace {
@@ -40,7 +41,7 @@ bool sameShape(const apex::NodeInfo& a, const apex::NodeInfo& b) {
 }
 
 QColor groupColor(const std::string& group) {
-  if (group.empty() || group == "default") return QColor(70, 90, 120);
+  if (group.empty() || group == apex::kDefaultGroup) return QColor(70, 90, 120);
   return QColor::fromHsv(static_cast<int>(std::hash<std::string>()(group) % 360), 110, 150);
 }
 

@@ -95,7 +95,7 @@ std::vector<std::string> groupsOf(const GraphDescription& d, const BalanceInput&
   std::map<std::string, std::string> now;
   groupsByPath(d, "", now);
   std::vector<std::string> out;
-  for (const auto& n : input.nodes) out.push_back(now.count(n.name) ? now[n.name] : "default");
+  for (const auto& n : input.nodes) out.push_back(now.count(n.name) ? now[n.name] : kDefaultGroup);
   return out;
 }
 
@@ -143,7 +143,7 @@ Result<std::vector<double>> tryPlacements(Graph& graph, const BalanceInput& inpu
   const Status restored = place(graph, back);
   // The groups the trials made go again (one a node left a timer in stays, empty: refused then).
   for (const auto& name : trial_groups)
-    if (restored && name != "default" && std::find(groups_before.begin(), groups_before.end(), name) == groups_before.end())
+    if (restored && name != kDefaultGroup && std::find(groups_before.begin(), groups_before.end(), name) == groups_before.end())
       (void)graph.removeThreadGroup(name);
   if (!failed) return failed;
   if (!restored) return Status::error("cannot put the nodes back in their groups after the trials: " + restored.message());

@@ -22,12 +22,6 @@ using detail::NodeState;
 using detail::Restructure;
 using detail::ThreadGroup;
 
-namespace {
-
-constexpr const char* kDefaultGroup = "default";
-
-}  // namespace
-
 Graph::Impl::Impl(NodeRegistry registry)
     : registry_(std::move(registry)),
       edits_(std::make_shared<detail::EditRequests>(
@@ -373,7 +367,7 @@ Status Graph::Impl::setThreadGroup(const std::string& node, const std::string& g
 
 Status Graph::Impl::removeThreadGroup(const std::string& name) {
   auto lock = lockEdits();
-  if (name == "default") return Status::error("the thread group 'default' cannot be removed");
+  if (name == kDefaultGroup) return Status::error("the thread group '" + name + "' cannot be removed");
   auto it = groups_.find(name);
   if (it == groups_.end()) return Status::error("no thread group '" + name + "'");
   for (auto& [seq, n] : order_)

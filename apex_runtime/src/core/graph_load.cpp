@@ -99,7 +99,7 @@ std::vector<ConnectionDescription> Graph::Impl::connections() const {
 GraphDescription Graph::Impl::describeLocked() const {
   GraphDescription flat;
   for (auto& [name, g] : groups_)
-    if (name != "default") flat.thread_groups.push_back(name);
+    if (name != kDefaultGroup) flat.thread_groups.push_back(name);
   // insertion order, subgraphs among the nodes (a grouped one where its first node was); a
   // subgraph grouped inside another from its first node has the same place: outer first, by path
   std::map<std::tuple<std::uint64_t, int, std::string>, NodeDescription> nodes;
@@ -138,7 +138,7 @@ GraphDescription Graph::Impl::describeLocked() const {
 
 Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   if (auto why = checkNewPath(d.name); !why.empty()) return Status::error(why);
-  const std::string group_name = d.thread_group.empty() ? "default" : d.thread_group;
+  const std::string group_name = d.thread_group.empty() ? kDefaultGroup : d.thread_group;
   if (auto room = roomFor(group_name, 1); !room) return Status::error(nodeLabel(d.name) + ": " + room.message());
   auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revisions_);
   state->placeholder = d;
@@ -207,7 +207,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   clearLocked();
   // Groups neither listed nor used by a node go away with the old graph.
   std::set<std::string> keep(description.thread_groups.begin(), description.thread_groups.end());
-  keep.insert("default");
+  keep.insert(kDefaultGroup);
   for (auto& [seq, n] : staged.order_) keep.insert(n->group->name());
   for (auto it = groups_.begin(); it != groups_.end();) {
     if (keep.count(it->first)) {

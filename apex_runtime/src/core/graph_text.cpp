@@ -84,7 +84,7 @@ NodeDescription parseNode(const YAML::Node& n, int version, int depth) {
     d.type = scalar(n, "type", what);
     d.thread_group = scalar(n, "thread_group", what, false);
   }
-  if (d.thread_group.empty()) d.thread_group = "default";
+  if (d.thread_group.empty()) d.thread_group = kDefaultGroup;
   if (const auto e = n["enabled"]) {
     if (!e.IsScalar() || !YAML::convert<bool>::decode(e, d.enabled)) fail(e, what + ": 'enabled' must be true or false");
   }
@@ -356,7 +356,7 @@ void emitNode(YAML::Emitter& out, const NodeDescription& n) {
     out << YAML::EndMap;
   } else {
     out << YAML::Key << "type" << YAML::Value << n.type;
-    if (n.thread_group != "default") out << YAML::Key << "thread_group" << YAML::Value << n.thread_group;
+    if (n.thread_group != kDefaultGroup) out << YAML::Key << "thread_group" << YAML::Value << n.thread_group;
   }
   if (!n.enabled) out << YAML::Key << "enabled" << YAML::Value << false;
   if (!n.parameters.empty()) {

@@ -167,7 +167,7 @@ GraphState toGraphState(const Graph& graph, std::uint64_t revision) {
   GraphState g;
   g.revision = revision;
   g.paused = graph.paused();
-  g.thread_groups.push_back("default");
+  g.thread_groups.push_back(kDefaultGroup);
   for (const auto& name : d.thread_groups) g.thread_groups.push_back(name);
   std::map<std::string, const Manifest*> ifaces;
   std::vector<ConnectionDescription> connections;

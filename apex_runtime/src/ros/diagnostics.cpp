@@ -97,7 +97,7 @@ void Diagnostics::nodeStatus(const std::string& node, diagnostic_updater::Diagno
   const auto info = nodes_.find(node);
   if (info != nodes_.end()) {
     out.add("type", info->second.type);
-    out.add("thread group", info->second.thread_group.empty() ? "default" : info->second.thread_group);
+    out.add("thread group", info->second.thread_group.empty() ? kDefaultGroup : info->second.thread_group);
     if (info->second.state == "placeholder") {
       out.summary(DiagnosticStatus::STALE,
                   info->second.error.empty() ? "placeholder: its type is not loaded" : info->second.error);

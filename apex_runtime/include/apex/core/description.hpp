@@ -13,13 +13,16 @@ namespace apex {
 struct Manifest;
 struct GraphDescription;
 
+/** @brief The thread group every graph has, where a node goes unless told otherwise. */
+inline constexpr const char* kDefaultGroup = "default";
+
 /** @brief One node as saved: parameter values are YAML text. */
 struct NodeDescription {
   std::string name, type;
   std::vector<std::pair<std::string, std::string>> parameters;  ///< name → YAML text, declaration order
   std::vector<std::string> interactive;  ///< parameters with ports: the exact set
   bool enabled = true;
-  std::string thread_group = "default";
+  std::string thread_group = kDefaultGroup;
   std::string ui;  ///< free-form front-end metadata, YAML flow text ("" if none)
   bool placeholder = false;  ///< type unknown here: kept and written back unchanged
   std::string error;  ///< current error (state, not saved)
