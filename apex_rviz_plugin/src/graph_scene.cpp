@@ -250,6 +250,7 @@ void GraphScene::mouseDoubleClickEvent(QGraphicsSceneMouseEvent* e) {
 
 void GraphScene::showStatus(const apex::RuntimeStatus& status) {
   const double now = status.stamp.toSec();
+  forgetGone(status);
   for (const auto& s : status.nodes) {
     NodeItem* item = node(s.name);
     if (!item) continue;
@@ -271,6 +272,21 @@ void GraphScene::showStatus(const apex::RuntimeStatus& status) {
     }
   }
   markLinks();
+}
+
+void GraphScene::forgetGone(const apex::RuntimeStatus& status) {
+  std::set<std::string> there;
+  for (const auto& s : status.nodes) there.insert(s.name);
+  const auto gone = [&](const std::string& key) {  // "node" or "node/output"
+    for (std::string node = key;; node = node.substr(0, node.rfind('/'))) {  // (a node's path has '/' too)
+      if (there.count(node)) return false;
+      if (node.find('/') == std::string::npos) return true;
+    }
+  };
+  for (auto* m : {&last_status_, &last_sent_})
+    for (auto it = m->begin(); it != m->end();) it = gone(it->first) ? m->erase(it) : std::next(it);
+  for (auto it = link_rates_.begin(); it != link_rates_.end();) it = gone(it->first) ? link_rates_.erase(it) : std::next(it);
+  for (auto it = statuses_.begin(); it != statuses_.end();) it = there.count(it->first) ? std::next(it) : statuses_.erase(it);
 }
 
 std::string GraphScene::showCriticalPath(const std::string& node) {

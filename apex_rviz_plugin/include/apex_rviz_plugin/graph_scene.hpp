@@ -330,6 +330,8 @@ class GraphScene : public QGraphicsScene {
   std::string critical_to_;  ///< the node whose critical path is coloured ("" none)
   /** Rates and the critical path onto the links (rebuilt with every graph shown). */
   void markLinks();
+  /** Drops what it kept of nodes no longer in the runtime's status (removed, renamed). */
+  void forgetGone(const apex::RuntimeStatus& status);
   /** The p95 latency (ms) of an output in its node's newest status; -1 if none. */
   double outputLatencyP95(const std::string& node, const std::string& output) const;
   PortItem* drag_from_ = nullptr;
