@@ -352,7 +352,9 @@ void PanelWidget::meetRuntime() {
 
 void PanelWidget::readGraph(int tries) {
   link_.runThenRead({}, [this, tries](bool, const std::string&, const apex::GraphState& g) {
-    if (g.revision > 0) return onGraph(g);  // revision 0: get_graph did not answer
+    // (A restarted runtime's latched ~graph may have come before the status that said it was a new
+    // one, which reset what was shown: its graph at revision 0 must be taken from here then.)
+    if (answered(g)) return onGraph(g);
     if (tries > 0 && link_.connected() && !model_.hasGraph())
       QTimer::singleShot(250, this, [this, tries] { readGraph(tries - 1); });
   });

@@ -36,6 +36,10 @@
 
 namespace apex_rviz_plugin {
 
+/** @brief Whether a graph came from a runtime: every runtime's has its default thread group (a
+ *  runtime that changed nothing yet answers at revision 0, as an unanswered call reads). */
+inline bool answered(const apex::GraphState& g) { return !g.thread_groups.empty(); }
+
 class RuntimeLink : public QObject {
   Q_OBJECT
  public:
@@ -53,7 +57,7 @@ class RuntimeLink : public QObject {
   /** @brief Makes the calls in order, stopping at the first refused one; `done` gets its message. */
   void run(std::vector<Call> calls, Done done);
   /** @brief As run, then reads the graph (get_graph): `done` also gets the graph as the runtime
-   *  had it right after the calls (revision 0 if it did not answer). */
+   *  had it right after the calls (an empty GraphState if it did not answer: see answered()). */
   void runThenRead(std::vector<Call> calls, std::function<void(bool, const std::string&, const apex::GraphState& after)> done);
   void listTypes(std::function<void(bool, const std::string&, const std::vector<apex::NodeTypeInfo>&)> done);
   void control(const std::string& command, Done done);
