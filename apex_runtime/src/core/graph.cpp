@@ -48,7 +48,9 @@ std::unique_lock<std::mutex> Graph::Impl::lockEdits() const {
     throw std::logic_error("apex::Graph cannot be called from node code (process() or a slot handler) on thread group '" +
                            caller->name() + "': the call would wait for that very group. Call it from another thread.");
   }
-  return std::unique_lock<std::mutex>(edit_mutex_);
+  std::unique_lock<std::mutex> lock(edit_mutex_);
+  edit_began_ = detail::ticks();
+  return lock;
 }
 
 Graph::Impl::NodePtr Graph::Impl::find(const std::string& name) const {
@@ -233,7 +235,7 @@ void Graph::Impl::clearLocked() {
 void Graph::Impl::changedDownstreamOf(NodeState* node, bool itself) {
   if (!rerun_on_edit_.load()) return;
   std::lock_guard<std::mutex> lock(changed_mutex_);
-  changed_.push_back({node->weak_from_this(), itself, detail::ticks()});
+  changed_.push_back({node->weak_from_this(), itself, edit_began_});
   if (changed_.size() == 1)  // the first since the last walk: the next walk sees all that follow
     edits_->runAt(last_walk_ + kRerunGap, [this] { tellSourcesDownstreamChanged(); });
 }

@@ -133,7 +133,7 @@ struct Graph::Impl {
   struct ChangedAt {
     std::weak_ptr<detail::NodeState> node;
     bool itself;
-    std::int64_t tick;  // when (ticks.hpp): a source that sent a frame after it needs no re-send
+    std::int64_t tick;  // the edit's start (ticks.hpp): a source that began a frame after it needs no re-send
   };
   mutable std::mutex changed_mutex_;  // after edit_mutex_
   mutable std::condition_variable walked_;  // a walk ended
@@ -155,6 +155,10 @@ struct Graph::Impl {
   std::shared_ptr<const Host> host_;  // edit_mutex_
   std::atomic<bool> rerun_on_edit_{true};  // Graph::setRerunOnEdit
   mutable std::mutex edit_mutex_;  // serialises edits and reads of the structure
+  /** edit_mutex_: when its holder took it (ticks.hpp), so before any part of the edit could reach a
+   *  firing. A change noted at the end of an edit would be later than a firing that already saw it,
+   *  and that source would re-send a frame that had gone through the change. */
+  mutable std::int64_t edit_began_ = 0;
   std::map<std::string, NodePtr> nodes_;
   std::map<std::uint64_t, detail::NodeState*> order_;  // insertion order
   std::uint64_t next_seq_ = 0;
