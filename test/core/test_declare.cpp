@@ -11,6 +11,8 @@
 
 #include "apex/core/graph.hpp"
 #include "apex/core/registry.hpp"
+#include "apex_test/test_nodes.hpp"
+#include "graph_text.hpp"
 
 namespace {
 
@@ -107,6 +109,58 @@ TEST(Declare, ALibraryWithATypeThatFailedToRegisterIsRefusedNamingIt) {
   }
 }
 
+// A typed choice: its options listed once, as name, value and meaning.
+class Kernel : public Node {
+ public:
+  static inline const InputPort<int> kIn{"in"};
+  static inline const OutputPort<int> kOut{"out", "in times 10, plus the shape's value"};
+  static inline const ChoiceDecl<int> kShape =
+      param::choice<int>("shape", {{"rect", 1, "a square"}, {"cross", 2}, {"ellipse", 3, "round"}})
+          .init("cross")
+          .describe("the kernel's shape");
+  static Manifest manifest() { return Manifest("shapes").input(kIn).output(kOut).param(kShape); }
+  void process() override { out_.publish(*in_.get() * 10 + shape_.get()); }
+
+ private:
+  Input<int> in_{this, kIn};
+  Output<int> out_{this, kOut};
+  Choice<int> shape_{this, kShape};
+};
+
+TEST(Declare, ATypedChoiceListsItsOptionsOnceAndProcessReadsTheirValues) {
+  const ParamSpec& spec = Kernel::kShape;
+  EXPECT_EQ(spec.kindName(), "set");
+  EXPECT_EQ(spec.options, (std::vector<std::string>{"rect", "cross", "ellipse"}));
+  EXPECT_EQ(toText(spec.default_value), "cross");
+  EXPECT_EQ(spec.description, "the kernel's shape; rect: a square; ellipse: round");  // cross says nothing
+  EXPECT_EQ(param::choice<int>("s", {{"a", 1, "one"}, {"b", 2, "two"}}).spec().description, "a: one; b: two");
+
+  NodeRegistry types = apex_test::testRegistry();
+  ASSERT_TRUE(types.add<Kernel>("test/Kernel"));
+  Graph g(types);
+  ASSERT_TRUE(apex_test::buildFromText(g, R"(
+    nodes:
+      - {name: feed, type: test/Feeder}
+      - {name: kernel, type: test/Kernel}
+      - {name: sink, type: test/Collector}
+    connections: [{from: feed/out, to: kernel/in}, {from: kernel/out, to: sink/in}])"));
+  g.start();
+  auto* feed = apex_test::object<apex_test::Feeder>(g, "feed");
+  auto* sink = apex_test::object<apex_test::Collector>(g, "sink");
+  feed->feed(1);
+  ASSERT_TRUE(sink->waitFor(1));
+  ASSERT_TRUE(g.waitIdle(apex_test::kWait));
+  ASSERT_TRUE(g.setParameter("kernel", "shape", "ellipse"));
+  const auto wrong = g.setParameter("kernel", "shape", "disc");  // refused when set, never met while firing
+  ASSERT_FALSE(wrong);
+  EXPECT_NE(wrong.message().find("'disc'"), std::string::npos) << wrong.message();
+  EXPECT_NE(wrong.message().find("rect"), std::string::npos) << wrong.message();
+  feed->feed(2);
+  ASSERT_TRUE(sink->waitFor(2));
+  g.stop();
+  EXPECT_EQ(sink->ints(), (std::vector<int>{12, 23}));
+}
+
 // Compiles `body` (a node class with the handle `handle`) with the compiler this build uses;
 // true if it compiles.
 bool compiles(const std::string& handle, const std::string& name) {
@@ -137,6 +191,7 @@ TEST(Declare, AHandleOfAnotherTypeThanItsConstantDoesNotCompile) {
   EXPECT_TRUE(compiles("apex::Param<int> gain_{this, kGain}", "param_ok"));
   EXPECT_FALSE(compiles("apex::Param<double> gain_{this, kGain}", "param_wrong"));
   EXPECT_FALSE(compiles("apex::Input<int> in_{this, kOut}", "input_from_output"));
+  EXPECT_FALSE(compiles("apex::Choice<int> gain_{this, kGain}", "choice_of_a_number"));
 }
 
 }  // namespace

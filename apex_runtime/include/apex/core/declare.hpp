@@ -26,6 +26,8 @@ namespace apex {
 
 template <class T>
 class ParamDecl;
+template <class V>
+class ChoiceDecl;
 namespace param {
 ParamDecl<std::string> choice(std::string name, std::vector<std::string> options);
 ParamDecl<double> angle(std::string name);
@@ -149,8 +151,76 @@ class ParamDecl {
  private:
   friend ParamDecl<std::string> param::choice(std::string, std::vector<std::string>);
   friend ParamDecl<double> param::angle(std::string);
+  template <class V>
+  friend class ChoiceDecl;
   ParamSpec spec_;
   bool init_given_ = false;
+};
+
+/** @brief One option of a typed choice: the name a graph file and the panel use, the value
+ *  process() reads (apex::Choice<V>::get), and what it means. */
+template <class V>
+struct Option {
+  const char* name;
+  V value;
+  const char* description = "";
+};
+
+/** @brief A choice whose options are one table of Option<V>: the manifest's names, the
+ *  description and the values process() reads all come from it, so they cannot drift apart, and
+ *  a name that is not an option is refused when set, never met while firing:
+ *    static inline const apex::ChoiceDecl<int> kShape = apex::param::choice<int>(
+ *        "shape", {{"rect", cv::MORPH_RECT}, {"cross", cv::MORPH_CROSS}, {"ellipse", cv::MORPH_ELLIPSE}});
+ *    apex::Choice<int> shape_{this, kShape};  // shape_.get() is cv::MORPH_RECT, ... */
+template <class V>
+class ChoiceDecl {
+ public:
+  ChoiceDecl(std::string name, std::vector<Option<V>> options)
+      : options_(std::move(options)), decl_(std::move(name), ParamKind::Set, options_.empty() ? "" : options_.front().name) {
+    decl_.spec_.options.clear();
+    for (const auto& o : options_) decl_.spec_.options.push_back(o.name);
+    setDescription("");
+  }
+  /** @brief The option a new node starts with (the first unless this says otherwise). */
+  ChoiceDecl init(const std::string& option) && {
+    decl_ = std::move(decl_).init(option);
+    return std::move(*this);
+  }
+  /** @brief What the parameter means; the options' own descriptions follow it. */
+  ChoiceDecl describe(const std::string& text) && {
+    setDescription(text);
+    return std::move(*this);
+  }
+  ChoiceDecl interactive() && {
+    decl_ = std::move(decl_).interactive();
+    return std::move(*this);
+  }
+  ChoiceDecl shapesInterface() && {
+    decl_ = std::move(decl_).shapesInterface();
+    return std::move(*this);
+  }
+
+  /** @brief The value of the option named `option`; the first option's if none is (the graph
+   *  refuses such a name before a node could read it). */
+  const V& valueOf(const std::string& option) const {
+    for (const auto& o : options_)
+      if (option == o.name) return o.value;
+    return options_.front().value;
+  }
+  const std::vector<Option<V>>& options() const { return options_; }
+  const ParamSpec& spec() const { return decl_.spec(); }
+  const std::string& name() const { return decl_.name(); }
+  operator const ParamSpec&() const { return decl_.spec(); }  // NOLINT: what Manifest::param takes
+
+ private:
+  void setDescription(const std::string& text) {
+    std::string all = text;
+    for (const auto& o : options_)
+      if (*o.description) all += (all.empty() ? "" : "; ") + std::string(o.name) + ": " + o.description;
+    decl_.spec_.description = std::move(all);
+  }
+  std::vector<Option<V>> options_;
+  ParamDecl<std::string> decl_;
 };
 
 /** Builders: the kind and the name; the rest by named steps (ParamDecl). */
@@ -170,6 +240,11 @@ inline ParamDecl<std::string> choice(std::string name, std::vector<std::string> 
   ParamDecl<std::string> d(std::move(name), ParamKind::Set, options.empty() ? std::string() : options.front());
   d.spec_.options = std::move(options);
   return d;
+}
+/** @brief One of the options of a table (ChoiceDecl): names, values and descriptions listed once. */
+template <class V>
+ChoiceDecl<V> choice(std::string name, std::vector<Option<V>> options) {
+  return {std::move(name), std::move(options)};
 }
 /** @brief A file or folder (mode()): resolved against the runtime's file roots. */
 inline ParamDecl<std::string> path(std::string name) { return {std::move(name), ParamKind::Path, std::string()}; }

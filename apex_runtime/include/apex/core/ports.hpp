@@ -116,6 +116,19 @@ class Param : public Handle {
   const T& get() const { return std::get<T>(paramAt(index())); }
 };
 
+/** @brief A typed choice's current value (ChoiceDecl): the value of the option it is set to. */
+template <class V>
+class Choice : public Param<std::string> {
+ public:
+  Choice(Node* node, const ChoiceDecl<V>& decl) : Param<std::string>(node, decl.name()), decl_(&decl) {}
+  const V& get() const { return decl_->valueOf(text()); }
+  /** @brief The option's name, e.g. for a message. */
+  const std::string& text() const { return Param<std::string>::get(); }
+
+ private:
+  const ChoiceDecl<V>* decl_;
+};
+
 /** @brief Sends an event on a trigger. */
 class Trigger : public Handle {
  public:
