@@ -1,7 +1,12 @@
 #!/usr/bin/env python3
-"""The README's examples, run as written (scripts/test): a user copies them, so they must work.
+"""The examples of the README and the docs/ pages, run as written (scripts/test): a user copies them,
+so they must work.
 
-A README block right after `<!-- check: session -->` is a shell session. Each `$ command` runs in
+The pages are read in the order given (a page given twice counts once, at its first place), and
+their blocks run in that order, in one working folder: a `file` block serves the sessions after
+it, on its own page or a later one.
+
+A block right after `<!-- check: session -->` is a shell session. Each `$ command` runs in
 order, in bash, in a working folder of the user's; one that ends in `&` starts in the background
 (a launch: the next command waits until every runtime it started answers `get_graph`, as a person
 waits for a launch to come up). The lines shown after a command are what it prints:
@@ -17,11 +22,17 @@ started alone; each must bring up a runtime that answers `get_graph`, and is the
 `source` lines are left out (this check runs in the sourced devel space). A nodelet manager named
 camera_manager runs for these lines, and an X server (Xvfb) for those that start rviz.
 
+Every relative link of the pages (an image too) must name a file that exists, and a `#anchor`
+a heading of the page it links to (as GitHub makes anchors): the case `links`.
+
 The user's files: HOME is a fresh folder whose ~/data holds demo.bag (the generated demo bag),
 train.bag and test.bag with their truth files (train_truth.yaml, test_truth.yaml); the working
 folder ($PWD) holds my_graph.yaml (a small graph) and run3.bag (the demo bag).
 
-    readme_check.py README RESULT_XML WORK_DIR    (with the devel space sourced)
+    readme_check.py README.md [PAGE.md ...] RESULT_XML WORK_DIR    (with the devel space sourced)
+
+A case is named after its page and the heading it is under (`ros.Recording_BagWriter`), or its file
+(`ros.counting.py`).
 """
 import os
 import re
@@ -44,12 +55,13 @@ connections:
 """
 
 
-def blocks(readme):
-    """(kind, name, first line number, [lines]) of every block marked `<!-- check: kind -->`; the
-    name is the section's heading, numbered from its second block on."""
-    lines = readme.split("\n")
+def blocks(text, page):
+    """(kind, name, file, first line number, [lines]) of every block of a page marked
+    `<!-- check: kind -->`; the name is the page's, then the section's heading, numbered from its
+    second block on, or the file's NAME; file is a `file` block's NAME (else None)."""
+    lines = text.split("\n")
     out = []
-    heading, seen, fenced = "README", {}, False
+    heading, seen, fenced = "", {}, False
     for i, line in enumerate(lines):
         fenced = fenced != line.strip().startswith("```")
         if line.startswith("#") and not fenced:
@@ -58,13 +70,13 @@ def blocks(readme):
         if not m:
             continue
         seen[heading] = seen.get(heading, 0) + 1
-        name = heading + ("" if seen[heading] == 1 else "_%d" % seen[heading])
+        name = (heading or "top") + ("" if seen[heading] == 1 else "_%d" % seen[heading])
         j = i + 1
         while j < len(lines) and not lines[j].strip():
             j += 1
         body = []
         if j == len(lines):
-            raise SystemExit("README line %d: a check marker with no block after it" % (i + 1))
+            raise SystemExit("%s line %d: a check marker with no block after it" % (page, i + 1))
         if lines[j].strip().startswith("```"):
             j += 1
             while j < len(lines) and not lines[j].strip().startswith("```"):
@@ -75,7 +87,54 @@ def blocks(readme):
             while j < len(lines) and (not lines[j].strip() or len(lines[j]) - len(lines[j].lstrip()) >= indent):
                 body.append(lines[j][indent:])
                 j += 1
-        out.append((m.group(1), m.group(2) or name, j + 1 - len(body), [b.rstrip() for b in body]))
+        stem = os.path.splitext(os.path.basename(page))[0]
+        out.append((m.group(1), "%s.%s" % (stem, m.group(2) or name), m.group(2), j + 1 - len(body),
+                    [b.rstrip() for b in body]))
+    return out
+
+
+def anchor(heading):
+    """The anchor GitHub gives a heading's text (without its numbering of repeats)."""
+    text = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", heading.strip()).lower()
+    return re.sub(r"[^\w\- ]", "", text).replace(" ", "-")
+
+
+def anchors(path):
+    """Every anchor of a markdown file's headings."""
+    found, seen, fenced = set(), {}, False
+    with open(path) as f:
+        for line in f:
+            if line.strip().startswith("```"):
+                fenced = not fenced
+            m = None if fenced else re.match(r"#{1,6} (.*)", line)
+            if m:
+                a = anchor(m.group(1))
+                found.add(a if a not in seen else "%s-%d" % (a, seen[a]))
+                seen[a] = seen.get(a, 0) + 1
+    return found
+
+
+def bad_links(pages):
+    """Every relative link of the pages that names no file, or no heading of its page ([] if none)."""
+    out = []
+    for page in pages:
+        fenced = False
+        with open(page) as f:
+            lines = f.read().split("\n")
+        for n, line in enumerate(lines, 1):
+            if line.strip().startswith("```"):
+                fenced = not fenced
+            if fenced:
+                continue
+            for target in re.findall(r"\]\(([^)\s]+)\)", re.sub(r"`[^`]*`", "", line)):
+                if re.match(r"[a-z]+:", target):
+                    continue
+                path, _, part = target.partition("#")
+                where = os.path.normpath(os.path.join(os.path.dirname(page), path)) if path else page
+                if not os.path.exists(where):
+                    out.append("%s line %d: %s: no file %s" % (page, n, target, where))
+                elif part and where.endswith(".md") and part not in anchors(where):
+                    out.append("%s line %d: %s: no heading of %s has the anchor #%s" % (page, n, target, where, part))
     return out
 
 
@@ -271,7 +330,12 @@ def user_files(work, env):
 
 
 def main():
-    readme_path, result, work = sys.argv[1:4]
+    if len(sys.argv) < 4:
+        raise SystemExit(__doc__)
+    pages, result, work = [], sys.argv[-2], sys.argv[-1]
+    for page in sys.argv[1:-2]:
+        if os.path.realpath(page) not in map(os.path.realpath, pages):
+            pages.append(page)
     work = os.path.abspath(work)
     env = dict(os.environ)
     port = 21000 + os.getpid() % 10000
@@ -281,8 +345,10 @@ def main():
     home, cwd = user_files(work, env)
     env["HOME"] = home
     env["ROSCONSOLE_STDOUT_LINE_BUFFERED"] = "1"
-    with open(readme_path) as f:
-        found = blocks(f.read())
+    found = []
+    for page in pages:
+        with open(page) as f:
+            found += [b + (page,) for b in blocks(f.read(), page)]
     core = subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL,
                             stderr=subprocess.DEVNULL, start_new_session=True)
     xvfb = None
@@ -292,19 +358,19 @@ def main():
             if subprocess.run(["rosparam", "list"], env=env, capture_output=True).returncode == 0:
                 break
             time.sleep(0.1)
-        if any(k == "each" and any("rviz" in l for l in b) for k, _, _, b in found) and shutil.which("Xvfb"):
+        if any(k == "each" and any("rviz" in l for l in b) for k, _, _, _, b, _ in found) and shutil.which("Xvfb"):
             env["DISPLAY"], env["LIBGL_ALWAYS_SOFTWARE"] = ":%d" % (150 + os.getpid() % 50), "1"
             xvfb = subprocess.Popen(["Xvfb", env["DISPLAY"], "-nolisten", "tcp"], stdout=subprocess.DEVNULL,
                                     stderr=subprocess.DEVNULL)
-        for kind, name, line, body in found:
+        for kind, name, file_name, line, body, page in found:
             t0 = time.time()
             with open(os.path.join(work, name + ".log"), "w") as log:
                 if kind == "file":
-                    failure = save_file(name, body, cwd)
+                    failure = save_file(file_name, body, cwd)
                 else:
                     failure = (run_session if kind == "session" else run_each)(body, env, cwd, log)
             cases.append((name, failure, time.time() - t0))
-            print("README line %d, %s (%s): %s (%.0f s)" % (line, name, kind, failure or "OK", time.time() - t0),
+            print("%s line %d, %s (%s): %s (%.0f s)" % (page, line, name, kind, failure or "OK", time.time() - t0),
                   flush=True)
     finally:
         if xvfb:
@@ -312,7 +378,11 @@ def main():
         os.killpg(core.pid, signal.SIGINT)
         core.wait()
     if not found:
-        cases.append(("blocks", "no block of the README is marked for checking", 0))
+        cases.append(("blocks", "no block of the pages is marked for checking", 0))
+    t0 = time.time()
+    links = bad_links(pages)
+    cases.append(("links", "; ".join(links), time.time() - t0))
+    print("links of %d pages: %s" % (len(pages), "; ".join(links) or "OK"), flush=True)
     failures = sum(1 for _, f, _ in cases if f)
     with open(result, "w") as f:
         f.write('<?xml version="1.0" encoding="UTF-8"?>\n<testsuite name="readme" tests="%d" failures="%d">\n'
@@ -323,7 +393,7 @@ def main():
                 f.write("<failure message=%s>%s</failure>" % (quoteattr(failure), escape(failure)))
             f.write("</testcase>\n")
         f.write("</testsuite>\n")
-    print("README examples: %d blocks, %d failed" % (len(cases), failures))
+    print("README and docs examples: %d cases, %d failed" % (len(cases), failures))
     return 1 if failures else 0
 
 
