@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The README's node example is the real path: builds test/example_package (one node type,
-# the README's code verbatim, and its library's one APEX_NODE_LIBRARY line) as a separate
+# The node example of docs/writing-nodes.md is the real path: builds test/example_package
+# (one node type, that page's code verbatim, and its library's one APEX_NODE_LIBRARY line) as a separate
 # catkin package against this devel space, starts the runtime with it on the package
 # path, adds the node through add_node and checks that it computes. Writes a JUnit result.
 #   example_package.sh RESULT_XML WORK_DIR   (with this package's devel space sourced)
@@ -11,13 +11,13 @@ export PATH=/usr/bin:/bin:$PATH   # catkin needs Debian's python3
 out=$1
 mkdir -p "$2" && work=$(cd "$2" && pwd)
 src=$(cd "$(dirname "$0")/../example_package" && pwd)
-readme=$(dirname "$src")/../README.md
+readme=$(dirname "$src")/../docs/writing-nodes.md
 failure=""
 fail() { [ -n "$failure" ] || failure=$1; }
 
-# The README shows gain.cpp exactly.
+# docs/writing-nodes.md shows gain.cpp exactly.
 awk '/^## A node type/{on=1} on&&/^```cpp/{grab=1;next} grab&&/^```/{exit} grab{print}' "$readme" >"$work/readme_gain.cpp"
-diff -u "$work/readme_gain.cpp" "$src/gain.cpp" >"$work/readme.diff" || fail "the README's node example differs from test/example_package/gain.cpp: $(head -c 300 "$work/readme.diff")"
+diff -u "$work/readme_gain.cpp" "$src/gain.cpp" >"$work/readme.diff" || fail "the node example of docs/writing-nodes.md differs from test/example_package/gain.cpp: $(head -c 300 "$work/readme.diff")"
 
 if [ -z "$failure" ]; then
   cmake -S "$src" -B "$work/build" -DCATKIN_DEVEL_PREFIX="$work/devel" >"$work/cmake.log" 2>&1 &&
