@@ -12,7 +12,7 @@ using testing::HasSubstr;
 
 namespace {
 
-/** The README's Gain with handles: out = in * gain; overflow fires past 1000. */
+/** The Gain of docs/writing-nodes.md, with handles: out = in * gain; overflow fires past 1000. */
 class HandleGain : public Node {
  public:
   static Manifest manifest() {

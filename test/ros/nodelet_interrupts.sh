@@ -4,8 +4,8 @@
 # manager after 0 to 2 s (while the runtime loads, runs, or unloads). Counts what a robot's
 # operator would see: an abort (SIGABRT or SIGSEGV, a core), a process alive 14 s after its SIGINT (roslaunch kills at 15)
 # (or after its manager went), a manager that no longer answers after a loader was stopped.
-# TOOLS: `apex` (the default: apex_nodelet_manager and apex_nodelet_load, as runtime.launch and the
-# README use them) or `nodelet` (Debian's `nodelet manager` and `nodelet load`: the manager crashes
+# TOOLS: `apex` (the default: apex_nodelet_manager and apex_nodelet_load, as runtime.launch and
+# docs/ros.md use them) or `nodelet` (Debian's `nodelet manager` and `nodelet load`: the manager crashes
 # when stopped with a loader attached, whatever the nodelet, and a loader outlives its manager).
 # Then CYCLES loads and unloads of the runtime with the demo graph in one manager: each load
 # answers get_graph, each unload ends its loader, and the manager answers at the end.

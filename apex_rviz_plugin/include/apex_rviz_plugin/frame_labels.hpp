@@ -1,6 +1,6 @@
 // The boxes a person draws on a graph's frames in the panel (LabelView), and the truth file they
 // are saved as: COCO JSON, one of the formats RegionScore, DigitScore and SampleExport read
-// (apex_nodes/truth.hpp, README "Ground truth from a labelling tool"). No Qt, no ROS.
+// (apex_nodes/truth.hpp, docs/tuning.md, "Ground truth from a labelling tool"). No Qt, no ROS.
 #pragma once
 
 #include <cstdint>
