@@ -12,9 +12,11 @@ class AdaptiveThreshold : public ImageFilter {
   static inline const apex::OutputPort<Image> kBinary{"image", "binary (0 or max_value)"};
   static inline const apex::ParamDecl<double> kMaxValue =
       param::number("max_value").range(0.0, 255.0).step(1.0).init(255.0).describe("value of pixels that pass");
-  static inline const apex::ParamDecl<std::string> kMethod =
-      param::choice("method", {"mean", "gaussian"}).describe("how the neighbourhood is weighted");
-  static inline const apex::ParamDecl<std::string> kType = param::choice("threshold_type", {"binary", "binary_inv"});
+  static inline const apex::ChoiceDecl<int> kMethod =
+      param::choice<int>("method", {{"mean", cv::ADAPTIVE_THRESH_MEAN_C}, {"gaussian", cv::ADAPTIVE_THRESH_GAUSSIAN_C}})
+          .describe("how the neighbourhood is weighted");
+  static inline const apex::ChoiceDecl<int> kType =
+      param::choice<int>("threshold_type", {{"binary", cv::THRESH_BINARY}, {"binary_inv", cv::THRESH_BINARY_INV}});
   static inline const apex::ParamDecl<int> kBlock =
       param::integer("block_size").range(3, 101).step(2).init(11).describe("neighbourhood size, odd");
   static inline const apex::ParamDecl<double> kC =
@@ -32,14 +34,12 @@ class AdaptiveThreshold : public ImageFilter {
 
  private:
   void filter(const Image& in, Image& out) override {
-    cv::adaptiveThreshold(in.mat, out.mat, max_value_.get(),
-                          method_.get() == "mean" ? cv::ADAPTIVE_THRESH_MEAN_C : cv::ADAPTIVE_THRESH_GAUSSIAN_C,
-                          type_.get() == "binary" ? cv::THRESH_BINARY : cv::THRESH_BINARY_INV, block_.get(), c_.get());
+    cv::adaptiveThreshold(in.mat, out.mat, max_value_.get(), method_.get(), type_.get(), block_.get(), c_.get());
     out.encoding = "mono8";
   }
   apex::Param<double> max_value_{this, kMaxValue};
-  apex::Param<std::string> method_{this, kMethod};
-  apex::Param<std::string> type_{this, kType};
+  apex::Choice<int> method_{this, kMethod};
+  apex::Choice<int> type_{this, kType};
   apex::Param<int> block_{this, kBlock};
   apex::Param<double> c_{this, kC};
 };

@@ -12,7 +12,9 @@ class BackgroundSubtraction : public apex::Node {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "8-bit gray or colour, one frame of a fixed camera"};
   static inline const apex::OutputPort<Image> kMask{"mask", "mono8: 255 foreground, 127 shadow, 0 background"};
-  static inline const apex::ParamDecl<std::string> kMethod = param::choice("method", {"mog2", "knn"});
+  enum class Method { kMog2, kKnn };
+  static inline const apex::ChoiceDecl<Method> kMethod =
+      param::choice<Method>("method", {{"mog2", Method::kMog2}, {"knn", Method::kKnn}});
   static inline const apex::ParamDecl<int> kHistory =
       param::integer("history").range(1, 100000).step(1).init(500).describe("frames the model remembers");
   static inline const apex::ParamDecl<double> kVarThreshold =
@@ -65,7 +67,7 @@ class BackgroundSubtraction : public apex::Node {
     requireImage(in, "13");
     if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit image ('" + in.encoding + "')");
     if (!model_) {
-      if (method_.get() == "mog2")
+      if (method_.get() == Method::kMog2)
         model_ = cv::createBackgroundSubtractorMOG2(history_.get(), var_threshold_.get(), shadows_.get());
       else model_ = cv::createBackgroundSubtractorKNN(history_.get(), dist2_threshold_.get(), shadows_.get());
     }
@@ -78,7 +80,7 @@ class BackgroundSubtraction : public apex::Node {
  private:
   apex::Input<Image> image_{this, kImage};
   apex::Output<Image> mask_{this, kMask};
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<Method> method_{this, kMethod};
   apex::Param<int> history_{this, kHistory};
   apex::Param<double> var_threshold_{this, kVarThreshold};
   apex::Param<double> dist2_threshold_{this, kDist2Threshold};

@@ -17,7 +17,7 @@ class BlobDetection : public apex::Node {
       param::integer("min_area").range(0, 10000000).step(1).init(50).describe("pixels; smaller regions are dropped");
   static inline const apex::ParamDecl<int> kMaxArea =
       param::integer("max_area").range(0, 10000000).step(1).init(1000000).describe("pixels; larger regions are dropped");
-  static inline const apex::ParamDecl<std::string> kConnectivity = param::choice("connectivity", {"4", "8"}).init("8");
+  static inline const apex::ChoiceDecl<int> kConnectivity = param::choice<int>("connectivity", {{"4", 4}, {"8", 8}}).init("8");
   static apex::Manifest manifest() {
     return apex::Manifest("Finds connected regions of non-zero pixels (bounding box, area, centroid)")
         .inCategory("detection")
@@ -32,8 +32,8 @@ class BlobDetection : public apex::Node {
     const Image& in = *image_.get();
     requireImage(in, "1");
     if (in.mat.depth() != CV_8U) throw std::invalid_argument("needs an 8-bit binary image ('" + in.encoding + "')");
-    const int n = cv::connectedComponentsWithStats(in.mat, labels_, stats_, centroids_, connectivity_.get() == "4" ? 4 : 8,
-                                                   CV_32S, cv::CCL_DEFAULT);
+    const int n =
+        cv::connectedComponentsWithStats(in.mat, labels_, stats_, centroids_, connectivity_.get(), CV_32S, cv::CCL_DEFAULT);
     auto out = regions_buf_.next();  // the last one when nobody holds it: its vector keeps its memory
     out->header = in.header;
     out->image_size = in.mat.size();
@@ -59,7 +59,7 @@ class BlobDetection : public apex::Node {
   apex::Output<int> count_{this, kCount};
   apex::Param<int> min_area_{this, kMinArea};
   apex::Param<int> max_area_{this, kMaxArea};
-  apex::Param<std::string> connectivity_{this, kConnectivity};
+  apex::Choice<int> connectivity_{this, kConnectivity};
   cv::Mat labels_, stats_, centroids_;  // reused between frames
   Reused<Regions> regions_buf_;
 };

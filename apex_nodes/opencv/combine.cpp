@@ -14,8 +14,19 @@ class ImageCombine : public apex::Node {
   static inline const apex::InputPort<Image> kA{"a", "the first image"};
   static inline const apex::InputPort<Image> kB{"b", "the second: of a's size and type"};
   static inline const apex::OutputPort<Image> kOut{"image", "a's size, type, encoding and header"};
-  static inline const apex::ParamDecl<std::string> kOperation =
-      param::choice("operation", {"add", "subtract", "absdiff", "and", "or", "xor", "min", "max", "weighted"})
+  /** One of the per-pixel operations; nullptr: weighted (it takes parameters). */
+  using Per = void (*)(const cv::Mat& a, const cv::Mat& b, cv::Mat& out);
+  static inline const apex::ChoiceDecl<Per> kOperation =
+      param::choice<Per>("operation",
+                         {{"add", [](const cv::Mat& a, const cv::Mat& b, cv::Mat& m) { cv::add(a, b, m); }},
+                          {"subtract", [](const cv::Mat& a, const cv::Mat& b, cv::Mat& m) { cv::subtract(a, b, m); }},
+                          {"absdiff", [](const cv::Mat& a, const cv::Mat& b, cv::Mat& m) { cv::absdiff(a, b, m); }},
+                          {"and", [](const cv::Mat& a, const cv::Mat& b, cv::Mat& m) { cv::bitwise_and(a, b, m); }},
+                          {"or", [](const cv::Mat& a, const cv::Mat& b, cv::Mat& m) { cv::bitwise_or(a, b, m); }},
+                          {"xor", [](const cv::Mat& a, const cv::Mat& b, cv::Mat& m) { cv::bitwise_xor(a, b, m); }},
+                          {"min", [](const cv::Mat& a, const cv::Mat& b, cv::Mat& m) { cv::min(a, b, m); }},
+                          {"max", [](const cv::Mat& a, const cv::Mat& b, cv::Mat& m) { cv::max(a, b, m); }},
+                          {"weighted", nullptr}})
           .describe(
               "per pixel: a + b, a - b, |a - b|, bitwise a & b, a | b, a ^ b, min, max; weighted: alpha a + beta b + gamma "
               "(sums saturate)");
@@ -41,20 +52,13 @@ class ImageCombine : public apex::Node {
     const Image& b = *b_.get();
     if (a.mat.empty() || b.mat.empty())
       throw std::invalid_argument(std::string("received an empty image on ") + (a.mat.empty() ? "a" : "b"));
-    const auto& op = operation_.get();
+    const std::string& op = operation_.text();
     if (a.mat.size() != b.mat.size() || a.mat.type() != b.mat.type())
       throw std::invalid_argument("a is " + imageWords(a) + ", b " + imageWords(b) + ": " + op +
                                   " needs two images of the same size and type");
     auto out = buffer_.next(a);
     cv::Mat& m = out->mat;
-    if (op == "add") cv::add(a.mat, b.mat, m);
-    else if (op == "subtract") cv::subtract(a.mat, b.mat, m);
-    else if (op == "absdiff") cv::absdiff(a.mat, b.mat, m);
-    else if (op == "and") cv::bitwise_and(a.mat, b.mat, m);
-    else if (op == "or") cv::bitwise_or(a.mat, b.mat, m);
-    else if (op == "xor") cv::bitwise_xor(a.mat, b.mat, m);
-    else if (op == "min") cv::min(a.mat, b.mat, m);
-    else if (op == "max") cv::max(a.mat, b.mat, m);
+    if (const Per per = operation_.get()) per(a.mat, b.mat, m);
     else cv::addWeighted(a.mat, alpha_.get(), b.mat, beta_.get(), gamma_.get(), m);
     out->encoding = a.encoding;
     out_.publish(out);
@@ -64,7 +68,7 @@ class ImageCombine : public apex::Node {
   apex::Input<Image> a_{this, kA};
   apex::Input<Image> b_{this, kB};
   apex::Output<Image> out_{this, kOut};
-  apex::Param<std::string> operation_{this, kOperation};
+  apex::Choice<Per> operation_{this, kOperation};
   apex::Param<double> alpha_{this, kAlpha};
   apex::Param<double> beta_{this, kBeta};
   apex::Param<double> gamma_{this, kGamma};

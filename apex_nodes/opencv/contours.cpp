@@ -1,7 +1,6 @@
 // Contours of binary images: FindContours, ContourFilter, ContoursToRegions, DrawContours.
 #include <climits>
 #include <cmath>
-#include <map>
 #include <opencv2/imgproc.hpp>
 
 #include "apex/core/registry.hpp"
@@ -27,13 +26,17 @@ class FindContours : public apex::Node {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "binary, single-channel 8-bit: non-zero pixels are the shapes"};
   static inline const apex::OutputPort<Contours> kContours{"contours", "with their hierarchy"};
-  static inline const apex::ParamDecl<std::string> kMode =
-      param::choice("mode", {"external", "list", "ccomp", "tree"})
-          .describe("external: outer contours only; list: all, no nesting; ccomp: outer and holes; tree: all nesting");
-  static inline const apex::ParamDecl<std::string> kMethod =
-      param::choice("method", {"none", "simple", "tc89_l1", "tc89_kcos"})
-          .init("simple")
-          .describe("none: every boundary pixel; simple: straight runs as their end points; tc89: Teh-Chin");
+  static inline const apex::ChoiceDecl<int> kMode =
+      param::choice<int>("mode", {{"external", cv::RETR_EXTERNAL, "outer contours only"},
+                                  {"list", cv::RETR_LIST, "all, no nesting"},
+                                  {"ccomp", cv::RETR_CCOMP, "outer and holes"},
+                                  {"tree", cv::RETR_TREE, "all nesting"}});
+  static inline const apex::ChoiceDecl<int> kMethod =
+      param::choice<int>("method", {{"none", cv::CHAIN_APPROX_NONE, "every boundary pixel"},
+                                    {"simple", cv::CHAIN_APPROX_SIMPLE, "straight runs as their end points"},
+                                    {"tc89_l1", cv::CHAIN_APPROX_TC89_L1, "Teh-Chin"},
+                                    {"tc89_kcos", cv::CHAIN_APPROX_TC89_KCOS, "Teh-Chin"}})
+          .init("simple");
   static apex::Manifest manifest() {
     return apex::Manifest("Finds the contours of a binary image (cv::findContours)")
         .inCategory(kCategory)
@@ -43,26 +46,20 @@ class FindContours : public apex::Node {
         .param(kMethod);
   }
   void process() override {
-    static const std::map<std::string, int> kModes{
-        {"external", cv::RETR_EXTERNAL}, {"list", cv::RETR_LIST}, {"ccomp", cv::RETR_CCOMP}, {"tree", cv::RETR_TREE}};
-    static const std::map<std::string, int> kMethods{{"none", cv::CHAIN_APPROX_NONE},
-                                                     {"simple", cv::CHAIN_APPROX_SIMPLE},
-                                                     {"tc89_l1", cv::CHAIN_APPROX_TC89_L1},
-                                                     {"tc89_kcos", cv::CHAIN_APPROX_TC89_KCOS}};
     const Image& in = *image_.get();
     require8Bit(in, "1");
     auto out = std::make_shared<Contours>();
     out->header = in.header;
     out->image_size = in.mat.size();
-    cv::findContours(in.mat, out->contours, out->hierarchy, kModes.at(mode_.get()), kMethods.at(method_.get()));  // reads only
+    cv::findContours(in.mat, out->contours, out->hierarchy, mode_.get(), method_.get());  // reads only
     contours_.publish(std::move(out));
   }
 
  private:
   apex::Input<Image> image_{this, kImage};
   apex::Output<Contours> contours_{this, kContours};
-  apex::Param<std::string> mode_{this, kMode};
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<int> mode_{this, kMode};
+  apex::Choice<int> method_{this, kMethod};
 };
 
 class ContourFilter : public apex::Node {

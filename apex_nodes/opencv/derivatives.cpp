@@ -40,8 +40,8 @@ const apex::ParamDecl<double> kDelta =
     param::number("delta").range(-1000.0, 1000.0).step(0.1).init(0.0).describe("added to the derivatives after scaling");
 const apex::ParamDecl<std::string> kDdepth =
     param::choice("ddepth", kDepths).describe("the result's depth: 16S for 8-bit images; same: saturates at the input's range");
-const apex::ParamDecl<std::string> kBorder =
-    param::choice("border_type", borderNames()).describe("how pixels beyond the edge are made up");
+const apex::ChoiceDecl<int> kBorder =
+    param::choice<int>("border_type", borderModes()).describe("how pixels beyond the edge are made up");
 
 }  // namespace
 
@@ -63,7 +63,7 @@ class DerivativeFilter : public ImageFilter {
   apex::Param<double> scale_{this, kScale};
   apex::Param<double> delta_{this, kDelta};
   apex::Param<std::string> ddepth_{this, kDdepth};
-  apex::Param<std::string> border_{this, kBorder};
+  apex::Choice<int> border_{this, kBorder};
 };
 
 class Sobel : public DerivativeFilter {
@@ -81,7 +81,7 @@ class Sobel : public DerivativeFilter {
   void filter(const Image& in, Image& out) override {
     if (dx_.get() == 0 && dy_.get() == 0) throw std::invalid_argument("dx and dy are both 0: there is no derivative to take");
     const int depth = depthFor(in, out);
-    cv::Sobel(in.mat, out.mat, depth, dx_.get(), dy_.get(), ksize_.get(), scale_.get(), delta_.get(), borderNamed(border_.get()));
+    cv::Sobel(in.mat, out.mat, depth, dx_.get(), dy_.get(), ksize_.get(), scale_.get(), delta_.get(), border_.get());
   }
   apex::Param<int> dx_{this, kDx};
   apex::Param<int> dy_{this, kDy};
@@ -104,7 +104,7 @@ class Scharr : public DerivativeFilter {
       throw std::invalid_argument("Scharr takes one first derivative: dx = 1 or dy = 1, not dx = " + std::to_string(dx_.get()) +
                                   ", dy = " + std::to_string(dy_.get()));
     const int depth = depthFor(in, out);
-    cv::Scharr(in.mat, out.mat, depth, dx_.get(), dy_.get(), scale_.get(), delta_.get(), borderNamed(border_.get()));
+    cv::Scharr(in.mat, out.mat, depth, dx_.get(), dy_.get(), scale_.get(), delta_.get(), border_.get());
   }
   apex::Param<int> dx_{this, kDx};
   apex::Param<int> dy_{this, kDy};
@@ -121,7 +121,7 @@ class Laplacian : public DerivativeFilter {
  private:
   void filter(const Image& in, Image& out) override {
     const int depth = depthFor(in, out);
-    cv::Laplacian(in.mat, out.mat, depth, ksize_.get(), scale_.get(), delta_.get(), borderNamed(border_.get()));
+    cv::Laplacian(in.mat, out.mat, depth, ksize_.get(), scale_.get(), delta_.get(), border_.get());
   }
   apex::Param<int> ksize_{this, kKsize};
 };

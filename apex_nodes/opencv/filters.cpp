@@ -1,5 +1,4 @@
 // Small single-call filters: GaussianBlur, Threshold, Canny.
-#include <map>
 #include <opencv2/imgproc.hpp>
 
 #include "apex_nodes/image_filter.hpp"
@@ -28,8 +27,11 @@ class Threshold : public ImageFilter {
  public:
   static inline const apex::ParamDecl<double> kThreshold = param::number("threshold").range(0.0, 255.0).step(1.0).init(128.0);
   static inline const apex::ParamDecl<double> kMaxValue = param::number("max_value").range(0.0, 255.0).step(1.0).init(255.0);
-  static inline const apex::ParamDecl<std::string> kType =
-      param::choice("type", {"binary", "binary_inv", "trunc", "tozero", "tozero_inv"});
+  static inline const apex::ChoiceDecl<int> kType = param::choice<int>("type", {{"binary", cv::THRESH_BINARY},
+                                                                                {"binary_inv", cv::THRESH_BINARY_INV},
+                                                                                {"trunc", cv::THRESH_TRUNC},
+                                                                                {"tozero", cv::THRESH_TOZERO},
+                                                                                {"tozero_inv", cv::THRESH_TOZERO_INV}});
   static inline const apex::ParamDecl<bool> kOtsu = param::flag("otsu").describe("choose the threshold from the histogram");
   static apex::Manifest manifest() {
     return filterManifest("Fixed-level threshold of a single-channel image (optionally Otsu)")
@@ -42,12 +44,7 @@ class Threshold : public ImageFilter {
 
  private:
   void filter(const Image& in, Image& out) override {
-    static const std::map<std::string, int> kTypes{{"binary", cv::THRESH_BINARY},
-                                                   {"binary_inv", cv::THRESH_BINARY_INV},
-                                                   {"trunc", cv::THRESH_TRUNC},
-                                                   {"tozero", cv::THRESH_TOZERO},
-                                                   {"tozero_inv", cv::THRESH_TOZERO_INV}};
-    int type = kTypes.at(type_.get());
+    int type = type_.get();
     if (otsu_.get()) {
       if (in.mat.depth() != CV_8U) throw std::invalid_argument("Otsu needs an 8-bit image ('" + in.encoding + "')");
       type |= cv::THRESH_OTSU;
@@ -56,7 +53,7 @@ class Threshold : public ImageFilter {
   }
   apex::Param<double> threshold_{this, kThreshold};
   apex::Param<double> max_value_{this, kMaxValue};
-  apex::Param<std::string> type_{this, kType};
+  apex::Choice<int> type_{this, kType};
   apex::Param<bool> otsu_{this, kOtsu};
 };
 
@@ -66,7 +63,7 @@ class Canny : public ImageFilter {
   static inline const apex::OutputPort<Image> kEdges{"edges", "mono8"};
   static inline const apex::ParamDecl<double> kLow = param::number("threshold1").range(0.0, 1000.0).step(1.0).init(50.0);
   static inline const apex::ParamDecl<double> kHigh = param::number("threshold2").range(0.0, 1000.0).step(1.0).init(150.0);
-  static inline const apex::ParamDecl<std::string> kAperture = param::choice("aperture", {"3", "5", "7"});
+  static inline const apex::ChoiceDecl<int> kAperture = param::choice<int>("aperture", {{"3", 3}, {"5", 5}, {"7", 7}});
   static inline const apex::ParamDecl<bool> kL2 = param::flag("l2_gradient");
   static apex::Manifest manifest() {
     return filterManifest("Canny edge detector", kImage, kEdges).param(kLow).param(kHigh).param(kAperture).param(kL2);
@@ -75,12 +72,12 @@ class Canny : public ImageFilter {
 
  private:
   void filter(const Image& in, Image& out) override {
-    cv::Canny(in.mat, out.mat, low_.get(), high_.get(), std::stoi(aperture_.get()), l2_.get());
+    cv::Canny(in.mat, out.mat, low_.get(), high_.get(), aperture_.get(), l2_.get());
     out.encoding = "mono8";
   }
   apex::Param<double> low_{this, kLow};
   apex::Param<double> high_{this, kHigh};
-  apex::Param<std::string> aperture_{this, kAperture};
+  apex::Choice<int> aperture_{this, kAperture};
   apex::Param<bool> l2_{this, kL2};
 };
 

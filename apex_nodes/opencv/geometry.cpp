@@ -9,8 +9,11 @@ namespace param = apex::param;
 class Resize : public ImageFilter {
  public:
   static inline const apex::ParamDecl<double> kScale = param::number("scale").range(0.01, 10.0).step(0.01).init(0.5);
-  static inline const apex::ParamDecl<std::string> kInterpolation =
-      param::choice("interpolation", {"nearest", "linear", "area", "cubic"}).init("area");
+  static inline const apex::ChoiceDecl<int> kInterpolation =
+      param::choice<int>(
+          "interpolation",
+          {{"nearest", cv::INTER_NEAREST}, {"linear", cv::INTER_LINEAR}, {"area", cv::INTER_AREA}, {"cubic", cv::INTER_CUBIC}})
+          .init("area");
   static apex::Manifest manifest() { return filterManifest("Scales an image").param(kScale).param(kInterpolation); }
 
  private:
@@ -20,16 +23,11 @@ class Resize : public ImageFilter {
            in.mat.size();
   }
   void filter(const Image& in, Image& out) override {
-    const auto& i = interpolation_.get();
-    const int interp = i == "nearest"  ? cv::INTER_NEAREST
-                       : i == "linear" ? cv::INTER_LINEAR
-                       : i == "area"   ? cv::INTER_AREA
-                                       : cv::INTER_CUBIC;
-    cv::resize(in.mat, out.mat, cv::Size(), scale_.get(), scale_.get(), interp);
+    cv::resize(in.mat, out.mat, cv::Size(), scale_.get(), scale_.get(), interpolation_.get());
     if (out.mat.empty()) throw std::invalid_argument("scale " + std::to_string(scale_.get()) + " leaves no pixels");
   }
   apex::Param<double> scale_{this, kScale};
-  apex::Param<std::string> interpolation_{this, kInterpolation};
+  apex::Choice<int> interpolation_{this, kInterpolation};
 };
 
 /** Not an ImageFilter: its output is a view of the input's pixels (no copy), kept alive by it. */

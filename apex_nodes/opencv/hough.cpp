@@ -69,8 +69,8 @@ class HoughCircles : public apex::Node {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "single-channel 8-bit gray (smoothed: e.g. a median blur)"};
   static inline const apex::OutputPort<Circles> kCircles{"circles", "centre x, y and radius each"};
-  static inline const apex::ParamDecl<std::string> kMethod =
-      param::choice("method", {"gradient", "gradient_alt"}).describe("gradient_alt: more accurate; param2 is then 0..1");
+  static inline const apex::ChoiceDecl<bool> kMethod =
+      param::choice<bool>("method", {{"gradient", false}, {"gradient_alt", true, "more accurate; param2 is then 0..1"}});
   static inline const apex::ParamDecl<double> kDp =
       param::number("dp").range(1.0, 8.0).step(0.1).init(1.0).describe("image / accumulator resolution (gradient_alt: ~1.5)");
   static inline const apex::ParamDecl<double> kMinDist =
@@ -102,7 +102,7 @@ class HoughCircles : public apex::Node {
   void process() override {
     const Image& in = *image_.get();
     requireGray8(in);
-    const bool alt = method_.get() == "gradient_alt";
+    const bool alt = method_.get();  // gradient_alt
     if (alt && param2_.get() > 1)
       throw std::invalid_argument("gradient_alt takes param2 within 0..1 (how round a circle is), got " +
                                   std::to_string(param2_.get()));
@@ -120,7 +120,7 @@ class HoughCircles : public apex::Node {
  private:
   apex::Input<Image> image_{this, kImage};
   apex::Output<Circles> circles_{this, kCircles};
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<bool> method_{this, kMethod};
   apex::Param<double> dp_{this, kDp};
   apex::Param<double> min_dist_{this, kMinDist};
   apex::Param<double> param1_{this, kParam1};

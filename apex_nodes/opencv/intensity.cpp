@@ -9,6 +9,10 @@
 namespace apex_nodes {
 namespace param = apex::param;
 
+namespace {
+constexpr int kSameDepth = -1;  // a depth choice's "same": the input's
+}  // namespace
+
 class EqualizeHist : public ImageFilter {
  public:
   static apex::Manifest manifest() {
@@ -60,12 +64,15 @@ class Normalize : public ImageFilter {
           .describe("minmax: the lowest value of the result; else the norm it gets");
   static inline const apex::ParamDecl<double> kBeta =
       param::number("beta").range(-65535.0, 65535.0).step(0.01).init(255.0).describe("minmax: the highest value of the result");
-  static inline const apex::ParamDecl<std::string> kNormType = param::choice("norm_type", {"minmax", "inf", "l1", "l2"})
-                                                                   .describe(
-                                                                       "minmax: stretch to [alpha, beta]; else "
-                                                                       "scale so that this norm is alpha");
-  static inline const apex::ParamDecl<std::string> kDtype =
-      param::choice("dtype", {"same", "8U", "16U", "32F", "64F"}).describe("the result's depth");
+  static inline const apex::ChoiceDecl<int> kNormType =
+      param::choice<int>("norm_type",
+                         {{"minmax", cv::NORM_MINMAX}, {"inf", cv::NORM_INF}, {"l1", cv::NORM_L1}, {"l2", cv::NORM_L2}})
+          .describe(
+              "minmax: stretch to [alpha, beta]; else "
+              "scale so that this norm is alpha");
+  static inline const apex::ChoiceDecl<int> kDtype =
+      param::choice<int>("dtype", {{"same", kSameDepth}, {"8U", CV_8U}, {"16U", CV_16U}, {"32F", CV_32F}, {"64F", CV_64F}})
+          .describe("the result's depth");
   static apex::Manifest manifest() {
     return filterManifest("Scales an image's values to a range or to a norm (cv::normalize)")
         .param(kAlpha)
@@ -76,16 +83,14 @@ class Normalize : public ImageFilter {
 
  private:
   void filter(const Image& in, Image& out) override {
-    const auto& name = norm_type_.get();
-    const int norm = name == "minmax" ? cv::NORM_MINMAX : name == "inf" ? cv::NORM_INF : name == "l1" ? cv::NORM_L1 : cv::NORM_L2;
-    const int depth = depthNamed(dtype_.get(), in.mat.depth());
-    cv::normalize(in.mat, out.mat, alpha_.get(), beta_.get(), norm, depth);
+    const int depth = dtype_.get() == kSameDepth ? in.mat.depth() : dtype_.get();
+    cv::normalize(in.mat, out.mat, alpha_.get(), beta_.get(), norm_type_.get(), depth);
     out.encoding = encodingOf(in, in.mat.channels(), depth);
   }
   apex::Param<double> alpha_{this, kAlpha};
   apex::Param<double> beta_{this, kBeta};
-  apex::Param<std::string> norm_type_{this, kNormType};
-  apex::Param<std::string> dtype_{this, kDtype};
+  apex::Choice<int> norm_type_{this, kNormType};
+  apex::Choice<int> dtype_{this, kDtype};
 };
 
 class ConvertScale : public ImageFilter {
@@ -94,8 +99,9 @@ class ConvertScale : public ImageFilter {
       param::number("alpha").range(-1000.0, 1000.0).step(0.001).init(1.0).describe("factor on each value");
   static inline const apex::ParamDecl<double> kBeta =
       param::number("beta").range(-65535.0, 65535.0).step(0.01).init(0.0).describe("added after scaling");
-  static inline const apex::ParamDecl<std::string> kRtype =
-      param::choice("rtype", {"8U", "16U", "32F", "same"}).describe("the result's depth (values saturate at its range)");
+  static inline const apex::ChoiceDecl<int> kRtype =
+      param::choice<int>("rtype", {{"8U", CV_8U}, {"16U", CV_16U}, {"32F", CV_32F}, {"same", kSameDepth}})
+          .describe("the result's depth (values saturate at its range)");
   static apex::Manifest manifest() {
     return filterManifest("Scales and shifts each value, alpha * x + beta, into a depth of choice (cv::Mat::convertTo)")
         .param(kAlpha)
@@ -106,17 +112,16 @@ class ConvertScale : public ImageFilter {
  private:
   /** alpha 1, beta 0 (to DBL_EPSILON, as cv::Mat::convertTo tells), the same depth: a copy. */
   bool passesThrough(const Image& in) const override {
-    return std::abs(alpha_.get() - 1) < DBL_EPSILON && std::abs(beta_.get()) < DBL_EPSILON &&
-           depthNamed(rtype_.get(), in.mat.depth()) == in.mat.depth();
+    return std::abs(alpha_.get() - 1) < DBL_EPSILON && std::abs(beta_.get()) < DBL_EPSILON && depth(in) == in.mat.depth();
   }
   void filter(const Image& in, Image& out) override {
-    const int depth = depthNamed(rtype_.get(), in.mat.depth());
-    in.mat.convertTo(out.mat, depth, alpha_.get(), beta_.get());
-    out.encoding = encodingOf(in, in.mat.channels(), depth);
+    in.mat.convertTo(out.mat, depth(in), alpha_.get(), beta_.get());
+    out.encoding = encodingOf(in, in.mat.channels(), depth(in));
   }
   apex::Param<double> alpha_{this, kAlpha};
   apex::Param<double> beta_{this, kBeta};
-  apex::Param<std::string> rtype_{this, kRtype};
+  int depth(const Image& in) const { return rtype_.get() == kSameDepth ? in.mat.depth() : rtype_.get(); }
+  apex::Choice<int> rtype_{this, kRtype};
 };
 
 }  // namespace apex_nodes

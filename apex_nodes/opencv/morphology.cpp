@@ -8,10 +8,14 @@ namespace param = apex::param;
 
 class Morphology : public ImageFilter {
  public:
-  static inline const apex::ParamDecl<std::string> kOperation =
-      param::choice("operation", {"erode", "dilate", "open", "close"}).init("open");
-  static inline const apex::ParamDecl<std::string> kShape =
-      param::choice("shape", {"rect", "cross", "ellipse"}).describe("kernel shape");
+  static inline const apex::ChoiceDecl<int> kOperation =
+      param::choice<int>(
+          "operation",
+          {{"erode", cv::MORPH_ERODE}, {"dilate", cv::MORPH_DILATE}, {"open", cv::MORPH_OPEN}, {"close", cv::MORPH_CLOSE}})
+          .init("open");
+  static inline const apex::ChoiceDecl<int> kShape =
+      param::choice<int>("shape", {{"rect", cv::MORPH_RECT}, {"cross", cv::MORPH_CROSS}, {"ellipse", cv::MORPH_ELLIPSE}})
+          .describe("kernel shape");
   static inline const apex::ParamDecl<int> kKernel =
       param::integer("kernel_size").range(1, 31).step(2).init(3).describe("kernel width and height, odd");
   static inline const apex::ParamDecl<int> kIterations = param::integer("iterations").range(1, 20).step(1);
@@ -26,20 +30,11 @@ class Morphology : public ImageFilter {
 
  private:
   void filter(const Image& in, Image& out) override {
-    if (kernel_.empty()) {
-      const auto& s = shape_.get();
-      const int shape = s == "rect" ? cv::MORPH_RECT : s == "cross" ? cv::MORPH_CROSS : cv::MORPH_ELLIPSE;
-      kernel_ = cv::getStructuringElement(shape, cv::Size(size_.get(), size_.get()));
-    }
-    const auto& op = operation_.get();
-    const int code = op == "erode"    ? cv::MORPH_ERODE
-                     : op == "dilate" ? cv::MORPH_DILATE
-                     : op == "open"   ? cv::MORPH_OPEN
-                                      : cv::MORPH_CLOSE;
-    cv::morphologyEx(in.mat, out.mat, code, kernel_, cv::Point(-1, -1), iterations_.get());
+    if (kernel_.empty()) kernel_ = cv::getStructuringElement(shape_.get(), cv::Size(size_.get(), size_.get()));
+    cv::morphologyEx(in.mat, out.mat, operation_.get(), kernel_, cv::Point(-1, -1), iterations_.get());
   }
-  apex::Param<std::string> operation_{this, kOperation};
-  apex::Param<std::string> shape_{this, kShape};
+  apex::Choice<int> operation_{this, kOperation};
+  apex::Choice<int> shape_{this, kShape};
   apex::Param<int> size_{this, kKernel};
   apex::Param<int> iterations_{this, kIterations};
   cv::Mat kernel_;  // rebuilt after a parameter change

@@ -59,11 +59,12 @@ class OpticalFlowLK : public apex::Node {
                                                                  .step(1.0)
                                                                  .init(10.0)
                                                                  .describe("goodFeaturesToTrack: pixels between corners");
-  static inline const apex::ParamDecl<std::string> kRedetect =
-      param::choice("redetect", {"every_frame", "when_half_lost"})
-          .describe(
-              "every_frame: corners of each previous frame; when_half_lost: the points found again are tracked on, until "
-              "fewer than half of the last detection remain");
+  enum class Redetect { kEveryFrame, kWhenHalfLost };
+  static inline const apex::ChoiceDecl<Redetect> kRedetect =
+      param::choice<Redetect>("redetect", {{"every_frame", Redetect::kEveryFrame, "corners of each previous frame"},
+                                           {"when_half_lost", Redetect::kWhenHalfLost,
+                                            "the points found again are tracked on, until fewer than half of the last "
+                                            "detection remain"}});
   static inline const apex::ParamDecl<int> kWinSize =
       param::integer("win_size").range(3, 101).step(2).init(21).describe("calcOpticalFlowPyrLK: search window, pixels a side");
   static inline const apex::ParamDecl<int> kMaxLevel =
@@ -101,7 +102,7 @@ class OpticalFlowLK : public apex::Node {
     out->image_size = gray.size();
     if (previous_.get().size() != gray.size()) reset();  // the first frame, or one of another size
     if (!previous_.get().empty()) {
-      if (redetect_.get() == "every_frame" || points_.empty() || 2 * points_.size() < detected_) {
+      if (redetect_.get() == Redetect::kEveryFrame || points_.empty() || 2 * points_.size() < detected_) {
         cv::goodFeaturesToTrack(previous_.get(), points_, max_corners_.get(), quality_.get(), min_distance_.get());
         detected_ = points_.size();
       }
@@ -125,7 +126,7 @@ class OpticalFlowLK : public apex::Node {
   apex::Param<int> max_corners_{this, kMaxCorners};
   apex::Param<double> quality_{this, kQuality};
   apex::Param<double> min_distance_{this, kMinDistance};
-  apex::Param<std::string> redetect_{this, kRedetect};
+  apex::Choice<Redetect> redetect_{this, kRedetect};
   apex::Param<int> win_size_{this, kWinSize};
   apex::Param<int> max_level_{this, kMaxLevel};
   KeptGray previous_;  // the last frame's gray
@@ -146,8 +147,8 @@ class OpticalFlowFarneback : public apex::Node {
       param::integer("winsize").range(3, 101).step(1).init(15).describe("averaging window, pixels a side");
   static inline const apex::ParamDecl<int> kIterations =
       param::integer("iterations").range(1, 20).step(1).init(3).describe("per level");
-  static inline const apex::ParamDecl<std::string> kPolyN =
-      param::choice("poly_n", {"5", "7"}).describe("pixels a side of the neighbourhood fitted with a polynomial");
+  static inline const apex::ChoiceDecl<int> kPolyN =
+      param::choice<int>("poly_n", {{"5", 5}, {"7", 7}}).describe("pixels a side of the neighbourhood fitted with a polynomial");
   static inline const apex::ParamDecl<double> kPolySigma = param::number("poly_sigma")
                                                                .range(0.5, 3.0)
                                                                .step(0.05)
@@ -184,7 +185,7 @@ class OpticalFlowFarneback : public apex::Node {
       out->mat.setTo(cv::Scalar::all(0));
     } else {
       cv::calcOpticalFlowFarneback(previous_.get(), gray, out->mat, pyr_scale_.get(), levels_.get(), winsize_.get(),
-                                   iterations_.get(), std::stoi(poly_n_.get()), poly_sigma_.get(), 0);
+                                   iterations_.get(), poly_n_.get(), poly_sigma_.get(), 0);
     }
     previous_.keep(frame, gray);
     flow_.publish(out);
@@ -197,7 +198,7 @@ class OpticalFlowFarneback : public apex::Node {
   apex::Param<int> levels_{this, kLevels};
   apex::Param<int> winsize_{this, kWinsize};
   apex::Param<int> iterations_{this, kIterations};
-  apex::Param<std::string> poly_n_{this, kPolyN};
+  apex::Choice<int> poly_n_{this, kPolyN};
   apex::Param<double> poly_sigma_{this, kPolySigma};
   KeptGray previous_;  // the last frame's gray
   OutputBuffer buffer_;

@@ -15,8 +15,12 @@ class Rectify : public apex::Node {
   static inline const apex::InputPort<Image> kImage{"image", "the camera's raw frame"};
   static inline const apex::InputPort<sensor_msgs::CameraInfo> kInfo{"camera_info", "its model"};
   static inline const apex::OutputPort<Image> kRectified{"image", "the frame undistorted and rectified"};
-  static inline const apex::ParamDecl<std::string> kInterpolation =
-      param::choice("interpolation", {"linear", "nearest", "cubic", "area", "lanczos4"});
+  static inline const apex::ChoiceDecl<int> kInterpolation =
+      param::choice<int>("interpolation", {{"linear", cv::INTER_LINEAR},
+                                           {"nearest", cv::INTER_NEAREST},
+                                           {"cubic", cv::INTER_CUBIC},
+                                           {"area", cv::INTER_AREA},
+                                           {"lanczos4", cv::INTER_LANCZOS4}});
   static apex::Manifest manifest() {
     return apex::Manifest("Undistorts and rectifies an image by its camera model (image_proc's rectify)")
         .inCategory("cameras and stereo")
@@ -33,23 +37,15 @@ class Rectify : public apex::Node {
     model_.fromCameraInfo(*info);  // keeps its maps while the model is the same
     auto out = buffer_.next(in);
     out->encoding = in.encoding;
-    model_.rectifyImage(in.mat, out->mat, interpolation());
+    model_.rectifyImage(in.mat, out->mat, interpolation_.get());
     out_.publish(out);
   }
 
  private:
-  int interpolation() const {
-    const std::string& i = interpolation_.get();
-    return i == "nearest"    ? cv::INTER_NEAREST
-           : i == "cubic"    ? cv::INTER_CUBIC
-           : i == "area"     ? cv::INTER_AREA
-           : i == "lanczos4" ? cv::INTER_LANCZOS4
-                             : cv::INTER_LINEAR;
-  }
   apex::Input<Image> image_{this, kImage};
   apex::Input<sensor_msgs::CameraInfo> info_{this, kInfo};
   apex::Output<Image> out_{this, kRectified};
-  apex::Param<std::string> interpolation_{this, kInterpolation};
+  apex::Choice<int> interpolation_{this, kInterpolation};
   image_geometry::PinholeCameraModel model_;
   OutputBuffer buffer_;
 };

@@ -42,8 +42,8 @@ class BilateralFilter : public ImageFilter {
                                                                 .step(1.0)
                                                                 .init(75.0)
                                                                 .describe("how far apart pixels may be and still be mixed");
-  static inline const apex::ParamDecl<std::string> kBorder =
-      param::choice("border_type", borderNames()).describe("how pixels beyond the edge are made up");
+  static inline const apex::ChoiceDecl<int> kBorder =
+      param::choice<int>("border_type", borderModes()).describe("how pixels beyond the edge are made up");
   static apex::Manifest manifest() {
     return filterManifest("Smooths an image but keeps its edges (8-bit or 32F, 1 or 3 channels)")
         .param(kD)
@@ -58,12 +58,12 @@ class BilateralFilter : public ImageFilter {
     if (in.mat.depth() != CV_8U && in.mat.depth() != CV_32F)
       throw std::invalid_argument("cannot filter " + depthName(in.mat.depth()) + " pixels ('" + in.encoding +
                                   "'); needs 8U or 32F");
-    cv::bilateralFilter(in.mat, out.mat, d_.get(), sigma_color_.get(), sigma_space_.get(), borderNamed(border_.get()));
+    cv::bilateralFilter(in.mat, out.mat, d_.get(), sigma_color_.get(), sigma_space_.get(), border_.get());
   }
   apex::Param<int> d_{this, kD};
   apex::Param<double> sigma_color_{this, kSigmaColor};
   apex::Param<double> sigma_space_{this, kSigmaSpace};
-  apex::Param<std::string> border_{this, kBorder};
+  apex::Choice<int> border_{this, kBorder};
 };
 
 class BoxFilter : public ImageFilter {
@@ -74,8 +74,8 @@ class BoxFilter : public ImageFilter {
       param::flag("normalize")
           .init(true)
           .describe("on: the mean of the box; off: its sum (saturating at the pixel type's maximum)");
-  static inline const apex::ParamDecl<std::string> kBorder =
-      param::choice("border_type", borderNames()).describe("how pixels beyond the edge are made up");
+  static inline const apex::ChoiceDecl<int> kBorder =
+      param::choice<int>("border_type", borderModes()).describe("how pixels beyond the edge are made up");
   static apex::Manifest manifest() {
     return filterManifest("Mean (or sum) of each pixel's box-shaped neighbourhood")
         .param(kKsize)
@@ -86,12 +86,11 @@ class BoxFilter : public ImageFilter {
 
  private:
   void filter(const Image& in, Image& out) override {
-    cv::boxFilter(in.mat, out.mat, -1, cv::Size(ksize_.get(), ksize_.get()), cv::Point(-1, -1), normalize_.get(),
-                  borderNamed(border_.get()));
+    cv::boxFilter(in.mat, out.mat, -1, cv::Size(ksize_.get(), ksize_.get()), cv::Point(-1, -1), normalize_.get(), border_.get());
   }
   apex::Param<int> ksize_{this, kKsize};
   apex::Param<bool> normalize_{this, kNormalize};
-  apex::Param<std::string> border_{this, kBorder};
+  apex::Choice<int> border_{this, kBorder};
 };
 
 }  // namespace apex_nodes

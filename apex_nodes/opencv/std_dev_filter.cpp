@@ -19,8 +19,8 @@ class StdDevFilter : public ImageFilter {
           .step(0.01)
           .init(1.0)
           .describe("the result is the deviation times this, in the input's pixel type (8-bit: rounded, at most 255)");
-  static inline const apex::ParamDecl<std::string> kBorder =
-      param::choice("border_type", borderNames()).describe("how pixels beyond the edge are made up");
+  static inline const apex::ChoiceDecl<int> kBorder =
+      param::choice<int>("border_type", borderModes()).describe("how pixels beyond the edge are made up");
   static apex::Manifest manifest() {
     return filterManifest(
                "Standard deviation of each pixel's neighbourhood (as MATLAB's stdfilt): low on flat areas, high on "
@@ -37,7 +37,7 @@ class StdDevFilter : public ImageFilter {
     if (depth != CV_8U && depth != CV_16U && depth != CV_32F)
       throw std::invalid_argument("cannot filter " + depthName(depth) + " pixels ('" + in.encoding + "'); needs 8U, 16U or 32F");
     const cv::Size k(ksize_.get(), ksize_.get());
-    const int border = borderNamed(border_.get());
+    const int border = border_.get();
     in.mat.convertTo(value_, CV_64F);  // doubles: E[x²] - E[x]² in floats loses a flat area's small deviations
     cv::multiply(value_, value_, square_);
     cv::boxFilter(value_, mean_, CV_64F, k, cv::Point(-1, -1), true, border);  // E[x]
@@ -50,7 +50,7 @@ class StdDevFilter : public ImageFilter {
   }
   apex::Param<int> ksize_{this, kKsize};
   apex::Param<double> scale_{this, kScale};
-  apex::Param<std::string> border_{this, kBorder};
+  apex::Choice<int> border_{this, kBorder};
   cv::Mat value_, square_, mean_;  // kept between frames: no allocation per frame
 };
 

@@ -35,13 +35,15 @@ cv::Mat grayOf(const Image& in, const std::string& side) {
 
 class StereoMatcher : public apex::Node {
  public:
+  enum class Algorithm { kSgbm, kBm };
+  enum class Invalid { kNan, kOpencv };
   static inline const apex::InputPort<Image> kLeft{"left", "the rectified left image: 8-bit gray or colour (matched as gray)"};
   static inline const apex::InputPort<Image> kRight{"right", "the rectified right image, of the same size"};
   static inline const apex::OutputPort<Image> kDisparity{
       "disparity", "32FC1, pixels, per pixel of the left image (its header); NaN where no match (see 'invalid')"};
-  static inline const apex::ParamDecl<std::string> kAlgorithm =
-      param::choice("algorithm", {"sgbm", "bm"})
-          .describe("semi-global block matching (cv::StereoSGBM) or block matching (cv::StereoBM)");
+  static inline const apex::ChoiceDecl<Algorithm> kAlgorithm =
+      param::choice<Algorithm>("algorithm", {{"sgbm", Algorithm::kSgbm, "semi-global block matching (cv::StereoSGBM)"},
+                                             {"bm", Algorithm::kBm, "block matching (cv::StereoBM)"}});
   static inline const apex::ParamDecl<int> kMinDisparity =
       param::integer("min_disparity").range(-256, 256).step(1).init(0).describe("the smallest disparity searched, pixels");
   static inline const apex::ParamDecl<int> kNumDisparities = param::integer("num_disparities")
@@ -91,12 +93,16 @@ class StereoMatcher : public apex::Node {
           .step(1)
           .init(10)
           .describe("bm: blocks with less texture than this get no match");
-  static inline const apex::ParamDecl<std::string> kMode =
-      param::choice("mode", {"sgbm", "hh", "sgbm_3way", "hh4"})
-          .describe("sgbm: 5 directions (sgbm), full 8 (hh), faster 3-way (sgbm_3way) or 4 (hh4)");
-  static inline const apex::ParamDecl<std::string> kInvalid =
-      param::choice("invalid", {"nan", "opencv"})
-          .describe("a pixel without a match: NaN (nan), or min_disparity - 1 as OpenCV marks it (opencv)");
+  static inline const apex::ChoiceDecl<int> kMode =
+      param::choice<int>("mode", {{"sgbm", cv::StereoSGBM::MODE_SGBM, "5 directions"},
+                                  {"hh", cv::StereoSGBM::MODE_HH, "full 8"},
+                                  {"sgbm_3way", cv::StereoSGBM::MODE_SGBM_3WAY, "faster 3-way"},
+                                  {"hh4", cv::StereoSGBM::MODE_HH4, "4 directions"}})
+          .describe("sgbm's directions searched");
+  static inline const apex::ChoiceDecl<Invalid> kInvalid =
+      param::choice<Invalid>(
+          "invalid", {{"nan", Invalid::kNan, "NaN"}, {"opencv", Invalid::kOpencv, "min_disparity - 1, as OpenCV marks it"}})
+          .describe("a pixel without a match");
 
   static apex::Manifest manifest() {
     return apex::Manifest("Disparity of a rectified stereo pair, in pixels (cv::StereoSGBM or cv::StereoBM)")
@@ -133,7 +139,7 @@ class StereoMatcher : public apex::Node {
     auto out = buffer_.next(left);
     out->encoding = "32FC1";
     fixed.convertTo(out->mat, CV_32F, 1.0 / 16);
-    if (invalid_.get() == "nan") {
+    if (invalid_.get() == Invalid::kNan) {
       const int lowest = min_disparity_.get() * 16;
       for (int y = 0; y < fixed.rows; ++y) {
         const short* in = fixed.ptr<short>(y);
@@ -148,7 +154,7 @@ class StereoMatcher : public apex::Node {
  private:
   cv::Ptr<cv::StereoMatcher> make() const {
     const int block = block_size_.get(), cap = pre_filter_cap_.get();
-    if (algorithm_.get() == "bm") {
+    if (algorithm_.get() == Algorithm::kBm) {
       if (block < 5)
         throw std::invalid_argument("bm needs a block_size of at least 5, got " + std::to_string(block) + " (sgbm takes any)");
       auto bm = cv::StereoBM::create(num_disparities_.get(), block);
@@ -161,21 +167,16 @@ class StereoMatcher : public apex::Node {
       bm->setDisp12MaxDiff(disp12_max_diff_.get());
       return bm;
     }
-    const std::string& m = mode_.get();
-    const int mode = m == "hh"          ? cv::StereoSGBM::MODE_HH
-                     : m == "sgbm_3way" ? cv::StereoSGBM::MODE_SGBM_3WAY
-                     : m == "hh4"       ? cv::StereoSGBM::MODE_HH4
-                                        : cv::StereoSGBM::MODE_SGBM;
     const int area = block * block;  // one channel: the images are matched as gray
     return cv::StereoSGBM::create(min_disparity_.get(), num_disparities_.get(), block, p1_.get() > 0 ? p1_.get() : 8 * area,
                                   p2_.get() > 0 ? p2_.get() : 32 * area, disp12_max_diff_.get(), cap > 0 ? cap : 63,
-                                  uniqueness_.get(), speckle_window_.get(), speckle_range_.get(), mode);
+                                  uniqueness_.get(), speckle_window_.get(), speckle_range_.get(), mode_.get());
   }
 
   apex::Input<Image> left_{this, kLeft};
   apex::Input<Image> right_{this, kRight};
   apex::Output<Image> disparity_{this, kDisparity};
-  apex::Param<std::string> algorithm_{this, kAlgorithm};
+  apex::Choice<Algorithm> algorithm_{this, kAlgorithm};
   apex::Param<int> min_disparity_{this, kMinDisparity};
   apex::Param<int> num_disparities_{this, kNumDisparities};
   apex::Param<int> block_size_{this, kBlockSize};
@@ -187,8 +188,8 @@ class StereoMatcher : public apex::Node {
   apex::Param<int> disp12_max_diff_{this, kDisp12MaxDiff};
   apex::Param<int> pre_filter_cap_{this, kPreFilterCap};
   apex::Param<int> texture_threshold_{this, kTextureThreshold};
-  apex::Param<std::string> mode_{this, kMode};
-  apex::Param<std::string> invalid_{this, kInvalid};
+  apex::Choice<int> mode_{this, kMode};
+  apex::Choice<Invalid> invalid_{this, kInvalid};
   cv::Ptr<cv::StereoMatcher> matcher_;  // made anew after a parameter changes; keeps its buffers between frames
   OutputBuffer buffer_;
 };

@@ -1,7 +1,6 @@
 // TemplateMatch: where a template image appears in a frame (cv::matchTemplate), best matches first.
 #include <algorithm>
 #include <cfloat>
-#include <map>
 #include <opencv2/imgproc.hpp>
 
 #include "apex/core/registry.hpp"
@@ -18,8 +17,13 @@ class TemplateMatch : public apex::Node {
   static inline const apex::OutputPort<Regions> kRegions{
       "regions", "the template's box at each match (not overlapping), label 0, confidence the normalised score"};
   static inline const apex::OutputPort<Image> kScores{"scores", "32FC1: cv::matchTemplate's result, one per template position"};
-  static inline const apex::ParamDecl<std::string> kMethod =
-      param::choice("method", {"sqdiff", "sqdiff_normed", "ccorr", "ccorr_normed", "ccoeff", "ccoeff_normed"})
+  static inline const apex::ChoiceDecl<int> kMethod =
+      param::choice<int>("method", {{"sqdiff", cv::TM_SQDIFF},
+                                    {"sqdiff_normed", cv::TM_SQDIFF_NORMED},
+                                    {"ccorr", cv::TM_CCORR},
+                                    {"ccorr_normed", cv::TM_CCORR_NORMED},
+                                    {"ccoeff", cv::TM_CCOEFF},
+                                    {"ccoeff_normed", cv::TM_CCOEFF_NORMED}})
           .init("ccoeff_normed")
           .describe("*_normed: confidence is the score (1 - it for sqdiff_normed); else the score scaled to 0..1 over the frame");
   static inline const apex::ParamDecl<double> kThreshold =
@@ -38,9 +42,6 @@ class TemplateMatch : public apex::Node {
         .param(kMaxMatches);
   }
   void process() override {
-    static const std::map<std::string, int> kMethods{{"sqdiff", cv::TM_SQDIFF}, {"sqdiff_normed", cv::TM_SQDIFF_NORMED},
-                                                     {"ccorr", cv::TM_CCORR},   {"ccorr_normed", cv::TM_CCORR_NORMED},
-                                                     {"ccoeff", cv::TM_CCOEFF}, {"ccoeff_normed", cv::TM_CCOEFF_NORMED}};
     const Image& in = *image_.get();
     const Image& templ = *template_.get();
     requireImage(in, "1234");
@@ -60,7 +61,7 @@ class TemplateMatch : public apex::Node {
     if (swapped) cv::cvtColor(templ.mat, swapped_, cv::COLOR_RGB2BGR);  // the image's channel order, in a copy of its own
     const cv::Mat& t = swapped ? swapped_ : templ.mat;  // read only: the message's pixels are never written
 
-    const int method = kMethods.at(method_.get());
+    const int method = method_.get();
     auto scores = buffer_.next(in);
     scores->encoding = "32FC1";
     cv::matchTemplate(in.mat, t, scores->mat, method);
@@ -116,7 +117,7 @@ class TemplateMatch : public apex::Node {
   apex::Input<Image> template_{this, kTemplate};
   apex::Output<Regions> regions_{this, kRegions};
   apex::Output<Image> scores_{this, kScores};
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<int> method_{this, kMethod};
   apex::Param<double> threshold_{this, kThreshold};
   apex::Param<int> max_matches_{this, kMaxMatches};
   OutputBuffer buffer_;

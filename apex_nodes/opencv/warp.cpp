@@ -9,22 +9,18 @@ namespace param = apex::param;
 
 class Flip : public ImageFilter {
  public:
-  static inline const apex::ParamDecl<std::string> kFlipCode =
-      param::choice("flip_code", {"horizontal", "vertical", "both"})
-          .describe(
-              "horizontal: mirror left-right (flipCode 1); "
-              "vertical: upside down (0); both: turn by 180 degrees (-1)");
+  static inline const apex::ChoiceDecl<int> kFlipCode =
+      param::choice<int>("flip_code", {{"horizontal", 1, "mirror left-right (flipCode 1)"},
+                                       {"vertical", 0, "upside down (0)"},
+                                       {"both", -1, "turn by 180 degrees (-1)"}});
   static apex::Manifest manifest() {
     return filterManifest("Mirrors an image left-right, upside down, or both").param(kFlipCode);
   }
   Flip() : ImageFilter("1234") {}
 
  private:
-  void filter(const Image& in, Image& out) override {
-    const auto& code = flip_code_.get();
-    cv::flip(in.mat, out.mat, code == "horizontal" ? 1 : code == "vertical" ? 0 : -1);
-  }
-  apex::Param<std::string> flip_code_{this, kFlipCode};
+  void filter(const Image& in, Image& out) override { cv::flip(in.mat, out.mat, flip_code_.get()); }
+  apex::Choice<int> flip_code_{this, kFlipCode};
 };
 
 class PyrDown : public ImageFilter {
@@ -59,12 +55,15 @@ class WarpPerspective : public ImageFilter {
       param::integer("width").range(0, 8192).step(1).describe("dsize: the result's width in pixels; 0: the input's");
   static inline const apex::ParamDecl<int> kHeight =
       param::integer("height").range(0, 8192).step(1).describe("dsize: the result's height in pixels; 0: the input's");
-  static inline const apex::ParamDecl<std::string> kInterpolation =
-      param::choice("interpolation", {"linear", "nearest", "cubic", "lanczos4"});
+  static inline const apex::ChoiceDecl<int> kInterpolation =
+      param::choice<int>("interpolation", {{"linear", cv::INTER_LINEAR},
+                                           {"nearest", cv::INTER_NEAREST},
+                                           {"cubic", cv::INTER_CUBIC},
+                                           {"lanczos4", cv::INTER_LANCZOS4}});
   static inline const apex::ParamDecl<bool> kInverse =
       param::flag("inverse_map").describe("m maps result pixels to input pixels (WARP_INVERSE_MAP)");
-  static inline const apex::ParamDecl<std::string> kBorder =
-      param::choice("border_mode", borderNames())
+  static inline const apex::ChoiceDecl<int> kBorder =
+      param::choice<int>("border_mode", borderModes())
           .init("constant")
           .describe("how pixels from beyond the edge are made up; constant: black");
   static apex::Manifest manifest() {
@@ -89,7 +88,7 @@ class WarpPerspective : public ImageFilter {
     if (m_.get() != kIdentity) return false;
     if ((width_.get() > 0 && width_.get() != in.mat.cols) || (height_.get() > 0 && height_.get() != in.mat.rows)) return false;
     const int depth = in.mat.depth();
-    if (interpolation_.get() == "nearest") return depth != CV_16F;
+    if (interpolation_.get() == cv::INTER_NEAREST) return depth != CV_16F;
     if (depth == CV_8U || depth == CV_16U || depth == CV_16S) return true;
     return (depth == CV_32F || depth == CV_64F) && cv::checkRange(in.mat);
   }
@@ -100,32 +99,29 @@ class WarpPerspective : public ImageFilter {
     const cv::Matx33d matrix(m.data());
     if (!inverse_.get() && cv::determinant(matrix) == 0)
       throw std::invalid_argument("the matrix m is singular: it maps the image onto a line or a point");
-    const auto& i = interpolation_.get();
-    int flags = i == "linear"    ? cv::INTER_LINEAR
-                : i == "nearest" ? cv::INTER_NEAREST
-                : i == "cubic"   ? cv::INTER_CUBIC
-                                 : cv::INTER_LANCZOS4;
+    int flags = interpolation_.get();
     if (inverse_.get()) flags |= cv::WARP_INVERSE_MAP;
     const cv::Size size(width_.get() > 0 ? width_.get() : in.mat.cols, height_.get() > 0 ? height_.get() : in.mat.rows);
-    cv::warpPerspective(in.mat, out.mat, matrix, size, flags, borderNamed(border_.get()));
+    cv::warpPerspective(in.mat, out.mat, matrix, size, flags, border_.get());
   }
   apex::Param<std::vector<double>> m_{this, kM};
   apex::Param<int> width_{this, kWidth};
   apex::Param<int> height_{this, kHeight};
-  apex::Param<std::string> interpolation_{this, kInterpolation};
+  apex::Choice<int> interpolation_{this, kInterpolation};
   apex::Param<bool> inverse_{this, kInverse};
-  apex::Param<std::string> border_{this, kBorder};
+  apex::Choice<int> border_{this, kBorder};
 };
 
 class DistanceTransform : public ImageFilter {
  public:
   static inline const apex::OutputPort<Image> kDistances{"image", "32FC1: each pixel's distance to the nearest zero pixel"};
-  static inline const apex::ParamDecl<std::string> kDistanceType =
-      param::choice("distance_type", {"l2", "l1", "c"}).describe("l2: Euclidean; l1: city block; c: chessboard");
-  static inline const apex::ParamDecl<std::string> kMaskSize = param::choice("mask_size", {"3", "5", "precise"})
-                                                                   .describe(
-                                                                       "l2's approximation: a 3x3 or 5x5 mask, or "
-                                                                       "precise (exact); l1 and c are exact with 3");
+  static inline const apex::ChoiceDecl<int> kDistanceType = param::choice<int>(
+      "distance_type", {{"l2", cv::DIST_L2, "Euclidean"}, {"l1", cv::DIST_L1, "city block"}, {"c", cv::DIST_C, "chessboard"}});
+  static inline const apex::ChoiceDecl<int> kMaskSize =
+      param::choice<int>("mask_size", {{"3", cv::DIST_MASK_3}, {"5", cv::DIST_MASK_5}, {"precise", cv::DIST_MASK_PRECISE}})
+          .describe(
+              "l2's approximation: a 3x3 or 5x5 mask, or "
+              "precise (exact); l1 and c are exact with 3");
   static apex::Manifest manifest() {
     return filterManifest("Distance of each non-zero pixel of a binary image to the nearest zero pixel (8-bit, single channel)",
                           kImageIn, kDistances)
@@ -136,15 +132,11 @@ class DistanceTransform : public ImageFilter {
 
  private:
   void filter(const Image& in, Image& out) override {
-    const auto& t = distance_type_.get();
-    const auto& mask = mask_size_.get();
-    const int type = t == "l2" ? cv::DIST_L2 : t == "l1" ? cv::DIST_L1 : cv::DIST_C;
-    const int size = mask == "3" ? cv::DIST_MASK_3 : mask == "5" ? cv::DIST_MASK_5 : cv::DIST_MASK_PRECISE;
-    cv::distanceTransform(in.mat, out.mat, type, size, CV_32F);
+    cv::distanceTransform(in.mat, out.mat, distance_type_.get(), mask_size_.get(), CV_32F);
     out.encoding = "32FC1";
   }
-  apex::Param<std::string> distance_type_{this, kDistanceType};
-  apex::Param<std::string> mask_size_{this, kMaskSize};
+  apex::Choice<int> distance_type_{this, kDistanceType};
+  apex::Choice<int> mask_size_{this, kMaskSize};
 };
 
 }  // namespace apex_nodes

@@ -77,8 +77,11 @@ class NormalEstimation : public apex::Node {
   static inline const apex::InputPort<Cloud> kCloudIn{"cloud"};
   static inline const apex::OutputPort<Cloud> kCloudOut{
       "cloud", "the input with normal_x, normal_y, normal_z and curvature (NaN where too few neighbours)"};
-  static inline const apex::ParamDecl<std::string> kSearch =
-      param::choice("search", {"radius", "k"}).describe("neighbours: those within radius, or the k nearest");
+  enum class Search { kRadius, kNearest };
+  static inline const apex::ChoiceDecl<Search> kSearch =
+      param::choice<Search>("search",
+                            {{"radius", Search::kRadius, "those within radius"}, {"k", Search::kNearest, "the k nearest"}})
+          .describe("neighbours");
   static inline const apex::ParamDecl<double> kRadius =
       param::number("radius").range(0.001, 10.0).step(0.001).init(0.03).describe("metres (search: radius)");
   static inline const apex::ParamDecl<int> kK = param::integer("k").range(3, 1000).step(1).init(20).describe("search: k");
@@ -103,7 +106,7 @@ class NormalEstimation : public apex::Node {
     const Eigen::Vector3f viewpoint = threeNumbers(viewpoint_.get(), "viewpoint");
     pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::Normal> estimation(static_cast<unsigned>(threads_.get()));
     estimation.setInputCloud(xyz);
-    if (search_.get() == "k") estimation.setKSearch(k_.get());
+    if (search_.get() == Search::kNearest) estimation.setKSearch(k_.get());
     else estimation.setRadiusSearch(radius_.get());
     estimation.setViewPoint(viewpoint.x(), viewpoint.y(), viewpoint.z());
     pcl::PointCloud<pcl::Normal> normals;
@@ -116,7 +119,7 @@ class NormalEstimation : public apex::Node {
  private:
   apex::Input<Cloud> cloud_in_{this, kCloudIn};
   apex::Output<Cloud> cloud_out_{this, kCloudOut};
-  apex::Param<std::string> search_{this, kSearch};
+  apex::Choice<Search> search_{this, kSearch};
   apex::Param<double> radius_{this, kRadius};
   apex::Param<int> k_{this, kK};
   apex::Param<int> threads_{this, kThreads};

@@ -42,30 +42,16 @@ const Model kModels[] = {
     {"normal_parallel_plane", pcl::SACMODEL_NORMAL_PARALLEL_PLANE, 4, true},
     {"normal_sphere", pcl::SACMODEL_NORMAL_SPHERE, 4, true},
 };
-const char* const kShapes[] = {"plane", "line", "circle2d", "circle3d", "sphere", "cylinder"};  // ProjectInliers'
-const std::pair<const char*, int> kMethods[] = {
-    {"ransac", pcl::SAC_RANSAC}, {"lmeds", pcl::SAC_LMEDS},   {"msac", pcl::SAC_MSAC},    {"rransac", pcl::SAC_RRANSAC},
-    {"rmsac", pcl::SAC_RMSAC},   {"mlesac", pcl::SAC_MLESAC}, {"prosac", pcl::SAC_PROSAC}};
+const apex::Option<int> kMethods[] = {{"ransac", pcl::SAC_RANSAC},   {"lmeds", pcl::SAC_LMEDS}, {"msac", pcl::SAC_MSAC},
+                                      {"rransac", pcl::SAC_RRANSAC}, {"rmsac", pcl::SAC_RMSAC}, {"mlesac", pcl::SAC_MLESAC},
+                                      {"prosac", pcl::SAC_PROSAC}};
 
-std::vector<std::string> modelNames() {
-  std::vector<std::string> out;
-  for (const Model& m : kModels) out.emplace_back(m.name);
-  return out;
-}
-const Model& modelNamed(const std::string& name) {
+/** The models named (all of them if none is): a choice's options, each valued by its Model. */
+std::vector<apex::Option<const Model*>> models(const std::vector<std::string>& names = {}) {
+  std::vector<apex::Option<const Model*>> out;
   for (const Model& m : kModels)
-    if (name == m.name) return m;
-  throw std::invalid_argument("no model '" + name + "'");  // the choice parameter allows none
-}
-std::vector<std::string> methodNames() {
-  std::vector<std::string> out;
-  for (const auto& m : kMethods) out.emplace_back(m.first);
+    if (names.empty() || std::find(names.begin(), names.end(), m.name) != names.end()) out.push_back({m.name, &m});
   return out;
-}
-int methodNamed(const std::string& name) {
-  for (const auto& [n, method] : kMethods)
-    if (name == n) return method;
-  throw std::invalid_argument("no method '" + name + "'");
 }
 
 /** The cloud's normal_x, normal_y, normal_z and curvature (float32; a normal plane weighs the
@@ -105,9 +91,9 @@ class SACSegmentation : public apex::Node {
       "as PCL gives them: plane a, b, c, d; line point, direction; circle2d x, y, r; circle3d centre, r, "
       "normal; sphere centre, r; cylinder point on the axis, direction, r"};
   static inline const apex::OutputPort<int> kCount{"count", "inliers"};
-  static inline const apex::ParamDecl<std::string> kModel =
-      param::choice("model", modelNames()).describe("cylinder and the normal_ models need normals (NormalEstimation)");
-  static inline const apex::ParamDecl<std::string> kMethod = param::choice("method", methodNames());
+  static inline const apex::ChoiceDecl<const Model*> kModel =
+      param::choice<const Model*>("model", models()).describe("cylinder and the normal_ models need normals (NormalEstimation)");
+  static inline const apex::ChoiceDecl<int> kMethod = param::choice<int>("method", {std::begin(kMethods), std::end(kMethods)});
   static inline const apex::ParamDecl<double> kDistanceThreshold =
       param::number("distance_threshold").range(0.0001, 1.0).step(0.0001).init(0.02).describe("metres");
   static inline const apex::ParamDecl<int> kMaxIterations = param::integer("max_iterations").range(1, 100000).step(1).init(200);
@@ -153,7 +139,7 @@ class SACSegmentation : public apex::Node {
   void process() override {
     const auto in = cloud_.get();
     const auto xyz = xyzOf(*in);
-    const Model& model = modelNamed(model_.get());
+    const Model& model = *model_.get();
     pcl::PointIndices inliers;
     pcl::ModelCoefficients coefficients;
     if (model.normals) {
@@ -167,7 +153,7 @@ class SACSegmentation : public apex::Node {
     }
     if (inliers.indices.empty()) {
       std::ostringstream why;
-      why << "no " << model.name << " found in " << xyz->size() << " points (" << method_.get() << ", distance_threshold "
+      why << "no " << model.name << " found in " << xyz->size() << " points (" << method_.text() << ", distance_threshold "
           << distance_threshold_.get() << ")";
       throw std::invalid_argument(why.str());
     }
@@ -183,7 +169,7 @@ class SACSegmentation : public apex::Node {
            pcl::ModelCoefficients& coefficients) const {
     seg.setOptimizeCoefficients(optimize_.get());
     seg.setModelType(model.type);
-    seg.setMethodType(methodNamed(method_.get()));
+    seg.setMethodType(method_.get());
     seg.setDistanceThreshold(distance_threshold_.get());
     seg.setMaxIterations(max_iterations_.get());
     seg.setRadiusLimits(radius_.get().low, radius_.get().high);
@@ -197,8 +183,8 @@ class SACSegmentation : public apex::Node {
   apex::Output<Cloud> outliers_{this, kOutliers};
   apex::Output<std::vector<double>> coefficients_{this, kCoefficients};
   apex::Output<int> count_{this, kCount};
-  apex::Param<std::string> model_{this, kModel};
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<const Model*> model_{this, kModel};
+  apex::Choice<int> method_{this, kMethod};
   apex::Param<double> distance_threshold_{this, kDistanceThreshold};
   apex::Param<int> max_iterations_{this, kMaxIterations};
   apex::Param<bool> optimize_{this, kOptimize};
@@ -213,8 +199,8 @@ class ProjectInliers : public apex::Node {
   static inline const apex::InputPort<Cloud> kCloudIn{"cloud"};
   static inline const apex::InputPort<std::vector<double>> kCoefficients{"coefficients", "the model's (SACSegmentation's)"};
   static inline const apex::OutputPort<Cloud> kCloudOut{"cloud", "every point, moved onto the model"};
-  static inline const apex::ParamDecl<std::string> kModel =
-      param::choice("model", std::vector<std::string>(std::begin(kShapes), std::end(kShapes)))
+  static inline const apex::ChoiceDecl<const Model*> kModel =
+      param::choice<const Model*>("model", models({"plane", "line", "circle2d", "circle3d", "sphere", "cylinder"}))
           .describe("the coefficients' model; a parallel, perpendicular or normal_ plane's are a plane's");
   static apex::Manifest manifest() {
     return apex::Manifest("Moves each point onto a model (its nearest point on a plane, line, sphere...)")
@@ -227,7 +213,7 @@ class ProjectInliers : public apex::Node {
   void process() override {
     const auto in = cloud_in_.get();
     const auto& values = *coefficients_.get();
-    const Model& model = modelNamed(model_.get());
+    const Model& model = *model_.get();
     if (values.size() != model.coefficients)
       throw std::invalid_argument("a " + std::string(model.name) + " has " + std::to_string(model.coefficients) +
                                   " coefficients, the input has " + std::to_string(values.size()));
@@ -278,7 +264,7 @@ class ProjectInliers : public apex::Node {
   apex::Input<Cloud> cloud_in_{this, kCloudIn};
   apex::Input<std::vector<double>> coefficients_{this, kCoefficients};
   apex::Output<Cloud> cloud_out_{this, kCloudOut};
-  apex::Param<std::string> model_{this, kModel};
+  apex::Choice<const Model*> model_{this, kModel};
 };
 
 }  // namespace apex_nodes

@@ -59,9 +59,10 @@ class ConvexHull : public apex::Node {
   static inline const apex::OutputPort<Cloud> kHull{"hull", "the hull's points, whole; in 2D in order round the polygon"};
   static inline const apex::OutputPort<double> kArea{"area", "square metres: the polygon's (2D) or the surface's (3D)"};
   static inline const apex::OutputPort<double> kVolume{"volume", "cubic metres (3D; 0 for a polygon)"};
-  static inline const apex::ParamDecl<std::string> kDimension =
-      param::choice("dimension", {"auto", "2", "3"})
-          .describe("2: a polygon round points on a plane, 3: a polyhedron; auto: by how flat the points lie (PCL's test)");
+  static inline const apex::ChoiceDecl<int> kDimension =
+      param::choice<int>("dimension", {{"auto", 0, "by how flat the points lie (PCL's test)"},
+                                       {"2", 2, "a polygon round points on a plane"},
+                                       {"3", 3, "a polyhedron"}});
   static apex::Manifest manifest() {
     return apex::Manifest("The points on a cloud's convex hull: a polygon or a polyhedron")
         .inCategory("cloud segmentation")
@@ -77,13 +78,13 @@ class ConvexHull : public apex::Node {
     pcl::ConvexHull<pcl::PointXYZ> hull;
     hull.setInputCloud(xyz);
     if (auto finite = finiteIndices(*xyz)) hull.setIndices(finite);
-    if (dimension_.get() != "auto") hull.setDimension(std::stoi(dimension_.get()));
+    if (dimension_.get() > 0) hull.setDimension(dimension_.get());  // else auto
     XyzCloud points;
     std::vector<pcl::Vertices> polygons;
     hull.reconstruct(points, polygons);
     if (points.empty())
       throw std::invalid_argument("qhull found no convex hull of " + std::to_string(xyz->size()) + " points (dimension " +
-                                  dimension_.get() + "): too few, or all on a line" +
+                                  dimension_.text() + "): too few, or all on a line" +
                                   (hull.getDimension() == 3 ? " or a plane (try dimension 2)" : ""));
     pcl::PointIndices indices;
     hull.getHullPointIndices(indices);
@@ -98,7 +99,7 @@ class ConvexHull : public apex::Node {
   apex::Output<Cloud> hull_{this, kHull};
   apex::Output<double> area_{this, kArea};
   apex::Output<double> volume_{this, kVolume};
-  apex::Param<std::string> dimension_{this, kDimension};
+  apex::Choice<int> dimension_{this, kDimension};
   Reused<XyzCloud> xyz_;  // the x, y, z view and the points sent: reused per frame
   Reused<Blob> points_;
 };

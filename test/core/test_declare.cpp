@@ -132,7 +132,7 @@ TEST(Declare, ATypedChoiceListsItsOptionsOnceAndProcessReadsTheirValues) {
   EXPECT_EQ(spec.kindName(), "set");
   EXPECT_EQ(spec.options, (std::vector<std::string>{"rect", "cross", "ellipse"}));
   EXPECT_EQ(toText(spec.default_value), "cross");
-  EXPECT_EQ(spec.description, "the kernel's shape; rect: a square; ellipse: round");  // cross says nothing
+  EXPECT_EQ(spec.description, "the kernel's shape (rect: a square; ellipse: round)");  // cross says nothing
   EXPECT_EQ(param::choice<int>("s", {{"a", 1, "one"}, {"b", 2, "two"}}).spec().description, "a: one; b: two");
 
   NodeRegistry types = apex_test::testRegistry();

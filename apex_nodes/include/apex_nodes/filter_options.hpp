@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "apex/core/declare.hpp"
 #include "apex_nodes/types.hpp"
 
 namespace apex_nodes {
@@ -49,23 +50,14 @@ inline std::string imageWords(const Image& image) {
 }
 
 /** @brief How filters make up pixels beyond the image's edge, by name; the first is OpenCV's
- *  default (BORDER_REFLECT_101: gfedcb|abcdefgh|gfedcba). */
-inline const std::vector<std::pair<std::string, int>>& borderModes() {
-  static const std::vector<std::pair<std::string, int>> modes{{"reflect_101", cv::BORDER_REFLECT_101},
-                                                              {"replicate", cv::BORDER_REPLICATE},
-                                                              {"reflect", cv::BORDER_REFLECT},
-                                                              {"constant", cv::BORDER_CONSTANT}};
+ *  default (BORDER_REFLECT_101: gfedcb|abcdefgh|gfedcba). A choice of them:
+ *  apex::param::choice<int>("border_type", borderModes()). */
+inline const std::vector<apex::Option<int>>& borderModes() {
+  static const std::vector<apex::Option<int>> modes{{"reflect_101", cv::BORDER_REFLECT_101},
+                                                    {"replicate", cv::BORDER_REPLICATE},
+                                                    {"reflect", cv::BORDER_REFLECT},
+                                                    {"constant", cv::BORDER_CONSTANT}};
   return modes;
-}
-inline std::vector<std::string> borderNames() {
-  std::vector<std::string> names;
-  for (const auto& [name, mode] : borderModes()) names.push_back(name);
-  return names;
-}
-inline int borderNamed(const std::string& name) {
-  for (const auto& [n, mode] : borderModes())
-    if (n == name) return mode;
-  throw std::invalid_argument("unknown border mode '" + name + "'");
 }
 
 }  // namespace apex_nodes

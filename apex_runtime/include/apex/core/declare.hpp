@@ -186,7 +186,7 @@ class ChoiceDecl {
     decl_ = std::move(decl_).init(option);
     return std::move(*this);
   }
-  /** @brief What the parameter means; the options' own descriptions follow it. */
+  /** @brief What the parameter means; the options' own descriptions follow it in brackets. */
   ChoiceDecl describe(const std::string& text) && {
     setDescription(text);
     return std::move(*this);
@@ -213,11 +213,11 @@ class ChoiceDecl {
   operator const ParamSpec&() const { return decl_.spec(); }  // NOLINT: what Manifest::param takes
 
  private:
-  void setDescription(const std::string& text) {
-    std::string all = text;
+  void setDescription(const std::string& text) {  // "text (a: one; b: two)"
+    std::string each;
     for (const auto& o : options_)
-      if (*o.description) all += (all.empty() ? "" : "; ") + std::string(o.name) + ": " + o.description;
-    decl_.spec_.description = std::move(all);
+      if (*o.description) each += (each.empty() ? "" : "; ") + std::string(o.name) + ": " + o.description;
+    decl_.spec_.description = text.empty() ? each : each.empty() ? text : text + " (" + each + ")";
   }
   std::vector<Option<V>> options_;
   ParamDecl<std::string> decl_;
