@@ -104,6 +104,8 @@ NodeStats NodeState::stats() const {
   s.last_ns = ticksToNs(last_t_.load(std::memory_order_relaxed));
   s.max_ns = ticksToNs(max_t_.load(std::memory_order_relaxed));
   s.mean_ns = meanNs();
+  s.timed_firings = timed_firings_.load(std::memory_order_relaxed);
+  s.timed_ns = ticksToNs(total_t_.load(std::memory_order_relaxed));
   std::lock_guard<std::mutex> lock(state_mutex);
   s.error = error_;
   s.enabled = enabled && outer_enabled;

@@ -96,6 +96,9 @@ struct NodeStats {
    *  in 8 of a faster one (a clock read would cost a quarter of its hop), so there max_ns is the
    *  largest sampled time. */
   std::uint64_t last_ns = 0, mean_ns = 0, max_ns = 0;
+  /** The firings timed so far and the sum of their times (mean_ns is the one over the other): a
+   *  difference of two readings gives the mean over the firings between them. */
+  std::uint64_t timed_firings = 0, timed_ns = 0;
   /** The timed firings' median and 95th percentile over the last 5 to 10 seconds (within 1/16). */
   std::uint64_t p50_ns = 0, p95_ns = 0;
   /** Latency over the last 5 to 10 seconds: from the stamp of the frame a firing worked on
