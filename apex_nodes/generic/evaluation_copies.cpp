@@ -26,6 +26,19 @@ std::map<std::string, int> upstreamOf(const apex::GraphDescription& g, const std
   return seen;
 }
 
+/** `from` and every node they feed, directly or not. */
+std::set<std::string> downstreamOf(const apex::GraphDescription& g, const std::set<std::string>& from) {
+  std::set<std::string> seen = from;
+  std::deque<std::string> todo(from.begin(), from.end());
+  while (!todo.empty()) {
+    const std::string n = todo.front();
+    todo.pop_front();
+    for (const auto& c : g.connections)
+      if (c.from_node == n && seen.insert(c.to_node).second) todo.push_back(c.to_node);
+  }
+  return seen;
+}
+
 }  // namespace
 
 apex::Result<EvaluatedPart> evaluatedPart(const apex::GraphDescription& g, const std::string& name) {
@@ -71,6 +84,9 @@ apex::Result<std::unique_ptr<EvaluationCopies>> EvaluationCopies::make(const Eva
                                                                        int count, Scored scored) {
   std::unique_ptr<EvaluationCopies> out(new EvaluationCopies());
   out->part_ = part;
+  for (const auto& [output, targets] : part.targets)
+    for (const auto& [node, param] : targets) out->tuned_.insert(node);
+  out->costly_ = downstreamOf(part.graph, out->tuned_);
   for (int i = 0; i < count; ++i) {
     auto g = make();
     g->setRerunOnEdit(false);  // each candidate's values are set by edits: no held frame into its pass
@@ -85,6 +101,7 @@ apex::Result<std::unique_ptr<EvaluationCopies>> EvaluationCopies::make(const Eva
     }
     out->copies_.push_back(std::move(g));
     out->started_.push_back(false);
+    out->at_start_.emplace_back();
   }
   return out;
 }
@@ -95,6 +112,7 @@ EvaluationCopies::~EvaluationCopies() {
 
 apex::Status EvaluationCopies::evaluate(int i, const std::vector<std::pair<std::string, std::string>>& values) {
   apex::Graph& g = *copies_.at(i);
+  at_start_.at(i) = workOf(i);  // the last pass is over: its score came
   for (const auto& [output, text] : values) {
     auto it = part_.targets.find(output);
     if (it == part_.targets.end()) continue;
@@ -112,6 +130,32 @@ apex::Status EvaluationCopies::fire(int i, const std::string& trigger) {
   for (const auto& [node, slot] : it->second)
     if (auto st = copies_.at(i)->fireSlot(node, slot); !st) return st;
   return apex::Status::ok();
+}
+
+EvaluationCopies::Work EvaluationCopies::workOf(int i) const {
+  Work w;
+  for (apex::NodeStats& s : copies_.at(i)->nodeStats())
+    if (costly_.count(s.name.substr(0, s.name.find('/'))))  // a subgraph's nodes count as it
+      w[s.name] = std::move(s);
+  return w;
+}
+
+double EvaluationCopies::msPerFrame(int i) const {
+  const Work now = workOf(i), start = at_start_.at(i);
+  const auto before = [&](const std::string& name) { return start.count(name) ? start.at(name) : apex::NodeStats(); };
+  std::uint64_t frames = 0;  // of the pass: the most firings of a tuned node (each fires once a frame)
+  for (const auto& [name, s] : now)
+    if (tuned_.count(name.substr(0, name.find('/')))) frames = std::max(frames, s.firings - before(name).firings);
+  if (frames == 0) return 0;
+  double ns = 0;
+  for (const auto& [name, s] : now) {
+    const apex::NodeStats b = before(name);
+    const std::uint64_t timed = s.timed_firings - b.timed_firings;
+    // the mean over the pass's timed firings (a fast node times one in 8), else over its life
+    const double mean = timed > 0 ? double(s.timed_ns - b.timed_ns) / double(timed) : double(s.mean_ns);
+    ns += mean * double(s.firings - b.firings);
+  }
+  return ns / 1e6 / double(frames);
 }
 
 }  // namespace tuning

@@ -10,7 +10,9 @@
 
 #include <functional>
 #include <map>
+#include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,12 +52,22 @@ class EvaluationCopies {
   apex::Status evaluate(int i, const std::vector<std::pair<std::string, std::string>>& values);
   /** @brief Fires in copy `i` the slots the Optimizer's trigger `trigger` feeds (e.g. `cut`). */
   apex::Status fire(int i, const std::string& trigger);
+  /** @brief What copy `i`'s pass since its last evaluate() cost: the milliseconds the tuned nodes
+   *  and the nodes they feed fired for (as the runtime times firings, NodeStats), per frame (a
+   *  tuned node's firings); 0 before any frame. For the Optimizer's second objective. */
+  double msPerFrame(int i) const;
 
  private:
+  /** Per node of the tuned nodes and what they feed: NodeStats' firings, timed firings and their time. */
+  using Work = std::map<std::string, apex::NodeStats>;
+  Work workOf(int i) const;
   EvaluationCopies() = default;
   EvaluatedPart part_;
+  std::set<std::string> costly_;  // the tuned nodes and those downstream of them in the part
+  std::set<std::string> tuned_;
   std::vector<std::unique_ptr<apex::Graph>> copies_;
   std::vector<bool> started_;
+  std::vector<Work> at_start_;  // per copy: at its pass's start
 };
 
 }  // namespace tuning

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "apex/core/registry.hpp"
+#include "apex_nodes/pareto.hpp"
 #include "apex_nodes/search.hpp"
 #include "evaluation_copies.hpp"
 #include "study_file.hpp"
@@ -101,6 +102,18 @@ class Optimizer : public apex::Node {
   static inline const apex::ParamDecl<bool> kRacing = param::flag("racing").describe(
       "stop scoring a candidate once even the best frame scores for the rest of its pass could not make it count (cut "
       "fires): the run takes the same course on fewer frames; needs running and cut connected");
+  enum class Objectives { kFitness, kFitnessAndCost };
+  static inline const apex::ChoiceDecl<Objectives> kObjectives =
+      param::choice<Objectives>(
+          "objectives",
+          {{"fitness", Objectives::kFitness},
+           {"fitness_and_cost", Objectives::kFitnessAndCost,
+            "also the cost, the ms per frame the tuned nodes and those they feed fire for, measured in a copy of the "
+            "evaluated part (as with workers): the run keeps the candidates no other beats on both in 'front'"}})
+          .describe("what a candidate is judged by");
+  static inline const apex::ParamDecl<std::string> kFront = param::text("front").describe(
+      "with two objectives, the Pareto front so far, cheapest first, as YAML ([{evaluation: 7, fitness: 0.9, "
+      "ms_per_frame: 3.1, values: {c: 12}}, ...]; it sets this; the panel's menu applies a point of it)");
   static inline const apex::ParamDecl<double> kFrameBound =
       param::number("frame_score_bound")
           .range(-1e9, 1e9)
@@ -140,6 +153,8 @@ class Optimizer : public apex::Node {
         .param(kWorkers)
         .param(kRacing)
         .param(kFrameBound)
+        .param(kObjectives)
+        .param(kFront)
         .shapedBy(shapeDimensions);
   }
 
@@ -205,6 +220,13 @@ class Optimizer : public apex::Node {
     study_ = std::move(study);
     dims_ = std::move(dims);
     minimize_ = minimize_param_.get();
+    two_ = objectives_.get() == Objectives::kFitnessAndCost;
+    front_.clear(), costs_.clear();
+    if (two_) {
+      for (const auto& e : resumed_front_) tuning::addToFront(front_, e, minimize_);
+      updateParam(kFront.name(), frontText());
+    }
+    resumed_front_.clear();
     running_ = true;
     out_.assign(workers_.get(), -1);
     race_.assign(out_.size(), Race{});
@@ -215,8 +237,9 @@ class Optimizer : public apex::Node {
     if (resumed > 0)
       log(apex::LogLevel::Info, "resumed from the study '" + study_->path() + "': " + std::to_string(resumed) + " evaluations");
     if (search_->done()) return end("finished");
-    if (out_.size() == 1) return propose();
-    setState("starting: copying the evaluated part for " + std::to_string(out_.size()) + " workers");
+    if (!inCopies()) return propose();
+    setState("starting: copying the evaluated part for " +
+             (out_.size() > 1 ? std::to_string(out_.size()) + " workers" : std::string("its cost")));
     describeGraph([this, run = run_](const apex::GraphSnapshot& graph) { makeCopies(graph, run); });
   }
 
@@ -286,7 +309,8 @@ class Optimizer : public apex::Node {
     return "algorithm " + algorithm_.get() + ", budget " + std::to_string(budget_.get()) + ", seed " +
            std::to_string(seed_.get()) + ", population " + std::to_string(population_.get()) + ", F " + apex::toText(f_.get()) +
            ", CR " + apex::toText(cr_.get()) + ", minimize " + (minimize_param_.get() ? "true" : "false") + ", dimensions [" +
-           dims + "]" + (workers_.get() > 1 && algorithm_.get() == "differential_evolution" ? ", updating deferred" : "");
+           dims + "]" + (workers_.get() > 1 && algorithm_.get() == "differential_evolution" ? ", updating deferred" : "") +
+           (objectives_.get() == Objectives::kFitnessAndCost ? ", objectives fitness_and_cost" : "");
   }
 
   /** The study of this run, if `study` names one. */
@@ -294,12 +318,14 @@ class Optimizer : public apex::Node {
     if (study_path_.get().empty()) return nullptr;
     std::vector<std::string> columns;
     for (const auto& c : coordinates) columns.push_back(c.name);
-    return std::make_unique<tuning::StudyFile>(study_path_.get(), settingsText(), columns);
+    return std::make_unique<tuning::StudyFile>(study_path_.get(), settingsText(), columns,
+                                               objectives_.get() == Objectives::kFitnessAndCost);
   }
 
   /** The study's evaluations told to `search` again, each checked to be its candidate; how many. */
-  int replay(tuning::StudyFile& study, search::Search& search) const {
+  int replay(tuning::StudyFile& study, search::Search& search) {
     int n = 0;
+    resumed_front_.clear();
     const bool minimize = minimize_param_.get();
     for (const auto& e : study.read()) {
       if (search.done()) break;
@@ -307,6 +333,7 @@ class Optimizer : public apex::Node {
         throw std::invalid_argument("the study '" + study.path() + "': evaluation " + std::to_string(n + 1) +
                                     " is not this run's candidate (the search was changed?): name another file, or move it away");
       search.tell(minimize ? -e.fitness : e.fitness);
+      resumed_front_.push_back({n + 1, e.fitness, e.cost_ms, e.point});
       ++n;
     }
     return n;
@@ -365,6 +392,7 @@ class Optimizer : public apex::Node {
   void scored(std::size_t w, double f) {
     const Race r = std::exchange(race_[w], Race{});
     const int id = std::exchange(out_[w], -1);
+    if (two_ && copies_) costs_[id] = copies_->msPerFrame(static_cast<int>(w));
     if (r.cut) return told(id, minimize_ ? -r.bound : r.bound);
     if (racing_ && r.frames == 0) stopRacing("no frame's mean so far arrived: connect the mean's running to running");
     if (racing_ && full_frames_ == 0) full_frames_ = r.frames;
@@ -386,8 +414,10 @@ class Optimizer : public apex::Node {
     search_->tell(id, minimize_ ? -f : f);
     scores_[id] = f;
     for (int k = before; k < search_->evaluations(); ++k) {
-      const tuning::Evaluation e{points_.at(k), scores_.at(k)};
-      points_.erase(k), scores_.erase(k);
+      const tuning::Evaluation e{points_.at(k), scores_.at(k), costs_[k]};
+      points_.erase(k), scores_.erase(k), costs_.erase(k);
+      if (two_ && tuning::addToFront(front_, {k + 1, e.fitness, e.cost_ms, e.point}, minimize_))
+        updateParam(kFront.name(), frontText());
       if (study_) try {
           study_->append(e);
         } catch (const std::runtime_error& err) {
@@ -444,9 +474,9 @@ class Optimizer : public apex::Node {
 
   /** Gives the targets their values back and says how the run ended. */
   void end(const std::string& how) {
-    const bool workers_used = out_.size() > 1;
+    const bool in_copies = inCopies();
     drop();
-    if (!workers_used)  // with workers the graph rested: nothing to give back
+    if (!in_copies)  // with copies the graph rested: nothing to give back
       for (const auto& d : dims_)
         if (!targetsOf(d.port).empty()) publishMessage(d.port, apex::toMessage(d.before));
     const int n = search_->evaluations();
@@ -454,7 +484,8 @@ class Optimizer : public apex::Node {
              (racing_asked_ ? " (" + std::to_string(cuts_) + " cut short)" : "") +
              (search_->best().empty() ? ""
                                       : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
-                                            " at " + bestText()));
+                                            " at " + bestText()) +
+             (two_ ? "; a front of " + std::to_string(front_.size()) + " point" + (front_.size() == 1 ? "" : "s") : ""));
     finished_.fire();
   }
 
@@ -472,13 +503,28 @@ class Optimizer : public apex::Node {
     return parameterTargets(port);
   }
 
-  std::string bestText() const {
-    if (search_->best().empty()) return "{}";
-    const auto values = valuesAt(search_->best());
+  std::string bestText() const { return search_->best().empty() ? "{}" : valuesText(search_->best()); }
+
+  /** The values at `x` as a YAML map, {dimension: value}. */
+  std::string valuesText(const std::vector<double>& x) const {
+    const auto values = valuesAt(x);
     std::string out = "{";
     for (std::size_t i = 0; i < dims_.size(); ++i) out += (i ? ", " : "") + dims_[i].port + ": " + apex::toText(values[i]);
     return out + "}";
   }
+
+  /** The front as YAML, cheapest first. */
+  std::string frontText() const {
+    std::string out;
+    for (const auto& p : front_)
+      out += (out.empty() ? "" : ", ") + std::string("{evaluation: ") + std::to_string(p.evaluation) +
+             ", fitness: " + apex::toText(p.fitness) + ", ms_per_frame: " + apex::toText(p.cost_ms) +
+             ", values: " + valuesText(p.point) + "}";
+    return "[" + out + "]";
+  }
+
+  /** Candidates are evaluated in copies of the evaluated part, not in the graph. */
+  bool inCopies() const { return out_.size() > 1 || two_; }
 
   void setState(const std::string& text) { updateParam(kState.name(), text); }
   /** An error that stays until the next start, through the firings that ignore a score. */
@@ -511,6 +557,7 @@ class Optimizer : public apex::Node {
   apex::Param<std::string> state_{this, kState};
   apex::Param<std::string> study_path_{this, kStudy};
   apex::Param<int> workers_{this, kWorkers};
+  apex::Choice<Objectives> objectives_{this, kObjectives};
 
   std::vector<tuning::TunedDimension> dims_;
   std::unique_ptr<search::Search> search_;
@@ -519,6 +566,10 @@ class Optimizer : public apex::Node {
   std::vector<int> out_{-1};  // per worker: the candidate it evaluates, -1: idle
   std::map<int, std::vector<double>> points_;  // candidates asked for and not yet written to the study
   std::map<int, double> scores_;  // their fitnesses, as they come (in any order)
+  std::map<int, double> costs_;  // with two objectives: their costs, as they come
+  bool two_ = false;  // the run has two objectives
+  std::vector<tuning::Scored> front_;  // with two objectives: the Pareto front so far
+  std::vector<tuning::Scored> resumed_front_;  // the study's evaluations, read at start
   int run_ = 0;  // grows as a run ends: a copy's score of an earlier run is ignored
   std::vector<Race> race_{1};  // per worker
   bool racing_ = false, racing_asked_ = false;  // racing now; asked for at start

@@ -25,11 +25,11 @@ std::string exact(double v) {
 
 }  // namespace
 
-StudyFile::StudyFile(std::string path, std::string settings, std::vector<std::string> columns)
-    : path_(std::move(path)), settings_(std::move(settings)), columns_(std::move(columns)) {}
+StudyFile::StudyFile(std::string path, std::string settings, std::vector<std::string> columns, bool with_cost)
+    : path_(std::move(path)), settings_(std::move(settings)), columns_(std::move(columns)), with_cost_(with_cost) {}
 
 std::string StudyFile::header() const {
-  std::string out = kMagic + settings_ + "\nevaluation,fitness";
+  std::string out = kMagic + settings_ + "\nevaluation,fitness" + (with_cost_ ? ",ms_per_frame" : "");
   for (const auto& c : columns_) out += "," + c;
   return out + "\n";
 }
@@ -60,11 +60,12 @@ std::vector<Evaluation> StudyFile::read() {
         throw std::invalid_argument("the study '" + path_ + "' line " + std::to_string(n) + ": '" + field + "' is not a number");
       values.push_back(v);
     }
-    if (values.size() != columns_.size() + 2 || values[0] != static_cast<double>(out.size() + 1))
+    const std::size_t first = with_cost_ ? 3 : 2;  // of the point's values
+    if (values.size() != columns_.size() + first || values[0] != static_cast<double>(out.size() + 1))
       throw std::invalid_argument("the study '" + path_ + "' line " + std::to_string(n) + ": not evaluation " +
-                                  std::to_string(out.size() + 1) + " with a fitness and " + std::to_string(columns_.size()) +
-                                  " values");
-    out.push_back({std::vector<double>(values.begin() + 2, values.end()), values[1]});
+                                  std::to_string(out.size() + 1) + " with a fitness" + (with_cost_ ? ", a cost" : "") + " and " +
+                                  std::to_string(columns_.size()) + " values");
+    out.push_back({std::vector<double>(values.begin() + first, values.end()), values[1], with_cost_ ? values[2] : 0.0});
     lines_ += line + "\n";
   }
   return out;
@@ -72,6 +73,7 @@ std::vector<Evaluation> StudyFile::read() {
 
 void StudyFile::append(const Evaluation& e) {
   std::string line = std::to_string(std::count(lines_.begin(), lines_.end(), '\n') + 1) + "," + exact(e.fitness);
+  if (with_cost_) line += "," + exact(e.cost_ms);
   for (double v : e.point) line += "," + exact(v);
   lines_ += line + "\n";
   const apex::Status st = apex::writeFileAtomically(path_, header() + lines_);

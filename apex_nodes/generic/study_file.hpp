@@ -1,7 +1,8 @@
 // The Optimizer's study file: every evaluation of a run, written as it ends, so that a run that
 // was stopped or killed continues where it was. The file is rewritten whole after each
 // evaluation (never half-written): a header naming the run's settings, a line of column names,
-// then one line per evaluation (its number, the fitness, the search's coordinates, all as exact
+// then one line per evaluation (its number, the fitness, its cost if the run has two objectives,
+// the search's coordinates, all as exact
 // as a double prints). A run resumes by asking its search again and telling it the recorded
 // fitnesses: the same settings give the same candidates, which the file's lines must match.
 // ROS-free.
@@ -13,17 +14,20 @@
 namespace apex_nodes {
 namespace tuning {
 
-/** @brief One recorded evaluation: the search's point and the fitness the graph gave it. */
+/** @brief One recorded evaluation: the search's point, the fitness the graph gave it and, in a
+ *  study of two objectives, its cost (ms per frame). */
 struct Evaluation {
   std::vector<double> point;
   double fitness = 0;
+  double cost_ms = 0;
 };
 
 class StudyFile {
  public:
   /** @brief The study at `path` of a run whose settings read `settings` (one line of text) and
-   *  whose points have the coordinates `columns`. Nothing is read or written yet. */
-  StudyFile(std::string path, std::string settings, std::vector<std::string> columns);
+   *  whose points have the coordinates `columns`; `with_cost`: a column ms_per_frame after the
+   *  fitness. Nothing is read or written yet. */
+  StudyFile(std::string path, std::string settings, std::vector<std::string> columns, bool with_cost = false);
 
   /** @brief The evaluations recorded so far (none if the file does not exist). Throws
    *  std::invalid_argument naming the file if it was made with other settings, or a line of it
@@ -38,6 +42,7 @@ class StudyFile {
   std::string header() const;
   std::string path_, settings_;
   std::vector<std::string> columns_;
+  bool with_cost_;
   std::string lines_;  // the evaluations' lines, as written
 };
 

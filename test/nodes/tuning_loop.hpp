@@ -6,6 +6,7 @@
 
 #include <gmock/gmock.h>
 
+#include <chrono>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -50,11 +51,31 @@ class ShapeProbe : public Node {
   }
 };
 
+/** Per frame, works gain x 20 us (a cost that grows with gain) and scores -(gain - 50)^2: gains
+ *  above 50 are beaten on both by one as far below 50 (as fit, and cheaper). */
+class SlowProbe : public Node {
+ public:
+  static Manifest manifest() {
+    return Manifest("works in proportion to its gain per frame, and scores how near 50 it is")
+        .input<int>("in")
+        .output<double>("out")
+        .param(param::range("gain", 0.0, 100.0, 0.0, 5.0).makeInteractive());
+  }
+  void process() override {
+    const double gain = param<double>("gain");
+    const auto until = std::chrono::steady_clock::now() + std::chrono::nanoseconds(static_cast<long>(gain * 20'000));
+    while (std::chrono::steady_clock::now() < until) {
+    }
+    publish("out", -(gain - 50) * (gain - 50));
+  }
+};
+
 inline const NodeRegistry& registry() {
   static NodeRegistry* r = [] {
     auto* reg = new NodeRegistry(pluginRegistry());
     EXPECT_TRUE(reg->add<Probe>("test/Probe"));
     EXPECT_TRUE(reg->add<ShapeProbe>("test/ShapeProbe"));
+    EXPECT_TRUE(reg->add<SlowProbe>("test/SlowProbe"));
     return reg;
   }();
   return *r;
@@ -83,10 +104,10 @@ inline std::vector<double> doubles(Collector* c) {
  *  evaluate → restart and reset. Four thread groups. */
 struct Loop {
   Graph g{registry()};
-  explicit Loop(int frames = 20, const std::string& dims = "[gain 0 100]") {
+  explicit Loop(int frames = 20, const std::string& dims = "[gain 0 100]", const std::string& probe = "test/Probe") {
     add(g, "test/Sequence", "seq", "player");
     add(g, "test/Relay", "relay", "one");
-    add(g, "test/Probe", "probe", "two");
+    add(g, probe, "probe", "two");
     add(g, "apex_nodes/SequenceMean", "mean");
     add(g, "apex_nodes/Optimizer", "opt");
     add(g, "test/Collector", "seen");  // what the probe reports, per frame
