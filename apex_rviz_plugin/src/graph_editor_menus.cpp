@@ -56,6 +56,18 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
     menu.addAction("Stop", this, [this, node] { emit fireSlotRequested(node, "stop"); });
     QAction* apply = menu.addAction("Apply best values", this, [this, node] { emit applyBestRequested(node); });
     apply->setEnabled(model_->applyBest(info.name).has_value());
+    const auto front = model_->front(info.name);
+    if (!front.empty()) {  // a two-objective run: each point of its front, cheapest first
+      QMenu* points = menu.addMenu("Apply a point of the front");
+      for (const auto& p : front) {
+        const QString text = QString("fitness %1 · %2 ms/frame  %3 (evaluation %4)")
+                                 .arg(p.fitness, 0, 'g', 4)
+                                 .arg(p.ms_per_frame, 0, 'f', 2)
+                                 .arg(QString::fromStdString(p.values))
+                                 .arg(p.evaluation);
+        points->addAction(text, this, [this, node, k = p.evaluation] { emit applyFrontPointRequested(node, k); });
+      }
+    }
     menu.addSeparator();
   }
   QMenu* slot_menu = menu.addMenu("Fire slot");

@@ -115,28 +115,64 @@ std::optional<Edit> GraphModel::optimise(const std::string& node_name, const std
   return e;
 }
 
-std::optional<Edit> GraphModel::applyBest(const std::string& opt) const {
-  const apex::ParamInfo* b = parameter(opt, "best_values");
-  const apex::ParamInfo* state = parameter(opt, "state");
-  if (!b || (state && state->value.find("running") <= 1)) return std::nullopt;  // not while it runs: 'running: ...'
+namespace {
 
-  YAML::Node best;
+/** A text parameter's value read as YAML (it holds YAML: best_values, front); null if it cannot be. */
+YAML::Node yamlIn(const apex::ParamInfo* p) {
+  if (!p) return {};
   try {
-    best = YAML::Load(YAML::Load(b->value).as<std::string>());  // a text parameter holding a YAML map
+    return YAML::Load(YAML::Load(p->value).as<std::string>());
   } catch (const YAML::Exception&) {
-    return std::nullopt;
+    return {};
   }
-  if (!best.IsMap()) return std::nullopt;
-  Edit e{"Apply the best values of " + opt, {}, {}};
+}
+
+/** Not while it runs: its state reads 'running: ...' or 'starting: ...'. */
+bool isRunning(const apex::ParamInfo* state) {
+  return state && (state->value.find("running") <= 1 || state->value.find("starting") <= 1);
+}
+
+}  // namespace
+
+std::optional<Edit> GraphModel::applyValues(const std::string& opt, const YAML::Node& values, const std::string& label) const {
+  if (!values.IsMap() || isRunning(parameter(opt, "state"))) return std::nullopt;
+  Edit e{label, {}, {}};
   for (const auto& c : graph_.connections) {
-    if (c.from_node != opt || !best[c.from_port]) continue;
+    if (c.from_node != opt || !values[c.from_port]) continue;
     const apex::ParamInfo* target = parameter(c.to_node, c.to_port);
     if (!target) continue;
-    e.apply.push_back(setParam(c.to_node, c.to_port, flowText(best[c.from_port])));
+    e.apply.push_back(setParam(c.to_node, c.to_port, flowText(values[c.from_port])));
     e.revert.push_back(setParam(c.to_node, c.to_port, target->value));
   }
   if (e.apply.empty()) return std::nullopt;
   return e;
+}
+
+std::optional<Edit> GraphModel::applyBest(const std::string& opt) const {
+  return applyValues(opt, yamlIn(parameter(opt, "best_values")), "Apply the best values of " + opt);
+}
+
+std::vector<FrontPoint> GraphModel::front(const std::string& opt) const {
+  std::vector<FrontPoint> out;
+  const YAML::Node front = yamlIn(parameter(opt, "front"));
+  if (!front.IsSequence()) return out;
+  try {
+    for (const auto& p : front)
+      out.push_back(
+          {p["evaluation"].as<int>(), p["fitness"].as<double>(), p["ms_per_frame"].as<double>(), flowText(p["values"])});
+  } catch (const YAML::Exception&) {
+    return {};
+  }
+  return out;
+}
+
+std::optional<Edit> GraphModel::applyFrontPoint(const std::string& opt, int evaluation) const {
+  const YAML::Node front = yamlIn(parameter(opt, "front"));
+  if (!front.IsSequence()) return std::nullopt;
+  for (const auto& p : front)
+    if (p["evaluation"] && p["evaluation"].as<std::string>() == std::to_string(evaluation))
+      return applyValues(opt, p["values"], "Apply evaluation " + std::to_string(evaluation) + " of " + opt + "'s front");
+  return std::nullopt;
 }
 
 }  // namespace apex_rviz_plugin

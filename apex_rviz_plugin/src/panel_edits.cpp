@@ -206,4 +206,11 @@ void PanelWidget::onApplyBestRequested(const QString& optimizer) {
   perform(edit);
 }
 
+void PanelWidget::onApplyFrontPointRequested(const QString& optimizer, int evaluation) {
+  const auto edit = model_.applyFrontPoint(optimizer.toStdString(), evaluation);
+  if (!edit)
+    return editor_->showMessage(optimizer + ": its front has no evaluation " + QString::number(evaluation) + " now", true);
+  perform(edit);
+}
+
 }  // namespace apex_rviz_plugin

@@ -94,6 +94,7 @@ void PanelWidget::connectEditor() {
   connect(s, &GraphScene::insertRequested, this, &PanelWidget::onInsertRequested);
   connect(e, &GraphEditor::optimiseRequested, this, &PanelWidget::onOptimiseRequested);
   connect(e, &GraphEditor::applyBestRequested, this, &PanelWidget::onApplyBestRequested);
+  connect(e, &GraphEditor::applyFrontPointRequested, this, &PanelWidget::onApplyFrontPointRequested);
   connect(e, &GraphEditor::tidyRequested, this, &PanelWidget::tidy);  // panel_placement.cpp
   connect(e, &GraphEditor::balanceRequested, this, &PanelWidget::balance);  // panel_placement.cpp
   // the namespace, the history, the runtime's controls and files

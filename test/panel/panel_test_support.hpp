@@ -12,6 +12,7 @@
 
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QContextMenuEvent>
 #include <QTimer>
 #include <QLabel>
 #include <QDoubleSpinBox>
@@ -39,6 +40,7 @@
 #include <apex/AddNode.h>
 #include <apex/Connect.h>
 #include <apex/FireSlot.h>
+#include <apex/SetInteractive.h>
 #include <apex/GetGraph.h>
 #include <apex/ListNodeTypes.h>
 #include <apex/Group.h>
@@ -88,6 +90,12 @@ inline bool fireSlot(const std::string& node, const std::string& slot) {
   apex::FireSlot srv;
   srv.request.node = node, srv.request.slot = slot;
   return ros::service::call("/apex/fire_slot", srv) && srv.response.success;
+}
+
+inline bool setInteractive(const std::string& node, const std::string& param, bool interactive = true) {
+  apex::SetInteractive srv;
+  srv.request.node = node, srv.request.parameter = param, srv.request.interactive = interactive;
+  return ros::service::call("/apex/set_interactive", srv) && srv.response.success;
 }
 
 /** The runtime's graph, as a script reads it. A call that fails at once (on a loaded machine a
@@ -242,6 +250,38 @@ inline QAction* action(const QMenu& menu, const QString& text) {
   for (QAction* a : menu.actions())
     if (a->text().startsWith(text)) return a;
   return nullptr;
+}
+
+/** A right-click on `node`'s title, its menu held open until `graphs` graphs came, then the item
+ *  `text` chosen in it (with `submenu`: the first item of that submenu whose text starts with
+ *  `text`). Returns the graphs shown while it was open; negated if nothing was chosen (the menu
+ *  closed before, or has no such item). */
+inline int chooseInNodeMenu(PanelWidget& panel, QGraphicsView* view, const std::string& node, const QString& text,
+                            const QString& submenu = {}, int graphs = 3) {
+  int shown = 0;
+  const auto counting = QObject::connect(&panel, &PanelWidget::graphShown, [&] { ++shown; });
+  bool chose = false;
+  QTimer chooser;  // inside the menu's own event loop
+  chooser.setInterval(20);
+  QObject::connect(&chooser, &QTimer::timeout, [&] {
+    auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
+    if (!menu || shown < graphs || chose) return;
+    QAction* choice = nullptr;
+    for (QAction* a : menu->actions()) {
+      if (submenu.isEmpty() && a->text() == text) choice = a;
+      if (!submenu.isEmpty() && a->text() == submenu && a->menu()) choice = action(*a->menu(), text);
+    }
+    menu->hide();
+    if (choice) chose = true, choice->trigger();
+  });
+  chooser.start();
+  NodeItem* item = panel.editor()->scene()->node(node);
+  const QPoint at = view->mapFromScene(item->scenePos() + QPointF(40, 8));
+  QContextMenuEvent right(QContextMenuEvent::Mouse, at, view->viewport()->mapToGlobal(at));
+  QApplication::sendEvent(view->viewport(), &right);  // returns once the menu is closed
+  chooser.stop();
+  QObject::disconnect(counting);
+  return chose ? shown : -shown;
 }
 
 }  // namespace panel_test

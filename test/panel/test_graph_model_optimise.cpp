@@ -112,4 +112,32 @@ TEST(GraphModel, ApplyingTheBestValuesIsOneEditUndoneToTheValuesBefore) {
   EXPECT_FALSE(m.applyBest("tuner"));
 }
 
+TEST(GraphModel, APointOfTheFrontIsAppliedAsOneEditUndoneToTheValuesBefore) {
+  auto g = tunable(true);
+  g.nodes.back().parameters.push_back(param("front",
+                                            "'[{evaluation: 4, fitness: 0.5, ms_per_frame: 1.25, values: {rate: 10}}, "
+                                            "{evaluation: 9, fitness: 0.75, ms_per_frame: 3.5, values: {rate: 30.5}}]'"));
+  GraphModel m;
+  m.update(g);
+  const auto front = m.front("tuner");
+  ASSERT_EQ(front.size(), 2u);
+  EXPECT_EQ(front[1].evaluation, 9);
+  EXPECT_EQ(front[1].fitness, 0.75);
+  EXPECT_EQ(front[1].ms_per_frame, 3.5);
+  EXPECT_EQ(front[1].values, "{rate: 30.5}");
+  auto e = m.applyFrontPoint("tuner", 9);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->label, "Apply evaluation 9 of tuner's front");
+  ASSERT_EQ(e->apply.size(), 1u);
+  const auto& set = std::get<apex::SetParameter::Request>(e->apply[0].request);
+  EXPECT_EQ(set.node + "/" + set.parameter + " = " + set.value, "clock/rate = 30.5");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(e->revert[0].request).value, "20.0");
+  EXPECT_FALSE(m.applyFrontPoint("tuner", 5)) << "no such point";
+  EXPECT_TRUE(m.front("clock").empty());
+  g.revision = 2;
+  g.nodes.back().parameters.push_back(param("state", "'running: evaluation 3 of 60'"));
+  m.update(g);
+  EXPECT_FALSE(m.applyFrontPoint("tuner", 9)) << "not while it runs";
+}
+
 }  // namespace

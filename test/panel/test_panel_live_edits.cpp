@@ -59,32 +59,6 @@ QPoint handleOf(QSlider* slider) {
   return slider->style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider).center();
 }
 
-/** A right-click on `node`'s title, its menu held open until three graphs came, then the item
- *  `text` chosen in it. Returns the graphs shown while it was open; negated if `text` was not
- *  chosen (the menu closed before, or has no such item). */
-int chooseInNodeMenu(PanelWidget& panel, QGraphicsView* view, const std::string& node, const QString& text) {
-  int shown = 0;
-  const auto counting = QObject::connect(&panel, &PanelWidget::graphShown, [&] { ++shown; });
-  bool chose = false;
-  QTimer chooser;  // inside the menu's own event loop
-  chooser.setInterval(20);
-  QObject::connect(&chooser, &QTimer::timeout, [&] {
-    auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
-    if (!menu || shown < 3 || chose) return;
-    for (QAction* a : menu->actions())
-      if (a->text() == text) chose = true, menu->hide(), a->trigger();
-    if (!chose) menu->hide();
-  });
-  chooser.start();
-  NodeItem* item = panel.editor()->scene()->node(node);
-  const QPoint at = view->mapFromScene(item->scenePos() + QPointF(40, 8));
-  QContextMenuEvent right(QContextMenuEvent::Mouse, at, view->viewport()->mapToGlobal(at));
-  QApplication::sendEvent(view->viewport(), &right);  // returns once the menu is closed
-  chooser.stop();
-  QObject::disconnect(counting);
-  return chose ? shown : -shown;
-}
-
 bool disconnectLink(const std::string& a, const std::string& ap, const std::string& b, const std::string& bp) {
   apex::Connect srv;
   srv.request.from_node = a, srv.request.from_port = ap, srv.request.to_node = b, srv.request.to_port = bp;

@@ -161,6 +161,8 @@ class GraphEditor : public QWidget {
   /** Tune node/param with an Optimizer; an empty `optimizer`: a new one. */
   void optimiseRequested(const QString& node, const QString& param, const QString& optimizer);
   void applyBestRequested(const QString& optimizer);
+  /** Apply the values of the point of the optimizer's Pareto front from evaluation `evaluation`. */
+  void applyFrontPointRequested(const QString& optimizer, int evaluation);
   void controlRequested(const QString& command);
   void undoRequested();
   void redoRequested();

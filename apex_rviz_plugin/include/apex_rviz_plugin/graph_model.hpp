@@ -25,6 +25,10 @@
 #include <variant>
 #include <vector>
 
+namespace YAML {
+class Node;
+}
+
 namespace apex_rviz_plugin {
 
 /** @brief How an Optimizer tunes `p`: the words of its dimension after the name ("" a double,
@@ -34,6 +38,14 @@ std::optional<std::string> tunedAs(const apex::ParamInfo& p);
 
 /** @brief The node type that tunes parameters (apex_nodes/generic/optimizer.cpp). */
 inline constexpr const char* kOptimizerType = "apex_nodes/Optimizer";
+
+/** @brief A point of a two-objective Optimizer's Pareto front (its `front` parameter). */
+struct FrontPoint {
+  int evaluation = 0;  ///< which evaluation of the run it is (1, 2, ...)
+  double fitness = 0;
+  double ms_per_frame = 0;  ///< the cost: the tuned nodes' firing time per frame
+  std::string values;  ///< {dimension: value} as YAML flow text
+};
 
 /** @brief One service call of the runtime's API, with the service's name. */
 struct Call {
@@ -239,10 +251,17 @@ class GraphModel {
   /** @brief The Optimizer's best values (its `best_values`) set on the parameters it tunes, as
    *  one edit; undone to the values they hold now. Nothing before it has best values, or while it runs. */
   std::optional<Edit> applyBest(const std::string& optimizer) const;
+  /** @brief A two-objective Optimizer's Pareto front (its `front`), cheapest first; empty if none. */
+  std::vector<FrontPoint> front(const std::string& optimizer) const;
+  /** @brief The values of the front's point from evaluation `evaluation`, set as applyBest sets
+   *  the best: one edit, undone to the values before. Nothing if the front has no such point. */
+  std::optional<Edit> applyFrontPoint(const std::string& optimizer, int evaluation) const;
   /** @brief The graph's Optimizer nodes. */
   std::vector<std::string> optimizers() const;
 
  private:
+  /** `values` ({dimension: value}) set on the parameters the Optimizer's dimensions feed. */
+  std::optional<Edit> applyValues(const std::string& optimizer, const YAML::Node& values, const std::string& label) const;
   /** This graph without `gone` (if any) and with a node of no type named "new node" at `level`
    *  (last of its nodes), for linkable and insertable to try the types in. */
   GraphModel probe(const std::string& level, const std::optional<apex::Connection>& gone) const;

@@ -173,6 +173,7 @@ class PanelWidget : public QWidget {
   /** Tunes node/param with `optimizer`, or a new one below the node (its names from types_). */
   void onOptimiseRequested(const QString& node, const QString& param, const QString& optimizer);
   void onApplyBestRequested(const QString& optimizer);
+  void onApplyFrontPointRequested(const QString& optimizer, int evaluation);
   /** Where the boxes are shown, placed or not yet saved: positions for a copy. */
   std::map<std::string, std::pair<double, double>> shownPositions() const;
 
