@@ -124,6 +124,9 @@ std::pair<double, std::string> finalBest() {
       const double fitness =
           at != std::string::npos && in != std::string::npos ? std::stod(state.substr(at + 7, in - at - 7)) : 0;
       std::printf("optimiser: %s\n", state.c_str());
+      for (const auto& p : YAML::Load(YAML::Load(valueOf(g, "optimizer", "front")).as<std::string>()))  // two objectives
+        std::printf("  front: F1 %.3f at %.3f ms per frame, evaluation %d: %s\n", p["fitness"].as<double>(),
+                    p["ms_per_frame"].as<double>(), p["evaluation"].as<int>(), YAML::Dump(p["values"]).c_str());
       return {fitness, YAML::Load(valueOf(g, "optimizer", "best_values")).as<std::string>()};
     }
     if (Clock::now() > until) throw std::runtime_error("the optimiser did not finish: " + state);
