@@ -4,7 +4,8 @@
 # tuned parameters beat the shipped ones on the held-out bag) and the tuned graph it wrote holds
 # the applied best values; and if the same run with a study file, its runtime killed (SIGKILL)
 # half-way and launched again, ends with the same best as the unbroken one; and if two workers with
-# racing end as two workers without, with candidates cut short. Writes a JUnit result.
+# racing end as two workers without, with candidates cut short; and if two workers judging by two
+# objectives (fitness and cost) end with that best too, and print a Pareto front. Writes a JUnit result.
 #   tune_check.sh RESULT_XML WORK_DIR [FRAMES] [BUDGET]   (with this package's devel space sourced)
 set -u
 source "$(dirname "$0")/junit.sh"
@@ -62,22 +63,27 @@ if [ -z "$failure" ]; then
   fi
 
   # Two workers (copies of the evaluated part), without and with racing: the same best, some cut short
-  for v in "false workers2" "true raced"; do
-    read -r racing name <<<"$v"
+  # and with a second objective, the cost: the search follows the fitness, so the same best, and a front
+  for v in "false fitness workers2" "true fitness raced" "false fitness_and_cost costed"; do
+    read -r racing objectives name <<<"$v"
     timeout 600 roslaunch -p "$port" apex tune.launch data:="$work" budget:="$budget" workers:=2 racing:="$racing" \
-      tuned:="tuned_$name.yaml" >"$work/$name.log" 2>&1
-    grep -q '^tune: OK' "$work/$name.log" || fail "with 2 workers (racing $racing) the demo did not end with 'tune: OK'"
+      objectives:="$objectives" tuned:="tuned_$name.yaml" >"$work/$name.log" 2>&1
+    grep -q '^tune: OK' "$work/$name.log" || fail "with 2 workers ($name) the demo did not end with 'tune: OK'"
   done
   two=$(grep '^best on the training bag' "$work/workers2.log") raced=$(grep '^best on the training bag' "$work/raced.log")
   [ -n "$two" ] && [ "$two" = "$raced" ] || fail "2 workers with racing ended with '$raced', not as without: '$two'"
   grep -qE '^optimiser: finished after [0-9]+ evaluations \([1-9][0-9]* cut short\)' "$work/raced.log" ||
     fail "racing cut no candidate short: $(grep '^optimiser' "$work/raced.log")"
+  costed=$(grep '^best on the training bag' "$work/costed.log")
+  [ -n "$costed" ] && [ "$costed" = "$two" ] || fail "2 workers on two objectives ended with '$costed', not as on one: '$two'"
+  grep -qE '^optimiser: .*; a front of [1-9][0-9]* points?$' "$work/costed.log" && grep -q '^  front: F1 ' "$work/costed.log" ||
+    fail "two objectives printed no Pareto front: $(grep -E '^(optimiser|  front)' "$work/costed.log")"
 fi
 
 junit_result "$out" tune Tuning "TheOptimizerTunesThePipelineOnHardDataAndTheHeldOutScoreImprovesAndAKilledRunResumes" "$failure"
 grep -E '^(training|best|held-out|tune)' "$work/tune.log" 2>/dev/null
 [ -z "${killed_at:-}" ] || echo "killed after $killed_at of $budget evaluations, launched again: $(grep '^best on' "$work/resumed.log")"
-for name in workers2 raced; do
+for name in workers2 raced costed; do
   [ -f "$work/$name.log" ] && echo "$name: $(grep -E '^(the run took|optimiser)' "$work/$name.log" | tr '\n' ' ')"
 done
 [ -z "$failure" ] && echo "tuning: OK" || { echo "tuning: $failure"; exit 1; }
