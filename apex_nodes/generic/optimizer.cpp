@@ -15,6 +15,7 @@
 #include "apex_nodes/pareto.hpp"
 #include "apex_nodes/search.hpp"
 #include "evaluation_copies.hpp"
+#include "racing.hpp"
 #include "study_file.hpp"
 #include "tuned_dimension.hpp"
 
@@ -229,10 +230,7 @@ class Optimizer : public apex::Node {
     resumed_front_.clear();
     running_ = true;
     out_.assign(workers_.get(), -1);
-    race_.assign(out_.size(), Race{});
-    racing_ = racing_asked_ = racing_param_.get();
-    frame_bound_ = frame_bound_param_.get();
-    full_frames_ = cuts_ = 0;
+    racing_.start(racing_param_.get(), frame_bound_param_.get(), minimize_, out_.size());
     points_.clear(), scores_.clear();
     if (resumed > 0)
       log(apex::LogLevel::Info, "resumed from the study '" + study_->path() + "': " + std::to_string(resumed) + " evaluations");
@@ -261,14 +259,6 @@ class Optimizer : public apex::Node {
   }
 
  private:
-  /** A pass's racing: how far it got, and whether it was cut. */
-  struct Race {
-    int frames = 0;  // of the pass so far
-    double mean = 0;  // their mean
-    bool cut = false;  // cut fired for it
-    double bound = 0;  // the most it could score, as the search counts it (when cut: the value told)
-  };
-
   /** Every dimension resolved against the parameter it tunes (the first, if it tunes several). */
   std::vector<tuning::TunedDimension> resolveDimensions() const {
     std::vector<tuning::TunedDimension> out;
@@ -362,17 +352,9 @@ class Optimizer : public apex::Node {
   /** Racing: one more frame of worker `w`'s pass scored, its mean so far `mean`; cut it once it
    *  cannot reach what the search needs of it. */
   void frameScored(std::size_t w, double mean) {
-    Race& r = race_[w];
-    if (!racing_ || r.cut) return;
-    if (minimize_ ? mean < frame_bound_ : mean > frame_bound_)
-      return stopRacing("a mean so far of " + apex::toText(mean) + " is beyond frame_score_bound " + apex::toText(frame_bound_) +
-                        ": set it to the best a frame can score");
-    ++r.frames, r.mean = mean;
-    if (full_frames_ == 0 || r.frames >= full_frames_) return;
-    r.bound = bound(r);
-    if (r.bound >= search_->threshold(out_[w])) return;
-    r.cut = true;
-    ++cuts_;
+    const bool cut = racing_.frame(w, mean, search_->threshold(out_[w]));
+    sayIfRacingOff();
+    if (!cut) return;
     if (!copies_) return cut_.fire();
     if (auto st = copies_->fire(static_cast<int>(w), kCut.name); !st) {
       end("stopped");
@@ -380,32 +362,20 @@ class Optimizer : public apex::Node {
     }
   }
 
-  /** The most the pass could score (as the search counts it) with the frames left at their best. */
-  double bound(const Race& r) const {
-    const int left = std::max(0, full_frames_ - r.frames);
-    const double most = (r.frames * r.mean + left * frame_bound_) / std::max(full_frames_, r.frames);
-    return minimize_ ? -most : most;
-  }
-
   /** Worker `w`'s pass ended with `f`: a whole pass's mean, or a cut one's, which counts as the
    *  bound it was cut at (the most it could have scored, below what it needed). */
   void scored(std::size_t w, double f) {
-    const Race r = std::exchange(race_[w], Race{});
     const int id = std::exchange(out_[w], -1);
     if (two_ && copies_) costs_[id] = copies_->msPerFrame(static_cast<int>(w));
-    if (r.cut) return told(id, minimize_ ? -r.bound : r.bound);
-    if (racing_ && r.frames == 0) stopRacing("no frame's mean so far arrived: connect the mean's running to running");
-    if (racing_ && full_frames_ == 0) full_frames_ = r.frames;
-    if (racing_ && r.frames != full_frames_)
-      stopRacing("passes scored " + std::to_string(full_frames_) + " and " + std::to_string(r.frames) +
-                 " frames: the bound needs the same number each time");
-    told(id, f);
+    const double counted = racing_.ended(w, f);
+    sayIfRacingOff();
+    told(id, counted);
   }
 
-  /** Racing is off for the rest of the run; why is logged once. */
-  void stopRacing(const std::string& why) {
-    racing_ = false;
-    log(apex::LogLevel::Warn, "racing is off for this run: " + why);
+  /** Racing turned itself off for the rest of the run: why, logged once. */
+  void sayIfRacingOff() {
+    if (const std::string why = racing_.takeWhyOff(); !why.empty())
+      log(apex::LogLevel::Warn, "racing is off for this run: " + why);
   }
 
   /** Candidate `id` scored `f`: the search told, each evaluation it takes written to the study. */
@@ -468,7 +438,7 @@ class Optimizer : public apex::Node {
     running_ = false;
     ++run_;
     out_.assign(out_.size(), -1);
-    race_.assign(out_.size(), Race{});
+    racing_.reset(out_.size());
     copies_.reset();
   }
 
@@ -481,7 +451,7 @@ class Optimizer : public apex::Node {
         if (!targetsOf(d.port).empty()) publishMessage(d.port, apex::toMessage(d.before));
     const int n = search_->evaluations();
     setState(how + " after " + std::to_string(n) + " evaluation" + (n == 1 ? "" : "s") +
-             (racing_asked_ ? " (" + std::to_string(cuts_) + " cut short)" : "") +
+             (racing_.asked() ? " (" + std::to_string(racing_.cuts()) + " cut short)" : "") +
              (search_->best().empty() ? ""
                                       : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
                                             " at " + bestText()) +
@@ -571,11 +541,7 @@ class Optimizer : public apex::Node {
   std::vector<tuning::Scored> front_;  // with two objectives: the Pareto front so far
   std::vector<tuning::Scored> resumed_front_;  // the study's evaluations, read at start
   int run_ = 0;  // grows as a run ends: a copy's score of an earlier run is ignored
-  std::vector<Race> race_{1};  // per worker
-  bool racing_ = false, racing_asked_ = false;  // racing now; asked for at start
-  double frame_bound_ = 1;
-  int full_frames_ = 0;  // frames of a whole pass (0: none seen yet; racing waits for one)
-  int cuts_ = 0;  // candidates cut in this run
+  tuning::Racing racing_;
   bool running_ = false;
   bool minimize_ = false;
   std::string error_;  // why the last run stopped, or the graph was saved mid-run
