@@ -256,11 +256,13 @@ class Runtime:
     def node_profile(self, node):
         """``node``'s histograms over the last 5-10 s (``~node_profile``): a dict with ``window_s``
         and ``time`` and ``latency``, each a list of ``(lower_ms, upper_ms, count)`` bars (the
-        buckets that hold any; ``latency`` empty without live stamps)."""
+        buckets that hold any; ``latency`` empty without live stamps); and since it was added,
+        ``firings``, ``timed_firings`` and their summed ``timed_ms``."""
         res = self._call('node_profile', node=node)
         return {'window_s': res.window_s,
                 'time': list(zip(res.time_lower_ms, res.time_upper_ms, res.time_counts)),
-                'latency': list(zip(res.latency_lower_ms, res.latency_upper_ms, res.latency_counts))}
+                'latency': list(zip(res.latency_lower_ms, res.latency_upper_ms, res.latency_counts)),
+                'firings': res.firings, 'timed_firings': res.timed_firings, 'timed_ms': res.timed_ms}
 
     # ------------------------------------------------------------------ reading the graph
 

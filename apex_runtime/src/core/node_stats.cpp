@@ -133,6 +133,9 @@ NodeProfile NodeState::profile() const {
   p.window_s = std::chrono::duration<double>(now - (windowed ? base.at : added_at_)).count();
   p.time = bars(time_hist_.read().since(base.time));
   p.latency = bars(latency_hist_.read().since(base.latency));
+  p.firings = firings_.load(std::memory_order_relaxed);
+  p.timed_firings = timed_firings_.load(std::memory_order_relaxed);
+  p.timed_ns = ticksToNs(total_t_.load(std::memory_order_relaxed));
   return p;
 }
 

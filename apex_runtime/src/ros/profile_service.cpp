@@ -28,6 +28,7 @@ ros::ServiceServer serveProfile(ros::NodeHandle& pnh, const Graph& graph) {
         res.window_s = p.window_s;
         fill(p.time, res.time_lower_ms, res.time_upper_ms, res.time_counts);
         fill(p.latency, res.latency_lower_ms, res.latency_upper_ms, res.latency_counts);
+        res.firings = p.firings, res.timed_firings = p.timed_firings, res.timed_ms = p.timed_ns / 1e6;
         res.message = p.latency.empty() ? "no latency: no frame stamped within the last hour reached it in the window" : "";
         return true;
       });

@@ -129,6 +129,8 @@ struct NodeProfile {
   std::string name;
   double window_s = 0;  ///< how many seconds the counts are over
   std::vector<HistogramBucket> time, latency;
+  /** Since the node was added (as NodeStats): its firings, those timed and their summed time. */
+  std::uint64_t firings = 0, timed_firings = 0, timed_ns = 0;
 };
 
 /** @brief Profiling of one thread group: busy time against wall time since start. */
