@@ -39,7 +39,11 @@ class Tuning:
 
     ``Tuning(runtime, optimizer='optimizer', timeout=600)`` reads the Optimizer's space and wiring
     from the graph; ``timeout`` bounds one pass (ApexTimeout). Calling it with a trial samples the
-    space (:meth:`suggest`), evaluates (:meth:`evaluate`) and returns the score.
+    space (:meth:`suggest`), evaluates (:meth:`evaluate`) and returns the score. With the
+    Optimizer's ``objectives: fitness_and_cost`` it returns two values, the score and the cost
+    (the ms per frame the tuned nodes and those they feed, up to the mean, fired for), for a study
+    of ``directions=tuning.directions`` (NSGA-II); such a trial reports no frame to a pruner
+    (Optuna prunes single-objective studies only).
     """
 
     def __init__(self, runtime, optimizer='optimizer', timeout=600.0):
@@ -58,6 +62,11 @@ class Tuning:
             raise ApexError(self._where(), "nothing feeds the Optimizer's fitness: connect the score's mean to it")
         self._mean_node, mean_port = fitness[0]
         self.direction = 'minimize' if runtime.parameter(optimizer, 'minimize') else 'maximize'
+        # the Optimizer's objectives: fitness_and_cost adds the cost (ms per frame), to be minimised
+        self.cost = runtime.parameter(optimizer, 'objectives') == 'fitness_and_cost'
+        self.directions = [self.direction, 'minimize'] if self.cost else [self.direction]
+        self._tuned = {node for targets in self.targets.values() for node, _ in targets}
+        self._costly = self._between([l for l in links if optimizer not in (l[0], l[2])], self._tuned, self._mean_node)
         self._lock, self._changed = threading.Lock(), threading.Condition()
         self._means, self._counts, self._runnings = [], [], []
         outputs = {p.name for p in runtime.node(self._mean_node).ports if p.kind == 'output'}
@@ -115,14 +124,15 @@ class Tuning:
             if trial is not None:
                 trial.set_user_attr('runtime', self.runtime.namespace)
             seen = self._mark()
+            work = self._work() if self.cost else None
             for node, slot in self._evaluate:
                 self.runtime.fire_slot(node, slot)
-            score, frames, pruned = self._pass(seen, trial)
+            score, frames, pruned = self._pass(seen, trial if not self.cost else None)
             if trial is not None and frames is not None:
                 trial.set_user_attr('frames', frames)
             if pruned:
                 raise optuna.TrialPruned('cut after %d frames, mean so far %g' % (frames, score))
-            return score
+            return (score, self._ms_per_frame(work)) if self.cost else score
 
     def apply(self, values):
         """Sets the tuned parameters: ``values`` by dimension (:meth:`values`), or Optuna's
@@ -236,6 +246,43 @@ class Tuning:
                 raise ApexTimeout(self._where(), 'describe_space did not answer within 30 s' +
                                   (': ' + info.error if info.error else ''))
             time.sleep(0.05)
+
+    def _work(self):
+        """Each costly node's profile now (its firings, timed firings and their time)."""
+        return {node: self.runtime.node_profile(node) for node in self._costly}
+
+    def _ms_per_frame(self, before):
+        """The ms per frame the costly nodes fired for since ``before`` (:meth:`_work`): each node's
+        mean over its timed firings since then, times its firings, per frame (a tuned node's firings)."""
+        after = self._work()
+        frames = max((after[n]['firings'] - before[n]['firings'] for n in self._tuned if n in after), default=0)
+        if frames <= 0:
+            return 0.0
+        ms = 0.0
+        for node, now in after.items():
+            timed = now['timed_firings'] - before[node]['timed_firings']
+            if timed > 0:
+                ms += (now['timed_ms'] - before[node]['timed_ms']) / timed * (now['firings'] - before[node]['firings'])
+        return ms / frames
+
+    @staticmethod
+    def _between(links, tuned, mean):
+        """The tuned nodes and the nodes they feed, up to the mean: the part a candidate's cost is of
+        (``links`` without the Optimizer's)."""
+        data = [(f, t) for f, _, t, _, kind in links if kind in ('data', 'parameter')]
+
+        def reach(start, step):
+            seen, todo = set(start), list(start)
+            while todo:
+                n = todo.pop()
+                for nxt in step(n):
+                    if nxt not in seen:
+                        seen.add(nxt)
+                        todo.append(nxt)
+            return seen
+        down = reach(tuned, lambda n: [t for f, t in data if f == n])
+        up = reach({mean}, lambda n: [f for f, t in data if t == n])
+        return down & up
 
     def _links_from(self, links, port):
         return [(t, tp) for f, p, t, tp, _ in links if (f, p) == (self.optimizer, port)]

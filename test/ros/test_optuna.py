@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Tuning from Python with Optuna (python/apex/tuning.py, scripts/apex_optuna) against two runtimes
 with the paper's tuning graph on the demo bag (optuna.test): the Optimizer's space, two processes
-sharing one study through sqlite with each trial evaluated once, and a pruned pass cut short
-without a frame of it counting into the next."""
+sharing one study through sqlite with each trial evaluated once, a pruned pass cut short
+without a frame of it counting into the next, and two objectives (the score and ms per frame)
+with their Pareto front."""
 import os
 import shutil
 import subprocess
@@ -144,6 +145,36 @@ class Optuna(unittest.TestCase):
             self.assertIn('rerun_on_edit:=false', str(error.exception))
         finally:
             rospy.set_param('/a/apex/rerun_on_edit', False)
+
+    def test_5_two_objectives_give_a_pareto_front_of_score_and_ms_per_frame(self):
+        rt = self.rts['/a/apex']
+        storage = 'sqlite:///' + os.path.join(self.work, 'costed.db')
+        rt.set_parameter('optimizer', 'objectives', 'fitness_and_cost')
+        try:
+            self.assertEqual(Tuning(rt).directions, ['maximize', 'minimize'])
+            out = subprocess.run(
+                [find_node('apex', 'apex_optuna')[0], '--runtime', '/a/apex', '--storage', storage, '--study', 'costed',
+                 '--trials', '8', '--sampler', 'nsga2', '--seed', '3', '--set', 'score/truth=' + self.truth,
+                 '--play', 'bag/file=' + self.bag], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                timeout=240)
+        finally:
+            rt.set_parameter('optimizer', 'objectives', 'fitness')
+        self.assertEqual(out.returncode, 0, out.stdout)
+        study = optuna.load_study(study_name='costed', storage=storage)
+        self.assertEqual(study.directions, [optuna.study.StudyDirection.MAXIMIZE, optuna.study.StudyDirection.MINIMIZE])
+        trials = study.get_trials(states=(optuna.trial.TrialState.COMPLETE,))
+        self.assertEqual(len(trials), 8, out.stdout)
+        for t in trials:
+            score, ms = t.values
+            self.assertTrue(0 <= score <= 1, t.values)
+            self.assertGreater(ms, 0, 'the tuned nodes fired for no time: %s' % t.values)
+            self.assertEqual(t.user_attrs['frames'], FRAMES)
+        front = study.best_trials
+        self.assertIn('front: %d trials' % len(front), out.stdout)
+        self.assertEqual(out.stdout.count('\n  front: '), len(front), out.stdout)
+        for a in front:  # none of the front is beaten on both by another trial
+            self.assertFalse(any(b.values[0] >= a.values[0] and b.values[1] <= a.values[1] and b.values != a.values
+                                 for b in trials), a.values)
 
 
 if __name__ == '__main__':
