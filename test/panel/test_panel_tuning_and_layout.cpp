@@ -497,7 +497,15 @@ TEST_F(PanelWidgetTest, ATwoObjectiveRunsFrontIsInTheOptimizersMenuAndAPointAppl
       QTest::qWaitFor([&] { return param(runtimeGraph(), "front_opt", "state").find("finished") != std::string::npos; }, kWaitMs))
       << param(runtimeGraph(), "front_opt", "state");
   EXPECT_NE(param(runtimeGraph(), "front_opt", "state").find("; a front of "), std::string::npos);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return !panel.model().front("front_opt").empty(); }, kWaitMs));
+  const std::string front = param(runtimeGraph(), "front_opt", "front");  // the run's last: it finished
+  ASSERT_TRUE(QTest::qWaitFor(
+      [&] {  // the panel shows that front, not one from before the run's last evaluation
+        const auto* shown = panel.model().parameter("front_opt", "front");
+        return shown && shown->value == front;
+      },
+      kWaitMs))
+      << "the panel's graph never showed the final front";
+  ASSERT_FALSE(panel.model().front("front_opt").empty()) << front;
   const FrontPoint first = panel.model().front("front_opt").front();  // the cheapest
   EXPECT_GT(first.ms_per_frame, 0.0);
   const double value = YAML::Load(first.values)["factor"].as<double>();
