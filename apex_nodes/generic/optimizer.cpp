@@ -6,15 +6,21 @@
 // tells the search and sends the next candidate. No thread ever waits for an evaluation. With
 // `workers` above 1, that many candidates are out at once, each in a copy of the evaluated part
 // beside the graph (evaluation_copies.hpp) on threads of its own; the graph itself then rests.
+// With `remote_workers`, other runtimes evaluate candidates too, each in its Optimizer of the same
+// name (remote_workers.hpp); every Optimizer serves such requests while it runs no search itself
+// (candidate_server.hpp).
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <utility>
 
 #include "apex/core/registry.hpp"
 #include "apex_nodes/pareto.hpp"
+#include "apex_nodes/remote_workers.hpp"
 #include "apex_nodes/search.hpp"
 #include "evaluation_copies.hpp"
+#include "candidate_server.hpp"
 #include "racing.hpp"
 #include "study_file.hpp"
 #include "tuned_dimension.hpp"
@@ -34,6 +40,8 @@ apex::Status shapeDimensions(const apex::ParamValues& p, apex::Manifest& m) {
   }
   return apex::Status::ok();
 }
+
+using Done = tuning::RemoteWorkers::Done;
 
 }  // namespace
 
@@ -103,6 +111,12 @@ class Optimizer : public apex::Node {
   static inline const apex::ParamDecl<bool> kRacing = param::flag("racing").describe(
       "stop scoring a candidate once even the best frame scores for the rest of its pass could not make it count (cut "
       "fires): the run takes the same course on fewer frames; needs running and cut connected");
+  static inline const apex::ParamDecl<std::vector<std::string>> kRemoteWorkers =
+      param::textList("remote_workers")
+          .describe(
+              "other runtimes (e.g. /robot2/apex, on this machine or another) whose Optimizer of the same name evaluates "
+              "candidates too, one at a time each, beside the workers here: they load the same graph and reach the same "
+              "files; a runtime named twice evaluates two at once if its Optimizer has two workers");
   enum class Objectives { kFitness, kFitnessAndCost };
   static inline const apex::ChoiceDecl<Objectives> kObjectives =
       param::choice<Objectives>(
@@ -152,6 +166,7 @@ class Optimizer : public apex::Node {
         .param(kSpace)
         .param(kStudy)
         .param(kWorkers)
+        .param(kRemoteWorkers)
         .param(kRacing)
         .param(kFrameBound)
         .param(kObjectives)
@@ -159,9 +174,26 @@ class Optimizer : public apex::Node {
         .shapedBy(shapeDimensions);
   }
 
-  ~Optimizer() override { copies_.reset(); }  // first: the copies' taps call in until they stop
+  ~Optimizer() override {
+    {
+      std::lock_guard<std::mutex> lock(reach_->mutex);  // first: nothing from other threads reaches it any more
+      reach_->node = nullptr;
+    }
+    serving_.reset();  // waits for the requests under way to be handed over
+    copies_.reset();  // the copies' taps call in until they stop
+  }
 
   void setup() override {
+    {
+      std::lock_guard<std::mutex> lock(reach_->mutex);
+      reach_->node = this;
+    }
+    if (auto transport = tuning::remoteWorkers())
+      serving_ = transport->serve(*this, [this](tuning::CandidateValues values, bool with_cost, Done reply) {
+        auto shared = std::make_shared<Done>(std::move(reply));
+        if (!later(reach_, [this, values = std::move(values), with_cost, shared] { serve(values, with_cost, *shared); }))
+          (*shared)({"the optimizer '" + name() + "' was removed", 0, 0});
+      });
     const std::string saved = state_.get();
     if (saved.rfind("running", 0) != 0 && saved.rfind("starting", 0) != 0) return;
     updateParam(kState.name(), "interrupted (" + saved + ")");
@@ -202,6 +234,11 @@ class Optimizer : public apex::Node {
   void start() {
     if (running_) throw std::invalid_argument("a run is in progress (" + state_.get() + "): stop it first, or wait for it");
     error_.clear();
+    remotes_ = remote_workers_.get();
+    remote_ = tuning::remoteWorkers();
+    if (!remotes_.empty() && !remote_)
+      throw std::invalid_argument("remote_workers: this host cannot reach other runtimes (the ROS runtime can)");
+    server_.close("the optimizer '" + name() + "' there started a run of its own");
     auto dims = resolveDimensions();
     std::vector<search::Dimension> ranges;
     for (const auto& d : dims) ranges.insert(ranges.end(), d.coordinates.begin(), d.coordinates.end());
@@ -211,7 +248,7 @@ class Optimizer : public apex::Node {
     s.population = population_.get();
     s.F = f_.get();
     s.CR = cr_.get();
-    s.deferred = workers_.get() > 1;
+    s.deferred = workersInAll() > 1;
     auto made = search::makeSearch(algorithm_.get(), ranges, s);
     if (!made) throw std::invalid_argument(made.message());
     auto search = std::move(made).value();
@@ -229,7 +266,9 @@ class Optimizer : public apex::Node {
     }
     resumed_front_.clear();
     running_ = true;
-    out_.assign(workers_.get(), -1);
+    local_ = workers_.get();
+    out_.assign(local_ + remotes_.size(), -1);
+    remote_done_.assign(remotes_.size(), 0);
     racing_.start(racing_param_.get(), frame_bound_param_.get(), minimize_, out_.size());
     points_.clear(), scores_.clear();
     if (resumed > 0)
@@ -237,7 +276,7 @@ class Optimizer : public apex::Node {
     if (search_->done()) return end("finished");
     if (!inCopies()) return propose();
     setState("starting: copying the evaluated part for " +
-             (out_.size() > 1 ? std::to_string(out_.size()) + " workers" : std::string("its cost")));
+             (local_ > 1 || !remotes_.empty() ? std::to_string(local_) + " workers" : std::string("its cost")));
     describeGraph([this, run = run_](const apex::GraphSnapshot& graph) { makeCopies(graph, run); });
   }
 
@@ -299,7 +338,7 @@ class Optimizer : public apex::Node {
     return "algorithm " + algorithm_.get() + ", budget " + std::to_string(budget_.get()) + ", seed " +
            std::to_string(seed_.get()) + ", population " + std::to_string(population_.get()) + ", F " + apex::toText(f_.get()) +
            ", CR " + apex::toText(cr_.get()) + ", minimize " + (minimize_param_.get() ? "true" : "false") + ", dimensions [" +
-           dims + "]" + (workers_.get() > 1 && algorithm_.get() == "differential_evolution" ? ", updating deferred" : "") +
+           dims + "]" + (workersInAll() > 1 && algorithm_.get() == "differential_evolution" ? ", updating deferred" : "") +
            (objectives_.get() == Objectives::kFitnessAndCost ? ", objectives fitness_and_cost" : "");
   }
 
@@ -339,11 +378,11 @@ class Optimizer : public apex::Node {
         fitness ? scored(copy, v) : frameScored(copy, v);
       });
     };
-    auto copies = part ? tuning::EvaluationCopies::make(part.value(), graph.makeGraph, static_cast<int>(out_.size()), sent)
+    auto copies = part ? tuning::EvaluationCopies::make(part.value(), graph.makeGraph, static_cast<int>(local_), sent)
                        : apex::Result<std::unique_ptr<tuning::EvaluationCopies>>(part.status());
     if (!copies) {
       end("stopped");
-      return fail("workers " + std::to_string(out_.size()) + ": " + copies.message());
+      return fail("workers " + std::to_string(local_) + ": " + copies.message());
     }
     copies_ = std::move(copies).value();
     propose();
@@ -366,8 +405,8 @@ class Optimizer : public apex::Node {
    *  bound it was cut at (the most it could have scored, below what it needed). */
   void scored(std::size_t w, double f) {
     const int id = std::exchange(out_[w], -1);
-    if (two_ && copies_) costs_[id] = copies_->msPerFrame(static_cast<int>(w));
-    const double counted = racing_.ended(w, f);
+    if (two_ && copies_ && w < local_) costs_[id] = copies_->msPerFrame(static_cast<int>(w));
+    const double counted = w < local_ ? racing_.ended(w, f) : f;  // a remote pass is never cut
     sayIfRacingOff();
     told(id, counted);
   }
@@ -412,7 +451,9 @@ class Optimizer : public apex::Node {
       const auto x = search_->ask();
       points_[id] = x;
       out_[w] = id;
-      if (!copies_) {
+      if (w >= local_) {
+        askRemote(w, x);
+      } else if (!copies_) {
         sendAll(x);
         evaluate_.fire();
       } else if (auto st = copies_->evaluate(static_cast<int>(w), texts(x)); !st) {
@@ -420,7 +461,10 @@ class Optimizer : public apex::Node {
         return fail("worker " + std::to_string(w + 1) + ": " + st.message());
       }
     }
-    const std::string at_once = out_.size() > 1 ? ", " + std::to_string(out_.size()) + " workers" : "";
+    const std::string at_once = out_.size() > 1
+                                    ? ", " + std::to_string(out_.size()) + " workers" +
+                                          (remotes_.empty() ? "" : " (" + std::to_string(remotes_.size()) + " remote)")
+                                    : "";
     setState("running: evaluation " + std::to_string(search_->evaluations() + 1) + " of " + std::to_string(search_->budget()) +
              at_once);
   }
@@ -455,7 +499,8 @@ class Optimizer : public apex::Node {
              (search_->best().empty() ? ""
                                       : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
                                             " at " + bestText()) +
-             (two_ ? "; a front of " + std::to_string(front_.size()) + " point" + (front_.size() == 1 ? "" : "s") : ""));
+             (two_ ? "; a front of " + std::to_string(front_.size()) + " point" + (front_.size() == 1 ? "" : "s") : "") +
+             remoteText());
     finished_.fire();
   }
 
@@ -493,8 +538,61 @@ class Optimizer : public apex::Node {
     return "[" + out + "]";
   }
 
-  /** Candidates are evaluated in copies of the evaluated part, not in the graph. */
-  bool inCopies() const { return out_.size() > 1 || two_; }
+  /** Candidates are evaluated in copies of the evaluated part, not in the graph (with remote
+   *  workers too: an answer comes between firings, when the graph's receivers may not have read
+   *  the last firing's messages, so a candidate could not go out into the graph then). */
+  bool inCopies() const { return local_ > 1 || two_ || !remotes_.empty(); }
+  /** The workers here and in other runtimes. */
+  std::size_t workersInAll() const { return workers_.get() + remote_workers_.get().size(); }
+
+  /** Worker `w`, in another runtime, evaluates `x`; its answer comes to answered(). */
+  void askRemote(std::size_t w, const std::vector<double>& x) {
+    const std::string runtime = remotes_[w - local_];
+    remote_->evaluate(runtime, name(), texts(x), two_, [this, reach = reach_, run = run_, w, runtime](tuning::RemoteOutcome o) {
+      later(reach, [this, run, w, runtime, o] { answered(run, w, runtime, o); });
+    });
+  }
+
+  void answered(int run, std::size_t w, const std::string& runtime, const tuning::RemoteOutcome& o) {
+    if (!running_ || run != run_ || out_[w] < 0) return;  // a run that ended meanwhile
+    if (!o.error.empty()) {
+      end("stopped");
+      return fail("remote worker " + runtime + ": " + o.error + ": the run stopped after " +
+                  std::to_string(search_->evaluations()) + " evaluations" +
+                  (study_path_.get().empty() ? "" : " (start it again: it continues from its study)"));
+    }
+    if (two_) costs_[out_[w]] = o.ms_per_frame;
+    ++remote_done_[w - local_];
+    scored(w, o.fitness);
+  }
+
+  /** How many candidates each other runtime evaluated, for the state. */
+  std::string remoteText() const {
+    std::map<std::string, int> by;
+    for (std::size_t i = 0; i < remotes_.size(); ++i) by[remotes_[i]] += remote_done_[i];
+    std::string out;
+    for (const auto& [runtime, n] : by) out += "; " + std::to_string(n) + " evaluated by " + runtime;
+    return out;
+  }
+
+  /** A request from another runtime's Optimizer: evaluated here unless a run of its own goes on. */
+  void serve(tuning::CandidateValues values, bool with_cost, const Done& reply) {
+    if (running_) return reply({"the optimizer '" + name() + "' there runs a search of its own (" + state_.get() + ")", 0, 0});
+    server_.ask(name(), std::move(values), with_cost, reply, workers_.get());
+  }
+
+  /** How callbacks from other threads reach the node: through `node`, null once it is gone. */
+  struct Reach {
+    std::mutex mutex;
+    Optimizer* node = nullptr;
+  };
+  /** Runs `fn` on the node's thread group if it is still there; whether it was. */
+  static bool later(const std::shared_ptr<Reach>& reach, std::function<void()> fn) {
+    std::lock_guard<std::mutex> lock(reach->mutex);
+    if (!reach->node) return false;
+    reach->node->runLater(std::move(fn));
+    return true;
+  }
 
   void setState(const std::string& text) { updateParam(kState.name(), text); }
   /** An error that stays until the next start, through the firings that ignore a score. */
@@ -527,13 +625,23 @@ class Optimizer : public apex::Node {
   apex::Param<std::string> state_{this, kState};
   apex::Param<std::string> study_path_{this, kStudy};
   apex::Param<int> workers_{this, kWorkers};
+  apex::Param<std::vector<std::string>> remote_workers_{this, kRemoteWorkers};
   apex::Choice<Objectives> objectives_{this, kObjectives};
 
   std::vector<tuning::TunedDimension> dims_;
   std::unique_ptr<search::Search> search_;
   std::unique_ptr<tuning::StudyFile> study_;  // the run's, if it has one
   std::unique_ptr<tuning::EvaluationCopies> copies_;  // the workers, if more than one (else the graph evaluates)
-  std::vector<int> out_{-1};  // per worker: the candidate it evaluates, -1: idle
+  std::vector<int> out_{-1};  // per worker (here, then remote): the candidate it evaluates, -1: idle
+  std::size_t local_ = 1;  // workers here, the first of out_
+  std::vector<std::string> remotes_;  // the run's remote workers, after those here
+  std::vector<int> remote_done_;  // per remote worker: candidates it evaluated
+  std::shared_ptr<tuning::RemoteWorkers> remote_;  // the run's transport
+  std::shared_ptr<Reach> reach_ = std::make_shared<Reach>();
+  std::shared_ptr<void> serving_;  // while set, other runtimes' Optimizers can send candidates here
+  tuning::CandidateServer server_{{[this](auto done) { describeGraph(std::move(done)); },
+                                   [this](std::function<void()> fn) { later(reach_, std::move(fn)); },
+                                   [this](const std::string& text) { setState(text); }}};
   std::map<int, std::vector<double>> points_;  // candidates asked for and not yet written to the study
   std::map<int, double> scores_;  // their fitnesses, as they come (in any order)
   std::map<int, double> costs_;  // with two objectives: their costs, as they come

@@ -208,7 +208,9 @@ int main(int argc, char** argv) {
     runOptimizer(watch, budget, t0);
     const auto [best_fitness, best] = finalBest();
     std::printf("best on the training bag: F1 %.3f at %s\n", best_fitness, best.c_str());
-    std::printf("the run took %.1f s with %s worker(s)\n", seconds(run_start), valueOf(g0, "optimizer", "workers").c_str());
+    const std::string remote = valueOf(g0, "optimizer", "remote_workers");
+    std::printf("the run took %.1f s with %s worker(s)%s\n", seconds(run_start), valueOf(g0, "optimizer", "workers").c_str(),
+                remote == "[]" ? "" : (" here and those of " + remote).c_str());
     fire("optimizer", "apply_best");
     waitApplied(tuned, best);
     apex::SaveGraph::Request save;

@@ -22,31 +22,6 @@ using ::testing::HasSubstr;
 
 namespace {
 
-/** A run of `workers` written to a study: its rows after the two header lines. */
-std::vector<std::string> studyOfRun(const std::string& algorithm, int workers, Loop& loop) {
-  const std::string study = ::testing::TempDir() + "/apex_workers_" + std::to_string(::getpid()) + ".csv";
-  std::remove(study.c_str());
-  EXPECT_TRUE(loop.g.setParameter("opt", "algorithm", algorithm));
-  EXPECT_TRUE(loop.g.setParameter("opt", "budget", "40"));
-  EXPECT_TRUE(loop.g.setParameter("opt", "population", "8"));
-  EXPECT_TRUE(loop.g.setParameter("opt", "workers", std::to_string(workers)));
-  EXPECT_TRUE(loop.g.setParameter("opt", "study", study));
-  loop.g.start();
-  EXPECT_TRUE(loop.g.fireSlot("opt", "start"));
-  EXPECT_TRUE(waitState(loop.g, "finished")) << paramText(loop.g, "opt", "state");
-  EXPECT_TRUE(loop.g.waitIdle(kWait));
-  auto rows = lines(study);
-  std::remove(study.c_str());
-  return rows.size() < 2 ? rows : std::vector<std::string>(rows.begin() + 2, rows.end());
-}
-
-/** "k,fitness,gain": whether the fitness is the gain (the candidate was in effect for every frame). */
-bool scoredItsOwnValue(const std::string& row) {
-  const auto a = row.find(','), b = row.find(',', a + 1);
-  const double fitness = std::stod(row.substr(a + 1, b - a - 1)), gain = std::stod(row.substr(b + 1));
-  return std::abs(fitness - gain) <= 1e-12 * std::max(1.0, gain);  // the mean of 20 equal numbers, rounded
-}
-
 TEST(Optimizer, WorkersEvaluateInCopiesBesideTheRestingGraphWithTheSameCandidatesAndResults) {
   Loop one(20), three(20);
   const auto serial = studyOfRun("random", 1, one);

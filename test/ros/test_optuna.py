@@ -3,7 +3,8 @@
 with the paper's tuning graph on the demo bag (optuna.test): the Optimizer's space, two processes
 sharing one study through sqlite with each trial evaluated once, a pruned pass cut short
 without a frame of it counting into the next, and two objectives (the score and ms per frame)
-with their Pareto front."""
+with their Pareto front. The built-in search across the two runtimes: one Optimizer's remote
+worker is the other runtime's Optimizer, each candidate evaluated once, by one of them."""
 import os
 import shutil
 import subprocess
@@ -175,6 +176,38 @@ class Optuna(unittest.TestCase):
         for a in front:  # none of the front is beaten on both by another trial
             self.assertFalse(any(b.values[0] >= a.values[0] and b.values[1] <= a.values[1] and b.values != a.values
                                  for b in trials), a.values)
+
+    def test_6_the_built_in_search_evaluates_one_study_in_both_runtimes_each_candidate_once(self):
+        here, there = self.rts['/a/apex'], self.rts['/b/apex']
+        for rt in (here, there):  # both reach the same files
+            rt.set_parameter('score', 'truth', self.truth)
+            Tuning(rt).play('bag', 'file', self.bag)
+        study = os.path.join(rospy.get_param('~data'), 'built_in_%d.csv' % os.getpid())  # in the file roots
+        self.addCleanup(lambda: os.path.exists(study) and os.remove(study))
+        settings = {'algorithm': 'differential_evolution', 'budget': 12, 'population': 6, 'workers': 1,
+                    'remote_workers': ['/b/apex'], 'study': study}
+        before = {name: here.parameter('optimizer', name) for name in settings}
+        passes = {ns: self.passes[ns]() for ns in RUNTIMES}
+        try:
+            for name, value in settings.items():
+                here.set_parameter('optimizer', name, value)
+            here.fire_slot('optimizer', 'start')
+            self.assertTrue(wait_until(lambda: here.parameter('optimizer', 'state').startswith(('finished', 'stopped')), 240),
+                            here.parameter('optimizer', 'state'))
+        finally:
+            for name, value in before.items():
+                here.set_parameter('optimizer', name, value)
+        state, served = here.parameter('optimizer', 'state'), there.parameter('optimizer', 'state')
+        self.assertTrue(state.startswith('finished after 12 evaluations'), state)
+        remote = int(state.split(' evaluated by /b/apex')[0].split('; ')[-1])
+        self.assertTrue(0 < remote < 12, state)  # both evaluated some
+        self.assertEqual(served, 'served %d candidates for other runtimes' % remote)
+        with open(study) as f:
+            rows = [line.split(',') for line in f.read().splitlines()[2:]]
+        self.assertEqual([int(r[0]) for r in rows], list(range(1, 13)))  # each candidate once, in the order asked
+        self.assertTrue(all(0 <= float(r[1]) <= 1 for r in rows), rows)
+        for ns in RUNTIMES:  # the graphs rested: copies evaluated, here and there
+            self.assertEqual(self.passes[ns](), passes[ns], ns)
 
 
 if __name__ == '__main__':
