@@ -11,7 +11,6 @@
 // (candidate_server.hpp).
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <sstream>
 #include <utility>
 
@@ -20,8 +19,10 @@
 #include "apex_nodes/remote_workers.hpp"
 #include "apex_nodes/search.hpp"
 #include "evaluation_copies.hpp"
+#include "optimizer_ports.hpp"
 #include "candidate_server.hpp"
 #include "racing.hpp"
+#include "reach.hpp"
 #include "study_file.hpp"
 #include "tuned_dimension.hpp"
 
@@ -45,96 +46,8 @@ using Done = tuning::RemoteWorkers::Done;
 
 }  // namespace
 
-class Optimizer : public apex::Node {
+class Optimizer : public apex::Node, private OptimizerPorts {
  public:
-  static inline const apex::InputPort<double> kFitness{
-      "fitness", "the candidate's score, e.g. SequenceMean's mean; larger is better unless minimize", true};
-  static inline const apex::InputPort<double> kRunning{
-      "running", "for racing: each frame, the candidate's mean so far (SequenceMean's running)", true};
-  static inline const apex::OutputPort<double> kBestFitness{"best_fitness", "after each evaluation: the best fitness so far"};
-  static inline const apex::OutputPort<int> kEvaluations{"evaluations", "after each evaluation: how many are done"};
-  static inline const apex::OutputPort<std::string> kBest{
-      "best", "after each evaluation: the best values so far, as YAML ({c: 12.5, block_size: 31})"};
-  static inline const apex::TriggerPort kEvaluate{
-      "evaluate",
-      "a candidate's values are in effect: replay the data (a player's restart) and start the "
-      "score (SequenceMean's reset)"};
-  static inline const apex::TriggerPort kCut{
-      "cut",
-      "racing: the candidate cannot reach what it needs to (the best so far, or the member it competes with): end its "
-      "pass now (a player's end_pass)"};
-  static inline const apex::TriggerPort kFinished{"finished",
-                                                  "the run ended (its budget is spent, or stop): the best values are known"};
-  static inline const apex::ParamDecl<std::vector<std::string>> kDimensions =
-      param::textList("dimensions")
-          .describe(
-              "one output each: 'name [min max] [int]', 'name interval [min max]' (both ends), 'name choice "
-              "[option ...]' or 'name bool', e.g. 'c 0 60', 'block_size int', 'area interval 500 20000', 'method "
-              "choice'; without min and max (options), the range (options) of the parameter it is connected to")
-          .shapesInterface();
-  static inline const apex::ParamDecl<std::string> kAlgorithm =
-      param::choice("algorithm", {"differential_evolution", "random", "grid"});
-  static inline const apex::ParamDecl<int> kBudget =
-      param::integer("budget").range(1, 1000000).step(1).init(60).describe("evaluations in a run");
-  static inline const apex::ParamDecl<int> kSeed =
-      param::integer("seed").range(0, 1000000000).step(1).init(1).describe("the same seed gives the same candidates");
-  static inline const apex::ParamDecl<int> kPopulation =
-      param::integer("population")
-          .range(0, 10000)
-          .step(1)
-          .describe("differential evolution: candidates per generation; 0: 15 per dimension, at least 5");
-  static inline const apex::ParamDecl<double> kF =
-      param::number("F").range(0.0, 2.0).step(0.05).init(0.8).describe("differential evolution: differential weight");
-  static inline const apex::ParamDecl<double> kCR =
-      param::number("CR").range(0.0, 1.0).step(0.05).init(0.9).describe("differential evolution: crossover probability");
-  static inline const apex::ParamDecl<bool> kMinimize = param::flag("minimize").describe("smaller fitness is better");
-  static inline const apex::ParamDecl<std::string> kState =
-      param::text("state").init("idle").describe("what the optimiser is doing (it sets this; saved with the graph)");
-  static inline const apex::ParamDecl<std::string> kBestValues =
-      param::text("best_values")
-          .describe(
-              "the best values so far as YAML, {dimension: value} (it sets this; the panel's "
-              "'Apply best values' sets them on the tuned parameters as one undoable edit)");
-  static inline const apex::ParamDecl<std::string> kSpace = param::text("space").describe(
-      "what describe_space found: each dimension as resolved against the parameter it tunes, as YAML (it sets "
-      "this; python/apex/tuning.py samples it with Optuna)");
-  static inline const apex::ParamDecl<std::string> kStudy =
-      param::path("study")
-          .mode(apex::PathMode::Write)
-          .describe(
-              "a file where each evaluation is written as it ends: a run started again with the same settings "
-              "(after a stop, a crash or a kill) continues from it; empty: none");
-  static inline const apex::ParamDecl<int> kWorkers = param::integer("workers").range(1, 64).step(1).init(1).describe(
-      "candidates evaluated at once (e.g. one per core); above 1, each in a copy of the part the fitness comes "
-      "from, made when a run starts, on threads of its own, while the graph rests; differential evolution then "
-      "replaces members once a generation is scored (scipy's deferred updating)");
-  static inline const apex::ParamDecl<bool> kRacing = param::flag("racing").describe(
-      "stop scoring a candidate once even the best frame scores for the rest of its pass could not make it count (cut "
-      "fires): the run takes the same course on fewer frames; needs running and cut connected");
-  static inline const apex::ParamDecl<std::vector<std::string>> kRemoteWorkers =
-      param::textList("remote_workers")
-          .describe(
-              "other runtimes (e.g. /robot2/apex, on this machine or another) whose Optimizer of the same name evaluates "
-              "candidates too, one at a time each, beside the workers here: they load the same graph and reach the same "
-              "files; a runtime named twice evaluates two at once if its Optimizer has two workers");
-  enum class Objectives { kFitness, kFitnessAndCost };
-  static inline const apex::ChoiceDecl<Objectives> kObjectives =
-      param::choice<Objectives>(
-          "objectives",
-          {{"fitness", Objectives::kFitness},
-           {"fitness_and_cost", Objectives::kFitnessAndCost,
-            "also the cost, the ms per frame the tuned nodes and those they feed fire for, measured in a copy of the "
-            "evaluated part (as with workers): the run keeps the candidates no other beats on both in 'front'"}})
-          .describe("what a candidate is judged by");
-  static inline const apex::ParamDecl<std::string> kFront = param::text("front").describe(
-      "with two objectives, the Pareto front so far, cheapest first, as YAML ([{evaluation: 7, fitness: 0.9, "
-      "ms_per_frame: 3.1, values: {c: 12}}, ...]; it sets this; the panel's menu applies a point of it)");
-  static inline const apex::ParamDecl<double> kFrameBound =
-      param::number("frame_score_bound")
-          .range(-1e9, 1e9)
-          .step(0.1)
-          .init(1.0)
-          .describe("racing: the best score a single frame can have (1 for F1 or accuracy; with minimize, the least)");
   static apex::Manifest manifest() {
     return apex::Manifest(
                "Tunes other nodes' parameters: one output per dimension, connected to the parameter it tunes; "
@@ -175,23 +88,17 @@ class Optimizer : public apex::Node {
   }
 
   ~Optimizer() override {
-    {
-      std::lock_guard<std::mutex> lock(reach_->mutex);  // first: nothing from other threads reaches it any more
-      reach_->node = nullptr;
-    }
+    reach_->set(nullptr);  // first: nothing from other threads reaches it any more
     serving_.reset();  // waits for the requests under way to be handed over
     copies_.reset();  // the copies' taps call in until they stop
   }
 
   void setup() override {
-    {
-      std::lock_guard<std::mutex> lock(reach_->mutex);
-      reach_->node = this;
-    }
+    reach_->set(this);
     if (auto transport = tuning::remoteWorkers())
       serving_ = transport->serve(*this, [this](tuning::CandidateValues values, bool with_cost, Done reply) {
         auto shared = std::make_shared<Done>(std::move(reply));
-        if (!later(reach_, [this, values = std::move(values), with_cost, shared] { serve(values, with_cost, *shared); }))
+        if (!reach_->later([this, values = std::move(values), with_cost, shared] { serve(values, with_cost, *shared); }))
           (*shared)({"the optimizer '" + name() + "' was removed", 0, 0});
       });
     const std::string saved = state_.get();
@@ -253,7 +160,7 @@ class Optimizer : public apex::Node {
     if (!made) throw std::invalid_argument(made.message());
     auto search = std::move(made).value();
     auto study = openStudy(ranges);
-    const int resumed = study ? replay(*study, *search) : 0;
+    const auto resumed = study ? tuning::replay(*study, *search, minimize_param_.get()) : std::vector<tuning::Scored>{};
     search_ = std::move(search);
     study_ = std::move(study);
     dims_ = std::move(dims);
@@ -261,18 +168,18 @@ class Optimizer : public apex::Node {
     two_ = objectives_.get() == Objectives::kFitnessAndCost;
     front_.clear(), costs_.clear();
     if (two_) {
-      for (const auto& e : resumed_front_) tuning::addToFront(front_, e, minimize_);
+      for (const auto& e : resumed) tuning::addToFront(front_, e, minimize_);
       updateParam(kFront.name(), frontText());
     }
-    resumed_front_.clear();
     running_ = true;
     local_ = workers_.get();
     out_.assign(local_ + remotes_.size(), -1);
     remote_done_.assign(remotes_.size(), 0);
     racing_.start(racing_param_.get(), frame_bound_param_.get(), minimize_, out_.size());
     points_.clear(), scores_.clear();
-    if (resumed > 0)
-      log(apex::LogLevel::Info, "resumed from the study '" + study_->path() + "': " + std::to_string(resumed) + " evaluations");
+    if (!resumed.empty())
+      log(apex::LogLevel::Info,
+          "resumed from the study '" + study_->path() + "': " + std::to_string(resumed.size()) + " evaluations");
     if (search_->done()) return end("finished");
     if (!inCopies()) return propose();
     setState("starting: copying the evaluated part for " +
@@ -349,23 +256,6 @@ class Optimizer : public apex::Node {
     for (const auto& c : coordinates) columns.push_back(c.name);
     return std::make_unique<tuning::StudyFile>(study_path_.get(), settingsText(), columns,
                                                objectives_.get() == Objectives::kFitnessAndCost);
-  }
-
-  /** The study's evaluations told to `search` again, each checked to be its candidate; how many. */
-  int replay(tuning::StudyFile& study, search::Search& search) {
-    int n = 0;
-    resumed_front_.clear();
-    const bool minimize = minimize_param_.get();
-    for (const auto& e : study.read()) {
-      if (search.done()) break;
-      if (!tuning::samePoint(search.ask(), e.point))
-        throw std::invalid_argument("the study '" + study.path() + "': evaluation " + std::to_string(n + 1) +
-                                    " is not this run's candidate (the search was changed?): name another file, or move it away");
-      search.tell(minimize ? -e.fitness : e.fitness);
-      resumed_front_.push_back({n + 1, e.fitness, e.cost_ms, e.point});
-      ++n;
-    }
-    return n;
   }
 
   /** The copies for workers beyond the graph, then the first candidates out. */
@@ -549,7 +439,7 @@ class Optimizer : public apex::Node {
   void askRemote(std::size_t w, const std::vector<double>& x) {
     const std::string runtime = remotes_[w - local_];
     remote_->evaluate(runtime, name(), texts(x), two_, [this, reach = reach_, run = run_, w, runtime](tuning::RemoteOutcome o) {
-      later(reach, [this, run, w, runtime, o] { answered(run, w, runtime, o); });
+      reach->later([this, run, w, runtime, o] { answered(run, w, runtime, o); });
     });
   }
 
@@ -579,19 +469,6 @@ class Optimizer : public apex::Node {
   void serve(tuning::CandidateValues values, bool with_cost, const Done& reply) {
     if (running_) return reply({"the optimizer '" + name() + "' there runs a search of its own (" + state_.get() + ")", 0, 0});
     server_.ask(name(), std::move(values), with_cost, reply, workers_.get());
-  }
-
-  /** How callbacks from other threads reach the node: through `node`, null once it is gone. */
-  struct Reach {
-    std::mutex mutex;
-    Optimizer* node = nullptr;
-  };
-  /** Runs `fn` on the node's thread group if it is still there; whether it was. */
-  static bool later(const std::shared_ptr<Reach>& reach, std::function<void()> fn) {
-    std::lock_guard<std::mutex> lock(reach->mutex);
-    if (!reach->node) return false;
-    reach->node->runLater(std::move(fn));
-    return true;
   }
 
   void setState(const std::string& text) { updateParam(kState.name(), text); }
@@ -637,17 +514,16 @@ class Optimizer : public apex::Node {
   std::vector<std::string> remotes_;  // the run's remote workers, after those here
   std::vector<int> remote_done_;  // per remote worker: candidates it evaluated
   std::shared_ptr<tuning::RemoteWorkers> remote_;  // the run's transport
-  std::shared_ptr<Reach> reach_ = std::make_shared<Reach>();
+  std::shared_ptr<tuning::Reach> reach_ = std::make_shared<tuning::Reach>();
   std::shared_ptr<void> serving_;  // while set, other runtimes' Optimizers can send candidates here
   tuning::CandidateServer server_{{[this](auto done) { describeGraph(std::move(done)); },
-                                   [this](std::function<void()> fn) { later(reach_, std::move(fn)); },
+                                   [this](std::function<void()> fn) { reach_->later(std::move(fn)); },
                                    [this](const std::string& text) { setState(text); }}};
   std::map<int, std::vector<double>> points_;  // candidates asked for and not yet written to the study
   std::map<int, double> scores_;  // their fitnesses, as they come (in any order)
   std::map<int, double> costs_;  // with two objectives: their costs, as they come
   bool two_ = false;  // the run has two objectives
   std::vector<tuning::Scored> front_;  // with two objectives: the Pareto front so far
-  std::vector<tuning::Scored> resumed_front_;  // the study's evaluations, read at start
   int run_ = 0;  // grows as a run ends: a copy's score of an earlier run is ignored
   tuning::Racing racing_;
   bool running_ = false;

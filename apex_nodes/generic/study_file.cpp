@@ -87,5 +87,18 @@ bool samePoint(const std::vector<double>& a, const std::vector<double>& b) {
   return true;
 }
 
+std::vector<Scored> replay(StudyFile& study, search::Search& search, bool minimize) {
+  std::vector<Scored> told;
+  for (const auto& e : study.read()) {
+    if (search.done()) break;
+    if (!samePoint(search.ask(), e.point))
+      throw std::invalid_argument("the study '" + study.path() + "': evaluation " + std::to_string(told.size() + 1) +
+                                  " is not this run's candidate (the search was changed?): name another file, or move it away");
+    search.tell(minimize ? -e.fitness : e.fitness);
+    told.push_back({static_cast<int>(told.size()) + 1, e.fitness, e.cost_ms, e.point});
+  }
+  return told;
+}
+
 }  // namespace tuning
 }  // namespace apex_nodes

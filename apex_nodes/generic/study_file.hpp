@@ -11,6 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "apex_nodes/pareto.hpp"
+#include "apex_nodes/search.hpp"
+
 namespace apex_nodes {
 namespace tuning {
 
@@ -48,6 +51,11 @@ class StudyFile {
 
 /** @brief Whether two points are the same candidate (as printed and read back: exactly). */
 bool samePoint(const std::vector<double>& a, const std::vector<double>& b);
+
+/** @brief The study's evaluations told to `search` again (`minimize`: their fitnesses negated), each
+ *  checked to be its candidate, until its budget is spent; those told, numbered from 1. Throws
+ *  std::invalid_argument, naming the file, at the first that is not its candidate. */
+std::vector<Scored> replay(StudyFile& study, search::Search& search, bool minimize);
 
 }  // namespace tuning
 }  // namespace apex_nodes
