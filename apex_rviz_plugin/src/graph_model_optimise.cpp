@@ -152,9 +152,11 @@ std::optional<Edit> GraphModel::applyBest(const std::string& opt) const {
   return applyValues(opt, yamlIn(parameter(opt, "best_values")), "Apply the best values of " + opt);
 }
 
-std::vector<FrontPoint> GraphModel::front(const std::string& opt) const {
+std::vector<FrontPoint> GraphModel::front(const std::string& opt) const { return frontIn(parameter(opt, "front")); }
+
+std::vector<FrontPoint> frontIn(const apex::ParamInfo* param) {
   std::vector<FrontPoint> out;
-  const YAML::Node front = yamlIn(parameter(opt, "front"));
+  const YAML::Node front = yamlIn(param);
   if (!front.IsSequence()) return out;
   try {
     for (const auto& p : front)

@@ -12,6 +12,7 @@
 
 #include "apex_rviz_plugin/box_view.hpp"
 #include "apex_rviz_plugin/graph_scene.hpp"
+#include "apex_rviz_plugin/optimizer_plot.hpp"
 #include "apex_rviz_plugin/param_editor.hpp"
 #include "apex_rviz_plugin/transport_bar.hpp"
 #include "apex/core/description.hpp"
@@ -460,25 +461,12 @@ void NodeItem::paint(QPainter* p, const QStyleOptionGraphicsItem*, QWidget*) {
 
 void NodeItem::paintProgress(QPainter* p, const QRectF& area) const {
   int budget = 0;
-  for (const auto& param : info_.parameters)
+  const apex::ParamInfo* front = nullptr;
+  for (const auto& param : info_.parameters) {
     if (param.name == "budget") budget = QString::fromStdString(param.value).toInt();
-  QString line = QString("%1 / %2 evaluations").arg(evaluations_).arg(budget);
-  if (!fitness_.empty()) line += QString(" · best %1").arg(fitness_.back(), 0, 'g', 4);
-  p->setPen(QColor(200, 200, 200));
-  p->drawText(QRectF(area.left(), area.top(), area.width(), 14), Qt::AlignLeft | Qt::AlignVCenter, line);
-  const QRectF plot(area.left(), area.top() + 16, area.width(), area.height() - 16);
-  p->setPen(QColor(90, 90, 90));
-  p->setBrush(Qt::NoBrush);
-  p->drawRect(plot);
-  if (fitness_.size() < 2) return;
-  const auto [lo, hi] = std::minmax_element(fitness_.begin(), fitness_.end());
-  const double span = *hi - *lo > 0 ? *hi - *lo : 1;
-  const double n = std::max<double>(budget, fitness_.size()) - 1;
-  QPolygonF curve;  // best fitness over evaluations, left to right up to the budget
-  for (std::size_t i = 0; i < fitness_.size(); ++i)
-    curve << QPointF(plot.left() + plot.width() * i / n, plot.bottom() - 2 - (plot.height() - 4) * (fitness_[i] - *lo) / span);
-  p->setPen(QPen(QColor(110, 200, 120), 1.5));
-  p->drawPolyline(curve);
+    if (param.name == "front") front = &param;
+  }
+  paintOptimizerRun(p, area, evaluations_, budget, fitness_, frontIn(front));
 }
 
 void NodeItem::paintPreviews(QPainter* p) const {

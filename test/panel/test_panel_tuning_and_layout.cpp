@@ -480,51 +480,5 @@ TEST_F(PanelWidgetTest, OptimiseAParameterFromItsMenuWatchTheRunAndApplyTheBestU
   EXPECT_EQ(panel.link().scalarWatches(), watches) << "the watches of the graph before are still there, or watched twice";
 }
 
-TEST_F(PanelWidgetTest, ATwoObjectiveRunsFrontIsInTheOptimizersMenuAndAPointAppliesInOneUndoStep) {
-  emptyGraph();
-  // fitness: the bag's stamps scaled by factor; cost: what the scale takes per frame
-  ASSERT_TRUE(addNode("apex_nodes/BagReader", "front_player", "{file: '" + g_bag + "', topics: [/camera/image_raw], rate: 0.0}"));
-  ASSERT_TRUE(addNode("apex_nodes/Scale", "front_scale", "{factor: 1.0}"));
-  ASSERT_TRUE(addNode("apex_nodes/SequenceMean", "front_mean", ""));
-  ASSERT_TRUE(addNode("apex_nodes/Optimizer", "front_opt",
-                      "{dimensions: [factor 0 2], budget: 6, algorithm: random, objectives: fitness_and_cost}"));
-  ASSERT_TRUE(setInteractive("front_scale", "factor"));
-  ASSERT_TRUE(link("front_player", "stamp", "front_scale", "in") && link("front_scale", "out", "front_mean", "value"));
-  ASSERT_TRUE(link("front_mean", "mean", "front_opt", "fitness") && link("front_opt", "factor", "front_scale", "factor"));
-  ASSERT_TRUE(link("front_opt", "evaluate", "front_player", "restart") && link("front_opt", "evaluate", "front_mean", "reset"));
-  ASSERT_TRUE(fireSlot("front_opt", "start"));
-  ASSERT_TRUE(
-      QTest::qWaitFor([&] { return param(runtimeGraph(), "front_opt", "state").find("finished") != std::string::npos; }, kWaitMs))
-      << param(runtimeGraph(), "front_opt", "state");
-  EXPECT_NE(param(runtimeGraph(), "front_opt", "state").find("; a front of "), std::string::npos);
-  const std::string front = param(runtimeGraph(), "front_opt", "front");  // the run's last: it finished
-  ASSERT_TRUE(QTest::qWaitFor(
-      [&] {  // the panel shows that front, not one from before the run's last evaluation
-        const auto* shown = panel.model().parameter("front_opt", "front");
-        return shown && shown->value == front;
-      },
-      kWaitMs))
-      << "the panel's graph never showed the final front";
-  ASSERT_FALSE(panel.model().front("front_opt").empty()) << front;
-  const FrontPoint first = panel.model().front("front_opt").front();  // the cheapest
-  EXPECT_GT(first.ms_per_frame, 0.0);
-  const double value = YAML::Load(first.values)["factor"].as<double>();
-
-  // Right-click on the Optimizer while a bag plays; Apply a point of the front > its cheapest
-  startPlaying("front_live");
-  waitPlaced("front_opt");
-  ASSERT_GT(chooseInNodeMenu(panel, view, "front_opt", "fitness ", "Apply a point of the front", 1), 0) << "no point in the menu";
-  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "front_scale", "factor") == value; }, kWaitMs))
-      << panel.editor()->message().toStdString() << "; factor " << param(runtimeGraph(), "front_scale", "factor");
-  auto* undo = panel.editor()->findChild<QToolButton*>("undo");
-  ASSERT_TRUE(undo);
-  ASSERT_TRUE(QTest::qWaitFor(
-      [&] { return undo->toolTip().contains(QString("Apply evaluation %1 of front_opt's front").arg(first.evaluation)); },
-      kWaitMs))
-      << undo->toolTip().toStdString();
-  QTest::mouseClick(undo, Qt::LeftButton);
-  ASSERT_TRUE(QTest::qWaitFor([&] { return number(runtimeGraph(), "front_scale", "factor") == 1.0; }, kWaitMs));
-}
-
 }  // namespace
 }  // namespace panel_test

@@ -47,6 +47,10 @@ struct FrontPoint {
   std::string values;  ///< {dimension: value} as YAML flow text
 };
 
+/** @brief The points of an Optimizer's `front` parameter (YAML text), cheapest first; none if it
+ *  holds none, or is not such a list. */
+std::vector<FrontPoint> frontIn(const apex::ParamInfo* front);
+
 /** @brief One service call of the runtime's API, with the service's name. */
 struct Call {
   std::string service;  ///< e.g. "add_node", "connect", "disconnect"
