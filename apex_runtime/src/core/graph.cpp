@@ -24,15 +24,16 @@ using detail::ThreadGroup;
 
 Graph::Impl::Impl(NodeRegistry registry)
     : registry_(std::move(registry)),
-      edits_(std::make_shared<detail::EditRequests>(
-          [this](const NodePtr& node, const std::string& param, const ParamValue& value) { applyRequested(node, param, value); },
-          [this] { return snapshot(); })) {
+      edits_(std::make_shared<detail::EditRequests>([this](const Impl::NodePtr& node, const std::string& param,
+                                                           const ParamValue& value) { applyRequested(node, param, value); },
+                                                    [this] { return snapshot(); })) {
   group(kDefaultGroup);
 }
 
-void Graph::Impl::setHost(std::shared_ptr<const Host> host) {
-  auto lock = lockEdits();
-  host_ = std::move(host);
+void Graph::setHost(std::shared_ptr<const Host> host) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  impl.host_ = std::move(host);
 }
 
 Graph::Impl::~Impl() {
@@ -242,7 +243,7 @@ void Graph::Impl::changedDownstreamOf(NodeState* node, bool itself) {
 
 void Graph::Impl::tellSourcesDownstreamChanged() {
   auto lock = lockEdits();
-  std::vector<ChangedAt> changed;
+  std::vector<Impl::ChangedAt> changed;
   {
     std::lock_guard<std::mutex> l(changed_mutex_);
     changed.swap(changed_);
@@ -257,16 +258,16 @@ void Graph::Impl::tellSourcesDownstreamChanged() {
       g.walked_.notify_all();
     }
   } walked{*this};
-  std::vector<NodePtr> alive;  // held while walking
+  std::vector<Impl::NodePtr> alive;  // held while walking
   std::vector<NodeState*> at;
   std::int64_t newest = 0;
-  for (const ChangedAt& c : changed) {
+  for (const Impl::ChangedAt& c : changed) {
     newest = std::max(newest, c.tick);
-    if (NodePtr n = c.node.lock(); n && !n->removed) at.push_back(n.get()), alive.push_back(std::move(n));
+    if (Impl::NodePtr n = c.node.lock(); n && !n->removed) at.push_back(n.get()), alive.push_back(std::move(n));
   }
   std::vector<NodeState*> ups = detail::upstreamOf(at);
-  for (const ChangedAt& c : changed)
-    if (NodePtr n = c.node.lock(); c.itself && n && !n->removed) ups.push_back(n.get());
+  for (const Impl::ChangedAt& c : changed)
+    if (Impl::NodePtr n = c.node.lock(); c.itself && n && !n->removed) ups.push_back(n.get());
   std::sort(ups.begin(), ups.end());
   ups.erase(std::unique(ups.begin(), ups.end()), ups.end());
   for (NodeState* up : ups) {
@@ -342,16 +343,17 @@ Status Graph::Impl::setEnabled(const std::string& node, bool enabled) {
   return Status::ok();
 }
 
-Status Graph::Impl::setThreadGroup(const std::string& node, const std::string& group_name) {
-  auto lock = lockEdits();
+Status Graph::setThreadGroup(const std::string& node, const std::string& group_name) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
   std::vector<std::string> names{node};
-  if (subgraphs_.find(node)) names = nodesUnder(node);  // all of its nodes
-  else if (auto n = require(node); !n) return n.status();
+  if (impl.subgraphs_.find(node)) names = impl.nodesUnder(node);  // all of its nodes
+  else if (auto n = impl.require(node); !n) return n.status();
   if (!validName(group_name)) return Status::error("thread group name '" + group_name + "' " + kNameRule);
-  if (auto room = roomFor(group_name); !room) return room;
-  ThreadGroup* target = group(group_name);
+  if (auto room = impl.roomFor(group_name); !room) return room;
+  ThreadGroup* target = impl.group(group_name);
   for (const auto& name : names) {
-    NodeState* s = find(name).get();
+    NodeState* s = impl.find(name).get();
     if (target == s->group) continue;
     EditScope scope;
     scope.involve(s);
@@ -363,16 +365,17 @@ Status Graph::Impl::setThreadGroup(const std::string& node, const std::string& g
     s->group = target;
     s->placeholder.thread_group = group_name;
   }
-  bump();
+  impl.bump();
   return Status::ok();
 }
 
-Status Graph::Impl::removeThreadGroup(const std::string& name) {
-  auto lock = lockEdits();
+Status Graph::removeThreadGroup(const std::string& name) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
   if (name == kDefaultGroup) return Status::error("the thread group '" + name + "' cannot be removed");
-  auto it = groups_.find(name);
-  if (it == groups_.end()) return Status::error("no thread group '" + name + "'");
-  for (auto& [seq, n] : order_)
+  auto it = impl.groups_.find(name);
+  if (it == impl.groups_.end()) return Status::error("no thread group '" + name + "'");
+  for (auto& [seq, n] : impl.order_)
     if (n->group == it->second.get()) return Status::error("thread group '" + name + "' still has node '" + n->name + "'");
   it->second->pause();  // parked: a firing or wake-up that ends now is not counted as work
   if (!it->second->unused()) {
@@ -380,8 +383,8 @@ Status Graph::Impl::removeThreadGroup(const std::string& name) {
     return Status::error("thread group '" + name + "' still has work posted (a timer or mail)");
   }
   it->second->stop();
-  groups_.erase(it);
-  bump();
+  impl.groups_.erase(it);
+  impl.bump();
   return Status::ok();
 }
 
@@ -428,12 +431,13 @@ Status Graph::Impl::setUi(const std::string& node, const std::string& ui) {
   return Status::ok();
 }
 
-Status Graph::Impl::setTap(const std::string& outer, const std::string& outer_port, PortTap tap) {
-  auto lock = lockEdits();
-  auto at = subgraphs_.sender(outer, outer_port);
+Status Graph::setTap(const std::string& outer, const std::string& outer_port, PortTap tap) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  auto at = impl.subgraphs_.sender(outer, outer_port);
   if (!at) return at.status();
   const std::string node = at.value().first, port = at.value().second;
-  auto n = require(node);
+  auto n = impl.require(node);
   if (!n) return n.status();
   NodeState* s = n.value().get();
   EditScope scope;  // the group reads taps while firing
@@ -441,12 +445,12 @@ Status Graph::Impl::setTap(const std::string& outer, const std::string& outer_po
   const bool watching = static_cast<bool>(tap);
   if (const int i = s->findOutput(port); i >= 0) {
     s->outputs[i].tap = std::move(tap);
-    if (watching) changedDownstreamOf(s, true);  // a held frame: through the new tap at once
+    if (watching) impl.changedDownstreamOf(s, true);  // a held frame: through the new tap at once
     return Status::ok();
   }
   if (const int i = s->findParam(port); i >= 0 && s->params[i].interactive) {
     s->params[i].tap = std::move(tap);
-    if (watching) changedDownstreamOf(s, true);
+    if (watching) impl.changedDownstreamOf(s, true);
     return Status::ok();
   }
   return Status::error(nodeLabel(node, s->typeId()) + " has no output or interactive parameter '" + port +
@@ -455,10 +459,11 @@ Status Graph::Impl::setTap(const std::string& outer, const std::string& outer_po
 
 // ------------------------------------------------------------------ reading
 
-std::vector<NodeStats> Graph::Impl::nodeStats(double stall_after_s) const {
-  auto lock = lockEdits();
+std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
   std::vector<NodeState*> all;
-  for (auto& [seq, n] : order_) all.push_back(n);
+  for (auto& [seq, n] : impl.order_) all.push_back(n);
   // The newest firing anywhere upstream of each node: data went in after it last fired.
   std::map<const NodeState*, std::int64_t> upstream;
   for (NodeState* n : detail::topological(all)) {
@@ -477,50 +482,56 @@ std::vector<NodeStats> Graph::Impl::nodeStats(double stall_after_s) const {
     const std::int64_t last = n->lastFired();
     s.idle_s = double(now - last) * ns_per_tick * 1e-9;
     const bool stalled = s.idle_s > stall_after_s && (upstream[n] > last || !n->live);
-    if ((stalled && !paused_) || stall_after_s == 0) s.waiting_for = n->waitingFor();
+    if ((stalled && !impl.paused_) || stall_after_s == 0) s.waiting_for = n->waitingFor();
   }
   return out;
 }
 
-std::vector<GroupStats> Graph::Impl::groupStats() const {
-  auto lock = lockEdits();
+std::vector<GroupStats> Graph::groupStats() const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
   std::vector<GroupStats> out;
-  for (auto& [name, g] : groups_) out.push_back(g->stats());
+  for (auto& [name, g] : impl.groups_) out.push_back(g->stats());
   return out;
 }
 
-std::shared_ptr<const NodeType> Graph::Impl::nodeType(const std::string& node) const {
-  auto lock = lockEdits();
-  auto n = find(node);
+std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  auto n = impl.find(node);
   return n ? n->type : nullptr;
 }
 
-std::shared_ptr<const Manifest> Graph::Impl::nodeInterface(const std::string& node) const {
-  auto lock = lockEdits();
-  if (auto sg = subgraphs_.find(node)) return facade(*sg);
-  auto n = find(node);
+std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  if (auto sg = impl.subgraphs_.find(node)) return impl.facade(*sg);
+  auto n = impl.find(node);
   return n && n->type ? n->iface : nullptr;
 }
 
-Node* Graph::Impl::nodeObject(const std::string& node) const {
-  auto lock = lockEdits();
-  auto n = find(node);
+Node* Graph::nodeObject(const std::string& node) const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  auto n = impl.find(node);
   return n ? n->node.get() : nullptr;
 }
 
-Result<NodeProfile> Graph::Impl::nodeProfile(const std::string& node) const {
-  auto lock = lockEdits();
-  auto n = require(node);
+Result<NodeProfile> Graph::nodeProfile(const std::string& node) const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  auto n = impl.require(node);
   if (!n) return n.status();
   return n.value()->profile();
 }
 
-Result<ParamValue> Graph::Impl::parameterValue(const std::string& outer, const std::string& outer_param) const {
-  auto lock = lockEdits();
-  auto at = subgraphs_.exportedParam(outer, outer_param);
+Result<ParamValue> Graph::parameterValue(const std::string& outer, const std::string& outer_param) const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  auto at = impl.subgraphs_.exportedParam(outer, outer_param);
   if (!at) return at.status();
   const std::string node = at.value().first, param = at.value().second;
-  auto n = require(node);
+  auto n = impl.require(node);
   if (!n) return n.status();
   const int i = n.value()->findParam(param);
   if (i < 0) return Status::error(nodeLabel(node) + " has no parameter '" + param + "'");
@@ -528,9 +539,10 @@ Result<ParamValue> Graph::Impl::parameterValue(const std::string& outer, const s
   return n.value()->params[i].requested;
 }
 
-std::size_t Graph::Impl::size() const {
-  auto lock = lockEdits();
-  return nodes_.size();
+std::size_t Graph::size() const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  return impl.nodes_.size();
 }
 
 }  // namespace apex

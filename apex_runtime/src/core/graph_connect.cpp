@@ -129,14 +129,15 @@ std::shared_ptr<Edge> findEdge(NodeState& from, const Endpoint& src, NodeState& 
 
 }  // namespace
 
-Status Graph::Impl::connect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
-  auto lock = lockEdits();
-  auto st = connectLocked({fn, fp, tn, tp, 0});
+Status Graph::connect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  auto st = impl.connectLocked({fn, fp, tn, tp, 0});
   if (!st) return st;
-  if (auto targets = subgraphs_.receivers(tn, tp))  // the part it feeds now gets the held frame
+  if (auto targets = impl.subgraphs_.receivers(tn, tp))  // the part it feeds now gets the held frame
     for (const auto& [node, port] : targets.value())
-      if (auto to = find(node)) changedDownstreamOf(to.get());
-  bump();
+      if (auto to = impl.find(node)) impl.changedDownstreamOf(to.get());
+  impl.bump();
   return st;
 }
 
@@ -217,22 +218,23 @@ Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
   return Status::ok();
 }
 
-Status Graph::Impl::disconnect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
-  auto lock = lockEdits();
+Status Graph::disconnect(const std::string& fn, const std::string& fp, const std::string& tn, const std::string& tp) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
   const ConnectionDescription c{fn, fp, tn, tp, 0};
-  auto from = subgraphs_.sender(fn, fp);
+  auto from = impl.subgraphs_.sender(fn, fp);
   if (!from) return Status::error("cannot disconnect " + connectionLabel(c) + ": " + from.message());
-  auto to = subgraphs_.receivers(tn, tp);
+  auto to = impl.subgraphs_.receivers(tn, tp);
   if (!to) return Status::error("cannot disconnect " + connectionLabel(c) + ": " + to.message());
   Status result = Status::ok();
   bool any = false;
   for (const auto& [node, port] : to.value()) {
     const ConnectionDescription real{from.value().first, from.value().second, node, port, 0};
-    auto st = disconnectDirect(real);
+    auto st = impl.disconnectDirect(real);
     any = any || st.isOk();
     if (!st && result) result = Status::error(through(c, real, st.message()));
   }
-  if (any) bump();
+  if (any) impl.bump();
   return any ? Status::ok() : result;
 }
 

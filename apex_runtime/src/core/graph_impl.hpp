@@ -1,8 +1,9 @@
 // What apex::Graph holds (graph.hpp keeps only a pointer to it): the graph's members and
-// every step of an edit. Graph's public calls forward here one for one (graph_api.cpp) and
-// are documented in graph.hpp; the bodies are in graph.cpp (nodes and their settings),
-// graph_connect.cpp, graph_interface.cpp, graph_load.cpp, graph_run.cpp and
-// graph_subgraph.cpp. Subgraph records and their rules are detail::Subgraphs (subgraph.hpp).
+// every step of an edit. Graph's public calls are written once, as Graph's own methods (each
+// reads this as `impl`), in graph.cpp (nodes and their settings), graph_connect.cpp,
+// graph_load.cpp, graph_run.cpp, graph_subgraph.cpp and graph_trace.cpp; only those that other
+// steps use too (a load adds nodes, a group sets parameters) are steps here, which Graph's
+// methods call (graph_api.cpp). Subgraph records and their rules are detail::Subgraphs (subgraph.hpp).
 #pragma once
 
 #include <atomic>
@@ -35,50 +36,18 @@ struct Graph::Impl {
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
 
-  // --- Graph's public calls (graph.hpp) ---
-  void setHost(std::shared_ptr<const Host> host);
+  // --- Graph's public calls that other steps use too (a load, a group); Graph's forward here ---
   Result<std::string> addNode(const std::string& type, const std::string& name, const std::string& thread_group);
   Result<std::string> addNode(const NodeDescription& description);
   Status removeNode(const std::string& name);
-  Status group(const std::vector<std::string>& nodes, const std::string& name, bool restore);
-  Status ungroup(const std::string& name);
-  Status rename(const std::string& name, const std::string& new_name);
-  Status connect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
-                 const std::string& to_port);
-  Status disconnect(const std::string& from_node, const std::string& from_port, const std::string& to_node,
-                    const std::string& to_port);
   Result<std::string> setParameter(const std::string& node, const std::string& param, const std::string& yaml_text);
   Status setInteractive(const std::string& node, const std::string& param, bool interactive);
   Status setEnabled(const std::string& node, bool enabled);
-  Status setThreadGroup(const std::string& node, const std::string& group);
-  Status removeThreadGroup(const std::string& group);
   Status fireSlot(const std::string& node, const std::string& slot);
   Status setUi(const std::string& node, const std::string& ui_yaml);
-  Status setTap(const std::string& node, const std::string& port, PortTap tap);
-  void start();
   void stop();
-  void pause();
-  void resume();
-  bool paused() const;
-  void step();
-  Status stepFrame(double timeout_s);
-  GraphDescription describe() const;
-  Result<NodeDescription> describeNode(const std::string& name) const;
   /** The description, and a maker of empty graphs with these node types and host. */
   GraphSnapshot snapshot() const;
-  std::vector<ConnectionDescription> connections() const;
-  Result<LoadReport> load(const GraphDescription& description);
-  std::vector<NodeStats> nodeStats(double stall_after_s) const;
-  Result<NodeProfile> nodeProfile(const std::string& node) const;
-  std::vector<GroupStats> groupStats() const;
-  void setTracing(bool on);
-  Trace trace(double seconds) const;
-  std::shared_ptr<const NodeType> nodeType(const std::string& node) const;
-  std::shared_ptr<const Manifest> nodeInterface(const std::string& node) const;
-  Node* nodeObject(const std::string& node) const;
-  std::size_t size() const;
-  Result<ParamValue> parameterValue(const std::string& node, const std::string& param) const;
-  bool waitIdle(double timeout_s) const;
 
   // --- the steps ---
   using NodePtr = std::shared_ptr<detail::NodeState>;

@@ -64,14 +64,16 @@ void describeConnections(const NodeState& n, std::vector<ConnectionDescription>&
 
 }  // namespace
 
-GraphDescription Graph::Impl::describe() const {
-  auto lock = lockEdits();
-  return describeLocked();
+GraphDescription Graph::describe() const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  return impl.describeLocked();
 }
 
-Result<NodeDescription> Graph::Impl::describeNode(const std::string& name) const {
-  auto lock = lockEdits();
-  const NodePtr n = find(name);
+Result<NodeDescription> Graph::describeNode(const std::string& name) const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  const Impl::NodePtr n = impl.find(name);
   if (!n) return Status::error("no node named '" + name + "'");
   NodeDescription d = describeOne(*n);
   if (n->type) d.error = n->error();
@@ -88,11 +90,12 @@ GraphSnapshot Graph::Impl::snapshot() const {
   return {describeLocked(), make};
 }
 
-std::vector<ConnectionDescription> Graph::Impl::connections() const {
-  auto lock = lockEdits();
+std::vector<ConnectionDescription> Graph::connections() const {
+  const Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
   std::vector<ConnectionDescription> out;
-  for (auto& [seq, n] : order_) describeConnections(*n, out);
-  out.insert(out.end(), dormant_.begin(), dormant_.end());
+  for (auto& [seq, n] : impl.order_) describeConnections(*n, out);
+  out.insert(out.end(), impl.dormant_.begin(), impl.dormant_.end());
   return out;
 }
 
@@ -176,11 +179,12 @@ Status Graph::Impl::applyNode(const NodeDescription& d, LoadReport& report) {
   return Status::ok();
 }
 
-Result<LoadReport> Graph::Impl::load(const GraphDescription& description) {
-  auto check = lockEdits();  // refuses node code; released: building the staged graph needs no lock
+Result<LoadReport> Graph::load(const GraphDescription& description) {
+  Impl& impl = *impl_;
+  auto check = impl.lockEdits();  // refuses node code; released: building the staged graph needs no lock
   check.unlock();
-  Impl staged(registry_);
-  staged.host_ = host_;
+  Impl staged(impl.registry_);
+  staged.host_ = impl.host_;
   LoadReport report;
   for (const auto& g : description.thread_groups) {
     if (!validName(g)) return Status::error("thread group name '" + g + "' " + kNameRule);
@@ -193,8 +197,8 @@ Result<LoadReport> Graph::Impl::load(const GraphDescription& description) {
     auto lock = staged.lockEdits();
     if (auto st = staged.connectLocked(c); !st) return Status::error(at(c.line) + st.message());
   }
-  auto lock = lockEdits();
-  adoptLocked(staged, description);
+  auto lock = impl.lockEdits();
+  impl.adoptLocked(staged, description);
   return report;
 }
 

@@ -209,20 +209,21 @@ std::string unique(std::set<std::string>& taken, const std::string& node, const 
 }
 }  // namespace
 
-Status Graph::Impl::group(const std::vector<std::string>& members, const std::string& name, bool restore) {
-  auto lock = lockEdits();
+Status Graph::group(const std::vector<std::string>& members, const std::string& name, bool restore) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
   auto fail = [&](const std::string& why) { return Status::error("cannot group into '" + name + "': " + why); };
   if (members.empty()) return fail("no nodes given");
   const std::string parent = parentOf(members.front());
   std::set<std::string> seen;
   for (const auto& m : members) {
-    if (!find(m) && !subgraphs_.find(m)) return fail("no node named '" + m + "'");
+    if (!impl.find(m) && !impl.subgraphs_.find(m)) return fail("no node named '" + m + "'");
     if (parentOf(m) != parent)
       return fail("'" + m + "' and '" + members.front() + "' are not beside each other (group nodes of one level)");
     if (!seen.insert(m).second) return fail("'" + m + "' is named twice");
   }
   const std::string path = join(parent, name);
-  if (auto why = checkNewPath(path); !why.empty()) return fail(why);
+  if (auto why = impl.checkNewPath(path); !why.empty()) return fail(why);
   auto inside = [&](const std::string& node) {
     for (const auto& m : members)
       if (node == m || node.compare(0, m.size() + 1, m + "/") == 0) return true;
@@ -231,7 +232,7 @@ Status Graph::Impl::group(const std::vector<std::string>& members, const std::st
   auto rel = [&](const std::string& node, const std::string& port) {
     return node.substr(parent.empty() ? 0 : parent.size() + 1) + "/" + port;
   };
-  std::shared_ptr<Subgraph> before = restore ? subgraphs_.takeUngrouped(path, members) : nullptr;
+  std::shared_ptr<Subgraph> before = restore ? impl.subgraphs_.takeUngrouped(path, members) : nullptr;
   // Each crossing connection through an export: one per outside sender (it may feed several
   // inner receivers), one per inner sender (it may feed several outside).
   auto sg = std::make_shared<Subgraph>();
@@ -260,7 +261,7 @@ Status Graph::Impl::group(const std::vector<std::string>& members, const std::st
     by_sender[key] = sg->exports.size();
     sg->exports.push_back(std::move(e));
   };
-  for (auto& [seq, n] : order_) {
+  for (auto& [seq, n] : impl.order_) {
     const Manifest& m = n->manifest();
     auto target = [](const detail::Edge& e) {
       return e.to_param ? e.to->manifest().params[e.to_index].name : e.to->manifest().inputs[e.to_index].name;
@@ -277,65 +278,67 @@ Status Graph::Impl::group(const std::vector<std::string>& members, const std::st
   sg->path = path;
   sg->seq = ~0ull;  // before the first of its nodes, where it stands in the order
   for (const auto& m : members) {
-    if (auto n = find(m)) sg->seq = std::min(sg->seq, n->seq);
-    if (auto s = subgraphs_.find(m)) sg->seq = std::min(sg->seq, s->seq);
-    for (const auto& under : nodesUnder(m)) sg->seq = std::min(sg->seq, find(under)->seq);
+    if (auto n = impl.find(m)) sg->seq = std::min(sg->seq, n->seq);
+    if (auto s = impl.subgraphs_.find(m)) sg->seq = std::min(sg->seq, s->seq);
+    for (const auto& under : impl.nodesUnder(m)) sg->seq = std::min(sg->seq, impl.find(under)->seq);
   }
-  if (auto first = find(members.front())) {
+  if (auto first = impl.find(members.front())) {
     std::lock_guard<std::mutex> g(first->state_mutex);
     sg->ui = first->ui;
   } else {
-    sg->ui = subgraphs_.find(members.front())->ui;
+    sg->ui = impl.subgraphs_.find(members.front())->ui;
   }
-  subgraphs_.put(sg);
-  for (const auto& m : members) moveLocked(m, join(path, m.substr(parent.empty() ? 0 : parent.size() + 1)));
-  if (before && checkExports(*before)) {  // as it was; its exports cover what crosses, as they did
+  impl.subgraphs_.put(sg);
+  for (const auto& m : members) impl.moveLocked(m, join(path, m.substr(parent.empty() ? 0 : parent.size() + 1)));
+  if (before && impl.checkExports(*before)) {  // as it was; its exports cover what crosses, as they did
     before->seq = sg->seq;
-    subgraphs_.put(before);
-    if (!before->enabled) applyOuterEnabled(path);
+    impl.subgraphs_.put(before);
+    if (!before->enabled) impl.applyOuterEnabled(path);
   }
-  bump();
+  impl.bump();
   return Status::ok();
 }
 
-Status Graph::Impl::ungroup(const std::string& path) {
-  auto lock = lockEdits();
-  auto sg = subgraphs_.find(path);
+Status Graph::ungroup(const std::string& path) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
+  auto sg = impl.subgraphs_.find(path);
   if (!sg)
     return Status::error("cannot ungroup '" + path +
-                         "': " + (find(path) ? "it is not a subgraph" : "no node named '" + path + "'"));
+                         "': " + (impl.find(path) ? "it is not a subgraph" : "no node named '" + path + "'"));
   const std::string parent = parentOf(path);
   std::vector<std::string> children;
-  for (const auto& [name, n] : nodes_)
+  for (const auto& [name, n] : impl.nodes_)
     if (parentOf(name) == path) children.push_back(name);
-  for (const auto& name : subgraphs_.inside(path)) children.push_back(name);
+  for (const auto& name : impl.subgraphs_.inside(path)) children.push_back(name);
   for (const auto& c : children) {
     const std::string to = join(parent, c.substr(path.size() + 1));
-    if (to != path && (find(to) || subgraphs_.find(to)))
+    if (to != path && (impl.find(to) || impl.subgraphs_.find(to)))
       return Status::error("cannot ungroup '" + path + "': its " + nodeLabel(c.substr(path.size() + 1)) +
                            " would take the name of the " + nodeLabel(to) + " beside it (rename one first)");
   }
-  subgraphs_.dissolve(path);
-  for (const auto& c : children) moveLocked(c, join(parent, c.substr(path.size() + 1)));
+  impl.subgraphs_.dissolve(path);
+  for (const auto& c : children) impl.moveLocked(c, join(parent, c.substr(path.size() + 1)));
   std::set<std::string> moved;
   for (const auto& c : children) moved.insert(join(parent, c.substr(path.size() + 1)));
-  subgraphs_.recordUngrouped(sg, std::move(moved));  // for an undo: group(restore) brings it back as it is
-  if (!sg->enabled) applyOuterEnabled(parent);  // its nodes are no longer inside a disabled subgraph
-  bump();
+  impl.subgraphs_.recordUngrouped(sg, std::move(moved));  // for an undo: impl.group(restore) brings it back as it is
+  if (!sg->enabled) impl.applyOuterEnabled(parent);  // its nodes are no longer inside a disabled subgraph
+  impl.bump();
   return Status::ok();
 }
 
-Status Graph::Impl::rename(const std::string& path, const std::string& new_name) {
-  auto lock = lockEdits();
+Status Graph::rename(const std::string& path, const std::string& new_name) {
+  Impl& impl = *impl_;
+  auto lock = impl.lockEdits();
   const std::string what = "cannot rename '" + path + "'";
-  if (!find(path) && !subgraphs_.find(path)) return Status::error(what + ": no node named '" + path + "'");
+  if (!impl.find(path) && !impl.subgraphs_.find(path)) return Status::error(what + ": no node named '" + path + "'");
   if (new_name.find('/') != std::string::npos)
     return Status::error(what + " to '" + new_name + "': give a name, not a path (group or ungroup to move a node)");
   const std::string to = join(parentOf(path), new_name);
   if (to == path) return Status::ok();
-  if (auto why = checkNewPath(to); !why.empty()) return Status::error(what + ": " + why);
-  moveLocked(path, to);
-  bump();
+  if (auto why = impl.checkNewPath(to); !why.empty()) return Status::error(what + ": " + why);
+  impl.moveLocked(path, to);
+  impl.bump();
   return Status::ok();
 }
 
@@ -344,7 +347,7 @@ void Graph::Impl::moveLocked(const std::string& from, const std::string& to) {
   std::vector<std::string> names = nodesUnder(from);
   if (find(from)) names.push_back(from);
   for (const auto& name : names) {
-    NodePtr n = find(name);
+    Impl::NodePtr n = find(name);
     detail::EditScope scope;  // node code and neighbours' messages read names on their groups
     scope.involveWithNeighbours(n.get());
     nodes_.erase(name);
