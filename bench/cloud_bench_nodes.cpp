@@ -263,6 +263,8 @@ std::vector<NodeCase> surfaceCases(const Shared& s) {
 std::vector<NodeCase> cloudClusterCases(const TypedPtr& scene,
                                         const std::shared_ptr<const Cloud>& cloud);  // cloud_bench_more.cpp
 std::vector<NodeCase> cloudOtherCases(const TypedPtr& scene, const std::shared_ptr<const Cloud>& cloud);  // cloud_bench_more.cpp
+std::vector<NodeCase> cloudFeatureCases(const TypedPtr& scene,
+                                        const std::shared_ptr<const Cloud>& cloud);  // cloud_bench_features.cpp
 
 /** The table of the cloud nodes against their PCL calls, on the table scene. */
 void cloudNodeTable(bool quick) {
@@ -275,6 +277,7 @@ void cloudNodeTable(bool quick) {
     for (auto& c : part(s)) all.push_back(std::move(c));
   for (auto& c : cloudClusterCases(scene, s.cloud)) all.push_back(std::move(c));
   for (auto& c : cloudOtherCases(scene, s.cloud)) all.push_back(std::move(c));
+  for (auto& c : cloudFeatureCases(scene, s.cloud)) all.push_back(std::move(c));
   const Budget b = Budget::of(quick);
   std::printf("## Cloud nodes against their PCL call\n\n");
   std::printf("Each cloud node type alone (a source → the node → a sink, one thread group, loaded through\n");

@@ -73,5 +73,7 @@ std::vector<NodeCase> filterCases(const Inputs& in);  // image_bench.cpp: image 
 std::vector<NodeCase> shapeCases(const Inputs& in);  // image_bench_shapes.cpp: two-input filters, channels, contours, drawing
 std::vector<NodeCase> featureCases(const Inputs& in);  // image_bench_features.cpp: features, motion, detection
 std::vector<NodeCase> cameraCases(const Inputs& in);  // image_bench_cameras.cpp: cameras and stereo, learning
+std::vector<NodeCase> segmentationCases(
+    const Inputs& in);  // image_bench_segmentation.cpp: watershed, GrabCut, k-means, superpixels
 
 }  // namespace apex_bench

@@ -198,6 +198,14 @@ pcl::Indices complement(const pcl::Indices& indices, std::size_t count) {
   return out;
 }
 
+std::shared_ptr<Clusters> clustersOf(const Cloud& in, std::vector<pcl::PointIndices> found) {
+  std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.indices.size() > b.indices.size(); });
+  auto out = std::make_shared<Clusters>();
+  out->header = in.header;
+  for (const auto& c : found) out->clusters.push_back(selectPoints(*in.points, c.indices));
+  return out;
+}
+
 std::shared_ptr<Cloud> cloudResult(const Cloud& in, std::shared_ptr<const Blob> points) {
   auto out = std::make_shared<Cloud>();
   out->header = in.header;

@@ -1,8 +1,10 @@
 // ConvexHull: the points on a cloud's convex hull (PCL's, by qhull), whole, with its area and
-// volume. ExtractPolygonalPrism: the points above a polygon, e.g. the objects on a table whose
-// hull ConvexHull gave.
+// volume. ConcaveHull: the alpha shape's outline, which follows a table's notch or an L-shaped
+// floor where the convex hull would bridge it. ExtractPolygonalPrism: the points above a polygon, e.g. the objects on a table
+// whose hull ConvexHull gave.
 #include <pcl/common/point_tests.h>
 #include <pcl/segmentation/extract_polygonal_prism_data.h>
+#include <pcl/surface/concave_hull.h>
 #include <pcl/surface/convex_hull.h>
 
 #include <Eigen/Geometry>
@@ -104,6 +106,57 @@ class ConvexHull : public apex::Node {
   Reused<Blob> points_;
 };
 
+class ConcaveHull : public apex::Node {
+ public:
+  static inline const apex::InputPort<Cloud> kCloud{"cloud", "e.g. a table's points (SACSegmentation's inliers)"};
+  static inline const apex::OutputPort<Cloud> kHull{"hull", "the points on the outline, whole (2D: round each polygon in turn)"};
+  static inline const apex::OutputPort<int> kPolygons{"polygons", "how many polygons (2D) or triangles (3D) the outline has"};
+  static inline const apex::ParamDecl<double> kAlpha =
+      param::number("alpha")
+          .range(0.0001, 100.0)
+          .step(0.001)
+          .init(0.1)
+          .describe("metres: the radius of the circles that carve the shape; smaller follows the points more closely");
+  static inline const apex::ChoiceDecl<int> kDimension =
+      param::choice<int>("dimension", {{"2", 2, "outlines of points on a plane"}, {"3", 3, "a surface round the points"}});
+  static apex::Manifest manifest() {
+    return apex::Manifest("The points on a cloud's concave hull (PCL's ConcaveHull, an alpha shape by qhull)")
+        .inCategory("cloud segmentation")
+        .input(kCloud)
+        .output(kHull)
+        .output(kPolygons)
+        .param(kAlpha)
+        .param(kDimension);
+  }
+  void process() override {
+    const auto in = cloud_.get();
+    const auto xyz = xyzOf(*in);
+    pcl::ConcaveHull<pcl::PointXYZ> hull;
+    hull.setInputCloud(xyz);
+    if (auto finite = finiteIndices(*xyz)) hull.setIndices(finite);
+    hull.setAlpha(alpha_.get());
+    hull.setDimension(dimension_.get());
+    hull.setKeepInformation(true);
+    XyzCloud points;
+    std::vector<pcl::Vertices> polygons;
+    hull.reconstruct(points, polygons);
+    if (points.empty())
+      throw std::invalid_argument("qhull found no concave hull of " + std::to_string(xyz->size()) + " points at alpha " +
+                                  apex::toText(alpha_.get()) + ": too few, or alpha too small for their spacing");
+    pcl::PointIndices indices;
+    hull.getHullPointIndices(indices);
+    hull_.publish(cloudResult(*in, selectPoints(*in->points, indices.indices)));
+    polygons_.publish(static_cast<int>(polygons.size()));
+  }
+
+ private:
+  apex::Input<Cloud> cloud_{this, kCloud};
+  apex::Output<Cloud> hull_{this, kHull};
+  apex::Output<int> polygons_{this, kPolygons};
+  apex::Param<double> alpha_{this, kAlpha};
+  apex::Choice<int> dimension_{this, kDimension};
+};
+
 class ExtractPolygonalPrism : public apex::Node {
  public:
   static inline const apex::InputPort<Cloud> kCloud{"cloud"};
@@ -162,3 +215,4 @@ class ExtractPolygonalPrism : public apex::Node {
 
 APEX_REGISTER_NODE(apex_nodes::ConvexHull, "apex_nodes/ConvexHull");
 APEX_REGISTER_NODE(apex_nodes::ExtractPolygonalPrism, "apex_nodes/ExtractPolygonalPrism");
+APEX_REGISTER_NODE(apex_nodes::ConcaveHull, "apex_nodes/ConcaveHull");

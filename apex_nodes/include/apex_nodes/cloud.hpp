@@ -4,12 +4,14 @@
 #pragma once
 
 #include <pcl/PCLPointCloud2.h>
+#include <pcl/PointIndices.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/conversions.h>
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apex_nodes/output_buffer.hpp"
 #include "apex_nodes/types.hpp"
@@ -48,6 +50,9 @@ void copyXyz(const Blob& points, XyzCloud& xyz);
 std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indices, std::shared_ptr<Blob> into = nullptr);
 /** @brief Every index below `count` that `indices` (ascending) lacks. */
 pcl::Indices complement(const pcl::Indices& indices, std::size_t count);
+/** @brief The clusters a PCL segmentation found in `in` (each its points' indices), each point whole,
+ *  largest first (equal sizes in the order found), with `in`'s header. */
+std::shared_ptr<Clusters> clustersOf(const Cloud& in, std::vector<pcl::PointIndices> found);
 /** @brief A result: `points` with the header of the cloud it came from. */
 std::shared_ptr<Cloud> cloudResult(const Cloud& in, std::shared_ptr<const Blob> points);
 
