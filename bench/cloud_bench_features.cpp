@@ -2,6 +2,7 @@
 // clustering and the concave hull, each node against its PCL call on the typed table scene
 // (cloud_bench_nodes.cpp), the call copying what the node sends (kept points, clusters) as a
 // pcl_conversions user would.
+#include <pcl/features/fpfh.h>
 #include <pcl/features/normal_3d.h>
 #include <pcl/filters/random_sample.h>
 #include <pcl/filters/uniform_sampling.h>
@@ -12,6 +13,7 @@
 #include <pcl/segmentation/region_growing.h>
 #include <pcl/segmentation/region_growing_rgb.h>
 #include <pcl/surface/concave_hull.h>
+#include <pcl/surface/mls.h>
 
 #include "apex_nodes/cloud.hpp"
 #include "node_vs_call.hpp"
@@ -132,6 +134,29 @@ std::vector<NodeCase> cloudFeatureCases(const TypedPtr& scene, const std::shared
                          h.setInputCloud(in), h.setAlpha(0.1), h.setDimension(2), h.setKeepInformation(true);
                          h.reconstruct(out);
                        }));
+  c.push_back(
+      over(s.node("MovingLeastSquares", {{"search_radius", "0.03"}, {"polynomial_order", "2"}, {"compute_normals", "true"}},
+                  "cloud", sinkType<Cloud>(), "MovingLeastSquares 3 cm, order 2, normals, 1 thread",
+                  [out = pcl::PointCloud<pcl::PointNormal>()](const TypedPtr& in) mutable {
+                    pcl::MovingLeastSquares<Point, pcl::PointNormal> mls;
+                    mls.setInputCloud(in), mls.setSearchRadius(0.03), mls.setPolynomialOrder(2);
+                    mls.setComputeNormals(true), mls.setNumberOfThreads(1);
+                    mls.process(out);
+                  }),
+           "the finite points' x, y, z copied out first; the smoothed points made the cloud it sends"));
+  c.push_back(
+      over(s.node("FPFHEstimation", {{"normal_radius", "0.03"}, {"feature_radius", "0.05"}}, "features", sinkType<Cloud>(),
+                  "NormalEstimation 3 cm; FPFHEstimation 5 cm",
+                  [normals = pcl::make_shared<pcl::PointCloud<pcl::Normal>>(),
+                   out = pcl::PointCloud<pcl::FPFHSignature33>()](const TypedPtr& in) mutable {
+                    pcl::NormalEstimation<Point, pcl::Normal> ne;
+                    ne.setInputCloud(in), ne.setRadiusSearch(0.03);
+                    ne.compute(*normals);
+                    pcl::FPFHEstimation<Point, pcl::Normal, pcl::FPFHSignature33> fpfh;
+                    fpfh.setInputCloud(in), fpfh.setInputNormals(normals), fpfh.setRadiusSearch(0.05);
+                    fpfh.compute(out);
+                  }),
+           "the finite points' x, y, z copied out first; each one's x, y, z and histogram copied into the cloud it sends"));
   return c;
 }
 

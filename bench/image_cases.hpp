@@ -75,5 +75,6 @@ std::vector<NodeCase> featureCases(const Inputs& in);  // image_bench_features.c
 std::vector<NodeCase> cameraCases(const Inputs& in);  // image_bench_cameras.cpp: cameras and stereo, learning
 std::vector<NodeCase> segmentationCases(
     const Inputs& in);  // image_bench_segmentation.cpp: watershed, GrabCut, k-means, superpixels
+std::vector<NodeCase> trackingCases(const Inputs& in);  // image_bench_tracking.cpp: Tracker, KalmanFilter, MultiObjectTracker
 
 }  // namespace apex_bench

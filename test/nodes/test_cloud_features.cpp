@@ -14,11 +14,10 @@
 #include <pcl/surface/concave_hull.h>
 
 #include <algorithm>
-#include <opencv2/imgcodecs.hpp>
 
 #include "apex_nodes/cloud.hpp"
 #include "apex_test/node_harness.hpp"
-#include "apex_test/real_images.hpp"
+#include "apex_test/aloe_cloud.hpp"
 
 using namespace apex_test;
 using apex_nodes::Cloud;
@@ -29,44 +28,9 @@ using Xyz = pcl::PointCloud<pcl::PointXYZ>;
 
 namespace {
 
-/** Every 8th pixel of aloe with a known disparity d (full size), at depth 160 / d metres through a
- *  camera of focal length 1000 px, coloured as aloeL.jpg: about 17,000 points. */
-const Rgb& aloe() {
-  static const Rgb points = [] {
-    Rgb out;
-    const cv::Mat disparity = cv::imread(kOpenCvData + "/aloeGT.png", cv::IMREAD_GRAYSCALE);
-    const cv::Mat colour = cv::imread(kOpenCvData + "/aloeL.jpg", cv::IMREAD_COLOR);
-    EXPECT_FALSE(disparity.empty() || colour.empty()) << "opencv-doc's aloe pair (scripts/install_deps)";
-    for (int v = 0; v < disparity.rows; v += 8)
-      for (int u = 0; u < disparity.cols; u += 8) {
-        const int d = disparity.at<std::uint8_t>(v, u);
-        if (d == 0) continue;
-        const cv::Vec3b bgr = colour.at<cv::Vec3b>(v, u);
-        pcl::PointXYZRGB p(bgr[2], bgr[1], bgr[0]);
-        p.z = 160.0f / d;
-        p.x = (u - disparity.cols / 2.0f) * p.z / 1000.0f;
-        p.y = (v - disparity.rows / 2.0f) * p.z / 1000.0f;
-        out.push_back(p);
-      }
-    return out;
-  }();
-  return points;
-}
-
-std_msgs::Header header() {
-  std_msgs::Header h;
-  h.frame_id = "camera";
-  h.stamp = ros::Time(3, 5);
-  return h;
-}
-
-std::shared_ptr<const Cloud> cloud() { return apex_nodes::makeCloud(header(), aloe()); }
-
-std::shared_ptr<const Xyz> xyz() {
-  auto out = std::make_shared<Xyz>();
-  pcl::copyPointCloud(aloe(), *out);
-  return out;
-}
+std_msgs::Header header() { return aloeHeader(); }
+std::shared_ptr<const Cloud> cloud() { return aloeCloud(); }
+std::shared_ptr<const Xyz> xyz() { return aloeXyz(); }
 
 const Cloud& out(const Message& m) {
   auto c = m.as<Cloud>();
