@@ -16,7 +16,9 @@ class DrawRegions : public apex::Node {
   static inline const apex::ParamDecl<apex::Color> kColor = param::color("color").init({0, 255, 0});
   static inline const apex::ParamDecl<int> kThickness = param::integer("thickness").range(1, 20).step(1).init(2);
   static apex::Manifest manifest() {
-    return apex::Manifest("Draws regions' bounding boxes over an image, with their labels if a classifier gave them")
+    return apex::Manifest(
+               "Draws regions' bounding boxes over an image, with their labels if a classifier gave them (a tracker's ids as "
+               "#id)")
         .inCategory("drawing")
         .input(kImage)
         .input(kRegions)
@@ -43,11 +45,13 @@ class DrawRegions : public apex::Node {
   }
 
  private:
-  /** A classified region's label and confidence above its box ('?' if the classifier rejected it). */
+  /** A classified region's label and confidence above its box ('?' if the classifier rejected it);
+   *  a label without a confidence is an id (MultiObjectTracker's), drawn as #id. */
   static void drawLabel(cv::Mat& img, const Region& r, const cv::Scalar& colour) {
     if (r.label < 0 && r.confidence <= 0) return;  // not classified
-    const std::string text =
-        (r.label >= 0 ? std::to_string(r.label) : std::string("?")) + " " + std::to_string(cvRound(100 * r.confidence)) + "%";
+    const std::string text = r.confidence <= 0 ? "#" + std::to_string(r.label)
+                                               : (r.label >= 0 ? std::to_string(r.label) : std::string("?")) + " " +
+                                                     std::to_string(cvRound(100 * r.confidence)) + "%";
     int baseline = 0;
     const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, 0.6, 2, &baseline);
     const cv::Point at(r.box.x, r.box.y > size.height + 6 ? r.box.y - 6 : r.box.br().y + size.height + 4);

@@ -8,7 +8,14 @@ loop on the same frames of the same bag. Prints detections per frame (mean, min,
 per second of both, and in how many frames the detections are equal; "people: OK" when the
 count is equal in every frame.
 
-    report_people.py BAG RECORD [FRAMES]     FRAMES: the first N frames only (0 or none: all)
+    report_people.py BAG RECORD [FRAMES [--track]]     FRAMES: the first N frames only (0: all)
+      --track: also each of the longest tracks, and fail if ids jump (more than 1 box in 100)
+
+The tracks (the graph's MultiObjectTracker) are summed up in any case: how many ids, how long
+they last, and how often an id jumps to another person: its box's centre moves further than the
+box's size (its width or height, the larger) from one appearance to the next, which a walker does
+not do in a frame or a few, while a box that grows as two blobs merge does not count. Those are the
+id switches a tracker makes that can be told without ground truth.
 """
 import os
 import sys
@@ -28,6 +35,8 @@ from real_report import node_errors
 
 IMAGE_TOPIC = '/camera/image_raw'
 RECORD_TOPIC = '/people/regions'  # graphs/real_people.yaml's record node: its input people_regions
+TRACK_TOPIC = '/people/tracks'  # and people_tracks: the MultiObjectTracker's regions, ids in label
+
 START_TIMEOUT = 60.0  # s: the runtime's services, the inspect topic's connection
 
 
@@ -149,9 +158,25 @@ def stats(counts):
     return 'mean %.2f, min %d, max %d' % (a.mean(), a.min(), a.max()) if len(a) else 'none'
 
 
+def jumped(a, b):
+    """Box b, an id's next appearance after box a (x, y, w, h), is too far to be the same person."""
+    dx = (b[0] + b[2] / 2) - (a[0] + a[2] / 2)
+    dy = (b[1] + b[3] / 2) - (a[1] + a[3] / 2)
+    return (dx * dx + dy * dy) ** 0.5 > max(a[2], a[3])
+
+
+def track_summary(tracks):
+    """tracks: {id: [(frame, box), ...]} in frame order. (ids, lengths longest first, jumps, boxes)."""
+    lengths = sorted((len(seen) for seen in tracks.values()), reverse=True)
+    jumps = sum(1 for seen in tracks.values() for (_, a), (_, b) in zip(seen, seen[1:]) if jumped(a, b))
+    return len(tracks), lengths, jumps, sum(lengths)
+
+
 def main():
     rospy.init_node('report_people', disable_signals=False)
     args = rospy.myargv(sys.argv)[1:]
+    track = '--track' in args
+    args = [a for a in args if a != '--track']
     if len(args) not in (2, 3):
         print(__doc__)
         sys.exit(2)
@@ -212,10 +237,18 @@ def main():
     status = rt.status(timeout=10.0)
     errors = node_errors(rt)
 
-    apex_boxes = {}
+    apex_boxes, tracks = {}, {}
     with rosbag.Bag(record) as bag:
-        for _, msg, _ in bag.read_messages(topics=[RECORD_TOPIC]):
-            apex_boxes[frame_index(msg.header.stamp, start, period)] = [(r.x, r.y, r.width, r.height) for r in msg.regions]
+        for topic, msg, _ in bag.read_messages(topics=[RECORD_TOPIC, TRACK_TOPIC]):
+            frame = frame_index(msg.header.stamp, start, period)
+            if topic == RECORD_TOPIC:
+                apex_boxes[frame] = [(r.x, r.y, r.width, r.height) for r in msg.regions]
+            else:
+                for r in msg.regions:
+                    tracks.setdefault(r.label, []).append((frame, (r.x, r.y, r.width, r.height)))
+    for seen in tracks.values():
+        seen.sort()
+    ids, lengths, jumps, tracked = track_summary(tracks)
 
     cv_boxes, cv_calls, cv_all = run_loop(bag_path, frames, settings)
 
@@ -232,17 +265,25 @@ def main():
           % ('%.1f (the whole graph)' % (frames / apex_seconds), frames / cv_calls, frames / cv_all))
     print('frames recorded       %d of %d' % (len(apex_boxes), frames))
     print('equal detections      counts in %d of %d frames, boxes in %d of %d' % (same_count, frames, same_boxes, frames))
+    print('tracks (ids)          %d ids, the longest in %d frames (median %d); %d id jumps in %d tracked boxes'
+          % (ids, lengths[0] if lengths else 0, lengths[len(lengths) // 2] if lengths else 0, jumps, tracked))
+    if track:
+        for i, (tid, seen) in enumerate(sorted(tracks.items(), key=lambda t: -len(t[1]))[:8]):
+            print('  #%-4d in %4d frames, %d to %d' % (tid, len(seen), seen[0][0], seen[-1][0]))
     nodes = [n for n in status.nodes if n.firings > 0 and n.name != 'bag']
     print('per node (mean ms):   ' + ', '.join('%s %.2f' % (n.name, n.mean_ms) for n in nodes))
     first_diff = next((i for i in range(frames) if i not in apex_boxes or len(apex_boxes[i]) != len(cv_boxes[i])), None)
     if first_diff is not None:
         print('first difference:     frame %d: APEX %s, OpenCV %s'
               % (first_diff, apex_boxes.get(first_diff, 'not recorded'), [tuple(b) for b in cv_boxes[first_diff]]))
-    ok = not errors and len(apex_boxes) == frames and same_count == frames
+    jumpy = track and (not tracked or jumps * 100 > tracked)
+    ok = not errors and len(apex_boxes) == frames and same_count == frames and not jumpy
     if ok:
         print('people: OK')
     elif errors:
         print('people: FAILED' + errors)
+    elif jumpy:
+        print('people: FAILED: %d id jumps in %d tracked boxes (at most 1 in 100)' % (jumps, tracked))
     else:
         print('people: FAILED: the detection counts differ in %d of %d frames' % (frames - same_count, frames))
     sys.stdout.flush()

@@ -249,6 +249,26 @@ TEST(ImageNodes, DrawRegionsDrawsTheBoxes) {
   EXPECT_EQ(got.encoding, "bgr8");
 }
 
+TEST(ImageNodes, DrawRegionsWritesATrackersIdAsHashId) {
+  NodeHarness h("apex_nodes/DrawRegions", {"image", "regions"}, "image");
+  auto regions = std::make_shared<Regions>();
+  apex_nodes::Region r;
+  r.box = cv::Rect(40, 60, 30, 20);
+  r.label = 7;  // MultiObjectTracker's id; no confidence
+  regions->regions.push_back(r);
+  const Image& got = out(h.run({Message::share<Image>(imageOf(gray(), "mono8")), Message::share<Regions>(regions)}));
+  cv::Mat want;  // the box, then "#7" above it on black, as for a classifier's "7 93%"
+  cv::cvtColor(gray(), want, cv::COLOR_GRAY2BGR);
+  cv::rectangle(want, r.box, cv::Scalar(0, 255, 0), 2);
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize("#7", cv::FONT_HERSHEY_SIMPLEX, 0.6, 2, &baseline);
+  const cv::Point at(r.box.x, r.box.y - 6);
+  cv::rectangle(want, cv::Rect(at.x, at.y - size.height - 2, size.width + 2, size.height + baseline + 2), cv::Scalar::all(0),
+                cv::FILLED);
+  cv::putText(want, "#7", at + cv::Point(1, 0), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 255, 0), 2, cv::LINE_AA);
+  expectSameMat(got.mat, want);
+}
+
 TEST(ImageNodes, ImageExportWritesFramesOrCrops) {
   char dir[] = "/tmp/apex_export_XXXXXX";
   ASSERT_NE(mkdtemp(dir), nullptr);
