@@ -15,7 +15,11 @@
 #include <pcl/surface/concave_hull.h>
 #include <pcl/surface/mls.h>
 
+#include <cmath>
+#include <limits>
+
 #include "apex_nodes/cloud.hpp"
+#include "apex_nodes/maps.hpp"
 #include "node_vs_call.hpp"
 
 namespace apex_bench {
@@ -157,6 +161,47 @@ std::vector<NodeCase> cloudFeatureCases(const TypedPtr& scene, const std::shared
                     fpfh.compute(out);
                   }),
            "the finite points' x, y, z copied out first; each one's x, y, z and histogram copied into the cloud it sends"));
+  // The map nodes' binning by hand: the points with z in [1, 2] m on the grid of 2 cm cells (as a
+  // float, as the message holds it) just covering them, each one's cell and z.
+  const auto binByHand = [](const Typed& in, std::vector<std::pair<long, float>>& binned) {
+    const double resolution = 0.02f;
+    const auto kept = [](const Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && p.z >= 1.0 && p.z <= 2.0; };
+    float x1 = std::numeric_limits<float>::max(), y1 = x1, x2 = -x1, y2 = -x1;
+    for (const Point& p : in)
+      if (kept(p)) x1 = std::min(x1, p.x), y1 = std::min(y1, p.y), x2 = std::max(x2, p.x), y2 = std::max(y2, p.y);
+    const int w = int(std::floor((x2 - double(x1)) / resolution)) + 1, h = int(std::floor((y2 - double(y1)) / resolution)) + 1;
+    binned.clear();
+    for (const Point& p : in)
+      if (kept(p)) binned.push_back({long((p.y - double(y1)) / resolution) * w + long((p.x - double(x1)) / resolution), p.z});
+    return std::make_pair(w, h);
+  };
+  const Params band{{"z_band", "[1.0, 2.0]"}, {"resolution", "0.02"}};
+  Params occupancy = band;
+  occupancy.push_back({"min_points", "3"});
+  c.push_back(over(s.node("CloudToOccupancyGrid", occupancy, "grid", sinkType<nav_msgs::OccupancyGrid>(),
+                          "by hand: z in [1, 2] m, bounds, counts per 2 cm cell, the grid's data (3 points: occupied)",
+                          [binByHand, binned = std::vector<std::pair<long, float>>(), counts = std::vector<int>(),
+                           data = std::vector<std::int8_t>()](const TypedPtr& in) mutable {
+                            const auto [w, h] = binByHand(*in, binned);
+                            counts.assign(std::size_t(w) * h, 0);
+                            for (const auto& b : binned) ++counts[b.first];
+                            data.resize(counts.size());
+                            for (std::size_t k = 0; k < counts.size(); ++k)
+                              data[k] = counts[k] == 0 ? -1 : counts[k] >= 3 ? 100 : 0;
+                          }),
+                   "the x, y, z copied out first; a new grid message each frame"));
+  c.push_back(
+      over(s.node("HeightMap", band, "heights", sinkType<apex_nodes::Image>(),
+                  "by hand: z in [1, 2] m, bounds, the highest z per 2 cm cell (NaN where none)",
+                  [binByHand, binned = std::vector<std::pair<long, float>>(), heights = cv::Mat()](const TypedPtr& in) mutable {
+                    const auto [w, h] = binByHand(*in, binned);
+                    heights.create(h, w, CV_32F);
+                    heights.setTo(std::numeric_limits<float>::quiet_NaN());
+                    float* top = heights.ptr<float>();
+                    for (const auto& b : binned)
+                      if (!(top[b.first] >= b.second)) top[b.first] = b.second;
+                  }),
+           "the x, y, z copied out first; a new image each frame"));
   return c;
 }
 

@@ -210,7 +210,8 @@ int main(int argc, char** argv) {
   }
   const Inputs in = inputs(vga(building), vga(smarties));
   std::vector<NodeCase> all;
-  for (auto* part : {filterCases, shapeCases, featureCases, cameraCases, segmentationCases, trackingCases})
+  for (auto* part : {filterCases, shapeCases, featureCases, cameraCases, segmentationCases, trackingCases, videoCases, dnnCases,
+                     ximgprocCases})
     for (auto& c : part(in)) all.push_back(std::move(c));
 
   std::printf("Each node type alone (a source → the node → a sink, one thread group, loaded through pluginlib)\n");

@@ -11,18 +11,14 @@
 #include "image_cases.hpp"
 
 namespace apex_bench {
-namespace {
-
-using apex_nodes::Regions;
-using sensor_msgs::CameraInfo;
 
 /** left_intrinsics.yml's model as a ROS message (R identity, P = [K | 0]); nullptr if unreadable. */
-std::shared_ptr<const CameraInfo> leftCamera() {
+std::shared_ptr<const sensor_msgs::CameraInfo> leftCamera() {
   cv::FileStorage fs(kData + "/left_intrinsics.yml", cv::FileStorage::READ);
   cv::Mat K, D;
   if (fs.isOpened()) fs["camera_matrix"] >> K, fs["distortion_coefficients"] >> D;
   if (K.rows != 3 || K.cols != 3 || D.total() != 5) return nullptr;
-  auto info = std::make_shared<CameraInfo>();
+  auto info = std::make_shared<sensor_msgs::CameraInfo>();
   info->header.frame_id = "camera";
   info->width = 640, info->height = 480;
   info->distortion_model = "plumb_bob";
@@ -31,6 +27,11 @@ std::shared_ptr<const CameraInfo> leftCamera() {
   for (int i = 0; i < 12; ++i) info->P[i] = i % 4 == 3 ? 0 : K.at<double>(i / 4, i % 4);
   return info;
 }
+
+namespace {
+
+using apex_nodes::Regions;
+using sensor_msgs::CameraInfo;
 
 std::vector<NodeCase> cameraModelCases(const Inputs& in) {
   std::vector<NodeCase> c;

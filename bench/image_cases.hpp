@@ -2,6 +2,8 @@
 // the ways to make a case of them. Each image_bench_*.cpp adds the cases of some categories.
 #pragma once
 
+#include <sensor_msgs/CameraInfo.h>
+
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -69,6 +71,10 @@ inline NodeCase imageCase(std::string label, std::string type, std::string input
 }
 
 // The case files: each gives its categories' cases on the inputs.
+/** left_intrinsics.yml's model as a ROS message (R identity, P = [K | 0]); nullptr if unreadable
+ *  (image_bench_cameras.cpp). */
+std::shared_ptr<const sensor_msgs::CameraInfo> leftCamera();
+
 std::vector<NodeCase> filterCases(const Inputs& in);  // image_bench.cpp: image filters, colour, the first detectors
 std::vector<NodeCase> shapeCases(const Inputs& in);  // image_bench_shapes.cpp: two-input filters, channels, contours, drawing
 std::vector<NodeCase> featureCases(const Inputs& in);  // image_bench_features.cpp: features, motion, detection
@@ -76,5 +82,9 @@ std::vector<NodeCase> cameraCases(const Inputs& in);  // image_bench_cameras.cpp
 std::vector<NodeCase> segmentationCases(
     const Inputs& in);  // image_bench_segmentation.cpp: watershed, GrabCut, k-means, superpixels
 std::vector<NodeCase> trackingCases(const Inputs& in);  // image_bench_tracking.cpp: Tracker, KalmanFilter, MultiObjectTracker
+std::vector<NodeCase> videoCases(
+    const Inputs& in);  // image_bench_video.cpp: VideoWriter, ImageSequenceWriter, SolvePnP, Stitcher
+std::vector<NodeCase> dnnCases(const Inputs& in);  // image_bench_dnn.cpp: DnnNetwork, on a network written as ONNX
+std::vector<NodeCase> ximgprocCases(const Inputs& in);  // image_bench_ximgproc.cpp: ximgproc's filters, thinning, lines
 
 }  // namespace apex_bench

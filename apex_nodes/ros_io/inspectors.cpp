@@ -1,5 +1,5 @@
 // ~inspect for the node library's types: images as sensor_msgs/Image, clouds
-// as sensor_msgs/PointCloud2 (every field), scans and camera models as themselves, the image
+// as sensor_msgs/PointCloud2 (every field), scans, camera models and maps as themselves, the image
 // library's results as this package's messages (ros_results.hpp) (see apex/ros/inspect.hpp).
 // A ROS message of any type (RosMessage) has its own, in ros_message.cpp.
 #include <sensor_msgs/LaserScan.h>
@@ -11,6 +11,7 @@
 
 #include "apex/ros/inspect.hpp"
 #include "apex_nodes/cloud.hpp"
+#include "apex_nodes/maps.hpp"
 #include "apex_nodes/stamp.hpp"
 #include "apex_nodes/ros_convert.hpp"
 #include "apex_nodes/ros_results.hpp"
@@ -54,6 +55,12 @@ const bool kRegistered = [] {
   apex::addInspector<geometry_msgs::PoseStamped, geometry_msgs::PoseStamped>(
       [](const geometry_msgs::PoseStamped& p) { return p; });
   apex::addInspector<geometry_msgs::PoseArray, geometry_msgs::PoseArray>([](const geometry_msgs::PoseArray& p) { return p; });
+  // Maps (pcl/maps.cpp) as themselves: rviz's Map display shows the occupancy grid.
+  apex::addInspector<nav_msgs::OccupancyGrid, nav_msgs::OccupancyGrid>([](const nav_msgs::OccupancyGrid& g) { return g; });
+  apex::addDescribe<nav_msgs::OccupancyGrid>([](const nav_msgs::OccupancyGrid& g) {
+    return std::to_string(g.info.width) + "×" + std::to_string(g.info.height) + " cells";
+  });
+  apex::addInspector<nav_msgs::MapMetaData, nav_msgs::MapMetaData>([](const nav_msgs::MapMetaData& m) { return m; });
   // The image library's results, as apex/Regions, apex/Contours, apex/LineSegments, apex/Circles,
   // apex/FiducialMarkers, apex/ChessboardCorners, apex/Keypoints, apex/Matches, apex/Homography, apex/Tracks.
   addResult<Regions>([](const Regions& r) { return count(r.regions.size(), "region"); });

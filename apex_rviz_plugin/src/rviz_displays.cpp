@@ -34,6 +34,7 @@ std::optional<RvizDisplay> rvizDisplayFor(const std::string& message_type) {
       {"sensor_msgs/Image", {"rviz/Image", "Image Topic"}},
       {"sensor_msgs/PointCloud2", {"rviz/PointCloud2", "Topic"}},
       {"sensor_msgs/LaserScan", {"rviz/LaserScan", "Topic"}},
+      {"nav_msgs/OccupancyGrid", {"rviz/Map", "Topic"}},
       {"visualization_msgs/MarkerArray", {"rviz/MarkerArray", "Marker Topic"}},
       {"visualization_msgs/Marker", {"rviz/Marker", "Marker Topic"}},
       {"geometry_msgs/PoseStamped", {"rviz/Pose", "Topic"}},
