@@ -81,10 +81,11 @@ class CloudGrid : public apex::Node {
 
   /** The grid for `cloud`, and its band's points that fall in it. Throws std::invalid_argument for a
    *  cloud without points, a grid over no point, or one of more than kMaxCells cells. */
-  Grid bin(const Cloud& cloud, std::vector<Binned>& binned) const {
-    const auto xyz = xyzOf(cloud);  // throws for a cloud without x, y, z or a finite point
+  Grid bin(const Cloud& cloud, std::vector<Binned>& binned) {
+    const auto xyz = xyzOf(cloud, xyz_.next());  // throws for a cloud without x, y, z or a finite point
     const apex::Interval band = z_band_.get();
-    std::vector<pcl::PointXYZ> kept;
+    std::vector<pcl::PointXYZ>& kept = kept_;  // kept between frames: no allocation per frame
+    kept.clear();
     for (const pcl::PointXYZ& p : *xyz)
       if (std::isfinite(p.x) && std::isfinite(p.y) && p.z >= band.low && p.z <= band.high) kept.push_back(p);
     Grid g;
@@ -120,6 +121,8 @@ class CloudGrid : public apex::Node {
   apex::Param<apex::Pair> origin_{this, kOrigin};
   apex::Param<int> width_{this, kWidth};
   apex::Param<int> height_{this, kHeight};
+  Reused<XyzCloud> xyz_;
+  std::vector<pcl::PointXYZ> kept_;
 
  protected:
   apex::Input<Cloud> cloud_{this, kCloud};
