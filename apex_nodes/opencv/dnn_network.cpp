@@ -1,13 +1,18 @@
-// DnnNetwork: classifies an image, or each of its regions, with a network OpenCV's dnn module reads
-// (cv::dnn::readNet tells the format by the files' extensions: ONNX .onnx, Caffe .caffemodel with
-// its .prototxt, TensorFlow .pb with an optional .pbtxt, Darknet .weights with its .cfg). Each crop,
-// or the whole image, becomes a blob as blobFromImage makes it (resized to the input size, the mean
-// subtracted, scaled) and runs through the network alone, so that a network whose batch is fixed at
-// one takes it too. The label is the index of the crop's largest output, the confidence that value:
-// a probability when the network ends in a softmax, as classifiers do.
+// DnnNetwork: runs a network OpenCV's dnn module reads (cv::dnn::readNet tells the format by the
+// files' extensions: ONNX .onnx, Caffe .caffemodel with its .prototxt, TensorFlow .pb with an
+// optional .pbtxt, Darknet .weights with its .cfg) and reads its output as the task says:
+// - classify: each region's crop, or the whole image, runs through the network alone, so that a
+//   network whose batch is fixed at one takes it too. The label is the index of the crop's largest
+//   output, the confidence that value: a probability when the network ends in a softmax.
+// - detect: the whole image runs once; the output is SSD's DetectionOutput rows, made boxes of the
+//   image with non-maximum suppression per class (dnn_outputs.hpp).
+// - segment: the whole image runs once; the output is a score per class and pixel, made a mask of
+//   class indices the image's size (dnn_outputs.hpp).
+// Each becomes a blob as blobFromImage makes it (resized to the input size, the mean subtracted,
+// scaled). Detect and segment take no regions and no centre crop: their output is mapped back to
+// the whole image, which a crop would not cover.
 // The network is read when first needed, and again when the file changes or a parameter it is read
 // with is set (ModelFile); a missing or unreadable file is an error naming it.
-// Classification only: SSD/YOLO detections (boxes, NMSBoxes) and segmentation maps come later.
 
 #include <algorithm>
 #include <memory>
@@ -19,6 +24,7 @@
 #include "apex/core/registry.hpp"
 #include "apex_nodes/image_check.hpp"
 #include "apex_nodes/model_file.hpp"
+#include "dnn_outputs.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
@@ -58,13 +64,31 @@ class DnnNetwork : public apex::Node {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "8-bit or float pixels, of the channels the network takes"};
   static inline const apex::InputPort<Regions> kRegions{
-      "regions", "if connected: each region's crop is classified; else the whole image", true};
+      "regions", "classify: if connected, each region's crop is classified, else the whole image; detect, segment: none", true};
   static inline const apex::OutputPort<Regions> kLabelled{
       "regions",
-      "the regions (or one, the whole image) with label (the largest output's index; -1 below min_confidence or outside "
-      "the image) and confidence (that output)"};
+      "classify: the regions (or one, the whole image) with label (the largest output's index; -1 below min_confidence "
+      "or outside the image) and confidence (that output); detect: a region per box kept, in the image's pixels, label "
+      "the class id, confidence the row's, the most confident first; segment: Nothing"};
   static inline const apex::OutputPort<Image> kOutput{
-      "output", "the network's output, 32FC1: a row per region (zeros for one outside the image), its values in order"};
+      "output",
+      "the network's output, 32FC1: classify: a row per region (zeros for one outside the image), its values in order; "
+      "detect: its N x 7 rows, all of them; segment: C x H rows of W, each class's scores in turn"};
+  static inline const apex::OutputPort<Image> kMask{
+      "mask",
+      "segment: each pixel's class (the index of its largest score), mono8 (mono16 past 256 classes), resized to the "
+      "image by nearest neighbour; Nothing in the other tasks"};
+  enum class Task { kClassify, kDetect, kSegment };
+  static inline const apex::ChoiceDecl<Task> kTask =
+      param::choice<Task>(
+          "task", {{"classify", Task::kClassify, "any output; sends a label per crop, or for the whole image, on regions"},
+                   {"detect", Task::kDetect,
+                    "the output [1, 1, N, 7] of SSD's DetectionOutput, rows of image_id, class_id, confidence, x1, y1, "
+                    "x2, y2 (the corners relative to the input, 0..1); sends the boxes in the whole image above "
+                    "min_confidence, after non-maximum suppression per class, on regions"},
+                   {"segment", Task::kSegment,
+                    "the output [1, C, H, W], a score per class and pixel (C from 2); sends each pixel's class on mask"}})
+          .describe("what the network's output is");
   static inline const apex::ParamDecl<std::string> kModel =
       param::path("model")
           .describe("the network: .onnx, .caffemodel, .pb or .weights (readNet tells the format by the extension)")
@@ -84,8 +108,9 @@ class DnnNetwork : public apex::Node {
       param::number("scale").range(0.0, 1000.0).step(0.0001).init(1.0).describe("each value times it (1/255: 0.00392157)");
   static inline const apex::ParamDecl<bool> kSwapRb =
       param::flag("swap_rb").describe("swap the first and third channels: BGR images for a network trained on RGB");
-  static inline const apex::ParamDecl<bool> kCrop =
-      param::flag("crop").describe("resize keeping the aspect ratio and cut out the middle; else stretch to the input size");
+  static inline const apex::ParamDecl<bool> kCrop = param::flag("crop").describe(
+      "classify: resize keeping the aspect ratio and cut out the middle; else (and always in detect, segment) stretch to "
+      "the input size");
   static inline const apex::ChoiceDecl<cv::dnn::Backend> kBackend =
       param::choice<cv::dnn::Backend>(
           "backend", {{"opencv", cv::dnn::DNN_BACKEND_OPENCV,
@@ -102,16 +127,24 @@ class DnnNetwork : public apex::Node {
           .range(0.0, 1.0)
           .step(0.01)
           .init(0.0)
-          .describe("a region whose largest output is less gets label -1");
+          .describe("classify: a region whose largest output is less gets label -1; detect: a box is kept only above it");
+  static inline const apex::ParamDecl<double> kNmsThreshold =
+      param::number("nms_threshold")
+          .range(0.0, 1.0)
+          .step(0.01)
+          .init(0.4)
+          .describe("detect: a box overlapping a more confident one of its class by more (intersection over union) is dropped");
   static apex::Manifest manifest() {
     return apex::Manifest(
-               "Classifies an image, or each region's crop, with a network OpenCV's dnn reads (ONNX, Caffe, "
-               "TensorFlow, Darknet)")
+               "Classifies an image or each region's crop, detects boxes (SSD) or segments an image with a network "
+               "OpenCV's dnn reads (ONNX, Caffe, TensorFlow, Darknet)")
         .inCategory("learning")
         .input(kImage)
         .input(kRegions)
         .output(kLabelled)
         .output(kOutput)
+        .output(kMask)
+        .param(kTask)
         .param(kModel)
         .param(kConfig)
         .param(kWidth)
@@ -122,7 +155,8 @@ class DnnNetwork : public apex::Node {
         .param(kCrop)
         .param(kBackend)
         .param(kTarget)
-        .param(kMinConfidence);
+        .param(kMinConfidence)
+        .param(kNmsThreshold);
   }
   void parameterChanged(const std::string& name) override {
     for (const std::string& read_with : {kModel.name(), kConfig.name(), kBackend.name(), kTarget.name()})
@@ -132,9 +166,31 @@ class DnnNetwork : public apex::Node {
     const Image& image = *image_.get();
     requireImage(image);
     if (image.mat.depth() != CV_8U && image.mat.depth() != CV_32F)
-      throw std::invalid_argument("cannot classify '" + image.encoding + "' images: blobFromImage takes 8-bit or float pixels");
+      throw std::invalid_argument("cannot run a network on '" + image.encoding +
+                                  "' images: blobFromImage takes 8-bit or float pixels");
     if (mean_.get().size() > 4)
       throw std::invalid_argument("mean has " + std::to_string(mean_.get().size()) + " numbers: give one per channel, up to 4");
+    const Task task = task_.get();
+    if (task != Task::kClassify && regions_.has())
+      throw std::invalid_argument("task '" + task_.text() +
+                                  "' runs on the whole image: disconnect 'regions' (they are for classify)");
+    if (task != Task::kClassify && crop_.get())
+      throw std::invalid_argument("task '" + task_.text() +
+                                  "' maps its output back to the whole image, which crop would cut: set crop to false");
+    const DnnModel& model = load();
+    switch (task) {  // every task a case: -Wswitch names one left out
+      case Task::kClassify:
+        return classify(image, model);
+      case Task::kDetect:
+        return detect(image, model);
+      case Task::kSegment:
+        return segment(image, model);
+    }
+  }
+
+ private:
+  /** Labels each region's crop, or the whole image, by its largest output. */
+  void classify(const Image& image, const DnnModel& model) {
     auto out = std::make_shared<Regions>();
     if (const auto in = regions_.get()) {
       *out = *in;
@@ -142,7 +198,6 @@ class DnnNetwork : public apex::Node {
       out->header = image.header, out->image_size = image.mat.size();
       out->regions = {wholeImage(image.mat.size())};
     }
-    const DnnModel& model = load();
     const cv::Rect frame(0, 0, image.mat.cols, image.mat.rows);
     const int n = static_cast<int>(out->regions.size());
     cv::Mat rows;  // a row per region, sized at the first output
@@ -151,7 +206,7 @@ class DnnNetwork : public apex::Node {
       r.label = -1, r.confidence = 0;
       const cv::Rect box = r.box & frame;
       if (box.empty()) continue;
-      const cv::Mat values = run(model, image.mat(box));
+      const cv::Mat values = forward(model, image.mat(box)).reshape(1, 1);
       if (rows.empty()) rows = cv::Mat::zeros(n, values.cols, CV_32F);
       values.copyTo(rows.row(i));
       const float* v = values.ptr<float>();
@@ -162,26 +217,44 @@ class DnnNetwork : public apex::Node {
     if (!rows.empty()) output_.publish(resultOf(image, rows, "32FC1"));
     regions_out_.publish(std::move(out));
   }
-
- private:
-  /** The network's output for one crop, as one row of floats (a copy: the next run reuses the net's buffers). */
-  cv::Mat run(const DnnModel& model, const cv::Mat& crop) const {
+  /** The boxes of the image's detections (detectionsOf), and the rows they came from. */
+  void detect(const Image& image, const DnnModel& model) {
+    const cv::Mat rows = forward(model, image.mat);
+    auto out = std::make_shared<Regions>();
+    out->header = image.header, out->image_size = image.mat.size();
+    out->regions =
+        detectionsOf(rows, image.mat.size(), static_cast<float>(min_confidence_.get()), static_cast<float>(nms_threshold_.get()));
+    if (rows.size[2] > 0) output_.publish(resultOf(image, rows.reshape(1, rows.size[2]), "32FC1"));
+    regions_out_.publish(std::move(out));
+  }
+  /** The image's class mask (classMask), and the scores it came from. */
+  void segment(const Image& image, const DnnModel& model) {
+    const cv::Mat scores = forward(model, image.mat);
+    cv::Mat mask = classMask(scores, image.mat.size());
+    const std::string encoding = mask.depth() == CV_8U ? "mono8" : "mono16";
+    output_.publish(resultOf(image, scores.reshape(1, scores.size[1] * scores.size[2]), "32FC1"));
+    mask_.publish(resultOf(image, std::move(mask), encoding));
+  }
+  /** The network's output for `pixels` (a crop or the whole image) as floats, in the output's own
+   *  shape; a copy, as the next run reuses the net's buffers. */
+  cv::Mat forward(const DnnModel& model, const cv::Mat& pixels) const {
     const std::vector<double>& m = mean_.get();
     cv::Scalar mean;
     for (std::size_t c = 0; c < m.size(); ++c) mean[static_cast<int>(c)] = m[c];
     const cv::Size size(width_.get(), height_.get());
     cv::Mat out;
     try {
-      model.net.setInput(cv::dnn::blobFromImage(crop, scale_.get(), size, mean, swap_rb_.get(), crop_.get()));
+      model.net.setInput(cv::dnn::blobFromImage(pixels, scale_.get(), size, mean, swap_rb_.get(), crop_.get()));
       out = model.net.forward();
     } catch (const cv::Exception& e) {
-      throw std::invalid_argument("the network '" + model_path_.get() + "' cannot run on a " + std::to_string(crop.cols) + "x" +
-                                  std::to_string(crop.rows) + " crop of " + std::to_string(crop.channels()) + " channels at " +
-                                  std::to_string(size.width) + "x" + std::to_string(size.height) + ": " + e.err);
+      throw std::invalid_argument("the network '" + model_path_.get() + "' cannot run on a " + std::to_string(pixels.cols) + "x" +
+                                  std::to_string(pixels.rows) + " crop of " + std::to_string(pixels.channels()) +
+                                  " channels at " + std::to_string(size.width) + "x" + std::to_string(size.height) + ": " +
+                                  e.err);
     }
-    cv::Mat row;
-    out.reshape(1, 1).convertTo(row, CV_32F);
-    return row;
+    cv::Mat values;
+    out.convertTo(values, CV_32F);  // a copy, also when already float
+    return values;
   }
   const DnnModel& load() {
     const std::string& path = model_path_.get();
@@ -197,6 +270,8 @@ class DnnNetwork : public apex::Node {
   apex::Input<Regions> regions_{this, kRegions};
   apex::Output<Regions> regions_out_{this, kLabelled};
   apex::Output<Image> output_{this, kOutput};
+  apex::Output<Image> mask_{this, kMask};
+  apex::Choice<Task> task_{this, kTask};
   apex::Param<std::string> model_path_{this, kModel};
   apex::Param<std::string> config_{this, kConfig};
   apex::Param<int> width_{this, kWidth};
@@ -208,6 +283,7 @@ class DnnNetwork : public apex::Node {
   apex::Choice<cv::dnn::Backend> backend_{this, kBackend};
   apex::Choice<cv::dnn::Target> target_{this, kTarget};
   apex::Param<double> min_confidence_{this, kMinConfidence};
+  apex::Param<double> nms_threshold_{this, kNmsThreshold};
   ModelFile<DnnModel> model_;
 };
 
