@@ -90,6 +90,9 @@ TEST(PanelWidgetReconnect, AKilledRuntimeIsSaidGoneAtOnceAndTheNextOneOffersWhat
       QTest::qWaitFor([&] { return std::filesystem::exists(copy) && panel.editor()->scene()->node("unsaved_clock"); }, kWaitMs))
       << "no recovery copy at " << copy;
 
+  // its heartbeat heard first: a runtime that never sent one is taken at its topics' word (on a
+  // loaded machine the first ~status can come after the graph and the types)
+  ASSERT_TRUE(QTest::qWaitFor([&] { return panel.link().heardFrom(); }, kWaitMs)) << "no ~status from /apex_k";
   runtime.kill9();
   QElapsedTimer clock;
   clock.start();

@@ -53,6 +53,9 @@ class RuntimeLink : public QObject {
   const std::string& ns() const { return ns_; }
   /** @brief Its topics are there and it speaks (its ~status comes). */
   bool connected() const { return connected_ && !silent_; }
+  /** @brief A heartbeat (~status) came from this runtime since the link was made: only then can its
+   *  silence say it is gone (one that never sent any is taken at its topics' word). */
+  bool heardFrom() const { return heard_ != std::chrono::steady_clock::time_point{}; }
 
   /** @brief Makes the calls in order, stopping at the first refused one; `done` gets its message. */
   void run(std::vector<Call> calls, Done done);
