@@ -1,5 +1,7 @@
 #include "apex_rviz_plugin/optimizer_plot.hpp"
 
+#include <QPainterPath>
+
 #include <algorithm>
 
 namespace apex_rviz_plugin {
@@ -30,13 +32,15 @@ void paintFront(QPainter* p, const QRectF& plot, const std::vector<FrontPoint>& 
   for (const auto& f : front)
     line << QPointF(along(f.ms_per_frame, cheap->ms_per_frame, dear->ms_per_frame, plot.left() + 5, plot.right() - 5),
                     along(f.fitness, worst->fitness, best->fitness, plot.bottom() - 5, plot.top() + 5));
+  p->setPen(QColor(150, 150, 150));  // first: the points go over it
+  p->drawText(plot.adjusted(3, 1, -3, -1), Qt::AlignRight | Qt::AlignBottom, "ms/frame →");
   p->setPen(QPen(kFrontColor.darker(150), 1));
   p->drawPolyline(line);
-  p->setPen(Qt::NoPen);
-  p->setBrush(kFrontColor);
-  for (const auto& at : line) p->drawEllipse(at, 3, 3);
-  p->setPen(QColor(150, 150, 150));
-  p->drawText(plot.adjusted(3, 1, -3, -1), Qt::AlignRight | Qt::AlignBottom, "ms/frame →");
+  // One shape: points that overlap are filled once, so no antialiased edge of one cuts another.
+  QPainterPath points;
+  points.setFillRule(Qt::WindingFill);
+  for (const auto& at : line) points.addEllipse(at, 3, 3);
+  p->fillPath(points, kFrontColor);
 }
 
 }  // namespace

@@ -9,16 +9,8 @@
 namespace panel_test {
 namespace {
 
-/** The front's points the box draws: blobs of the front's colour in its picture. */
-std::size_t frontPointsDrawn(NodeItem& box) {
-  const QRectF r = box.boundingRect();
-  QImage picture(r.size().toSize(), QImage::Format_ARGB32);
-  picture.fill(Qt::black);
-  {
-    QPainter p(&picture);
-    p.translate(-r.topLeft());
-    box.paint(&p, nullptr, nullptr);
-  }
+/** The front's points in a picture: blobs of the front's colour. */
+std::size_t frontPointsIn(const QImage& picture) {
   std::vector<std::vector<bool>> seen(picture.height(), std::vector<bool>(picture.width(), false));
   std::size_t blobs = 0;
   const auto front = [&](int x, int y) { return picture.pixelColor(x, y) == kFrontColor; };
@@ -36,6 +28,37 @@ std::size_t frontPointsDrawn(NodeItem& box) {
       }
     }
   return blobs;
+}
+
+/** The front's points the box draws. */
+std::size_t frontPointsDrawn(NodeItem& box) {
+  const QRectF r = box.boundingRect();
+  QImage picture(r.size().toSize(), QImage::Format_ARGB32);
+  picture.fill(Qt::black);
+  {
+    QPainter p(&picture);
+    p.translate(-r.topLeft());
+    box.paint(&p, nullptr, nullptr);
+  }
+  return frontPointsIn(picture);
+}
+
+TEST(OptimizerPlot, EachPointOfTheFrontIsOneBlobHoweverNearTheOthers) {
+  QImage picture(240, 90, QImage::Format_ARGB32);
+  for (double dx = 0; dx <= 1.0; dx += 0.05)
+    for (double dy = 0; dy <= 0.1; dy += 0.01) {
+      // a point of the front near the cheapest (touching it or not), and the fittest far off
+      const std::vector<FrontPoint> front{{1, 0.0, 1.0, ""}, {2, dy, 1.0 + dx, ""}, {3, 1.0, 10.0, ""}};
+      picture.fill(Qt::black);
+      {
+        QPainter p(&picture);
+        p.setRenderHint(QPainter::Antialiasing);  // as the box draws
+        paintOptimizerRun(&p, QRectF(0, 0, 240, 90), 3, 3, {0.0, 0.5, 1.0}, front);
+      }
+      const std::size_t blobs = frontPointsIn(picture);
+      EXPECT_LE(blobs, front.size()) << "dx " << dx << " dy " << dy;
+      EXPECT_GE(blobs, 2u) << "dx " << dx << " dy " << dy;
+    }
 }
 
 TEST_F(PanelWidgetTest, ATwoObjectiveRunsFrontIsDrawnInItsBoxAndAPointOfItsMenuAppliesInOneUndoStep) {
