@@ -84,6 +84,10 @@ TEST(ParamParse, StringAndPath) {
   // what yaml-cpp's emitter leaves plain but reads as something else: a document's start or end,
   // a sequence; a "\r" alone is text to it (found by fuzz_param_text)
   for (std::string v : {"---", "...", "--- a", "- - x", "? a", "-\r?\r-"}) expectRoundTrip(s, v);
+  // no text is the empty string (a cleared field, `value: ''` over rosservice), not null
+  EXPECT_EQ(parseOk(s, ""), ParamValue(std::string()));
+  EXPECT_EQ(parseOk(s, " "), ParamValue(std::string()));
+  EXPECT_EQ(parseOk(param::path("file", "", PathMode::Write), ""), ParamValue(std::string()));
 
   const auto p = param::path("file", "/tmp/in.png", PathMode::Write);
   EXPECT_EQ(parseOk(p, "/data/out image.png"), ParamValue(std::string("/data/out image.png")));

@@ -141,6 +141,14 @@ struct Parser {
 }  // namespace
 
 Result<ParamValue> ParamSpec::parse(std::string_view text) const {
+  // No text at all is the empty string, as a cleared field or `value: ''` over rosservice means it
+  // (YAML would read it as null).
+  const bool empty = text.find_first_not_of(" \t\r\n") == std::string_view::npos;
+  if (empty && (kind == ParamKind::String || kind == ParamKind::Path)) {
+    ParamValue none{std::string()};
+    if (auto st = validate(none); !st) return st;
+    return none;
+  }
   YAML::Node node;
   try {
     node = detail::loadYaml(std::string(text));
