@@ -8,6 +8,12 @@
 
 namespace apex_nodes {
 namespace param = apex::param;
+namespace {
+
+/** Equal and not_equal's test; v == t: equal infinities. */
+bool within(double v, double t, double tolerance) { return std::fabs(v - t) <= tolerance || v == t; }
+
+}  // namespace
 
 class Compare : public StatefulFlowNode {
  public:
@@ -17,8 +23,16 @@ class Compare : public StatefulFlowNode {
   static inline const apex::TriggerPort kRose{
       "rose", "fires when the result turns true (also at the first value, as a PLC's R_TRIG: it counts as false before)"};
   static inline const apex::TriggerPort kFell{"fell", "fires when the result turns false"};
-  static inline const apex::ParamDecl<std::string> kOperator =
-      param::choice("operator", {"greater", "greater_equal", "less", "less_equal", "equal", "not_equal"})
+  /** Whether `value` (v) stands in an operator's relation to `threshold` (t), within `tolerance`. */
+  using Holds = bool (*)(double v, double t, double tolerance);
+  static inline const apex::ChoiceDecl<Holds> kOperator =
+      param::choice<Holds>("operator",
+                           {{"greater", [](double v, double t, double) { return v > t; }},
+                            {"greater_equal", [](double v, double t, double) { return v >= t; }},
+                            {"less", [](double v, double t, double) { return v < t; }},
+                            {"less_equal", [](double v, double t, double) { return v <= t; }},
+                            {"equal", [](double v, double t, double tolerance) { return within(v, t, tolerance); }},
+                            {"not_equal", [](double v, double t, double tolerance) { return !within(v, t, tolerance); }}})
           .describe("how `value` is compared with `threshold`");
   static inline const apex::ParamDecl<double> kThreshold = param::number("threshold").describe("the value compared against");
   static inline const apex::ParamDecl<double> kTolerance =
@@ -39,7 +53,7 @@ class Compare : public StatefulFlowNode {
               "forgets the last result (false again, so a true next fires `rose`); the end of a sequence does too");
   }
   void process() override {
-    const bool now = holds(numberOf(value_.message(), kValue.name));
+    const bool now = operator_.get()(numberOf(value_.message(), kValue.name), threshold_.get(), tolerance_.get());
     result_.publish(now);
     if (now && !last_) rose_.fire();
     if (!now && last_) fell_.fire();
@@ -48,21 +62,11 @@ class Compare : public StatefulFlowNode {
   void reset() override { last_ = false; }
 
  private:
-  bool holds(double v) const {
-    const double t = threshold_.get();
-    const std::string& op = operator_.get();
-    if (op == "greater") return v > t;
-    if (op == "greater_equal") return v >= t;
-    if (op == "less") return v < t;
-    if (op == "less_equal") return v <= t;
-    const bool equal = std::fabs(v - t) <= tolerance_.get() || v == t;  // v == t: equal infinities
-    return op == "equal" ? equal : !equal;
-  }
   apex::Input<apex::Any> value_{this, kValue};
   apex::Output<bool> result_{this, kResult};
   apex::Trigger rose_{this, kRose};
   apex::Trigger fell_{this, kFell};
-  apex::Param<std::string> operator_{this, kOperator};
+  apex::Choice<Holds> operator_{this, kOperator};
   apex::Param<double> threshold_{this, kThreshold};
   apex::Param<double> tolerance_{this, kTolerance};
   bool last_ = false;  // the last result; false before the first

@@ -242,10 +242,11 @@ class Optimizer : public apex::Node, private OptimizerPorts {
   std::string settingsText() const {
     std::string dims;
     for (const auto& d : dimensions_.get()) dims += (dims.empty() ? "" : ", ") + d;
-    return "algorithm " + algorithm_.get() + ", budget " + std::to_string(budget_.get()) + ", seed " +
+    return "algorithm " + algorithm_.text() + ", budget " + std::to_string(budget_.get()) + ", seed " +
            std::to_string(seed_.get()) + ", population " + std::to_string(population_.get()) + ", F " + apex::toText(f_.get()) +
            ", CR " + apex::toText(cr_.get()) + ", minimize " + (minimize_param_.get() ? "true" : "false") + ", dimensions [" +
-           dims + "]" + (workersInAll() > 1 && algorithm_.get() == "differential_evolution" ? ", updating deferred" : "") +
+           dims + "]" +
+           (workersInAll() > 1 && algorithm_.get() == search::Algorithm::kDifferentialEvolution ? ", updating deferred" : "") +
            (objectives_.get() == Objectives::kFitnessAndCost ? ", objectives fitness_and_cost" : "");
   }
 
@@ -492,7 +493,7 @@ class Optimizer : public apex::Node, private OptimizerPorts {
   apex::Trigger evaluate_{this, kEvaluate};
   apex::Trigger finished_{this, kFinished};
   apex::Param<std::vector<std::string>> dimensions_{this, kDimensions};
-  apex::Param<std::string> algorithm_{this, kAlgorithm};
+  apex::Choice<search::Algorithm> algorithm_{this, kAlgorithm};
   apex::Param<int> budget_{this, kBudget};
   apex::Param<int> seed_{this, kSeed};
   apex::Param<int> population_{this, kPopulation};

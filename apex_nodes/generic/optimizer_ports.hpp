@@ -7,6 +7,7 @@
 
 #include "apex/core/declare.hpp"
 #include "apex/core/ports.hpp"
+#include "apex_nodes/search.hpp"
 
 namespace apex_nodes {
 
@@ -36,8 +37,8 @@ struct OptimizerPorts {
               "[option ...]' or 'name bool', e.g. 'c 0 60', 'block_size int', 'area interval 500 20000', 'method "
               "choice'; without min and max (options), the range (options) of the parameter it is connected to")
           .shapesInterface();
-  static inline const apex::ParamDecl<std::string> kAlgorithm =
-      apex::param::choice("algorithm", {"differential_evolution", "random", "grid"});
+  static inline const apex::ChoiceDecl<search::Algorithm> kAlgorithm =
+      apex::param::choice<search::Algorithm>("algorithm", search::algorithms());
   static inline const apex::ParamDecl<int> kBudget =
       apex::param::integer("budget").range(1, 1000000).step(1).init(60).describe("evaluations in a run");
   static inline const apex::ParamDecl<int> kSeed =

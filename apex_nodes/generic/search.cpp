@@ -174,7 +174,14 @@ class DifferentialEvolution : public Search {
 
 }  // namespace
 
-apex::Result<std::unique_ptr<Search>> makeSearch(const std::string& algorithm, std::vector<Dimension> dims, const Settings& s) {
+// In a function: the Optimizer's parameter declaration reads it during static initialisation.
+const std::vector<apex::Option<Algorithm>>& algorithms() {
+  static const std::vector<apex::Option<Algorithm>> table{
+      {"differential_evolution", Algorithm::kDifferentialEvolution}, {"random", Algorithm::kRandom}, {"grid", Algorithm::kGrid}};
+  return table;
+}
+
+apex::Result<std::unique_ptr<Search>> makeSearch(Algorithm algorithm, std::vector<Dimension> dims, const Settings& s) {
   if (dims.empty()) return apex::Status::error("no dimensions to tune");
   for (const auto& d : dims) {
     if (!std::isfinite(d.min) || !std::isfinite(d.max) || d.min > d.max)
@@ -184,16 +191,13 @@ apex::Result<std::unique_ptr<Search>> makeSearch(const std::string& algorithm, s
       return apex::Status::error("dimension '" + d.name + "' is an integer but its range holds none");
   }
   if (s.budget < 1) return apex::Status::error("budget " + std::to_string(s.budget) + " is below 1");
-  if (algorithm == "random") return std::unique_ptr<Search>(new RandomSearch(std::move(dims), s));
-  if (algorithm == "grid") return std::unique_ptr<Search>(new GridSearch(std::move(dims), s));
-  if (algorithm == "differential_evolution") {
-    if (s.population != 0 && s.population < 4)
-      return apex::Status::error("population " + std::to_string(s.population) + " is below 4 (rand/1 needs three others)");
-    if (!(s.F > 0 && s.F <= 2)) return apex::Status::error("F " + std::to_string(s.F) + " is outside (0, 2]");
-    if (!(s.CR >= 0 && s.CR <= 1)) return apex::Status::error("CR " + std::to_string(s.CR) + " is outside [0, 1]");
-    return std::unique_ptr<Search>(new DifferentialEvolution(std::move(dims), s));
-  }
-  return apex::Status::error("unknown algorithm '" + algorithm + "' (differential_evolution, random, grid)");
+  if (algorithm == Algorithm::kRandom) return std::unique_ptr<Search>(new RandomSearch(std::move(dims), s));
+  if (algorithm == Algorithm::kGrid) return std::unique_ptr<Search>(new GridSearch(std::move(dims), s));
+  if (s.population != 0 && s.population < 4)
+    return apex::Status::error("population " + std::to_string(s.population) + " is below 4 (rand/1 needs three others)");
+  if (!(s.F > 0 && s.F <= 2)) return apex::Status::error("F " + std::to_string(s.F) + " is outside (0, 2]");
+  if (!(s.CR >= 0 && s.CR <= 1)) return apex::Status::error("CR " + std::to_string(s.CR) + " is outside [0, 1]");
+  return std::unique_ptr<Search>(new DifferentialEvolution(std::move(dims), s));
 }
 
 }  // namespace search

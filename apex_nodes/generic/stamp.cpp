@@ -17,11 +17,11 @@ class Stamp : public apex::Node {
   static inline const apex::InputPort<apex::Any> kIn{"in", "a message with a header (an image, cloud, scan, pose...)"};
   static inline const apex::OutputPort<apex::Any> kOut{
       "out", "a copy of `in` with the new stamp (pixels and points shared); frame_id and seq as they were"};
-  static inline const apex::ParamDecl<std::string> kMode =
-      param::choice("mode", {"now", "offset", "fixed"})
-          .describe(
-              "now: the clock's time (ROS time, simulated under /use_sim_time); offset: the stamp plus `offset`; "
-              "fixed: `stamp`");
+  enum class Mode { kNow, kOffset, kFixed };
+  static inline const apex::ChoiceDecl<Mode> kMode =
+      param::choice<Mode>("mode", {{"now", Mode::kNow, "the clock's time (ROS time, simulated under /use_sim_time)"},
+                                   {"offset", Mode::kOffset, "the stamp plus `offset`"},
+                                   {"fixed", Mode::kFixed, "`stamp`"}});
   static inline const apex::ParamDecl<double> kOffset =
       param::number("offset")
           .range(-4294967295.0, 4294967295.0)
@@ -50,10 +50,10 @@ class Stamp : public apex::Node {
 
  private:
   ros::Time stamp(const ros::Time& old) const {
-    const std::string& mode = mode_.get();
-    if (mode == "fixed") return ros::Time(stamp_.get());
+    const Mode mode = mode_.get();
+    if (mode == Mode::kFixed) return ros::Time(stamp_.get());
     // In nanoseconds, so that offset 0 keeps the stamp exact (a double has ~0.2 us at today's seconds).
-    const std::int64_t base = static_cast<std::int64_t>((mode == "now" ? clockNow() : old).toNSec());
+    const std::int64_t base = static_cast<std::int64_t>((mode == Mode::kNow ? clockNow() : old).toNSec());
     const std::int64_t t = base + std::llround(offset_.get() * 1e9);
     if (t < 0 || t > kLatest)
       throw std::invalid_argument("stamp " + apex::toText(t * 1e-9) + " s is outside ROS time (0 to 2^32 s): offset " +
@@ -68,7 +68,7 @@ class Stamp : public apex::Node {
   }
   apex::Input<apex::Any> in_{this, kIn};
   apex::Output<apex::Any> out_{this, kOut};
-  apex::Param<std::string> mode_{this, kMode};
+  apex::Choice<Mode> mode_{this, kMode};
   apex::Param<double> offset_{this, kOffset};
   apex::Param<double> stamp_{this, kStamp};
 };

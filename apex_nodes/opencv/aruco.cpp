@@ -1,6 +1,5 @@
 // ArucoDetector: square fiducial markers (cv::aruco), with their poses when the camera's model is given.
 #include <utility>
-#include <vector>
 #include <opencv2/aruco.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -14,46 +13,6 @@ namespace param = apex::param;
 
 namespace {
 namespace aruco = cv::aruco;
-
-using Family = std::pair<const char*, aruco::PREDEFINED_DICTIONARY_NAME>;
-/** The families by name, in the order the parameter lists them (in a function: the parameter
- *  declaration reads it during static initialisation). */
-const std::vector<Family>& families() {
-  static const std::vector<Family> kFamilies{{"4x4_50", aruco::DICT_4X4_50},
-                                             {"4x4_100", aruco::DICT_4X4_100},
-                                             {"4x4_250", aruco::DICT_4X4_250},
-                                             {"4x4_1000", aruco::DICT_4X4_1000},
-                                             {"5x5_50", aruco::DICT_5X5_50},
-                                             {"5x5_100", aruco::DICT_5X5_100},
-                                             {"5x5_250", aruco::DICT_5X5_250},
-                                             {"5x5_1000", aruco::DICT_5X5_1000},
-                                             {"6x6_50", aruco::DICT_6X6_50},
-                                             {"6x6_100", aruco::DICT_6X6_100},
-                                             {"6x6_250", aruco::DICT_6X6_250},
-                                             {"6x6_1000", aruco::DICT_6X6_1000},
-                                             {"7x7_50", aruco::DICT_7X7_50},
-                                             {"7x7_100", aruco::DICT_7X7_100},
-                                             {"7x7_250", aruco::DICT_7X7_250},
-                                             {"7x7_1000", aruco::DICT_7X7_1000},
-                                             {"aruco_original", aruco::DICT_ARUCO_ORIGINAL},
-                                             {"apriltag_16h5", aruco::DICT_APRILTAG_16h5},
-                                             {"apriltag_25h9", aruco::DICT_APRILTAG_25h9},
-                                             {"apriltag_36h10", aruco::DICT_APRILTAG_36h10},
-                                             {"apriltag_36h11", aruco::DICT_APRILTAG_36h11}};
-  return kFamilies;
-}
-
-std::vector<std::string> dictionaryNames() {
-  std::vector<std::string> names;
-  for (const auto& [name, id] : families()) names.emplace_back(name);
-  return names;
-}
-
-cv::Ptr<aruco::Dictionary> dictionaryNamed(const std::string& name) {
-  for (const auto& [n, id] : families())
-    if (name == n) return aruco::getPredefinedDictionary(id);
-  throw std::invalid_argument("no ArUco dictionary '" + name + "'");
-}
 }  // namespace
 
 class ArucoDetector : public apex::Node {
@@ -62,12 +21,38 @@ class ArucoDetector : public apex::Node {
   static inline const apex::InputPort<sensor_msgs::CameraInfo> kCamera{
       "camera_info", "if connected: the image's camera model, for the markers' poses", true};
   static inline const apex::OutputPort<Markers> kMarkers{"markers", "ids and corners; poses with a camera model"};
-  static inline const apex::ParamDecl<std::string> kDictionary =
-      param::choice("dictionary", dictionaryNames()).describe("the markers' family and how many ids it has");
+  using Family = aruco::PREDEFINED_DICTIONARY_NAME;  // a dictionary by its id
+  using Refinement = aruco::CornerRefineMethod;
+  static inline const apex::ChoiceDecl<Family> kDictionary =
+      param::choice<Family>("dictionary", {{"4x4_50", aruco::DICT_4X4_50},
+                                           {"4x4_100", aruco::DICT_4X4_100},
+                                           {"4x4_250", aruco::DICT_4X4_250},
+                                           {"4x4_1000", aruco::DICT_4X4_1000},
+                                           {"5x5_50", aruco::DICT_5X5_50},
+                                           {"5x5_100", aruco::DICT_5X5_100},
+                                           {"5x5_250", aruco::DICT_5X5_250},
+                                           {"5x5_1000", aruco::DICT_5X5_1000},
+                                           {"6x6_50", aruco::DICT_6X6_50},
+                                           {"6x6_100", aruco::DICT_6X6_100},
+                                           {"6x6_250", aruco::DICT_6X6_250},
+                                           {"6x6_1000", aruco::DICT_6X6_1000},
+                                           {"7x7_50", aruco::DICT_7X7_50},
+                                           {"7x7_100", aruco::DICT_7X7_100},
+                                           {"7x7_250", aruco::DICT_7X7_250},
+                                           {"7x7_1000", aruco::DICT_7X7_1000},
+                                           {"aruco_original", aruco::DICT_ARUCO_ORIGINAL},
+                                           {"apriltag_16h5", aruco::DICT_APRILTAG_16h5},
+                                           {"apriltag_25h9", aruco::DICT_APRILTAG_25h9},
+                                           {"apriltag_36h10", aruco::DICT_APRILTAG_36h10},
+                                           {"apriltag_36h11", aruco::DICT_APRILTAG_36h11}})
+          .describe("the markers' family and how many ids it has");
   static inline const apex::ParamDecl<double> kLength =
       param::number("marker_length").range(0.001, 10.0).step(0.001).init(0.05).describe("a marker's side, metres (poses)");
-  static inline const apex::ParamDecl<std::string> kRefinement =
-      param::choice("corner_refinement", {"none", "subpix", "contour"}).describe("how the corners are refined");
+  static inline const apex::ChoiceDecl<Refinement> kRefinement =
+      param::choice<Refinement>("corner_refinement", {{"none", aruco::CORNER_REFINE_NONE},
+                                                      {"subpix", aruco::CORNER_REFINE_SUBPIX},
+                                                      {"contour", aruco::CORNER_REFINE_CONTOUR}})
+          .describe("how the corners are refined");
   static apex::Manifest manifest() {
     return apex::Manifest("Finds ArUco (or AprilTag) markers; with the camera's model, each one's pose (cv::aruco)")
         .inCategory("detection")
@@ -93,16 +78,13 @@ class ArucoDetector : public apex::Node {
     if (in.mat.channels() == 4) cv::cvtColor(in.mat, gray_, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
     const cv::Mat& gray = in.mat.channels() == 1 ? in.mat : gray_;  // read only
 
-    const std::string& refinement = refinement_.get();
-    parameters_->cornerRefinementMethod = refinement == "subpix"    ? aruco::CORNER_REFINE_SUBPIX
-                                          : refinement == "contour" ? aruco::CORNER_REFINE_CONTOUR
-                                                                    : aruco::CORNER_REFINE_NONE;
+    parameters_->cornerRefinementMethod = refinement_.get();
     auto out = std::make_shared<Markers>();
     out->header = in.header;
     out->image_size = in.mat.size();
-    out->dictionary = dictionary_.get();
+    out->dictionary = dictionary_.text();
     out->marker_length = length_.get();
-    aruco::detectMarkers(gray, dictionaryNamed(dictionary_.get()), out->corners, out->ids, parameters_);
+    aruco::detectMarkers(gray, aruco::getPredefinedDictionary(dictionary_.get()), out->corners, out->ids, parameters_);
     if (camera && !out->ids.empty())
       aruco::estimatePoseSingleMarkers(out->corners, static_cast<float>(length_.get()), cv::Matx33d(camera->K.data()),
                                        cv::Mat(camera->D), out->rvecs, out->tvecs);
@@ -113,9 +95,9 @@ class ArucoDetector : public apex::Node {
   apex::Input<Image> image_{this, kImage};
   apex::Input<sensor_msgs::CameraInfo> camera_{this, kCamera};
   apex::Output<Markers> markers_{this, kMarkers};
-  apex::Param<std::string> dictionary_{this, kDictionary};
+  apex::Choice<Family> dictionary_{this, kDictionary};
   apex::Param<double> length_{this, kLength};
-  apex::Param<std::string> refinement_{this, kRefinement};
+  apex::Choice<Refinement> refinement_{this, kRefinement};
   cv::Ptr<aruco::DetectorParameters> parameters_ = aruco::DetectorParameters::create();
   cv::Mat gray_;  // a colour frame's gray, reused
 };

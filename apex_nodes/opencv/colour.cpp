@@ -16,8 +16,9 @@ class ColorRange : public ImageFilter {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "bgr8 or rgb8"};
   static inline const apex::OutputPort<Image> kMask{"mask", "mono8: 255 where the pixel is within the range, else 0"};
-  static inline const apex::ParamDecl<std::string> kColorSpace =
-      param::choice("color_space", {"bgr", "hsv", "lab"})
+  enum class Space { kBgr, kHsv, kLab };
+  static inline const apex::ChoiceDecl<Space> kColorSpace =
+      param::choice<Space>("color_space", {{"bgr", Space::kBgr}, {"hsv", Space::kHsv}, {"lab", Space::kLab}})
           .describe("the space lower and upper are in (rgb8 images are converted)");
   static inline const apex::ParamDecl<std::vector<double>> kLower = param::list("lower").init({0, 0, 0}).describe(
       "the range's low end, three numbers in the space's channel order: b, g, r; h (0..179), s, v; or L, a, b (0..255)");
@@ -44,16 +45,16 @@ class ColorRange : public ImageFilter {
     if (!rgb && in.encoding != "bgr8")
       throw std::invalid_argument("needs a bgr8 or rgb8 image, got '" + in.encoding + "': its colours' order is unknown");
     cv::Scalar lower = threeNumbers(lower_.get(), "lower"), upper = threeNumbers(upper_.get(), "upper");
-    const auto& space = color_space_.get();
+    const Space space = color_space_.get();
     const cv::Mat* pixels = &in.mat;
-    if (space == "hsv") cv::cvtColor(in.mat, converted_, rgb ? cv::COLOR_RGB2HSV : cv::COLOR_BGR2HSV);
-    else if (space == "lab") cv::cvtColor(in.mat, converted_, rgb ? cv::COLOR_RGB2Lab : cv::COLOR_BGR2Lab);
-    if (space != "bgr") pixels = &converted_;
+    if (space == Space::kHsv) cv::cvtColor(in.mat, converted_, rgb ? cv::COLOR_RGB2HSV : cv::COLOR_BGR2HSV);
+    else if (space == Space::kLab) cv::cvtColor(in.mat, converted_, rgb ? cv::COLOR_RGB2Lab : cv::COLOR_BGR2Lab);
+    if (space != Space::kBgr) pixels = &converted_;
     else if (rgb) std::swap(lower[0], lower[2]), std::swap(upper[0], upper[2]);  // the bounds in r, g, b order: no copy
     cv::inRange(*pixels, lower, upper, out.mat);
     out.encoding = "mono8";
   }
-  apex::Param<std::string> color_space_{this, kColorSpace};
+  apex::Choice<Space> color_space_{this, kColorSpace};
   apex::Param<std::vector<double>> lower_{this, kLower};
   apex::Param<std::vector<double>> upper_{this, kUpper};
   cv::Mat converted_;  // the image in hsv or lab, reused
@@ -155,10 +156,11 @@ class Debayer : public ImageFilter {
   static inline const apex::InputPort<Image> kRaw{"image",
                                                   "a Bayer mosaic: bayer_rggb8, bayer_bggr8, bayer_gbrg8, bayer_grbg8 or 16-bit"};
   static inline const apex::OutputPort<Image> kColour{"image", "bgr8 (bgr16 from a 16-bit mosaic)"};
-  static inline const apex::ParamDecl<std::string> kMethod = param::choice("method", {"bilinear", "vng", "ea"})
-                                                                 .describe(
-                                                                     "bilinear; vng: variable number of gradients "
-                                                                     "(8-bit only); ea: edge-aware");
+  /** A method's value is its column in the codes of a pattern (filter()). */
+  enum class Method { kBilinear, kVng, kEa };
+  static inline const apex::ChoiceDecl<Method> kMethod =
+      param::choice<Method>("method", {{"bilinear", Method::kBilinear}, {"vng", Method::kVng}, {"ea", Method::kEa}})
+          .describe("bilinear; vng: variable number of gradients (8-bit only); ea: edge-aware");
   static apex::Manifest manifest() {
     return filterManifest("Makes a colour image of a camera's raw Bayer mosaic (demosaicing)", kRaw, kColour)
         .inCategory("colour")
@@ -169,7 +171,7 @@ class Debayer : public ImageFilter {
  private:
   void filter(const Image& in, Image& out) override {
     namespace enc = sensor_msgs::image_encodings;
-    // OpenCV's codes per pattern: bilinear, VNG, edge-aware.
+    // OpenCV's codes per pattern, in Method's order: bilinear, VNG, edge-aware.
     static const std::map<std::string, std::array<int, 3>> kCodes{
         {enc::BAYER_RGGB8, {cv::COLOR_BayerRGGB2BGR, cv::COLOR_BayerRGGB2BGR_VNG, cv::COLOR_BayerRGGB2BGR_EA}},
         {enc::BAYER_BGGR8, {cv::COLOR_BayerBGGR2BGR, cv::COLOR_BayerBGGR2BGR_VNG, cv::COLOR_BayerBGGR2BGR_EA}},
@@ -184,13 +186,13 @@ class Debayer : public ImageFilter {
     if (in.mat.channels() != 1 || in.mat.depth() != (wide ? CV_16U : CV_8U))
       throw std::invalid_argument("the encoding '" + in.encoding + "' does not fit the image's pixels, " +
                                   std::to_string(in.mat.channels()) + "-channel " + depthName(in.mat.depth()));
-    const auto& method = method_.get();
-    if (method == "vng" && wide)
+    const Method method = method_.get();
+    if (method == Method::kVng && wide)
       throw std::invalid_argument("vng demosaics 8-bit mosaics only, not '" + in.encoding + "': choose bilinear or ea");
-    cv::cvtColor(in.mat, out.mat, codes->second[method == "bilinear" ? 0 : method == "vng" ? 1 : 2]);
+    cv::cvtColor(in.mat, out.mat, codes->second[static_cast<std::size_t>(method)]);
     out.encoding = wide ? "bgr16" : "bgr8";
   }
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<Method> method_{this, kMethod};
 };
 
 }  // namespace apex_nodes

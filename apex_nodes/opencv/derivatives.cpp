@@ -8,7 +8,7 @@ namespace apex_nodes {
 namespace param = apex::param;
 namespace {
 
-const std::vector<std::string> kDepths{"16S", "32F", "64F", "same"};
+constexpr int kSameDepth = -1;  // the ddepth choice's "same": the input's
 
 /** Whether OpenCV's derivative filters take `src` pixels to `dst` ones. */
 bool derivable(int src, int dst) {
@@ -18,30 +18,35 @@ bool derivable(int src, int dst) {
   return src == CV_32F && dst == CV_64F;
 }
 
-/** The depth the `ddepth` choice gives for `in`; an error naming both if OpenCV cannot make it. */
-int resultDepth(const Image& in, const std::string& ddepth) {
-  const int src = in.mat.depth(), dst = depthNamed(ddepth, src);
+const apex::ParamDecl<double> kScale =
+    param::number("scale").range(-100.0, 100.0).step(0.01).init(1.0).describe("factor on the derivatives");
+const apex::ParamDecl<double> kDelta =
+    param::number("delta").range(-1000.0, 1000.0).step(0.1).init(0.0).describe("added to the derivatives after scaling");
+const apex::ChoiceDecl<int> kDdepth =
+    param::choice<int>("ddepth", {{"16S", CV_16S}, {"32F", CV_32F}, {"64F", CV_64F}, {"same", kSameDepth}})
+        .describe("the result's depth: 16S for 8-bit images; same: saturates at the input's range");
+const apex::ChoiceDecl<int> kBorder =
+    param::choice<int>("border_type", borderModes()).describe("how pixels beyond the edge are made up");
+
+/** The depth a `ddepth` choice gives for pixels of depth `src`. */
+int depthFrom(int ddepth, int src) { return ddepth == kSameDepth ? src : ddepth; }
+
+/** The depth the `ddepth` choice (named `name`) gives for `in`; an error naming both if OpenCV
+ *  cannot make it. */
+int resultDepth(const Image& in, int ddepth, const std::string& name) {
+  const int src = in.mat.depth(), dst = depthFrom(ddepth, src);
   if (derivable(src, dst)) return dst;
   std::vector<std::string> choices;
-  for (const auto& name : kDepths)
-    if (derivable(src, depthNamed(name, src))) choices.push_back(name);
+  for (const auto& option : kDdepth.options())
+    if (derivable(src, depthFrom(option.value, src))) choices.push_back(option.name);
   if (choices.empty())  // not even "same": OpenCV filters no such pixels
     throw std::invalid_argument("cannot differentiate " + depthName(src) + " pixels ('" + in.encoding +
                                 "'); needs 8U, 16U, 16S, 32F or 64F");
   std::string words;
   for (std::size_t i = 0; i < choices.size(); ++i) words += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
-  throw std::invalid_argument("ddepth " + ddepth + " cannot hold the derivatives of a " + depthName(src) + " image ('" +
+  throw std::invalid_argument("ddepth " + name + " cannot hold the derivatives of a " + depthName(src) + " image ('" +
                               in.encoding + "'); choose " + words);
 }
-
-const apex::ParamDecl<double> kScale =
-    param::number("scale").range(-100.0, 100.0).step(0.01).init(1.0).describe("factor on the derivatives");
-const apex::ParamDecl<double> kDelta =
-    param::number("delta").range(-1000.0, 1000.0).step(0.1).init(0.0).describe("added to the derivatives after scaling");
-const apex::ParamDecl<std::string> kDdepth =
-    param::choice("ddepth", kDepths).describe("the result's depth: 16S for 8-bit images; same: saturates at the input's range");
-const apex::ChoiceDecl<int> kBorder =
-    param::choice<int>("border_type", borderModes()).describe("how pixels beyond the edge are made up");
 
 }  // namespace
 
@@ -56,13 +61,13 @@ class DerivativeFilter : public ImageFilter {
   DerivativeFilter() : ImageFilter("134") {}
   /** The result's depth for `in`, and its encoding in `out`. */
   int depthFor(const Image& in, Image& out) const {
-    const int depth = resultDepth(in, ddepth_.get());
+    const int depth = resultDepth(in, ddepth_.get(), ddepth_.text());
     out.encoding = encodingOf(in, in.mat.channels(), depth);
     return depth;
   }
   apex::Param<double> scale_{this, kScale};
   apex::Param<double> delta_{this, kDelta};
-  apex::Param<std::string> ddepth_{this, kDdepth};
+  apex::Choice<int> ddepth_{this, kDdepth};
   apex::Choice<int> border_{this, kBorder};
 };
 

@@ -14,8 +14,8 @@ class FeatureExtract : public apex::Node {
   static inline const apex::InputPort<Regions> kRegions{"regions", "e.g. BlobDetection's"};
   static inline const apex::OutputPort<Features> kFeatures{
       "features", "a row per region, in the regions' order (zeros for a region outside the image), with the regions"};
-  static inline const apex::ParamDecl<std::string> kMethod =
-      param::choice("method", featureMethods())
+  static inline const apex::ChoiceDecl<FeatureMethod> kMethod =
+      param::choice<FeatureMethod>("method", featureMethods())
           .describe("hog: (cells-1)^2*4*bins floats; color_histogram: 3*bins; hu_moments: 7; raw_pixels: size*size");
   static inline const apex::ParamDecl<int> kSize = param::integer("size").range(2, 512).init(20).describe(
       "hog, raw_pixels: the region is scaled into size x size pixels (hog: a multiple of cells)");
@@ -25,8 +25,8 @@ class FeatureExtract : public apex::Node {
       "hog: orientations per cell (0..360 degrees); color_histogram: bins per channel");
   static inline const apex::ParamDecl<bool> kDeskew =
       param::flag("deskew").describe("hog, raw_pixels: straighten slanted strokes first (OpenCV's digits.py)");
-  static inline const apex::ParamDecl<std::string> kSpace =
-      param::choice("color_space", {"hsv", "bgr"}).describe("color_histogram: the channels counted");
+  static inline const apex::ChoiceDecl<ColorSpace> kSpace =
+      param::choice<ColorSpace>("color_space", colorSpaces()).describe("color_histogram: the channels counted");
   static inline const apex::ParamDecl<bool> kBinary =
       param::flag("binary").init(true).describe("hu_moments: of the Otsu mask (bright pixels), else of the gray levels");
   static apex::Manifest manifest() {
@@ -71,12 +71,12 @@ class FeatureExtract : public apex::Node {
   apex::Input<Image> image_{this, kImage};
   apex::Input<Regions> regions_{this, kRegions};
   apex::Output<Features> features_{this, kFeatures};
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<FeatureMethod> method_{this, kMethod};
   apex::Param<int> size_{this, kSize};
   apex::Param<int> cells_{this, kCells};
   apex::Param<int> bins_{this, kBins};
   apex::Param<bool> deskew_{this, kDeskew};
-  apex::Param<std::string> space_{this, kSpace};
+  apex::Choice<ColorSpace> space_{this, kSpace};
   apex::Param<bool> binary_{this, kBinary};
 };
 

@@ -12,8 +12,14 @@ class KeypointDetector : public apex::Node {
  public:
   static inline const apex::InputPort<Image> kImage{"image", "8-bit gray or colour (detected on its gray)"};
   static inline const apex::OutputPort<Keypoints> kKeypoints{"keypoints", "with descriptors, except fast and gftt"};
-  static inline const apex::ParamDecl<std::string> kMethod =
-      param::choice("method", {"orb", "akaze", "brisk", "sift", "fast", "gftt"})
+  enum class Method { kOrb, kAkaze, kBrisk, kSift, kFast, kGftt };
+  static inline const apex::ChoiceDecl<Method> kMethod =
+      param::choice<Method>("method", {{"orb", Method::kOrb},
+                                       {"akaze", Method::kAkaze},
+                                       {"brisk", Method::kBrisk},
+                                       {"sift", Method::kSift},
+                                       {"fast", Method::kFast},
+                                       {"gftt", Method::kGftt}})
           .describe("orb, akaze, brisk: binary descriptors (Hamming); sift: float (L2); fast, gftt: keypoints only");
   static inline const apex::ParamDecl<int> kMaxFeatures =
       param::integer("max_features")
@@ -46,8 +52,8 @@ class KeypointDetector : public apex::Node {
     auto out = std::make_shared<Keypoints>();
     out->header = in.header;
     out->image_size = in.mat.size();
-    out->method = method_.get();
-    if (out->method == "fast" || out->method == "gftt") {
+    out->method = method_.text();
+    if (method_.get() == Method::kFast || method_.get() == Method::kGftt) {
       detector_->detect(gray, out->keypoints);
       out->norm_type = 0;  // no descriptors to match
     } else {
@@ -60,25 +66,31 @@ class KeypointDetector : public apex::Node {
  private:
   /** The detector for the parameters, as OpenCV's create() with its defaults but for these two. */
   cv::Ptr<cv::Feature2D> create() const {
-    const std::string& m = method_.get();
     const int n = max_features_.get();
     const double t = threshold_.get();
     auto or_default = [t](double d) { return t > 0 ? t : d; };
-    if (m == "orb") {
-      if (n < 1) throw std::invalid_argument("orb needs max_features of at least 1 (its nfeatures), got 0");
-      return cv::ORB::create(n, 1.2f, 8, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, cvRound(or_default(20)));
+    switch (method_.get()) {
+      case Method::kOrb:
+        if (n < 1) throw std::invalid_argument("orb needs max_features of at least 1 (its nfeatures), got 0");
+        return cv::ORB::create(n, 1.2f, 8, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, cvRound(or_default(20)));
+      case Method::kAkaze:
+        return cv::AKAZE::create(cv::AKAZE::DESCRIPTOR_MLDB, 0, 3, static_cast<float>(or_default(0.001)));
+      case Method::kBrisk:
+        return cv::BRISK::create(cvRound(or_default(30)));
+      case Method::kSift:
+        return cv::SIFT::create(n, 3, or_default(0.04));
+      case Method::kFast:
+        return cv::FastFeatureDetector::create(cvRound(or_default(10)));
+      case Method::kGftt:
+        break;  // below: after the switch, so that every path returns
     }
-    if (m == "akaze") return cv::AKAZE::create(cv::AKAZE::DESCRIPTOR_MLDB, 0, 3, static_cast<float>(or_default(0.001)));
-    if (m == "brisk") return cv::BRISK::create(cvRound(or_default(30)));
-    if (m == "sift") return cv::SIFT::create(n, 3, or_default(0.04));
-    if (m == "fast") return cv::FastFeatureDetector::create(cvRound(or_default(10)));
     if (t > 1) throw std::invalid_argument("gftt's threshold is its qualityLevel, 0..1: got " + std::to_string(t));
     return cv::GFTTDetector::create(n, or_default(0.01));
   }
 
   apex::Input<Image> image_{this, kImage};
   apex::Output<Keypoints> keypoints_{this, kKeypoints};
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<Method> method_{this, kMethod};
   apex::Param<int> max_features_{this, kMaxFeatures};
   apex::Param<double> threshold_{this, kThreshold};
   cv::Ptr<cv::Feature2D> detector_;  // rebuilt after a parameter change

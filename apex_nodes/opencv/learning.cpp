@@ -86,7 +86,7 @@ cv::Mat hog(const cv::Mat& crop, const FeatureSettings& s) {
 
 cv::Mat colorHistogram(const cv::Mat& crop, const FeatureSettings& s) {
   cv::Mat image = bgr8(crop);  // may be the input's pixels: never written
-  if (s.space == "hsv") {
+  if (s.space == ColorSpace::kHsv) {
     cv::Mat hsv;
     cv::cvtColor(image, hsv, cv::COLOR_BGR2HSV);
     image = hsv;
@@ -94,7 +94,7 @@ cv::Mat colorHistogram(const cv::Mat& crop, const FeatureSettings& s) {
   cv::Mat row(1, 3 * s.bins, CV_32F);
   const double pixels = static_cast<double>(image.total());
   for (int c = 0; c < 3; ++c) {
-    const float top = s.space == "hsv" && c == 0 ? 180.f : 256.f;
+    const float top = s.space == ColorSpace::kHsv && c == 0 ? 180.f : 256.f;
     const float range[] = {0.f, top};
     const float* ranges[] = {range};
     cv::Mat hist;
@@ -132,6 +132,14 @@ const Kind kKinds[] = {{"opencv_ml_svm", "svm"},      {"opencv_ml_rtrees", "rtre
                        {"opencv_ml_dtree", "dtrees"}, {"opencv_ml_dtrees", "dtrees"}, {"opencv_ml_lr", "lr"},
                        {"opencv_ml_nbayes", "nbayes"}};
 
+/** The name of `value` in a table of options. */
+template <class V>
+std::string nameOf(const std::vector<apex::Option<V>>& options, V value) {
+  for (const auto& o : options)
+    if (o.value == value) return o.name;
+  return "?";  // not reached: each value is in its table
+}
+
 /** As cv::Algorithm::load<T> does, from the node: none if it holds no trained model. */
 template <class T>
 cv::Ptr<cv::ml::StatModel> readModel(const cv::FileNode& node) {
@@ -142,16 +150,25 @@ cv::Ptr<cv::ml::StatModel> readModel(const cv::FileNode& node) {
 
 }  // namespace
 
-const std::vector<std::string>& featureMethods() {
-  static const std::vector<std::string> methods{"hog", "color_histogram", "hu_moments", "raw_pixels"};
+// In functions: FeatureExtract's parameter declarations read them during static initialisation.
+const std::vector<apex::Option<FeatureMethod>>& featureMethods() {
+  static const std::vector<apex::Option<FeatureMethod>> methods{{"hog", FeatureMethod::kHog},
+                                                                {"color_histogram", FeatureMethod::kColorHistogram},
+                                                                {"hu_moments", FeatureMethod::kHuMoments},
+                                                                {"raw_pixels", FeatureMethod::kRawPixels}};
   return methods;
+}
+
+const std::vector<apex::Option<ColorSpace>>& colorSpaces() {
+  static const std::vector<apex::Option<ColorSpace>> spaces{{"hsv", ColorSpace::kHsv}, {"bgr", ColorSpace::kBgr}};
+  return spaces;
 }
 
 int featureLength(const FeatureSettings& s) {
   const auto need = [](bool ok, const std::string& what) {
     if (!ok) throw std::invalid_argument(what);
   };
-  if (s.method == "hog") {
+  if (s.method == FeatureMethod::kHog) {
     need(s.cells >= 2 && s.cells <= 16, "hog needs 2 to 16 cells per side, not " + std::to_string(s.cells));
     need(s.size >= 2 * s.cells && s.size <= 512 && s.size % s.cells == 0, "hog needs a size that is a multiple of cells (" +
                                                                               std::to_string(s.cells) + "), up to 512, not " +
@@ -159,35 +176,32 @@ int featureLength(const FeatureSettings& s) {
     need(s.bins >= 2 && s.bins <= 64, "hog needs 2 to 64 bins, not " + std::to_string(s.bins));
     return (s.cells - 1) * (s.cells - 1) * 4 * s.bins;
   }
-  if (s.method == "color_histogram") {
-    need(s.space == "hsv" || s.space == "bgr", "color_histogram needs the space hsv or bgr, not '" + s.space + "'");
+  if (s.method == FeatureMethod::kColorHistogram) {
     need(s.bins >= 2 && s.bins <= 64, "color_histogram needs 2 to 64 bins, not " + std::to_string(s.bins));
     return 3 * s.bins;
   }
-  if (s.method == "hu_moments") return 7;
-  if (s.method == "raw_pixels") {
-    need(s.size >= 2 && s.size <= 512, "raw_pixels needs a size of 2 to 512, not " + std::to_string(s.size));
-    return s.size * s.size;
-  }
-  throw std::invalid_argument("unknown feature method '" + s.method + "' (hog, color_histogram, hu_moments or raw_pixels)");
+  if (s.method == FeatureMethod::kHuMoments) return 7;
+  need(s.size >= 2 && s.size <= 512, "raw_pixels needs a size of 2 to 512, not " + std::to_string(s.size));
+  return s.size * s.size;
 }
 
 std::string featureSummary(const FeatureSettings& s) {
   const auto n = [](int v) { return std::to_string(v); };
-  if (s.method == "hog")
-    return "hog size=" + n(s.size) + " cells=" + n(s.cells) + " bins=" + n(s.bins) + " deskew=" + n(s.deskew);
-  if (s.method == "color_histogram") return "color_histogram bins=" + n(s.bins) + " space=" + s.space;
-  if (s.method == "hu_moments") return "hu_moments binary=" + n(s.binary);
-  if (s.method == "raw_pixels") return "raw_pixels size=" + n(s.size) + " deskew=" + n(s.deskew);
-  return s.method;
+  const std::string method = nameOf(featureMethods(), s.method);
+  if (s.method == FeatureMethod::kHog)
+    return method + " size=" + n(s.size) + " cells=" + n(s.cells) + " bins=" + n(s.bins) + " deskew=" + n(s.deskew);
+  if (s.method == FeatureMethod::kColorHistogram)
+    return method + " bins=" + n(s.bins) + " space=" + nameOf(colorSpaces(), s.space);
+  if (s.method == FeatureMethod::kHuMoments) return method + " binary=" + n(s.binary);
+  return method + " size=" + n(s.size) + " deskew=" + n(s.deskew);
 }
 
 cv::Mat featureRow(const cv::Mat& crop, const FeatureSettings& s) {
   featureLength(s);  // the settings fit
   if (crop.empty()) throw std::invalid_argument("cannot take features from an empty region");
-  if (s.method == "hog") return hog(crop, s);
-  if (s.method == "color_histogram") return colorHistogram(crop, s);
-  if (s.method == "hu_moments") return huMoments(crop, s);
+  if (s.method == FeatureMethod::kHog) return hog(crop, s);
+  if (s.method == FeatureMethod::kColorHistogram) return colorHistogram(crop, s);
+  if (s.method == FeatureMethod::kHuMoments) return huMoments(crop, s);
   return rawPixels(crop, s);
 }
 

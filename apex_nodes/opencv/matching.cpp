@@ -100,7 +100,8 @@ class FindHomography : public apex::Node {
   static inline const apex::InputPort<Matches> kMatches{"matches", "at least 4"};
   static inline const apex::OutputPort<Homography> kHomography{"homography",
                                                                "query image -> train image; empty if none was found"};
-  static inline const apex::ParamDecl<std::string> kMethod = param::choice("method", {"ransac", "lmeds", "rho"});
+  static inline const apex::ChoiceDecl<int> kMethod =
+      param::choice<int>("method", {{"ransac", cv::RANSAC}, {"lmeds", cv::LMEDS}, {"rho", cv::RHO}});
   static inline const apex::ParamDecl<double> kThreshold =
       param::number("ransac_reproj_threshold")
           .range(0.1, 100.0)
@@ -133,12 +134,10 @@ class FindHomography : public apex::Node {
       from.push_back(m.query->keypoints[d.queryIdx].pt);
       to.push_back(m.train->keypoints[d.trainIdx].pt);
     }
-    const std::string& method = method_.get();
-    const int code = method == "ransac" ? cv::RANSAC : method == "lmeds" ? cv::LMEDS : cv::RHO;
     auto out = std::make_shared<Homography>();
     out->header = m.header;
     out->image_size = m.query->image_size;
-    out->matrix = cv::findHomography(from, to, code, threshold_.get(), out->inlier_mask);
+    out->matrix = cv::findHomography(from, to, method_.get(), threshold_.get(), out->inlier_mask);
     out->inliers = out->matrix.empty() ? 0 : cv::countNonZero(out->inlier_mask);
     if (out->matrix.empty()) out->inlier_mask.clear();
     if (out->inliers < min_inliers_.get()) out->matrix.release();
@@ -148,7 +147,7 @@ class FindHomography : public apex::Node {
  private:
   apex::Input<Matches> matches_{this, kMatches};
   apex::Output<Homography> homography_{this, kHomography};
-  apex::Param<std::string> method_{this, kMethod};
+  apex::Choice<int> method_{this, kMethod};
   apex::Param<double> threshold_{this, kThreshold};
   apex::Param<int> min_inliers_{this, kMinInliers};
 };

@@ -37,6 +37,17 @@ const char* kUsage =
     "  INPUT: SampleExport's folder (features of its crops, as FeatureExtract computes them) or a CSV file\n"
     "  of lines 'label,feature,feature,...'";
 
+/** The value of the option named `text`; refused with the names when none is. */
+template <class V>
+V named(const std::string& what, const std::string& text, const std::vector<apex::Option<V>>& options) {
+  std::string names;
+  for (const auto& o : options) {
+    if (text == o.name) return o.value;
+    names += (names.empty() ? "" : ", ") + std::string(o.name);
+  }
+  throw std::invalid_argument(what + " needs one of " + names + ", not '" + text + "'");
+}
+
 int whole(const std::string& what, const std::string& text, int lo, int hi) {
   return static_cast<int>(apex_tools::number(what, text, lo, hi));
 }
@@ -94,7 +105,7 @@ Options parse(int argc, char** argv) {
     } else if (arg == "--epochs") {
       o.train.epochs = whole(arg, value, 1, 100000);
     } else if (arg == "--features") {
-      o.features.method = value;
+      o.features.method = named(arg, value, apex_nodes::featureMethods());
     } else if (arg == "--size") {
       o.features.size = whole(arg, value, 2, 512);
     } else if (arg == "--cells") {
@@ -102,7 +113,7 @@ Options parse(int argc, char** argv) {
     } else if (arg == "--bins") {
       o.features.bins = whole(arg, value, 2, 64);
     } else if (arg == "--space") {
-      o.features.space = value;
+      o.features.space = named(arg, value, apex_nodes::colorSpaces());
     } else {
       throw std::invalid_argument("unknown option '" + arg + "'");
     }

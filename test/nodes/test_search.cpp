@@ -2,6 +2,7 @@
 // scipy is checked by test/optimizer/compare_scipy.py.
 #include <gmock/gmock.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -12,8 +13,13 @@ using ::testing::HasSubstr;
 
 namespace {
 
-std::unique_ptr<Search> make(const std::string& algorithm, std::vector<Dimension> dims, Settings s = {}) {
-  auto made = makeSearch(algorithm, std::move(dims), s);
+/** The search of the algorithm named `name`, as the Optimizer makes it for its `algorithm` choice. */
+std::unique_ptr<Search> make(const std::string& name, std::vector<Dimension> dims, Settings s = {}) {
+  const auto& table = algorithms();
+  const auto it = std::find_if(table.begin(), table.end(), [&](const auto& o) { return name == o.name; });
+  EXPECT_TRUE(it != table.end()) << "no algorithm '" << name << "'";
+  if (it == table.end()) return nullptr;
+  auto made = makeSearch(it->value, std::move(dims), s);
   EXPECT_TRUE(made) << made.message();
   return made ? std::move(made).value() : nullptr;
 }
@@ -139,16 +145,21 @@ TEST(Search, ManyCandidatesOutAtOnceToldInAnyOrderGiveTheSameRun) {
 
 TEST(Search, BadSettingsAreRefusedWithTheReason) {
   Settings s;
-  EXPECT_THAT(makeSearch("annealing", {{"x", 0, 1}}, s).message(), HasSubstr("unknown algorithm 'annealing'"));
-  EXPECT_THAT(makeSearch("random", {}, s).message(), HasSubstr("no dimensions"));
-  EXPECT_THAT(makeSearch("random", {{"x", 2, 1}}, s).message(), HasSubstr("dimension 'x'"));
-  EXPECT_THAT(makeSearch("grid", {{"k", 0.2, 0.8, true}}, s).message(), HasSubstr("integer but its range holds none"));
+  EXPECT_THAT(makeSearch(Algorithm::kRandom, {}, s).message(), HasSubstr("no dimensions"));
+  EXPECT_THAT(makeSearch(Algorithm::kRandom, {{"x", 2, 1}}, s).message(), HasSubstr("dimension 'x'"));
+  EXPECT_THAT(makeSearch(Algorithm::kGrid, {{"k", 0.2, 0.8, true}}, s).message(), HasSubstr("integer but its range holds none"));
   s.population = 3;
-  EXPECT_THAT(makeSearch("differential_evolution", {{"x", 0, 1}}, s).message(), HasSubstr("population 3 is below 4"));
+  EXPECT_THAT(makeSearch(Algorithm::kDifferentialEvolution, {{"x", 0, 1}}, s).message(), HasSubstr("population 3 is below 4"));
   s.population = 0, s.CR = 1.5;
-  EXPECT_THAT(makeSearch("differential_evolution", {{"x", 0, 1}}, s).message(), HasSubstr("CR"));
+  EXPECT_THAT(makeSearch(Algorithm::kDifferentialEvolution, {{"x", 0, 1}}, s).message(), HasSubstr("CR"));
   s.CR = 0.9, s.budget = 0;
-  EXPECT_THAT(makeSearch("random", {{"x", 0, 1}}, s).message(), HasSubstr("budget 0"));
+  EXPECT_THAT(makeSearch(Algorithm::kRandom, {{"x", 0, 1}}, s).message(), HasSubstr("budget 0"));
+}
+
+TEST(Search, TheAlgorithmsKeepTheNamesSavedGraphsUse) {
+  std::vector<std::string> names;
+  for (const auto& o : algorithms()) names.push_back(o.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"differential_evolution", "random", "grid"}));
 }
 
 }  // namespace

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
         std::vector<apex_nodes::search::Dimension> box(dims, {"x", fn.low, fn.high, false});
         apex_nodes::search::Settings s;
         s.budget = per_dim * dims, s.seed = static_cast<unsigned>(seed);
-        auto made = apex_nodes::search::makeSearch("differential_evolution", box, s);
+        auto made = apex_nodes::search::makeSearch(apex_nodes::search::Algorithm::kDifferentialEvolution, box, s);
         if (!made) {
           std::fprintf(stderr, "%s\n", made.message().c_str());
           return 1;

@@ -20,14 +20,6 @@ inline std::string depthName(int depth) {
   return depth >= 0 && depth < 8 ? kNames[depth] : "depth " + std::to_string(depth);
 }
 
-/** @brief The depth a choice names ("8U", "16U", "16S", "32F", "64F"); "same": `same`. */
-inline int depthNamed(const std::string& name, int same) {
-  if (name == "same") return same;
-  for (int depth : {CV_8U, CV_8S, CV_16U, CV_16S, CV_32S, CV_32F, CV_64F})
-    if (name == depthName(depth)) return depth;
-  throw std::invalid_argument("unknown depth '" + name + "'");
-}
-
 /** @brief The sensor_msgs encoding of a result with `channels` channels of `depth` made from `in`:
  *  the input's when both agree with it; 8 or 16 bits of the input's colour order ("bgr8" gives
  *  "bgr16", "mono16" gives "mono8", one channel gives "mono8" or "mono16"); else the generic

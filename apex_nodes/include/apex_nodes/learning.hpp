@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "apex/core/declare.hpp"
 #include "apex_nodes/types.hpp"
 
 namespace apex_nodes {
@@ -27,6 +28,11 @@ struct Features {
 
 inline const std_msgs::Header& headerOf(const Features& f) { return f.header; }
 
+/** @brief A feature method (FeatureSettings); by name: featureMethods(). */
+enum class FeatureMethod { kHog, kColorHistogram, kHuMoments, kRawPixels };
+/** @brief color_histogram's channels; by name: colorSpaces(). */
+enum class ColorSpace { kHsv, kBgr };
+
 /** @brief How a region becomes a row of features. Lengths:
  *   - hog: (cells-1)^2 * 4 * bins. cv::HOGDescriptor on the region in gray, scaled to size x size
  *     (INTER_AREA; deskewed first if `deskew`): cells of size/cells pixels, blocks of 2x2 cells a
@@ -42,17 +48,22 @@ inline const std_msgs::Header& headerOf(const Features& f) { return f.header; }
  *  ones (0..1) by 255. Deskew is digits.py's: the shear that makes the second-order moment mu11
  *  zero (none when |mu02| < 0.01). */
 struct FeatureSettings {
-  std::string method = "hog";  ///< hog, color_histogram, hu_moments or raw_pixels
+  FeatureMethod method = FeatureMethod::kHog;
   int size = 20;  ///< hog, raw_pixels: the square the region is scaled into
   int cells = 2;  ///< hog: cells per side (size must be a multiple)
   int bins = 16;  ///< hog: orientations per cell; color_histogram: bins per channel
   bool deskew = false;  ///< hog, raw_pixels
-  std::string space = "hsv";  ///< color_histogram: hsv or bgr
+  ColorSpace space = ColorSpace::kHsv;  ///< color_histogram
   bool binary = true;  ///< hu_moments: of the Otsu mask, else of the gray levels
 };
 
-/** @brief The methods, in FeatureExtract's order. */
-const std::vector<std::string>& featureMethods();
+/** @brief The methods by name (hog, color_histogram, hu_moments, raw_pixels), in FeatureExtract's
+ *  order: its `method` choice, apex_train's --features and featureSummary read this one table. */
+const std::vector<apex::Option<FeatureMethod>>& featureMethods();
+
+/** @brief color_histogram's spaces by name (hsv, bgr): FeatureExtract's `color_space`, apex_train's
+ *  --space and featureSummary read this one table. */
+const std::vector<apex::Option<ColorSpace>>& colorSpaces();
 
 /** @brief Floats per row; throws std::invalid_argument naming the setting that does not fit. */
 int featureLength(const FeatureSettings& settings);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "apex/core/declare.hpp"
 #include "apex/core/result.hpp"
 
 namespace apex_nodes {
@@ -87,10 +88,16 @@ class Search {
   double best_fitness_ = 0;
 };
 
-/** @brief "differential_evolution" (rand/1/bin), "random" or "grid"; refused with a message
- *  for an unknown algorithm, no dimensions, a range with min > max, or settings out of range. */
-apex::Result<std::unique_ptr<Search>> makeSearch(const std::string& algorithm, std::vector<Dimension> dims,
-                                                 const Settings& settings);
+/** @brief How a search picks its candidates; by name: algorithms(). */
+enum class Algorithm { kDifferentialEvolution, kRandom, kGrid };
+
+/** @brief The algorithms by name (differential_evolution, random, grid): the Optimizer's
+ *  `algorithm` choice reads this one table. */
+const std::vector<apex::Option<Algorithm>>& algorithms();
+
+/** @brief A search by `algorithm` (differential evolution: rand/1/bin); refused with a message
+ *  for no dimensions, a range with min > max, or settings out of range. */
+apex::Result<std::unique_ptr<Search>> makeSearch(Algorithm algorithm, std::vector<Dimension> dims, const Settings& settings);
 
 }  // namespace search
 }  // namespace apex_nodes
