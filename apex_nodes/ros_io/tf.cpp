@@ -1,14 +1,13 @@
-// TfLookup: the tf2 transform between two frames at a message's stamp.
+// TfLookup: the tf2 transform between two frames at a message's stamp, from the node's own buffer
+// (TfListener, tf_listener.hpp).
 #include <ros/ros.h>
-#include <tf2_ros/buffer.h>
-#include <tf2_ros/transform_listener.h>
 
 #include <memory>
 
 #include "apex/ros/inspect.hpp"
 #include "apex/core/registry.hpp"
-#include "apex/ros/node_handles.hpp"
 #include "apex_nodes/stamp.hpp"
+#include "tf_listener.hpp"
 
 namespace apex_nodes {
 
@@ -21,8 +20,7 @@ class TfLookup : public apex::Node {
   static inline const apex::ParamDecl<std::string> kTargetFrame = apex::param::text("target_frame").init("base_link");
   static inline const apex::ParamDecl<std::string> kSourceFrame =
       apex::param::text("source_frame").describe("empty: the message's frame_id");
-  static inline const apex::ParamDecl<double> kTimeout =
-      apex::param::number("timeout").range(0.0, 10.0).step(0.01).init(0.1).describe("seconds to wait for the transform");
+  static inline const apex::ParamDecl<double> kTimeout = tfTimeoutParam("seconds to wait for the transform");
   static apex::Manifest manifest() {
     return apex::Manifest("Looks up the transform from the message's frame (or source_frame) to target_frame at its stamp")
         .inCategory("ROS I/O")
@@ -32,19 +30,17 @@ class TfLookup : public apex::Node {
         .param(kSourceFrame)
         .param(kTimeout);
   }
-  void setup() override {
-    buffer_ = std::make_unique<tf2_ros::Buffer>();
-    listener_ = std::make_unique<tf2_ros::TransformListener>(*buffer_, apex::nodeHandle(*this));
-  }
+  void setup() override { tf_ = std::make_unique<TfListener>(*this); }
   void process() override {
     const auto header = headerOf(stamped_.message());
     if (!header) throw std::invalid_argument("a " + stamped_.message().typeName() + " has no header to look up");
     const std::string source = source_frame_.get().empty() ? header->frame_id : source_frame_.get();
+    const std::string& target = target_frame_.get();
     try {
-      transform_.publish(buffer_->lookupTransform(target_frame_.get(), source, header->stamp, ros::Duration(timeout_.get())));
+      tf_->waitFor(target, source, header->stamp, timeout_.get());
+      transform_.publish(tf_->buffer().lookupTransform(target, source, header->stamp));
     } catch (const tf2::TransformException& e) {
-      throw std::runtime_error("no transform " + source + " -> " + target_frame_.get() + " at " +
-                               std::to_string(header->stamp.toSec()) + ": " + e.what());
+      throw std::runtime_error(noTransform(source, target, header->stamp) + ": " + e.what());
     }
   }
 
@@ -54,8 +50,7 @@ class TfLookup : public apex::Node {
   apex::Param<std::string> target_frame_{this, kTargetFrame};
   apex::Param<std::string> source_frame_{this, kSourceFrame};
   apex::Param<double> timeout_{this, kTimeout};
-  std::unique_ptr<tf2_ros::Buffer> buffer_;
-  std::unique_ptr<tf2_ros::TransformListener> listener_;
+  std::unique_ptr<TfListener> tf_;  // from setup(): on the runtime's node handle
 };
 
 const bool kInspectTransforms = apex::addInspector<geometry_msgs::TransformStamped, geometry_msgs::TransformStamped>(

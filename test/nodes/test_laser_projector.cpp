@@ -1,10 +1,14 @@
-// LaserProjector against laser_geometry's LaserProjection::projectLaser called directly, field for
-// field and byte for byte, on scans of a corridor made here (noise, NaN, no return, too near, too
-// far), with each of its channels and a range cutoff; bad scans refused with their flaw.
+// LaserProjector against laser_geometry's LaserProjection called directly, field for field and byte
+// for byte, on scans of a corridor made here (noise, NaN, no return, too near, too far), with each
+// of its channels and a range cutoff; bad scans refused with their flaw. With a target_frame:
+// transformLaserScanToPointCloud into the scan's own frame (tf2's identity, which needs no ROS), and
+// a frame tf2 does not know as the node's error naming both frames. A transform that moves during
+// the scan needs tf2 fed from /tf: test/ros/test_ros_tf.cpp has it.
 #include <gmock/gmock.h>
 #include <laser_geometry/laser_geometry.h>
 #include <pcl_conversions/pcl_conversions.h>
 #include <sensor_msgs/LaserScan.h>
+#include <tf2/buffer_core.h>
 
 #include <cmath>
 #include <limits>
@@ -56,15 +60,13 @@ Scan corridor(double step = 0.5) {
 
 std::shared_ptr<const Scan> shared(Scan s) { return std::make_shared<const Scan>(std::move(s)); }
 
-/** The points `m` holds against laser_geometry's projection of `scan`: header, layout, fields, bytes. */
-void expectProjected(const Message& m, const Scan& scan, double cutoff, int channels, const std::string& fields) {
-  sensor_msgs::PointCloud2 direct;
-  laser_geometry::LaserProjection().projectLaser(scan, direct, cutoff, channels);
+/** The points `m` holds against laser_geometry's cloud `direct`: header, layout, fields, bytes. */
+void expectCloud(const Message& m, const sensor_msgs::PointCloud2& direct, const std::string& fields) {
   pcl::PCLPointCloud2 want;
   pcl_conversions::toPCL(direct, want);
   const auto got = m.as<apex_nodes::Cloud>();
   ASSERT_TRUE(got) << "expected a cloud, got " << m.typeName();
-  EXPECT_EQ(got->header, scan.header);
+  EXPECT_EQ(got->header, direct.header);
   const pcl::PCLPointCloud2& p = *got->points;
   EXPECT_EQ(p.width, want.width);
   EXPECT_EQ(p.height, want.height);
@@ -82,6 +84,14 @@ void expectProjected(const Message& m, const Scan& scan, double cutoff, int chan
   }
   EXPECT_EQ(names, fields);
   EXPECT_TRUE(p.data == want.data) << "the points' bytes differ";
+}
+
+/** The points `m` holds against laser_geometry's projection of `scan` (its header: the scan's). */
+void expectProjected(const Message& m, const Scan& scan, double cutoff, int channels, const std::string& fields) {
+  sensor_msgs::PointCloud2 direct;
+  laser_geometry::LaserProjection().projectLaser(scan, direct, cutoff, channels);
+  ASSERT_EQ(direct.header, scan.header);
+  expectCloud(m, direct, fields);
 }
 
 Message project(const Scan& scan, const Params& params) {
@@ -134,6 +144,35 @@ TEST(LaserProjector, AScanWithoutRangesOrWithMismatchedIntensitiesIsRefused) {
   empty.ranges.clear(), empty.intensities.clear();
   EXPECT_TRUE(h.run<Scan>(shared(empty)).isNothing());
   EXPECT_THAT(h.error(), HasSubstr("received an empty scan on frame 'laser' (no ranges)"));
+}
+
+TEST(LaserProjector, IntoTheScansOwnFrameIsTransformLaserScanToPointCloudWithTf2sIdentity) {
+  // tf2 maps a frame into itself with no transform given: the high-fidelity call runs here without
+  // ROS, with its own handling of the channels (it adds index to time the readings, and drops it
+  // again when not asked for).
+  const Scan scan = corridor();
+  const int channels = channel::Intensity | channel::Distance | channel::Timestamp;
+  const Message got = project(scan, {{"target_frame", "laser"}, {"index", "false"}, {"distance", "true"}, {"timestamp", "true"}});
+  tf2::BufferCore empty;
+  sensor_msgs::PointCloud2 direct;
+  laser_geometry::LaserProjection().transformLaserScanToPointCloud("laser", scan, direct, empty, -1.0, channels);
+  EXPECT_EQ(direct.header.frame_id, "laser");
+  EXPECT_GT(direct.width, 400u);
+  expectCloud(got, direct, "x y z intensity distances stamps");
+}
+
+TEST(LaserProjector, ATargetFrameTf2DoesNotKnowIsAnErrorNamingBothFrames) {
+  // no ROS here: the node's buffer stays empty, as a robot's before its first transform arrives
+  NodeHarness h("apex_nodes/LaserProjector", {"scan"}, "cloud", {{"target_frame", "base_link"}});
+  const Scan scan = corridor();
+  EXPECT_TRUE(h.run<Scan>(shared(scan)).isNothing());
+  // the scan's first and last reading (3 s 400 ns + 540 x 1/57600 s), then tf2's reason
+  EXPECT_THAT(h.error(), HasSubstr("no transform laser -> base_link at 3.000000 (to 3.009375, the scan's last reading): "
+                                   "\"base_link\" passed to lookupTransform argument target_frame does not exist"));
+  // the node goes on: without a target frame the next scan is projected, and the error clears
+  h.set("target_frame", "");
+  expectProjected(h.run<Scan>(shared(scan)), scan, -1.0, channel::Default, "x y z intensity index");
+  EXPECT_EQ(h.error(), "");
 }
 
 }  // namespace
