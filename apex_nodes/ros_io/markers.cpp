@@ -1,9 +1,11 @@
 // MarkerPublisher: clusters' boxes (ClusterFeatures), a plane's outline (a hull), image regions'
-// rays (Regions with their camera model) and keypoints (Keypoints, on their rays) as
-// visualization_msgs/MarkerArray, for rviz.
+// rays (Regions with their camera model), with `tracks` the paths of tracked regions' ids, and
+// keypoints (Keypoints, on their rays) as visualization_msgs/MarkerArray, for rviz.
 // Like the publishers of topic_sink.hpp it advertises at setup and when its topic changes, and
 // builds an array only while someone subscribes. Also ClusterFeatures' inspector: a port of that
 // type shows in rviz (~inspect) and is recorded (BagWriter) as the same boxes.
+// State across frames: the paths (TrackMarkers) and the count of boxes last drawn, both the node's,
+// touched only on its thread group (process, parameterChanged, endOfSequence, the reset slot).
 #include "apex_nodes/markers.hpp"
 
 #include "apex_nodes/cloud.hpp"
@@ -13,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -174,6 +177,95 @@ visualization_msgs::Marker keypointPoints(const Keypoints& keypoints, const sens
 
 namespace {
 
+constexpr double kTrackWidth = 0.01;  // a path's line, metres
+
+/** Track `id`'s colour: a full hue, the golden ratio of a turn from the previous id's, so that
+ *  consecutive ids (MultiObjectTracker counts from 1) never look alike; the same id always the same. */
+std_msgs::ColorRGBA trackColor(int id) {
+  const double hue = std::fmod(id * 0.618033988749895, 1.0) * 6.0;  // in sixths of a turn
+  auto channel = [hue](double n) {  // HSV to RGB at full saturation and value
+    const double k = std::fmod(n + hue, 6.0);
+    return static_cast<float>(1.0 - std::clamp(std::min(k, 4.0 - k), 0.0, 1.0));
+  };
+  std_msgs::ColorRGBA c;
+  c.r = channel(5), c.g = channel(3), c.b = channel(1), c.a = 1.f;
+  return c;
+}
+
+/** Track `id`'s path through `points` (oldest first; rviz refuses a strip of one point) and
+ *  "#id" at the newest, in the id's colour. */
+void drawTrack(const std_msgs::Header& header, const MarkerOptions& options, int id,
+               const std::deque<geometry_msgs::Point>& points, visualization_msgs::MarkerArray& out) {
+  using visualization_msgs::Marker;
+  const std_msgs::ColorRGBA colour = trackColor(id);
+  if (points.size() >= 2) {
+    Marker line = marker(header, options, options.ns + "/tracks", id, Marker::ADD);
+    line.type = Marker::LINE_STRIP;
+    line.scale.x = kTrackWidth;
+    line.color = colour;
+    line.points.assign(points.begin(), points.end());
+    out.markers.push_back(std::move(line));
+  }
+  Marker text = marker(header, options, options.ns + "/tracks/ids", id, Marker::ADD);
+  text.type = Marker::TEXT_VIEW_FACING;
+  text.text = "#" + std::to_string(id);
+  text.pose.position = points.back();
+  text.scale.x = text.scale.y = text.scale.z = std::max(options.text_height, kMinScale);  // rviz reads z
+  text.color = colour;
+  out.markers.push_back(std::move(text));
+}
+
+/** DELETEs for what drawTrack drew of track `id`: both, as its line may have been drawn (rviz
+ *  ignores a DELETE of a marker it does not have). */
+void eraseTrack(const std_msgs::Header& header, const MarkerOptions& options, int id, visualization_msgs::MarkerArray& out) {
+  using visualization_msgs::Marker;
+  out.markers.push_back(marker(header, options, options.ns + "/tracks", id, Marker::DELETE));
+  out.markers.push_back(marker(header, options, options.ns + "/tracks/ids", id, Marker::DELETE));
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray TrackMarkers::update(const Regions& regions, const sensor_msgs::CameraInfo& camera,
+                                                     const MarkerOptions& options) {
+  const Pinhole pinhole(camera);  // first: a model that throws changes nothing
+  const std::size_t length = static_cast<std::size_t>(std::max(options.track_length, 1));
+  header_ = regions.header;
+  options_ = options;
+  std::set<int> seen;  // the ids that got their point this frame
+  for (const Region& r : regions.regions) {
+    if (r.label < 0 || !seen.insert(r.label).second) continue;  // no id; an id met already this frame
+    const cv::Rect& b = r.box;  // its middle as regionRays draws the box: corners at x and x + width
+    Track& t = tracks_[r.label];
+    t.points.push_back(pinhole.at(b.x + b.width / 2.0, b.y + b.height / 2.0, options.ray_length));
+    while (t.points.size() > length) t.points.pop_front();
+  }
+  visualization_msgs::MarkerArray out;
+  for (auto it = tracks_.begin(); it != tracks_.end();) {
+    Track& t = it->second;
+    if (seen.count(it->first)) {
+      t.unseen = 0;
+      drawTrack(header_, options_, it->first, t.points, out);
+    } else if (++t.unseen >= length) {  // gone: rviz would keep its path for ever
+      eraseTrack(header_, options_, it->first, out);
+      it = tracks_.erase(it);
+      continue;
+    }
+    ++it;
+  }
+  return out;
+}
+
+visualization_msgs::MarkerArray TrackMarkers::reset() {
+  std_msgs::Header header = header_;
+  header.stamp = ros::Time();  // rviz (its tf filter) places a DELETE of stamp 0 at once, however late it comes
+  visualization_msgs::MarkerArray out;
+  for (const auto& entry : tracks_) eraseTrack(header, options_, entry.first, out);
+  tracks_.clear();
+  return out;
+}
+
+namespace {
+
 // A ClusterFeatures port inspected or recorded: its boxes as MarkerPublisher draws them by default.
 // Each array clears first: its viewer may have seen any array before it. A MarkerArray has no
 // header of its own: a recording takes the features' stamp.
@@ -226,6 +318,15 @@ class MarkerPublisher : public apex::Node {
           .step(0.01)
           .init(2.0)
           .describe("regions and keypoints: how far from the camera their rays, boxes and points reach, metres");
+  static inline const apex::ParamDecl<bool> kTracks = apex::param::flag("tracks").describe(
+      "regions: their labels are track ids (MultiObjectTracker's): each id's path through its boxes' middles, with '#id', "
+      "in '<namespace>/tracks' and '<namespace>/tracks/ids'");
+  static inline const apex::ParamDecl<int> kTrackLength =
+      apex::param::integer("track_length")
+          .range(2, 1000)
+          .step(1)
+          .init(30)
+          .describe("tracks: the last points each path keeps; an id unseen for as many frames is deleted");
   static inline const apex::ParamDecl<double> kLifetime =
       apex::param::number("lifetime")
           .range(0.0, 3600.0)
@@ -234,9 +335,10 @@ class MarkerPublisher : public apex::Node {
           .describe("seconds a box stays without an update; 0: until the next message replaces it");
   static apex::Manifest manifest() {
     return apex::Manifest(
-               "Publishes clusters' boxes, a plane's outline, image regions' rays and keypoints as "
+               "Publishes clusters' boxes, a plane's outline, image regions' rays (and tracked ones' paths) and keypoints as "
                "visualization_msgs/MarkerArray, for rviz")
         .inCategory("ROS I/O")
+        .keepsState("with tracks on, each id's last points: a re-run of the held frame adds its regions' middles again")
         .input(kFeatures)
         .input(kHull)
         .input(kRegions)
@@ -250,17 +352,33 @@ class MarkerPublisher : public apex::Node {
         .param(kAlpha)
         .param(kTextHeight)
         .param(kRayLength)
-        .param(kLifetime);
+        .param(kTracks)
+        .param(kTrackLength)
+        .param(kLifetime)
+        .slot("reset", &MarkerPublisher::reset, "tracks: forgets every id, and deletes their paths in rviz");
   }
 
   void setup() override { advertise(); }
   void parameterChanged(const std::string& name) override {
+    reset();  // on the topic drawn to, in the namespace drawn in: no path mixes two settings
     if (name == kTopic.name()) advertise();
     last_count_ = kUnknownMarkerCount;  // the next array clears what this one's options drew
   }
+  /** A new pass of a sequence starts as the first did: MultiObjectTracker gives its ids again. */
+  void endOfSequence() override {
+    reset();
+    endSequence();
+  }
+  /** Forgets every track, and tells a viewer to delete their markers. */
+  void reset() {
+    const visualization_msgs::MarkerArray deletes = track_markers_.reset();
+    if (!deletes.markers.empty() && pub_.getNumSubscribers() > 0) pub_.publish(deletes);
+  }
+
   void process() override {
     if (pub_.getNumSubscribers() == 0) {  // a viewer that subscribes later may have seen anything
       last_count_ = kUnknownMarkerCount;
+      track_markers_.reset();  // nobody saw them: paths start again when someone looks
       return;
     }
     visualization_msgs::MarkerArray markers;
@@ -274,7 +392,14 @@ class MarkerPublisher : public apex::Node {
       if (!c) throw std::invalid_argument(std::string(what) + " need their camera's model: connect camera_info");
       return c;
     };
-    if (const auto regions = regions_.get()) markers.markers.push_back(regionRays(*regions, *camera("regions"), options()));
+    if (const auto regions = regions_.get()) {
+      const auto model = camera("regions");
+      markers.markers.push_back(regionRays(*regions, *model, options()));
+      if (tracks_.get()) {
+        const visualization_msgs::MarkerArray paths = track_markers_.update(*regions, *model, options());
+        markers.markers.insert(markers.markers.end(), paths.markers.begin(), paths.markers.end());
+      }
+    }
     if (const auto keypoints = keypoints_.get())
       markers.markers.push_back(keypointPoints(*keypoints, *camera("keypoints"), options()));
     if (!markers.markers.empty()) pub_.publish(markers);
@@ -291,6 +416,7 @@ class MarkerPublisher : public apex::Node {
     o.alpha = alpha_.get();
     o.text_height = text_height_.get();
     o.ray_length = ray_length_.get();
+    o.track_length = track_length_.get();
     o.lifetime = lifetime_.get();
     return o;
   }
@@ -308,9 +434,12 @@ class MarkerPublisher : public apex::Node {
   apex::Param<double> alpha_{this, kAlpha};
   apex::Param<double> text_height_{this, kTextHeight};
   apex::Param<double> ray_length_{this, kRayLength};
+  apex::Param<bool> tracks_{this, kTracks};
+  apex::Param<int> track_length_{this, kTrackLength};
   apex::Param<double> lifetime_{this, kLifetime};
   ros::Publisher pub_;
   std::size_t last_count_ = kUnknownMarkerCount;  // the first array clears what an earlier run left
+  TrackMarkers track_markers_;  // empty while tracks is off
 };
 
 }  // namespace apex_nodes

@@ -1,11 +1,13 @@
-// Clusters' boxes, a plane's outline, image regions' rays and keypoints for rviz: what MarkerPublisher (ros_io/markers.cpp, in
-// apex_nodes_ros) publishes, built without ROS running so that tests check it.
+// Clusters' boxes, a plane's outline, image regions' rays, tracked regions' paths and keypoints for rviz: what MarkerPublisher
+// (ros_io/markers.cpp, in apex_nodes_ros) publishes, built without ROS running so that tests check it.
 #pragma once
 
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cstddef>
+#include <deque>
 #include <limits>
+#include <map>
 #include <string>
 
 #include "apex/core/param.hpp"
@@ -26,6 +28,7 @@ struct MarkerOptions {
   double lifetime = 0;  ///< seconds a marker stays without an update; 0: until replaced
   double text_height = 0.15;  ///< the labels' letter height, metres
   double ray_length = 2.0;  ///< regions' rays and projected boxes, keypoints: how far from the camera, metres
+  int track_length = 30;  ///< TrackMarkers: the points a track keeps, and the frames it lives unseen
 };
 
 /** @brief For `last_count`: what the previous array drew is not known (the first one, or the
@@ -62,5 +65,46 @@ visualization_msgs::Marker regionRays(const Regions& regions, const sensor_msgs:
  *  calibrated. */
 visualization_msgs::Marker keypointPoints(const Keypoints& keypoints, const sensor_msgs::CameraInfo& camera,
                                           const MarkerOptions& options);
+
+/** @brief The paths of regions that carry a track's id in `label` (MultiObjectTracker's), for
+ *  rviz, kept from frame to frame. MarkerPublisher owns one (parameter `tracks`) and calls it from
+ *  its thread group only. The options are expected to stay the same between reset()s:
+ *  MarkerPublisher resets when one of its parameters changes. */
+class TrackMarkers {
+ public:
+  /** @brief Adds one frame's regions to their tracks; returns what changed for rviz:
+   *  - each region with a label >= 0 adds to the track of that id the middle of its box as
+   *    regionRays draws the box: halfway between its corners (x, y) and (x + width, y + height),
+   *    on the plane `options.ray_length` metres along the optical axis. A track keeps its last
+   *    `options.track_length` points. A region without a label, or with an id met earlier in the
+   *    same frame, adds nothing.
+   *  - each track that got a point: a LINE_STRIP through its points, oldest first (id: the
+   *    track's id, in "<ns>/tracks", 1 cm wide; only from its second point, as rviz refuses a
+   *    strip of one), and a TEXT_VIEW_FACING "#<id>" at its newest point (same id, in
+   *    "<ns>/tracks/ids", `options.text_height` high), both in the id's colour: a full hue, the
+   *    same for an id in every frame and every TrackMarkers, far apart for consecutive ids.
+   *  - a track without a point in `options.track_length` frames in a row is forgotten: DELETEs for
+   *    its line and its text. One unseen for fewer frames stays as rviz last drew it.
+   *  Everything carries the regions' header: the points are in the camera's optical frame, so a
+   *  path shows how its object moved in the image (a camera that moves adds its own motion).
+   *  Throws std::invalid_argument naming the camera if its model is not calibrated; nothing
+   *  changes then. */
+  visualization_msgs::MarkerArray update(const Regions& regions, const sensor_msgs::CameraInfo& camera,
+                                         const MarkerOptions& options);
+
+  /** @brief Forgets every track; returns DELETEs for the line and text of each (in the namespace
+   *  and frame of the last update(), stamped 0 so that rviz takes them whenever they arrive), or
+   *  an empty array if there was none. */
+  visualization_msgs::MarkerArray reset();
+
+ private:
+  struct Track {
+    std::deque<geometry_msgs::Point> points;  // oldest first
+    std::size_t unseen = 0;  // frames in a row without a point
+  };
+  std::map<int, Track> tracks_;  // by id: arrays list them in id order
+  std_msgs::Header header_;  // the last update's: reset() deletes in its frame
+  MarkerOptions options_;  // the last update's: reset() deletes in its namespace
+};
 
 }  // namespace apex_nodes
