@@ -70,6 +70,15 @@ void GraphEditor::fillNodeMenu(QMenu& menu, const QString& node) {
     }
     menu.addSeparator();
   }
+  if (info.type == kTrackerType) {
+    QAction* start =
+        menu.addAction("Start on a box drawn on the frame...", this, [this, node] { emit trackerStartRequested(node); });
+    start->setObjectName("tracker_start");
+    start->setToolTip(
+        "shows the frame it last saw: drag a box around the object and it starts on it "
+        "(its x, y, width and height, one undo step)");
+    menu.setToolTipsVisible(true);
+  }
   QMenu* slot_menu = menu.addMenu("Fire slot");
   QMenu* inspect = menu.addMenu("Inspect");
   QMenu* label = nullptr;  // "Label frames" of each image output, if it has any

@@ -244,6 +244,20 @@ std::optional<Edit> GraphModel::setParameter(const std::string& node_name, const
   return e;
 }
 
+std::optional<Edit> GraphModel::setParameters(const std::string& node_name,
+                                              const std::vector<std::pair<std::string, std::string>>& values,
+                                              const std::string& label) const {
+  Edit all{label, {}, {}};
+  for (const auto& [param, value] : values) {
+    const auto e = setParameter(node_name, param, value);
+    if (!e) return std::nullopt;  // all of them or none: a part of a box is no box
+    all.apply.insert(all.apply.end(), e->apply.begin(), e->apply.end());
+    all.revert.insert(all.revert.begin(), e->revert.begin(), e->revert.end());  // undone in reverse
+  }
+  if (all.apply.empty()) return std::nullopt;
+  return all;
+}
+
 std::optional<Edit> GraphModel::resetToDefault(const std::string& node_name, const std::string& param) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return std::nullopt;

@@ -33,6 +33,7 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
   connect(&link_, &RuntimeLink::imageReceived, editor_->scene(), &GraphScene::showImage);
   connect(&link_, &RuntimeLink::aboutReceived, editor_->scene(), &GraphScene::showAbout);
   connect(&link_, &RuntimeLink::frameReceived, this, &PanelWidget::onFrameReceived);  // panel_labels.cpp
+  connect(&link_, &RuntimeLink::frameReceived, this, &PanelWidget::onTrackerFrame);  // panel_tracker.cpp
   preview_timer_ = new QTimer(this);
   connect(preview_timer_, &QTimer::timeout, this, &PanelWidget::updatePreviews);
   connect(&link_, &RuntimeLink::answerOverdue, this, [this](const QString& text) { editor_->showConnection(true, text); });
@@ -119,6 +120,7 @@ void PanelWidget::connectEditor() {
   // what is shown: inspections, previews, presets, the level
   connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
   connect(e, &GraphEditor::labelRequested, this, &PanelWidget::labelFrames);
+  connect(e, &GraphEditor::trackerStartRequested, this, &PanelWidget::startTrackerOnDrawnBox);
   connect(e, &GraphEditor::previewsToggled, this, &PanelWidget::onPreviewsToggled);
   connect(e, &GraphEditor::presetSaveRequested, this, &PanelWidget::savePreset);
   connect(e, &GraphEditor::presetRestoreRequested, this, &PanelWidget::onPresetRestoreRequested);

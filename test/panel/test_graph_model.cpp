@@ -207,6 +207,25 @@ TEST(GraphModel, ResetToDefaultSetsOneOrAllParametersAndIsUndoneToTheValuesBefor
   EXPECT_FALSE(m.resetToDefault("nobody"));
 }
 
+TEST(GraphModel, SeveralParametersOfANodeAreOneEditUndoneInReverse) {
+  GraphModel m;
+  auto g = graph(1);
+  g.nodes[0].parameters = {param("x", "0"), param("y", "0"), param("width", "64")};
+  m.update(g);
+  auto box = m.setParameters("clock", {{"x", "10"}, {"y", "20"}, {"width", "30"}}, "Start clock on a box");
+  ASSERT_TRUE(box);
+  EXPECT_EQ(box->label, "Start clock on a box");
+  ASSERT_EQ(box->apply.size(), 3u);
+  ASSERT_EQ(box->revert.size(), 3u);
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(box->apply[0].request).parameter, "x");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(box->apply[2].request).value, "30");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(box->revert[0].request).parameter, "width");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(box->revert[0].request).value, "64");
+  EXPECT_EQ(std::get<apex::SetParameter::Request>(box->revert[2].request).value, "0");
+  EXPECT_FALSE(m.setParameters("clock", {{"x", "1"}, {"height", "5"}}, "part of a box")) << "all of them or none";
+  EXPECT_FALSE(m.setParameters("nobody", {{"x", "1"}}, "no node"));
+}
+
 TEST(GraphModel, ALinkOntoAnInputInUseReplacesTheOldOneInOneEdit) {
   GraphModel m;
   m.update(graph(1));

@@ -158,6 +158,8 @@ class GraphEditor : public QWidget {
   void inspectRequested(const QString& node, const QString& port);
   /** Label the frames of image output node/port (a LabelView). */
   void labelRequested(const QString& node, const QString& port);
+  /** Start Tracker `node` on a box the person draws on the frame it last saw (TrackerStartView). */
+  void trackerStartRequested(const QString& node);
   /** Tune node/param with an Optimizer; an empty `optimizer`: a new one. */
   void optimiseRequested(const QString& node, const QString& param, const QString& optimizer);
   void applyBestRequested(const QString& optimizer);

@@ -39,6 +39,10 @@ std::optional<std::string> tunedAs(const apex::ParamInfo& p);
 /** @brief The node type that tunes parameters (apex_nodes/generic/optimizer.cpp). */
 inline constexpr const char* kOptimizerType = "apex_nodes/Optimizer";
 
+/** @brief The single-object tracker (apex_nodes/opencv/tracking.cpp): its menu can start it on a
+ *  box drawn on its frame (tracker_start.hpp). */
+inline constexpr const char* kTrackerType = "apex_nodes/Tracker";
+
 /** @brief A point of a two-objective Optimizer's Pareto front (its `front` parameter). */
 struct FrontPoint {
   int evaluation = 0;  ///< which evaluation of the run it is (1, 2, ...)
@@ -193,6 +197,11 @@ class GraphModel {
    *  by its last value (dragging false). */
   std::optional<Edit> setParameter(const std::string& node, const std::string& param, const std::string& value,
                                    bool dragging = false) const;
+  /** @brief Several parameters of one node set as one edit named `label` (e.g. a box's x, y, width
+   *  and height), each as setParameter sets it, in the order given; undone in the reverse order.
+   *  Nothing if the node or one of the parameters is not there, or `values` is empty. */
+  std::optional<Edit> setParameters(const std::string& node, const std::vector<std::pair<std::string, std::string>>& values,
+                                    const std::string& label) const;
   /** @brief Parameters back to their defaults: `param`, or every parameter of the node if empty;
    *  one edit. Nothing if the node or parameter is not there, or all are at their defaults. */
   std::optional<Edit> resetToDefault(const std::string& node, const std::string& param = "") const;

@@ -21,6 +21,7 @@ namespace apex_rviz_plugin {
 
 class LabelView;
 class RecoveryBar;
+class TrackerStartView;
 
 class PanelWidget : public QWidget {
   Q_OBJECT
@@ -49,6 +50,15 @@ class PanelWidget : public QWidget {
   void labelFrames(const QString& node, const QString& port);
   /** @brief The labelling window of node/port, or nullptr before it was opened. */
   LabelView* labelView(const QString& node, const QString& port) const;
+  /** @brief Starts Tracker `tracker` on a box drawn on its frame, as its menu's "Start on a box
+   *  drawn on the frame..." does (panel_tracker.cpp): the frame held by the output feeding its
+   *  image input (the one it last saw) opens a TrackerStartView; the box dragged on it sets its
+   *  x, y, width and height as one edit (the same box again fires its restart slot). Nothing
+   *  linked to its image input, no frame within a few seconds, or one that cannot be shown: the
+   *  message line says so and no window opens. */
+  void startTrackerOnDrawnBox(const QString& tracker);
+  /** @brief The window to draw a Tracker's box on, open or waiting for its frame; nullptr if none. */
+  TrackerStartView* trackerStartView() const;
 
  signals:
   void namespaceChanged(const QString& ns);
@@ -206,6 +216,13 @@ class PanelWidget : public QWidget {
   /** The open labelling windows' ports inspected again (the runtime ended every inspection). */
   void watchLabelledAgain();
   void onFrameReceived(const QString& node, const QString& port, const QImage& image, quint64 stamp, const QString& encoding);
+  // --- starting a Tracker on a box drawn on its frame (panel_tracker.cpp) ---
+  /** The frame for the window waiting for one (its source's): it opens on it. */
+  void onTrackerFrame(const QString& node, const QString& port, const QImage& image, quint64 stamp, const QString& encoding);
+  /** The frames of node/port no longer wanted for a Tracker (a labelling window on them keeps them). */
+  void stopTrackerFrames(const QString& node, const QString& port);
+  /** The Tracker's x, y, width and height set to `box` (image pixels) as one edit. */
+  void startTrackerOn(const QString& tracker, const QRect& box);
   // --- the unsaved graph a previous run of the runtime left (panel_recovery.cpp) ---
   /** Asks the runtime just connected: the bar offers its copy, if it has one. */
   void askRecovery();
@@ -232,6 +249,7 @@ class PanelWidget : public QWidget {
   std::set<std::string> previewing_;  // "node/port" whose preview is asked for or watched
   RecoveryBar* recovery_ = nullptr;  // above the editor, hidden unless a copy is offered
   std::map<std::string, QPointer<LabelView>> label_views_;  // "node/port": labelling windows, hidden when closed
+  QPointer<TrackerStartView> tracker_start_;  // the window to draw a Tracker's box on; it deletes itself when closed
   bool untangle_ = true;  // next graph shown: boxes on top of each other are laid out (a Load, a new level)
   int replaying_ = 0;  // undo and redo steps sent, not answered yet
   /** The graph a redo applies to: its revision and shape (panel_history.cpp) right after the last
