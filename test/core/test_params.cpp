@@ -86,7 +86,7 @@ TEST(ParamParse, StringAndPath) {
   for (std::string v : {"---", "...", "--- a", "- - x", "? a", "-\r?\r-"}) expectRoundTrip(s, v);
   // no text is the empty string (a cleared field, `value: ''` over rosservice), not null
   EXPECT_EQ(parseOk(s, ""), ParamValue(std::string()));
-  EXPECT_EQ(parseOk(s, " "), ParamValue(std::string()));
+  for (std::string v : {" ", "\r", "\n", " \t"}) expectRoundTrip(s, v);  // blanks stay what they are
   EXPECT_EQ(parseOk(param::path("file", "", PathMode::Write), ""), ParamValue(std::string()));
 
   const auto p = param::path("file", "/tmp/in.png", PathMode::Write);

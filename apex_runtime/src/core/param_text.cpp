@@ -142,9 +142,8 @@ struct Parser {
 
 Result<ParamValue> ParamSpec::parse(std::string_view text) const {
   // No text at all is the empty string, as a cleared field or `value: ''` over rosservice means it
-  // (YAML would read it as null).
-  const bool empty = text.find_first_not_of(" \t\r\n") == std::string_view::npos;
-  if (empty && (kind == ParamKind::String || kind == ParamKind::Path)) {
+  // (YAML would read it as null). Not blanks: "\r" is a string toText leaves plain.
+  if (text.empty() && (kind == ParamKind::String || kind == ParamKind::Path)) {
     ParamValue none{std::string()};
     if (auto st = validate(none); !st) return st;
     return none;
