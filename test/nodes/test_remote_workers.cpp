@@ -36,6 +36,12 @@ class InProcess : public RemoteWorkers {
     if (!serve || optimizer != "opt") return done({"no runtime " + runtime + " serves '" + optimizer + "'", 0, 0});
     serve(std::move(values), with_cost, std::move(done));
   }
+  /** Whether the Optimizer named `runtime` serves (it starts to in its setup, on its group's thread). */
+  bool serves(const std::string& runtime) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto n = names_.find(runtime);
+    return n != names_.end() && served_.count(n->second) > 0;
+  }
   std::shared_ptr<void> serve(const apex::Node& node, Serve serve) override {
     std::lock_guard<std::mutex> lock(mutex_);
     served_[&node] = std::move(serve);
@@ -59,10 +65,12 @@ class RemoteWorkersTest : public ::testing::Test {
     before_ = apex_nodes::tuning::setRemoteWorkers(transport_);
   }
   void TearDown() override { apex_nodes::tuning::setRemoteWorkers(before_); }
-  /** `loop` serves as the runtime `runtime`, running. */
+  /** `loop` serves as the runtime `runtime`, running (once its Optimizer serves: as a runtime is
+   *  up once its services are). */
   void serveAs(const std::string& runtime, Loop& loop) {
     transport_->name(runtime, loop.g);
     loop.g.start();
+    EXPECT_TRUE(waitUntil([&] { return transport_->serves(runtime); })) << runtime << " never served";
   }
   std::shared_ptr<InProcess> transport_ = std::make_shared<InProcess>();
   std::shared_ptr<RemoteWorkers> before_;
