@@ -117,6 +117,10 @@ std::shared_ptr<const XyzCloud> xyzOf(const Cloud& cloud, std::shared_ptr<XyzClo
   return out;
 }
 
+XyzOffsets xyzOffsets(const Blob& points) {
+  return {findField(points, "x")->offset, findField(points, "y")->offset, findField(points, "z")->offset};
+}
+
 void copyXyz(const Blob& p, XyzCloud& out) {
   // What pcl::fromPCLPointCloud2 gives (header, size, density; each point's fourth float 1), read
   // here with one copy per point: its loop over a field map per point is the slower one.

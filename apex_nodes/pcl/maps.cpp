@@ -80,25 +80,29 @@ class CloudGrid : public apex::Node {
   };
 
   /** The grid for `cloud`, and its band's points that fall in it. Throws std::invalid_argument for a
-   *  cloud without points, a grid over no point, or one of more than kMaxCells cells. */
+   *  cloud without points, a grid over no point, or one of more than kMaxCells cells. The points
+   *  are read where they lie, twice with a grid that covers them (its bounds, then the cells): a
+   *  view of x, y, z copied out first cost more than the second read (1.5x the loop by hand). */
   Grid bin(const Cloud& cloud, std::vector<Binned>& binned) {
-    const auto xyz = xyzOf(cloud, xyz_.next());  // throws for a cloud without x, y, z or a finite point
+    requirePoints(cloud);  // throws for a cloud without x, y, z or a finite point
+    const Blob& points = *cloud.points;
     const apex::Interval band = z_band_.get();
-    std::vector<pcl::PointXYZ>& kept = kept_;  // kept between frames: no allocation per frame
-    kept.clear();
-    for (const pcl::PointXYZ& p : *xyz)
-      if (std::isfinite(p.x) && std::isfinite(p.y) && p.z >= band.low && p.z <= band.high) kept.push_back(p);
+    const auto inBand = [lo = band.low, hi = band.high](float x, float y, float z) {
+      return std::isfinite(x) && std::isfinite(y) && z >= lo && z <= hi;
+    };
     Grid g;
     g.resolution = static_cast<float>(resolution_.get());
     if (extent_.get() == Extent::kFixed) {
       g.x0 = origin_.get().first, g.y0 = origin_.get().second;
       g.width = width_.get(), g.height = height_.get();
     } else {
-      if (kept.empty())
-        throw std::invalid_argument("none of the cloud's " + std::to_string(xyz->size()) + " points is within z [" +
+      float x1 = std::numeric_limits<float>::max(), y1 = x1, x2 = -x1, y2 = -x1;
+      forEachXyz(points, [&](float x, float y, float z) {
+        if (inBand(x, y, z)) x1 = std::min(x1, x), y1 = std::min(y1, y), x2 = std::max(x2, x), y2 = std::max(y2, y);
+      });
+      if (x1 > x2)
+        throw std::invalid_argument("none of the cloud's " + std::to_string(pointCount(cloud)) + " points is within z [" +
                                     std::to_string(band.low) + ", " + std::to_string(band.high) + "]: the grid covers none");
-      float x1 = kept[0].x, y1 = kept[0].y, x2 = x1, y2 = y1;
-      for (const auto& p : kept) x1 = std::min(x1, p.x), y1 = std::min(y1, p.y), x2 = std::max(x2, p.x), y2 = std::max(y2, p.y);
       g.x0 = x1, g.y0 = y1;
       const double w = std::floor((x2 - g.x0) / g.resolution) + 1, h = std::floor((y2 - g.y0) / g.resolution) + 1;
       if (w * h > kMaxCells)
@@ -108,8 +112,10 @@ class CloudGrid : public apex::Node {
       g.width = static_cast<int>(w), g.height = static_cast<int>(h);
     }
     binned.clear();
-    for (const auto& p : kept)
-      if (const long c = g.cell(p.x, p.y); c >= 0) binned.push_back({c, p.z});
+    forEachXyz(points, [&](float x, float y, float z) {
+      if (!inBand(x, y, z)) return;
+      if (const long c = g.cell(x, y); c >= 0) binned.push_back({c, z});
+    });
     return g;
   }
 
@@ -121,8 +127,6 @@ class CloudGrid : public apex::Node {
   apex::Param<apex::Pair> origin_{this, kOrigin};
   apex::Param<int> width_{this, kWidth};
   apex::Param<int> height_{this, kHeight};
-  Reused<XyzCloud> xyz_;
-  std::vector<pcl::PointXYZ> kept_;
 
  protected:
   apex::Input<Cloud> cloud_{this, kCloud};
@@ -142,7 +146,8 @@ class CloudToOccupancyGrid : public CloudGrid {
   void process() override {
     const Cloud& in = *cloud_.get();
     const Grid g = bin(in, binned_);
-    std::vector<int> counts(g.cells(), 0);
+    std::vector<int>& counts = counts_;  // kept between frames: no allocation per frame
+    counts.assign(g.cells(), 0);
     for (const Binned& b : binned_) ++counts[b.cell];
     auto out = std::make_shared<nav_msgs::OccupancyGrid>();
     out->header = in.header;
@@ -156,6 +161,7 @@ class CloudToOccupancyGrid : public CloudGrid {
   apex::Output<nav_msgs::OccupancyGrid> grid_{this, kGrid};
   apex::Param<int> min_points_{this, kMinPoints};
   std::vector<Binned> binned_;
+  std::vector<int> counts_;
 };
 
 class HeightMap : public CloudGrid {

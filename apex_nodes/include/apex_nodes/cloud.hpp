@@ -9,7 +9,9 @@
 #include <pcl/point_types.h>
 #include <pcl/conversions.h>
 
+#include <cstring>
 #include <memory>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -45,6 +47,38 @@ std::shared_ptr<const XyzCloud> xyzOf(const Cloud& cloud, std::shared_ptr<XyzClo
 /** @brief The points' x, y, z into `xyz`, as pcl::fromPCLPointCloud2 gives them (organised as the
  *  points, each one's fourth float 1), reusing its memory; no check beyond requireField's for x, y, z. */
 void copyXyz(const Blob& points, XyzCloud& xyz);
+/** @brief Where a point's x, y and z lie in its bytes (float32, requireField's fields). */
+struct XyzOffsets {
+  std::uint32_t x = 0, y = 4, z = 8;
+  /** One after another, as nearly every sensor and PCL lay them out: one read of 12 bytes. */
+  bool packed() const { return y == x + 4 && z == x + 8; }
+};
+/** @brief The offsets of x, y and z in `points` (which has them: requireField). */
+XyzOffsets xyzOffsets(const Blob& points);
+/** @brief Calls f(x, y, z) for each point, row by row, reading them where they lie (no copy: for a
+ *  node that only reads the points once or twice, cheaper than xyzOf's view). */
+template <class F>
+void forEachXyz(const Blob& points, F&& f) {
+  const XyzOffsets at = xyzOffsets(points);
+  const auto rows = [&](auto packed) {
+    for (std::size_t row = 0; row < points.height; ++row) {
+      const std::uint8_t* from = points.data.data() + row * points.row_step;
+      for (std::size_t col = 0; col < points.width; ++col, from += points.point_step) {
+        float v[3];
+        if constexpr (decltype(packed)::value) {
+          std::memcpy(v, from + at.x, sizeof v);
+        } else {
+          std::memcpy(&v[0], from + at.x, sizeof(float));
+          std::memcpy(&v[1], from + at.y, sizeof(float));
+          std::memcpy(&v[2], from + at.z, sizeof(float));
+        }
+        f(v[0], v[1], v[2]);
+      }
+    }
+  };
+  if (at.packed()) rows(std::true_type());
+  else rows(std::false_type());
+}
 /** @brief The points at `indices`, whole (every field), as one row; into `into` if given (every
  *  member set), else new points. */
 std::shared_ptr<Blob> selectPoints(const Blob& points, const pcl::Indices& indices, std::shared_ptr<Blob> into = nullptr);
