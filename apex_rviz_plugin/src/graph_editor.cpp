@@ -176,11 +176,11 @@ QWidget* GraphEditor::buildToolBar() {
                          "thread groups that make the graph a pipeline over the cores, from each node's time "
                          "(one undo step; the status line says what to expect)");
   connect(balance, &QToolButton::clicked, this, &GraphEditor::balanceRequested);
-  auto* previews = button("previews", "Previews",
-                          "thumbnails of images and sparklines of numbers on the nodes in view "
-                          "(at most 5 a second; nodes out of view cost nothing)");
-  previews->setCheckable(true);
-  connect(previews, &QToolButton::toggled, this, &GraphEditor::previewsToggled);
+  previews_ = button("previews", "Previews",
+                     "thumbnails of images and sparklines of numbers on the nodes in view "
+                     "(at most 5 a second; nodes out of view cost nothing)");
+  previews_->setCheckable(true);
+  connect(previews_, &QToolButton::toggled, this, &GraphEditor::previewsToggled);
   auto* presets = button("presets", "Presets", "named snapshots of parameter values: save, compare with now, restore");
   presets->setPopupMode(QToolButton::InstantPopup);
   auto* preset_menu = new QMenu(presets);
@@ -227,7 +227,7 @@ QWidget* GraphEditor::buildToolBar() {
   auto* buttons = new QToolBar;
   buttons->setObjectName("buttons");
   buttons->setToolButtonStyle(Qt::ToolButtonTextOnly);
-  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews, presets, trace_, fresh, save, load, whole_})
+  for (QToolButton* b : {pause_, step, undo_, redo_, fit, tidy, balance, previews_, presets, trace_, fresh, save, load, whole_})
     buttons->addWidget(b);
   rows->addWidget(buttons);
   return bar;

@@ -130,7 +130,7 @@ void GraphEditor::fillPortMenu(QMenu& menu, const QString& node, const QString& 
 }
 
 void GraphEditor::addShowInRviz(QMenu& menu, const QString& node, const QString& port, const std::string& port_type) {
-  // An inspection's answer makes the display (PanelWidget::onInspect), as a double-click's does.
+  // An inspection's answer makes the display (Inspections::inspect), as a double-click's does.
   QAction* show = menu.addAction("Show in rviz", this, [this, node, port] { emit inspectRequested(node, port); });
   show->setObjectName("show_in_rviz");
   menu.setToolTipsVisible(true);
@@ -254,6 +254,8 @@ void GraphEditor::showTracing(bool on) {
   trace_->setText(on ? "Trace ●" : "Trace");
   trace_->setStyleSheet(on ? "color: #c03030;" : "");
 }
+
+void GraphEditor::setPreviewsChecked(bool on) { previews_->setChecked(on); }
 
 void GraphEditor::showPresetDiff(const QString& name, const QString& text) {
   auto* box = new QMessageBox(QMessageBox::Information, "Preset " + name, text, QMessageBox::Close, this);

@@ -121,6 +121,8 @@ class GraphEditor : public QWidget {
   void showNodeHelp(const QString& node);
   /** @brief The help window; nullptr before help was first asked for. */
   HelpView* help() const { return help_; }
+  /** @brief Checks or unchecks the Previews button, as a click does: previewsToggled if it changes. */
+  void setPreviewsChecked(bool on);
   /** @brief The Whole window button: checked while the editor has the whole window. */
   QToolButton* wholeWindowButton() const { return whole_; }
   /** @brief The selected node's parameters, beside the canvas (a tab beside the palette's). */
@@ -254,7 +256,7 @@ class GraphEditor : public QWidget {
   QLabel* message_;
   QLabel* connection_;
   QLabel* unsaved_;  ///< "● unsaved" while the graph differs from its file
-  QToolButton *pause_, *undo_, *redo_, *whole_, *trace_;
+  QToolButton *pause_, *undo_, *redo_, *whole_, *trace_, *previews_ = nullptr;
   bool tracing_ = false;
   int added_ = 0;
   QStringList select_when_shown_;
