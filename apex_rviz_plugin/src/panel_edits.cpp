@@ -1,5 +1,5 @@
 // PanelWidget, the editor's requests that become edits: each handler turns one signal of the
-// editor or its scene (connected in connectEditor) into an edit of the model, made through
+// editor or its scene (connected in connectEdits) into an edit of the model, made through
 // perform(): sent to the runtime, recorded in the history once it accepts it.
 #include "apex_rviz_plugin/panel_widget.hpp"
 
@@ -20,26 +20,47 @@ std::vector<std::string> stdNames(const QStringList& nodes) {
 
 }  // namespace
 
+void PanelWidget::connectEdits() {
+  GraphEditor* e = editor_;
+  GraphScene* s = e->scene();
+  connect(e, &GraphEditor::addRequested, this, &PanelWidget::onAddRequested);
+  connect(e, &GraphEditor::addLinkedRequested, this, &PanelWidget::onAddLinkedRequested);
+  connect(e, &GraphEditor::insertNewRequested, this, &PanelWidget::onInsertNewRequested);
+  connect(e, &GraphEditor::removeRequested, this, &PanelWidget::onRemoveRequested);
+  connect(e, &GraphEditor::groupIntoSubgraphRequested, this, &PanelWidget::onGroupIntoSubgraphRequested);
+  connect(e, &GraphEditor::ungroupRequested, this, &PanelWidget::onUngroupRequested);
+  connect(e, &GraphEditor::duplicateRequested, this, &PanelWidget::onDuplicateRequested);
+  connect(e, &GraphEditor::copyRequested, this, &PanelWidget::onCopyRequested);
+  connect(e, &GraphEditor::pasteRequested, this, &PanelWidget::onPasteRequested);
+  connect(e, &GraphEditor::renameRequested, this, &PanelWidget::onRenameRequested);
+  connect(e, &GraphEditor::resetRequested, this, &PanelWidget::onResetRequested);
+  connect(e, &GraphEditor::enabledRequested, this, &PanelWidget::onEnabledRequested);
+  connect(e, &GraphEditor::groupRequested, this, &PanelWidget::onThreadGroupRequested);
+  connect(s, &GraphScene::connectRequested, this, &PanelWidget::onConnectRequested);
+  connect(s, &GraphScene::disconnectRequested, this, &PanelWidget::onDisconnectRequested);
+  connect(s, &GraphScene::parameterEdited, this, &PanelWidget::onParameterEdited);
+  connect(s, &GraphScene::interactiveToggled, this, &PanelWidget::onInteractiveToggled);
+  connect(s, &GraphScene::nodeMoved, this, &PanelWidget::onNodeMoved);
+  connect(s, &GraphScene::expandToggled, this, &PanelWidget::onExpandToggled);
+  connect(e, &GraphEditor::pinRequested, this, &PanelWidget::onPinRequested);
+  connect(s, &GraphScene::insertRequested, this, &PanelWidget::onInsertRequested);
+  connect(e, &GraphEditor::optimiseRequested, this, &PanelWidget::onOptimiseRequested);
+  connect(e, &GraphEditor::applyBestRequested, this, &PanelWidget::onApplyBestRequested);
+  connect(e, &GraphEditor::applyFrontPointRequested, this, &PanelWidget::onApplyFrontPointRequested);
+}
+
 void PanelWidget::perform(const std::optional<Edit>& edit) {
   if (!edit) return editor_->showMessage("that node or parameter is no longer in the graph", true);
-  reservePlaces(edit->apply);
+  placement_.reserve(edit->apply);
   announceMoves(edit->apply);
-  ++pending_;
-  link_.run(edit->apply, [this, edit = *edit, epoch = history_epoch_](bool ok, const std::string& message) {
-    --pending_;
+  history_.sent();
+  link_.run(edit->apply, [this, edit = *edit, epoch = history_.epoch()](bool ok, const std::string& message) {
+    history_.answered(edit, ok, epoch);
     if (ok && GraphModel::regroups(edit.apply)) inspectAgain();  // the runtime ended every inspection
-    if (!ok)  // its places are free again
-      for (const auto& call : edit.apply)
-        if (const auto* ui = std::get_if<apex::SetUi::Request>(&call.request)) placing_.erase(ui->node);
-    if (ok && epoch == history_epoch_) history_.done(edit);  // not into a history started since: another graph
-    editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
+    if (!ok) placement_.release(edit.apply);  // its places are free again
     report(ok, message, QString::fromStdString(edit.label));
     if (!ok) editor_->showGraph(model_);  // widgets back to the values the runtime holds
-    while (pending_ == 0 && !waiting_steps_.empty()) {  // the undos and redos asked for meanwhile
-      const bool undo = waiting_steps_.front();
-      waiting_steps_.pop_front();
-      historyStep(undo);
-    }
+    while (const auto undo = history_.nextWaiting()) historyStep(*undo);  // the undos and redos asked for meanwhile
   });
 }
 
@@ -52,39 +73,9 @@ void PanelWidget::pasted(const Pasted& p) {
   if (!p.error.empty()) editor_->showMessage(QString::fromStdString(p.error), true);
 }
 
-std::vector<Box> PanelWidget::takenPlaces() const {
-  const auto shown = editor_->scene()->boxes();
-  std::vector<Box> taken;
-  for (const auto& [n, box] : shown)
-    if (!placing_.count(n)) taken.push_back(box);
-  // Sent a place a moment ago: taken where it goes, not where it shows now (a ~graph between a
-  // node's add_node and its set_ui shows it without a place), and at least as big as it shows.
-  for (const auto& [n, box] : placing_) {
-    Box b = box;
-    if (const auto s = shown.find(n); s != shown.end())
-      b.width = std::max(b.width, s->second.width), b.height = std::max(b.height, s->second.height);
-    taken.push_back(b);
-  }
-  return taken;
-}
-
-std::pair<std::string, Box> PanelWidget::placeNew(const std::string& type, QPointF at, bool left_of) {
-  const std::string& inside = editor_->scene()->level();  // the subgraph shown gets the node
-  std::set<std::string> sent;  // added a moment ago, not shown yet: their names are taken too
-  for (const auto& [n, box] : placing_) sent.insert(n);
-  const std::string name = model_.freshName(type, inside, sent);
-  const std::string path = inside.empty() ? name : inside + "/" + name;
-  const std::vector<Box> taken = takenPlaces();
-  Box wanted = typeBox(type);  // as a new node of the type is shown
-  wanted.x = left_of ? at.x() - wanted.width : at.x(), wanted.y = at.y();
-  const Box free = freePlace(wanted, taken);  // on no other
-  placing_[path] = free;
-  return {path, free};
-}
-
 void PanelWidget::onAddRequested(const QString& type_name, QPointF at) {
   const std::string type = type_name.toStdString();
-  const auto [path, free] = placeNew(type, at);
+  const auto [path, free] = placement_.placeNew(type, typeBox(type), at);
   editor_->reveal(QRectF(free.x, free.y, free.width, free.height));  // a free place may be below the view
   perform(model_.addNode(type, path, free.x, free.y));
 }
@@ -92,7 +83,7 @@ void PanelWidget::onAddRequested(const QString& type_name, QPointF at) {
 void PanelWidget::onAddLinkedRequested(const QString& type_name, QPointF at, const apex::Connection& link) {
   const std::string type = type_name.toStdString();
   const bool feeds = link.from_node.empty();  // the new node is the link's source: left of where it was let go
-  const auto [path, free] = placeNew(type, at - QPointF(0, 40), feeds);  // its first ports about level with `at`
+  const auto [path, free] = placement_.placeNew(type, typeBox(type), at - QPointF(0, 40), feeds);  // its first ports about level with `at`
   apex::Connection c = link;
   (feeds ? c.from_node : c.to_node) = path;
   perform(model_.addLinked(type, path, free.x, free.y, c));
@@ -102,7 +93,7 @@ void PanelWidget::onInsertNewRequested(const QString& type_name, QPointF at, con
                                        const QString& out) {
   const std::string type = type_name.toStdString();
   const Box size = typeBox(type);
-  const auto [path, free] = placeNew(type, at - QPointF(size.width / 2, size.height / 2));  // centred between the two
+  const auto [path, free] = placement_.placeNew(type, size, at - QPointF(size.width / 2, size.height / 2));  // centred between the two
   editor_->reveal(QRectF(free.x, free.y, free.width, free.height));  // a free place may be below the view
   perform(model_.addInserted(type, path, free.x, free.y, link, in.toStdString(), out.toStdString()));
 }
@@ -144,7 +135,7 @@ void PanelWidget::onPasteRequested(QPointF at) {
       group.width = std::max(group.width, x + NodeItem::kMinWidth - at.x());
       group.height = std::max(group.height, y + 150 - at.y());
     }
-  const Box free = freePlace(group, takenPlaces());  // not on top of what is there
+  const Box free = freePlace(group, placement_.takenPlaces());  // not on top of what is there
   pasted(free.x == at.x() && free.y == at.y() ? p : model_.paste(text, level, free.x, free.y));
 }
 

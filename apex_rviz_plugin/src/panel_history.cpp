@@ -1,8 +1,8 @@
-// PanelWidget, undo and redo as the runtime answers them, and redo after edits made elsewhere.
+// Undo and redo as the runtime answers them, and redo after edits made elsewhere.
 // The ~graph does not say who changed it. The panel knows when its own calls are on their way
 // (pending_, replaying_) and, after an undo or redo, what the graph was right after it (read with
 // get_graph behind its calls, in order): a later graph of another shape is someone else's edit.
-#include "apex_rviz_plugin/panel_widget.hpp"
+#include "apex_rviz_plugin/panel_history.hpp"
 
 #include <algorithm>
 
@@ -31,25 +31,73 @@ std::string editShape(const apex::GraphState& g) {
 
 }  // namespace
 
-void PanelWidget::stepDone(bool undo, const std::string& label, bool ok, const std::string& message,
-                           const apex::GraphState& after) {
+void PanelHistory::answered(const Edit& edit, bool ok, int epoch) {
+  --pending_;
+  if (ok && epoch == epoch_) history_.done(edit);  // not into a history started since: another graph
+  show();
+}
+
+bool PanelHistory::deferred(bool undo) {
+  if (pending_ <= 0) return false;
+  waiting_.push_back(undo);  // the edit it would undo is not in the history yet
+  return true;
+}
+
+std::optional<bool> PanelHistory::nextWaiting() {
+  if (pending_ != 0 || waiting_.empty()) return std::nullopt;
+  const bool undo = waiting_.front();
+  waiting_.pop_front();
+  return undo;
+}
+
+PanelHistory::Step PanelHistory::take(bool undo) {
+  Step step;
+  step.label = undo ? history_.undoLabel() : history_.redoLabel();
+  step.calls = undo ? history_.undo() : history_.redo();
+  show();
+  if (step.calls.empty()) return step;
+  ++replaying_;
+  redo_base_.reset();
+  return step;
+}
+
+void PanelHistory::stepDone(bool undo, const std::string& label, bool ok, const std::string& message,
+                            const apex::GraphState& after) {
   --replaying_;
   if (after.revision > 0) redo_base_ = std::make_pair(after.revision, editShape(after));
   const QString what = QString::fromStdString(label);
-  if (ok) editor_->showMessage((undo ? "undid: " : "redid: ") + what, false);
-  else editor_->showMessage((undo ? "undo of " : "redo of ") + what + " refused: " + QString::fromStdString(message), true);
+  if (ok) ctx_.editor.showMessage((undo ? "undid: " : "redid: ") + what, false);
+  else ctx_.editor.showMessage((undo ? "undo of " : "redo of ") + what + " refused: " + QString::fromStdString(message), true);
   dropRedoIfEditedElsewhere();  // an edit elsewhere may be shown already
 }
 
-void PanelWidget::dropRedoIfEditedElsewhere() {
+void PanelHistory::dropRedoIfEditedElsewhere() {
   // Graphs up to the step's revision may hold the step itself; one of the panel's own edits on
   // its way clears the redo list anyway once accepted.
   if (!history_.canRedo() || !redo_base_ || replaying_ > 0 || pending_ > 0) return;
-  if (model_.graph().revision <= redo_base_->first || editShape(model_.graph()) == redo_base_->second) return;
+  const apex::GraphState& now = ctx_.model.graph();
+  if (now.revision <= redo_base_->first || editShape(now) == redo_base_->second) return;
   history_.dropRedo();
   redo_base_.reset();
-  editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
-  editor_->showMessage("the graph was edited elsewhere: nothing to redo", false);
+  show();
+  ctx_.editor.showMessage("the graph was edited elsewhere: nothing to redo", false);
+}
+
+void PanelHistory::restoreIfUntouched(const EditHistory& before) {
+  if (history_.canUndo() || history_.canRedo()) return;  // something done since: the new history stands
+  history_ = before;
+  show();
+}
+
+void PanelHistory::reset() {
+  history_.clear();
+  waiting_.clear();
+  ++epoch_;
+  show();
+}
+
+void PanelHistory::show() const {
+  ctx_.editor.showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
 }
 
 }  // namespace apex_rviz_plugin

@@ -1,41 +1,44 @@
+// PanelWidget: the parts joined. The runtime's signals and the editor's are connected here to the
+// part that owns what they change; the model changes only in onGraph and forgetRuntime, and
+// forgetRuntime is the one place that resets the parts when a runtime is gone or replaced.
 #include "apex_rviz_plugin/panel_widget.hpp"
 
-#include <QPointer>
-#include <QDir>
-#include <QFileInfo>
-#include <QGraphicsView>
-#include <QSaveFile>
 #include <QTimer>
-#include <QToolButton>
 #include <QVBoxLayout>
 
 #include "apex_rviz_plugin/histogram_view.hpp"
 #include "apex_rviz_plugin/recovery_bar.hpp"
-#include "apex_rviz_plugin/rviz_displays.hpp"
 
 namespace apex_rviz_plugin {
 
-PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEditor) {
+PanelWidget::PanelWidget(QWidget* parent)
+    : QWidget(parent),
+      editor_(new GraphEditor),
+      ctx_{*editor_, model_, link_},
+      history_(ctx_),
+      placement_(ctx_),
+      inspections_(ctx_),
+      previews_(ctx_),
+      presets_(ctx_),
+      labels_(ctx_, this),
+      tracker_(ctx_, labels_, this) {
   auto* column = new QVBoxLayout(this);
   column->setContentsMargins(0, 0, 0, 0);
   column->addWidget(recovery_ = new RecoveryBar);
   column->addWidget(editor_);
   connect(recovery_, &RecoveryBar::restoreRequested, this, &PanelWidget::onRecoveryRestore);
   connect(recovery_, &RecoveryBar::discardRequested, this, &PanelWidget::onRecoveryDiscard);
+  connectLink();
+  connectParts();
+  connectEditor();
+}
+
+void PanelWidget::connectLink() {
   connect(&link_, &RuntimeLink::graphReceived, this, &PanelWidget::onGraph);
-  connect(&link_, &RuntimeLink::statusReceived, this, [this](const apex::RuntimeStatus& s) {
-    editor_->scene()->showStatus(s);
-    editor_->showUnsaved(s.unsaved);
-    editor_->showTracing(s.tracing);
-    emit statusShown();
-  });
+  connect(&link_, &RuntimeLink::statusReceived, this, &PanelWidget::onStatus);
   connect(&link_, &RuntimeLink::scalarReceived, editor_->scene(), &GraphScene::showValue);
   connect(&link_, &RuntimeLink::imageReceived, editor_->scene(), &GraphScene::showImage);
   connect(&link_, &RuntimeLink::aboutReceived, editor_->scene(), &GraphScene::showAbout);
-  connect(&link_, &RuntimeLink::frameReceived, this, &PanelWidget::onFrameReceived);  // panel_labels.cpp
-  connect(&link_, &RuntimeLink::frameReceived, this, &PanelWidget::onTrackerFrame);  // panel_tracker.cpp
-  preview_timer_ = new QTimer(this);
-  connect(preview_timer_, &QTimer::timeout, this, &PanelWidget::updatePreviews);
   connect(&link_, &RuntimeLink::answerOverdue, this, [this](const QString& text) { editor_->showConnection(true, text); });
   connect(&link_, &RuntimeLink::connectionChanged, this, [this](bool up, const QString& text) {
     editor_->showConnection(up, text);
@@ -49,98 +52,65 @@ PanelWidget::PanelWidget(QWidget* parent) : QWidget(parent), editor_(new GraphEd
     forgetRuntime();
     meetRuntime();
   });
-  connectEditor();
+}
+
+void PanelWidget::connectParts() {
+  connect(&placement_, &Placement::editRequested, this, &PanelWidget::perform);
+  connect(&presets_, &PresetFiles::editRequested, this, &PanelWidget::perform);
+  connect(&labels_, &LabelWindows::editRequested, this, &PanelWidget::perform);
+  connect(&tracker_, &TrackerStarter::editRequested, this, &PanelWidget::perform);
+  connect(&labels_, &LabelWindows::fireSlotRequested, this, &PanelWidget::onFireSlotRequested);
+  connect(&tracker_, &TrackerStarter::fireSlotRequested, this, &PanelWidget::onFireSlotRequested);
+  connect(&inspections_, &Inspections::displayRequested, this, &PanelWidget::displayRequested);
+}
+
+void PanelWidget::connectEditor() {
+  GraphEditor* e = editor_;
+  GraphScene* s = e->scene();
+  connectEdits();  // edits of the model (panel_edits.cpp)
+  connect(e, &GraphEditor::tidyRequested, &placement_, &Placement::tidy);
+  connect(e, &GraphEditor::balanceRequested, &placement_, &Placement::balance);
+  // the namespace, the history, the runtime's controls and files
+  connect(e, &GraphEditor::namespaceChanged, this, &PanelWidget::onNamespaceEdited);
+  connect(e, &GraphEditor::undoRequested, this, [this] { historyStep(true); });
+  connect(e, &GraphEditor::redoRequested, this, [this] { historyStep(false); });
+  connect(e, &GraphEditor::controlRequested, this, &PanelWidget::onControlRequested);
+  connect(s, &GraphScene::slotFired, e, &GraphEditor::fireSlotRequested);  // a player's transport bar
+  connect(e, &GraphEditor::fireSlotRequested, this, &PanelWidget::onFireSlotRequested);
+  connect(e, &GraphEditor::saveRequested, this, &PanelWidget::onSaveRequested);
+  connect(e, &GraphEditor::loadRequested, this, &PanelWidget::onLoadRequested);
+  connect(e, &GraphEditor::traceRequested, this, &PanelWidget::onTraceRequested);
+  connect(e, &GraphEditor::profileRequested, this, &PanelWidget::showProfile);
+  connect(e, &GraphEditor::newRequested, this, &PanelWidget::onNewRequested);
+  connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
+  // what is shown: inspections, previews, presets, the level
+  connect(e, &GraphEditor::inspectRequested, &inspections_, &Inspections::inspect);
+  connect(e, &GraphEditor::labelRequested, &labels_, &LabelWindows::open);
+  connect(e, &GraphEditor::trackerStartRequested, &tracker_, &TrackerStarter::start);
+  connect(e, &GraphEditor::previewsToggled, this, &PanelWidget::onPreviewsToggled);
+  connect(e, &GraphEditor::presetSaveRequested, &presets_, &PresetFiles::save);
+  connect(e, &GraphEditor::presetRestoreRequested, &presets_, &PresetFiles::restore);
+  connect(e, &GraphEditor::presetCompareRequested, &presets_, &PresetFiles::compare);
+  presets_.list();
+  connect(s, &GraphScene::levelChanged, &placement_, &Placement::levelChanged);
 }
 
 void PanelWidget::setNamespace(const QString& ns) {
   const bool changed = link_.setNamespace(ns.toStdString());
   editor_->setNamespace(QString::fromStdString(link_.ns()));  // a refused one goes back to the current
   if (!changed) return;
-  model_.reset();
-  watched_.clear();
-  inspected_.clear();
-  previewing_.clear();  // the link dropped its subscriptions with the namespace
-  pending_ = 0, replaying_ = 0;  // and drops the answers of the runtime left: nothing of it is waited for
-  placing_.clear(), sizes_.clear(), untangle_from_ = 0;
-  forgetHistory();
+  forgetRuntime();
+  // Leaving the namespace, beyond forgetting its runtime: the link dropped its subscriptions and
+  // the answers of the runtime left (nothing of it is waited for), its displays and its copy go.
+  history_.dropAnswers();
+  inspections_.forgetPorts();
   recovery_->withdraw();  // the runtime left's copy: the new one is asked once connected
   editor_->showGraph(model_);
   emit namespaceChanged(QString::fromStdString(link_.ns()));
 }
 
-void PanelWidget::connectEditor() {
-  GraphEditor* e = editor_;
-  GraphScene* s = e->scene();
-  // edits of the model (panel_edits.cpp)
-  connect(e, &GraphEditor::addRequested, this, &PanelWidget::onAddRequested);
-  connect(e, &GraphEditor::addLinkedRequested, this, &PanelWidget::onAddLinkedRequested);
-  connect(e, &GraphEditor::insertNewRequested, this, &PanelWidget::onInsertNewRequested);
-  connect(e, &GraphEditor::removeRequested, this, &PanelWidget::onRemoveRequested);
-  connect(e, &GraphEditor::groupIntoSubgraphRequested, this, &PanelWidget::onGroupIntoSubgraphRequested);
-  connect(e, &GraphEditor::ungroupRequested, this, &PanelWidget::onUngroupRequested);
-  connect(e, &GraphEditor::duplicateRequested, this, &PanelWidget::onDuplicateRequested);
-  connect(e, &GraphEditor::copyRequested, this, &PanelWidget::onCopyRequested);
-  connect(e, &GraphEditor::pasteRequested, this, &PanelWidget::onPasteRequested);
-  connect(e, &GraphEditor::renameRequested, this, &PanelWidget::onRenameRequested);
-  connect(e, &GraphEditor::resetRequested, this, &PanelWidget::onResetRequested);
-  connect(e, &GraphEditor::enabledRequested, this, &PanelWidget::onEnabledRequested);
-  connect(e, &GraphEditor::groupRequested, this, &PanelWidget::onThreadGroupRequested);
-  connect(s, &GraphScene::connectRequested, this, &PanelWidget::onConnectRequested);
-  connect(s, &GraphScene::disconnectRequested, this, &PanelWidget::onDisconnectRequested);
-  connect(s, &GraphScene::parameterEdited, this, &PanelWidget::onParameterEdited);
-  connect(s, &GraphScene::interactiveToggled, this, &PanelWidget::onInteractiveToggled);
-  connect(s, &GraphScene::nodeMoved, this, &PanelWidget::onNodeMoved);
-  connect(s, &GraphScene::expandToggled, this, &PanelWidget::onExpandToggled);
-  connect(e, &GraphEditor::pinRequested, this, &PanelWidget::onPinRequested);
-  connect(s, &GraphScene::insertRequested, this, &PanelWidget::onInsertRequested);
-  connect(e, &GraphEditor::optimiseRequested, this, &PanelWidget::onOptimiseRequested);
-  connect(e, &GraphEditor::applyBestRequested, this, &PanelWidget::onApplyBestRequested);
-  connect(e, &GraphEditor::applyFrontPointRequested, this, &PanelWidget::onApplyFrontPointRequested);
-  connect(e, &GraphEditor::tidyRequested, this, &PanelWidget::tidy);  // panel_placement.cpp
-  connect(e, &GraphEditor::balanceRequested, this, &PanelWidget::balance);  // panel_placement.cpp
-  // the namespace, the history, the runtime's controls and files
-  connect(e, &GraphEditor::namespaceChanged, this, &PanelWidget::onNamespaceEdited);
-  connect(e, &GraphEditor::undoRequested, this, &PanelWidget::onUndoRequested);
-  connect(e, &GraphEditor::redoRequested, this, &PanelWidget::onRedoRequested);
-  connect(e, &GraphEditor::controlRequested, this, &PanelWidget::onControlRequested);
-  connect(s, &GraphScene::slotFired, e, &GraphEditor::fireSlotRequested);  // a player's transport bar
-  connect(e, &GraphEditor::fireSlotRequested, this, &PanelWidget::onFireSlotRequested);
-  connect(e, &GraphEditor::saveRequested, this, &PanelWidget::onSaveRequested);
-  connect(e, &GraphEditor::loadRequested, this, &PanelWidget::onLoadRequested);
-  connect(e, &GraphEditor::traceRequested, this, [this](const QString& command, const QString& path, double seconds) {
-    link_.trace(command.toStdString(), path.toStdString(), seconds, [this, command](bool ok, const std::string& m, bool on) {
-      if (!ok) return report(ok, m, "trace " + command);
-      editor_->showTracing(on);
-      editor_->showMessage(QString::fromStdString(m), false);
-    });
-  });
-  connect(e, &GraphEditor::profileRequested, this, &PanelWidget::showProfile);
-  connect(e, &GraphEditor::newRequested, this, &PanelWidget::onNewRequested);
-  connect(e, &GraphEditor::typesRequested, this, &PanelWidget::refreshTypes);
-  // what is shown: inspections, previews, presets, the level
-  connect(e, &GraphEditor::inspectRequested, this, &PanelWidget::onInspect);
-  connect(e, &GraphEditor::labelRequested, this, &PanelWidget::labelFrames);
-  connect(e, &GraphEditor::trackerStartRequested, this, &PanelWidget::startTrackerOnDrawnBox);
-  connect(e, &GraphEditor::previewsToggled, this, &PanelWidget::onPreviewsToggled);
-  connect(e, &GraphEditor::presetSaveRequested, this, &PanelWidget::savePreset);
-  connect(e, &GraphEditor::presetRestoreRequested, this, &PanelWidget::onPresetRestoreRequested);
-  connect(e, &GraphEditor::presetCompareRequested, this, &PanelWidget::onPresetCompareRequested);
-  listPresets();
-  connect(s, &GraphScene::levelChanged, this, &PanelWidget::onLevelChanged);
-}
-
 void PanelWidget::onNamespaceEdited(const QString& ns) {
   if (ns.toStdString() != link_.ns()) setNamespace(ns);
-}
-
-void PanelWidget::onUndoRequested() { historyStep(true); }
-
-void PanelWidget::onRedoRequested() { historyStep(false); }
-
-void PanelWidget::historyStep(bool undo) {
-  if (pending_ > 0) return waiting_steps_.push_back(undo);  // the edit it would undo is not in the history yet
-  const std::string label = undo ? history_.undoLabel() : history_.redoLabel();  // the step's own name
-  replay(undo ? history_.undo() : history_.redo(), undo, label);
 }
 
 void PanelWidget::onControlRequested(const QString& command) {
@@ -152,6 +122,14 @@ void PanelWidget::onFireSlotRequested(const QString& node, const QString& slot) 
                  [this, node, slot](bool ok, const std::string& m) { report(ok, m, "fire " + node + "/" + slot); });
 }
 
+void PanelWidget::onTraceRequested(const QString& command, const QString& path, double seconds) {
+  link_.trace(command.toStdString(), path.toStdString(), seconds, [this, command](bool ok, const std::string& m, bool on) {
+    if (!ok) return report(ok, m, "trace " + command);
+    editor_->showTracing(on);
+    editor_->showMessage(QString::fromStdString(m), false);
+  });
+}
+
 void PanelWidget::onSaveRequested(const QString& path) {
   link_.saveGraph(path.toStdString(), [this, path](bool ok, const std::string& m) { report(ok, m, "saved " + path); });
 }
@@ -160,195 +138,30 @@ void PanelWidget::onLoadRequested(const QString& path) {
   const auto done = replacingGraph("loaded " + path);
   link_.loadGraph(path.toStdString(), [this, done](bool ok, const std::string& m, std::uint64_t revision) {
     done(ok, m);
-    if (!ok) return;
-    // Positions written for other box sizes (by hand, another panel) are laid out again once the
-    // loaded graph is shown (its revision or a later one): now, or when its ~graph comes.
-    untangle_from_ = revision;
-    if (model_.graph().revision >= revision) untangleLoaded();
+    if (ok) placement_.loaded(revision);
   });
 }
 
 void PanelWidget::onNewRequested() { link_.control("clear", replacingGraph("new graph")); }
 
 void PanelWidget::onPreviewsToggled(bool on) {
-  previews_ = on;
-  if (on) preview_timer_->start(300);
-  else preview_timer_->stop();
-  updatePreviews();
-  if (on) place(pushDown(editor_->scene()->boxes()));  // the boxes grew: none lies on another
-}
-
-void PanelWidget::onPresetRestoreRequested(const QString& name) {
-  const std::string text = readPreset(name);
-  if (text.empty()) return;
-  std::string error;
-  auto edit = model_.restore(text, name.toStdString(), &error);
-  if (!edit)
-    return editor_->showMessage(
-        error.empty() ? "the parameters are as preset " + name + " has them already" : QString::fromStdString(error),
-        !error.empty());
-  perform(edit);
-}
-
-void PanelWidget::onPresetCompareRequested(const QString& name) {
-  const std::string text = readPreset(name);
-  if (text.empty()) return;
-  std::string error;
-  const auto changes = model_.compare(text, &error);
-  if (!error.empty()) return editor_->showMessage(QString::fromStdString(error), true);
-  QString out = changes.empty() ? "Every parameter is as the preset has it." : "now -> preset " + name + ":\n";
-  for (const auto& c : changes)
-    out += QString::fromStdString("\n" + c.node + "/" + c.param + ": " + (c.now.empty() ? "(not in the graph)" : c.now) + " -> " +
-                                  c.then);
-  editor_->showPresetDiff(name, out);
-}
-
-void PanelWidget::onLevelChanged() {
-  untangle_ = true;
-  QTimer::singleShot(0, this, [this] { placeUnplaced(); });  // once the level's nodes are shown
-}
-
-void PanelWidget::replay(std::vector<Call> calls, bool undo, const std::string& label) {
-  editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
-  if (calls.empty()) return;
-  announceMoves(calls);
-  ++replaying_;
-  redo_base_.reset();
-  const bool regroups = GraphModel::regroups(calls);
-  link_.runThenRead(std::move(calls),
-                    [this, undo, label, regroups](bool ok, const std::string& m, const apex::GraphState& after) {
-                      if (ok && regroups) inspectAgain();
-                      stepDone(undo, label, ok, m, after);
-                    });
-}
-
-void PanelWidget::announceMoves(const std::vector<Call>& calls) {
-  for (const auto& [from, to] : model_.moves(calls)) {
-    emit renameSent(QString::fromStdString(from), QString::fromStdString(to));
-    std::set<std::pair<std::string, std::string>> followed;  // the ports inspected, under the names they will have
-    for (const auto& [node, port] : inspected_) {
-      const bool inside = node.size() > from.size() && node.compare(0, from.size() + 1, from + "/") == 0;
-      followed.insert({node == from || inside ? to + node.substr(from.size()) : node, port});
-    }
-    inspected_ = std::move(followed);
-  }
-}
-
-void PanelWidget::listPresets() {
-  QStringList names;
-  for (const QFileInfo& f : QDir(presetFolder()).entryInfoList({"*.yaml"}, QDir::Files, QDir::Name))
-    names << f.completeBaseName();
-  editor_->showPresets(names);
-}
-
-void PanelWidget::savePreset(const QString& name, const QStringList& nodes) {
-  if (name.contains('/') || name.startsWith('.'))
-    return editor_->showMessage("a preset's name cannot hold '/' or start with '.': " + name, true);
-  std::vector<std::string> names;
-  for (const auto& n : nodes) names.push_back(n.toStdString());
-  QDir().mkpath(presetFolder());
-  QSaveFile file(presetFolder() + "/" + name + ".yaml");  // whole or not at all
-  const std::string text = model_.preset(names) + "\n";
-  if (!file.open(QIODevice::WriteOnly) || file.write(text.data(), static_cast<qint64>(text.size())) < 0 || !file.commit())
-    return editor_->showMessage("cannot save preset " + name + ": " + file.errorString(), true);
-  listPresets();
-  editor_->showMessage("saved preset " + name + " in " + presetFolder(), false);
-}
-
-std::string PanelWidget::readPreset(const QString& name) {
-  QFile file(presetFolder() + "/" + name + ".yaml");
-  if (!file.open(QIODevice::ReadOnly)) {
-    editor_->showMessage("cannot read preset " + name + ": " + file.errorString(), true);
-    return "";
-  }
-  return file.readAll().toStdString();
-}
-
-void PanelWidget::setPreviews(bool on) {
-  if (auto* b = editor_->findChild<QToolButton*>("previews")) b->setChecked(on);  // its toggle does the rest
-}
-
-void PanelWidget::updatePreviews() {
-  QGraphicsView* view = editor_->view();
-  const QRectF seen = view->mapToScene(view->viewport()->rect()).boundingRect();
-  std::set<std::string> wanted;
-  for (const auto& [name, item] : editor_->scene()->nodes()) {
-    item->setPreviews(previews_);
-    if (!previews_ || !seen.intersects(item->sceneBoundingRect())) continue;  // out of view: not previewed
-    for (const auto& port : item->previewPorts()) wanted.insert(name + "/" + port);
-  }
-  for (auto it = previewing_.begin(); it != previewing_.end();) {  // no longer wanted: unsubscribed
-    if (wanted.count(*it)) {
-      ++it;
-      continue;
-    }
-    const auto slash = it->rfind('/');
-    link_.unwatchPreview(it->substr(0, slash), it->substr(slash + 1));
-    it = previewing_.erase(it);
-  }
-  for (const auto& key : wanted) {
-    if (!previewing_.insert(key).second) continue;
-    const auto slash = key.rfind('/');
-    const std::string node = key.substr(0, slash), port = key.substr(slash + 1);
-    link_.inspect(
-        node, port,
-        [this, node, port, key](bool ok, const std::string&, const std::string& topic, const std::string& type) {
-          if (ok) editor_->showMessageType(QString::fromStdString(node), QString::fromStdString(port), type);
-          if (!ok || !previewing_.count(key) || !previews_) return previewing_.erase(key), void();
-          link_.watchPreview(node, port, topic, type);
-        },
-        true);
-  }
-}
-
-void PanelWidget::forgetHistory() {
-  history_.clear();
-  waiting_steps_.clear();
-  ++history_epoch_;
-  editor_->showHistory("", false, false);
-}
-
-std::function<void(bool, const std::string&)> PanelWidget::replacingGraph(const QString& what) {
-  // A fresh history from the request on: the link runs calls in order, so an edit asked for
-  // after this one is an edit of the new graph, even if its answer comes first.
-  auto before = std::make_shared<EditHistory>(history_);
-  forgetHistory();
-  placing_.clear();  // of nodes of the graph before; a node added after this request keeps its place
-  sizes_.clear();
-  untangle_from_ = 0;
-  return [this, what, before](bool ok, const std::string& message) {
-    report(ok, message, what);
-    if (ok) return inspectAgain();
-    if (!history_.canUndo() && !history_.canRedo()) {  // refused, and nothing done since: the old history stands
-      history_ = *before;
-      editor_->showHistory(QString::fromStdString(history_.undoLabel()), history_.canUndo(), history_.canRedo());
-    }
-  };
-}
-
-void PanelWidget::inspectAgain() {
-  for (const auto& key : previewing_) link_.unwatchPreview(key.substr(0, key.rfind('/')), key.substr(key.rfind('/') + 1));
-  previewing_.clear();  // a load ends the runtime's previews: asked for again by the next update
-  watched_.clear();  // a load, group or ungroup ends every inspection: the Optimizers' progress and the displays
-  watchOptimizers();  // the loaded graph may be shown already: no other ~graph may follow
-  for (const auto& [node, port] : inspected_)  // displays showing a port go on if the new graph has it
-    link_.inspect(node, port, [](bool, const std::string&, const std::string&, const std::string&) {});
-  watchLabelledAgain();
-}
-
-void PanelWidget::report(bool ok, const std::string& message, const QString& what) {
-  editor_->showMessage(ok ? what : what + " refused: " + QString::fromStdString(message), !ok);
+  previews_.setOn(on);
+  if (on) placement_.pushApart();  // the boxes grew: none lies on another
 }
 
 void PanelWidget::forgetRuntime() {
-  model_.reset(), watched_.clear(), previewing_.clear(), forgetHistory();
+  model_.reset();
+  history_.reset();
+  placement_.reset();
+  inspections_.reset();
+  previews_.reset();
   editor_->showUnsaved(false);
 }
 
 void PanelWidget::meetRuntime() {
-  refreshTypes(), editor_->fitNextGraph(), untangle_ = true;
+  refreshTypes(), editor_->fitNextGraph(), placement_.untangleNext();
   askRecovery();  // a copy its previous run left: the bar at once
-  watchLabelledAgain();  // a runtime started anew inspects nothing
+  labels_.watchAgain();  // a runtime started anew inspects nothing
   // Its graph as it is now: the latched ~graph may have come before this (and no other until it changes).
   readGraph(40);
 }
@@ -366,29 +179,22 @@ void PanelWidget::readGraph(int tries) {
 void PanelWidget::onGraph(const apex::GraphState& graph) {
   if (!model_.update(graph)) {
     if (graph.revision >= model_.graph().revision) return;
-    model_.reset();  // older than what is shown: a restarted runtime
-    forgetHistory();
+    forgetRuntime();  // older than what is shown: a restarted runtime
     model_.update(graph);
     askRecovery();
   }
   editor_->showGraph(model_);
-  dropRedoIfEditedElsewhere();
-  if (untangle_from_ && graph.revision >= untangle_from_) untangleLoaded();
-  else arrangeShown();
-  watchOptimizers();
+  history_.dropRedoIfEditedElsewhere();
+  placement_.graphShown(graph.revision);
+  inspections_.watchOptimizers();
   emit graphShown(graph.revision);
 }
 
-void PanelWidget::watchOptimizers() {
-  for (const auto& name : model_.optimizers()) {
-    if (!watched_.insert(name).second) continue;
-    for (const char* port : {"evaluations", "best_fitness"})  // the node's box draws its progress from them
-      link_.inspect(name, port,
-                    [this, name, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
-                      if (!ok) return report(false, m, QString::fromStdString("watch " + name + "/" + port));
-                      link_.watchScalar(name, port, topic, type);
-                    });
-  }
+void PanelWidget::onStatus(const apex::RuntimeStatus& s) {
+  editor_->scene()->showStatus(s);
+  editor_->showUnsaved(s.unsaved);
+  editor_->showTracing(s.tracing);
+  emit statusShown();
 }
 
 void PanelWidget::refreshTypes() {
@@ -402,26 +208,56 @@ void PanelWidget::refreshTypes() {
   });
 }
 
-void PanelWidget::onInspect(const QString& node, const QString& port) {
-  inspected_.insert({node.toStdString(), port.toStdString()});
-  link_.inspect(
-      node.toStdString(), port.toStdString(),
-      [this, node, port](bool ok, const std::string& m, const std::string& topic, const std::string& type) {
-        if (!ok) return report(false, m, "inspect " + node + "/" + port);
-        const QString t = QString::fromStdString(topic), name = node + "/" + port;
-        editor_->showMessageType(node, port, type);  // for the port menu's "Show in rviz"
-        if (rvizDisplayFor(type)) emit displayRequested(node, port, t, QString::fromStdString(type));
-        else if (type.empty())  // a port of any type: its first message decides
-          return report(
-              true, "",
-              node + "/" + port + " is published on " + t + " from its first message on; inspect it again then to see it here");
-        else link_.watchScalar(node.toStdString(), port.toStdString(), topic, type);
-        report(true, "", "inspecting " + name + " on " + t + (type.empty() ? "" : " (" + QString::fromStdString(type) + ")"));
-      });
+Box PanelWidget::typeBox(const std::string& type) const {
+  const auto t = types_.find(type);
+  if (t == types_.end()) return Box{0, 0, NodeItem::kMinWidth, 150};  // a usual box
+  // as a new node of the type is shown: its ports (with those of parameters that have ports by
+  // default), its parameters at their defaults
+  const QRectF r = NodeItem(GraphModel::newNode(t->second)).boundingRect();
+  return Box{0, 0, r.width(), r.height()};
+}
+
+void PanelWidget::historyStep(bool undo) {
+  if (history_.deferred(undo)) return;
+  PanelHistory::Step step = history_.take(undo);
+  if (step.calls.empty()) return;
+  announceMoves(step.calls);
+  const bool regroups = GraphModel::regroups(step.calls);
+  link_.runThenRead(std::move(step.calls), [this, undo, label = step.label, regroups](bool ok, const std::string& m,
+                                                                                      const apex::GraphState& after) {
+    if (ok && regroups) inspectAgain();
+    history_.stepDone(undo, label, ok, m, after);
+  });
+}
+
+void PanelWidget::announceMoves(const std::vector<Call>& calls) {
+  for (const auto& [from, to] : model_.moves(calls)) {
+    emit renameSent(QString::fromStdString(from), QString::fromStdString(to));
+    inspections_.follow(from, to);
+  }
+}
+
+std::function<void(bool, const std::string&)> PanelWidget::replacingGraph(const QString& what) {
+  // A fresh history from the request on: the link runs calls in order, so an edit asked for
+  // after this one is an edit of the new graph, even if its answer comes first.
+  auto before = std::make_shared<EditHistory>(history_.edits());
+  history_.reset();
+  placement_.reset();  // of nodes of the graph before; a node added after this request keeps its place
+  return [this, what, before](bool ok, const std::string& message) {
+    report(ok, message, what);
+    if (ok) return inspectAgain();
+    history_.restoreIfUntouched(*before);  // refused, and nothing done since: the old history stands
+  };
+}
+
+void PanelWidget::inspectAgain() {
+  previews_.again();
+  inspections_.again();
+  labels_.watchAgain();
 }
 
 void PanelWidget::showProfile(const QString& node) {
-  auto* view = findChild<HistogramView*>("histogram_" + node);
+  QPointer<HistogramView>& view = profiles_[node];
   if (!view) {
     view = new HistogramView(node, this);
     connect(view, &HistogramView::refreshRequested, this, [this, view = QPointer<HistogramView>(view)](const QString& name) {
