@@ -3,7 +3,7 @@
 // fit (LabelCanvas, the labelling view's canvas). The person drags a box around the object; the
 // box, in the image's pixels and cut to it, is handed on (boxChosen) and the window closes. It
 // makes no calls: the panel brings the frame and sets the Tracker's x, y, width and height from
-// the box as one edit (panel_tracker.cpp). The window deletes itself when closed.
+// the box as one edit (TrackerStarter, tracker_starter.cpp). The window deletes itself when closed.
 #pragma once
 
 #include <QDialog>
