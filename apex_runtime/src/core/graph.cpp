@@ -119,7 +119,7 @@ Result<std::string> Graph::Impl::addNodeWith(const std::string& type_id, const s
     return Status::error("node type '" + type->id + "' failed to construct: " + ex.what());
   }
   auto state = std::make_shared<NodeState>(name, type, next_seq_++, revisions_);
-  state->host = host_;
+  state->host_ = host_;
   state->edits = edits_;
   if (type->manifest->shape) {  // its ports for its default parameters
     auto iface = interfaceFor(*state, "", nullptr);
@@ -128,13 +128,13 @@ Result<std::string> Graph::Impl::addNodeWith(const std::string& type_id, const s
   }
   state->attach(std::move(object));
   if (auto st = presetParams(*state, params); !st) return st;  // before setup(): it sees them
-  state->group = group(gname);
+  state->group_ = group(gname);
   if (!subgraphs_.enabledAround(name)) state->outer_enabled = false;
   detail::initLiveness(state.get());
   EditScope scope;
   scope.added(state.get());
   state->post([](NodeState& n) { n.runSetup(); });
-  order_[state->seq] = state.get();
+  order_[state->seq()] = state.get();
   nodes_[name] = std::move(state);
   bump();
   return name;
@@ -200,7 +200,7 @@ void Graph::Impl::retire(NodeState* n, bool restructure) {
     std::lock_guard<std::mutex> g(n->group_mutex);
     n->removed = true;
   }
-  n->group->unqueue(n);
+  n->group()->unqueue(n);
 }
 
 Status Graph::Impl::removeNode(const std::string& name) {
@@ -211,7 +211,7 @@ Status Graph::Impl::removeNode(const std::string& name) {
     auto node = require(name);
     if (!node) return node.status();
     retire(node.value().get());
-    order_.erase(node.value()->seq);
+    order_.erase(node.value()->seq());
     nodes_.erase(name);
   }
   subgraphs_.dropExportsOf(name);
@@ -354,15 +354,15 @@ Status Graph::setThreadGroup(const std::string& node, const std::string& group_n
   ThreadGroup* target = impl.group(group_name);
   for (const auto& name : names) {
     NodeState* s = impl.find(name).get();
-    if (target == s->group) continue;
+    if (target == s->group()) continue;
     EditScope scope;
     scope.involve(s);
     scope.pause(target);
     // Held across the switch: a notifyNewData() sees the old group with the node
     // unqueued from it, or the new one; never queues it on the old one afterwards.
     std::lock_guard<std::mutex> g(s->group_mutex);
-    s->group->unqueue(s);
-    s->group = target;
+    s->group()->unqueue(s);
+    s->group_ = target;
     s->placeholder.thread_group = group_name;
   }
   impl.bump();
@@ -376,7 +376,7 @@ Status Graph::removeThreadGroup(const std::string& name) {
   auto it = impl.groups_.find(name);
   if (it == impl.groups_.end()) return Status::error("no thread group '" + name + "'");
   for (auto& [seq, n] : impl.order_)
-    if (n->group == it->second.get()) return Status::error("thread group '" + name + "' still has node '" + n->name + "'");
+    if (n->group() == it->second.get()) return Status::error("thread group '" + name + "' still has node '" + n->name() + "'");
   it->second->pause();  // parked: a firing or wake-up that ends now is not counted as work
   if (!it->second->unused()) {
     it->second->resume();

@@ -30,7 +30,7 @@ struct Endpoint {
 NodeView viewOf(const NodeState& n) {
   NodeView v;
   v.type = n.typeId();
-  v.placeholder = !n.type;
+  v.placeholder = n.isPlaceholder();
   if (v.placeholder) return v;
   const Manifest& m = n.manifest();
   for (const auto& p : m.inputs) v.ports.push_back({p.name, PortKind::Input, p.type->name});
@@ -39,7 +39,7 @@ NodeView viewOf(const NodeState& n) {
   for (const auto& e : m.triggers) v.ports.push_back({e.name, PortKind::Trigger, ""});
   for (std::size_t i = 0; i < m.params.size(); ++i) {
     v.params.push_back(m.params[i].name);
-    if (!n.params[i].interactive) continue;
+    if (!n.interactive(static_cast<int>(i))) continue;
     v.ports.push_back({m.params[i].name, PortKind::ParamIn, m.params[i].portType()->name});
     v.ports.push_back({m.params[i].name, PortKind::ParamOut, m.params[i].portType()->name});
   }
@@ -56,33 +56,27 @@ class LiveView : public ConnectionView {
   }
   std::string feeding(const std::string& node, const std::string& port) const override {
     const NodeState* n = find(node);
-    if (!n || !n->type) return "";
+    if (!n || n->isPlaceholder()) return "";
     const Manifest& m = n->manifest();
     std::shared_ptr<Edge> e;
-    if (int i = indexOf(m.inputs, port); i >= 0) e = n->inputs[i]->edge;
-    if (int i = indexOf(m.params, port); i >= 0) e = n->params[i].in_edge;
-    return e ? e->from->name : "";
+    if (int i = indexOf(m.inputs, port); i >= 0) e = n->inputEdge(i);
+    if (int i = indexOf(m.params, port); i >= 0) e = n->paramInEdge(i);
+    return e ? e->from->name() : "";
   }
   bool hasEvent(const ConnectionDescription& c) const override {
     const NodeState* from = find(c.from_node);
-    if (!from || !from->type) return false;
+    if (!from || from->isPlaceholder()) return false;
     const int t = indexOf(from->manifest().triggers, c.from_port);
     if (t < 0) return false;
-    for (const auto& e : from->trigger_edges[t])
-      if (e->to->name == c.to_node && e->to->manifest().slots[e->slot].name == c.to_port) return true;
+    for (const auto& e : from->triggerEdges(t))
+      if (e->to->name() == c.to_node && e->to->manifest().slots[e->slot].name == c.to_port) return true;
     return false;
   }
   std::vector<std::string> dataReceivers(const std::string& node) const override {
     std::vector<std::string> out;
     const NodeState* n = find(node);
     if (!n) return out;
-    auto add = [&](const std::shared_ptr<Edge>& e) {
-      if (!e->to_param) out.push_back(e->to->name);
-    };
-    for (const auto& o : n->outputs)
-      for (const auto& e : o.edges) add(e);
-    for (const auto& p : n->params)
-      for (const auto& e : p.out_edges) add(e);
+    n->forEachDataReceiver([&](const Edge& e) { out.push_back(e.to->name()); });
     return out;
   }
 
@@ -121,7 +115,7 @@ Endpoint locate(const NodeState& n, const PortView& p) {
 
 /** The edge feeding `to` at `port`, if it comes from `from`/`from_port`. */
 std::shared_ptr<Edge> findEdge(NodeState& from, const Endpoint& src, NodeState& to, const Endpoint& dst) {
-  std::shared_ptr<Edge> e = dst.kind == PortKind::Input ? to.inputs[dst.index]->edge : to.params[dst.index].in_edge;
+  std::shared_ptr<Edge> e = dst.kind == PortKind::Input ? to.inputEdge(dst.index) : to.paramInEdge(dst.index);
   const bool from_param = src.kind == PortKind::ParamOut;
   if (e && e->from == &from && e->from_param == from_param && e->from_index == src.index) return e;
   return nullptr;

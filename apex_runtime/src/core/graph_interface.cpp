@@ -66,28 +66,29 @@ Dropped dropped(NodeState& n, const Manifest& next) {
   for (std::size_t i = 0; i < m.inputs.size(); ++i) {
     const int k = indexOf(next.inputs, m.inputs[i].name);
     if (k < 0 || next.inputs[k].optional != m.inputs[i].optional) d.inputs_change = true;
-    const auto& e = n.inputs[i]->edge;
+    const auto& e = n.inputEdge(static_cast<int>(i));
     if (e && (k < 0 || !compatible(carried(*e), next.inputs[k].type))) d.edges.push_back(e);
   }
   for (const auto& in : next.inputs)
     if (!m.findInput(in.name)) d.inputs_change = true;
   for (std::size_t i = 0; i < m.outputs.size(); ++i) {
     const int k = indexOf(next.outputs, m.outputs[i].name);
-    for (const auto& e : n.outputs[i].edges)
+    for (const auto& e : n.outputEdges(static_cast<int>(i)))
       if (k < 0 || !compatible(next.outputs[k].type, taken(*e))) d.edges.push_back(e);
   }
   for (std::size_t i = 0; i < m.params.size(); ++i) {
     const int k = indexOf(next.params, m.params[i].name);
     const bool kept = k >= 0 && next.params[k].kind == m.params[i].kind;
-    if (n.params[i].in_edge && !kept) d.edges.push_back(n.params[i].in_edge);
-    for (const auto& e : n.params[i].out_edges)
+    const int p = static_cast<int>(i);
+    if (n.paramInEdge(p) && !kept) d.edges.push_back(n.paramInEdge(p));
+    for (const auto& e : n.paramOutEdges(p))
       if (!kept) d.edges.push_back(e);
   }
+  auto add = [&](const std::vector<std::shared_ptr<EventEdge>>& events) { d.events.insert(d.events.end(), events.begin(), events.end()); };
   for (std::size_t i = 0; i < m.triggers.size(); ++i)
-    if (indexOf(next.triggers, m.triggers[i].name) < 0)
-      d.events.insert(d.events.end(), n.trigger_edges[i].begin(), n.trigger_edges[i].end());
+    if (indexOf(next.triggers, m.triggers[i].name) < 0) add(n.triggerEdges(static_cast<int>(i)));
   for (std::size_t i = 0; i < m.slots.size(); ++i)
-    if (indexOf(next.slots, m.slots[i].name) < 0) d.events.insert(d.events.end(), n.slot_edges[i].begin(), n.slot_edges[i].end());
+    if (indexOf(next.slots, m.slots[i].name) < 0) add(n.slotEdges(static_cast<int>(i)));
   return d;
 }
 
@@ -161,7 +162,7 @@ Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeStat
   if (value) values.set(param, *value);
   auto next = std::make_shared<Manifest>(type);
   auto fail = [&](const std::string& why) {
-    return Status::error(nodeLabel(n.name, n.type->id) + " cannot make its ports" +
+    return Status::error(nodeLabel(n.name(), n.type->id) + " cannot make its ports" +
                          (value ? " for " + param + " = " + toText(*value) : std::string()) + ": " + why);
   };
   try {

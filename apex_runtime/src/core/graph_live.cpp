@@ -8,33 +8,19 @@
 
 namespace apex {
 namespace detail {
-namespace {
-
-/** Calls f(edge) for each edge from `n` into a data input. */
-template <class F>
-void forDataOut(NodeState* n, F f) {
-  for (auto& o : n->outputs)
-    for (auto& e : o.edges)
-      if (!e->to_param) f(*e);
-  for (auto& p : n->params)
-    for (auto& e : p.out_edges)
-      if (!e->to_param) f(*e);
-}
-
-}  // namespace
 
 std::vector<NodeState*> topological(const std::vector<NodeState*>& region) {
   std::map<NodeState*, int> pending;  // inputs from inside the region not yet ordered
   for (NodeState* n : region) pending[n];
   for (NodeState* n : region)
-    forDataOut(n, [&](Edge& e) {
+    n->forEachDataReceiver([&](Edge& e) {
       if (auto it = pending.find(e.to); it != pending.end()) ++it->second;
     });
   std::vector<NodeState*> order;
   for (NodeState* n : region)
     if (pending[n] == 0) order.push_back(n);
   for (std::size_t i = 0; i < order.size(); ++i)
-    forDataOut(order[i], [&](Edge& e) {
+    order[i]->forEachDataReceiver([&](Edge& e) {
       auto it = pending.find(e.to);
       if (it != pending.end() && --it->second == 0) order.push_back(e.to);
     });
@@ -44,20 +30,11 @@ std::vector<NodeState*> topological(const std::vector<NodeState*>& region) {
 namespace {
 
 void updateLiveness(const std::vector<NodeState*>& region) {
-  for (NodeState* n : topological(region)) {
-    int live_inputs = 0;
-    for (auto& in : n->inputs) {
-      if (!in->edge) continue;
-      in->edge->live = in->edge->from->live;
-      live_inputs += in->edge->live ? 1 : 0;
-    }
-    n->readiness.setLiveInputs(live_inputs);
-    n->live = n->type && (n->isSource() || live_inputs > 0);
-  }
+  for (NodeState* n : topological(region)) n->updateLive();  // its senders first
 }
 
 bool hasJoin(const std::vector<NodeState*>& nodes) {
-  return std::any_of(nodes.begin(), nodes.end(), [](NodeState* n) { return n->inputs.size() >= 2; });
+  return std::any_of(nodes.begin(), nodes.end(), [](NodeState* n) { return n->inputCount() >= 2; });
 }
 
 }  // namespace
@@ -66,7 +43,7 @@ std::vector<NodeState*> downstreamOf(const std::vector<NodeState*>& roots) {
   std::set<NodeState*> seen(roots.begin(), roots.end());
   std::vector<NodeState*> out(seen.begin(), seen.end());
   for (std::size_t i = 0; i < out.size(); ++i)
-    forDataOut(out[i], [&](Edge& e) {
+    out[i]->forEachDataReceiver([&](Edge& e) {
       if (seen.insert(e.to).second) out.push_back(e.to);
     });
   return out;
@@ -78,10 +55,7 @@ std::vector<NodeState*> upstreamOf(const std::vector<NodeState*>& nodes) {
   auto visit = [&](const std::shared_ptr<Edge>& e) {
     if (e && seen.insert(e->from).second) out.push_back(e->from);
   };
-  auto expand = [&](NodeState* n) {
-    for (auto& in : n->inputs) visit(in->edge);
-    for (auto& p : n->params) visit(p.in_edge);
-  };
+  auto expand = [&](NodeState* n) { n->forEachSender(visit); };
   for (NodeState* n : nodes) expand(n);
   for (std::size_t i = 0; i < out.size(); ++i) expand(out[i]);
   return out;
@@ -93,17 +67,7 @@ std::vector<NodeState*> componentOf(const std::vector<NodeState*>& roots) {
   auto visit = [&](NodeState* m) {
     if (seen.insert(m).second) out.push_back(m);
   };
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    NodeState* n = out[i];
-    for (auto& in : n->inputs)
-      if (in->edge) visit(in->edge->from);
-    for (auto& o : n->outputs)
-      for (auto& e : o.edges) visit(e->to);
-    for (auto& p : n->params) {
-      if (p.in_edge) visit(p.in_edge->from);
-      for (auto& e : p.out_edges) visit(e->to);
-    }
-  }
+  for (std::size_t i = 0; i < out.size(); ++i) out[i]->forEachDataOrParamNeighbour(visit);
   return out;
 }
 
@@ -124,7 +88,7 @@ Restructure::~Restructure() {
   for (NodeState* n : flushed_) n->flushPorts();
 }
 
-void initLiveness(NodeState* node) { node->live = node->type && node->isSource(); }
+void initLiveness(NodeState* node) { node->initLive(); }
 
 }  // namespace detail
 }  // namespace apex

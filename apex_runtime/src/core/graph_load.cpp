@@ -21,31 +21,6 @@ namespace {
 
 std::string at(int line) { return line > 0 ? "line " + std::to_string(line) + ": " : ""; }
 
-NodeDescription describeOne(const NodeState& n) {
-  std::lock_guard<std::mutex> lock(n.state_mutex);
-  if (!n.type) {
-    NodeDescription d = n.placeholder;
-    d.name = n.name;
-    d.placeholder = true;
-    d.thread_group = n.group->name();
-    d.ui = n.ui;
-    d.error = "unknown node type '" + d.type + "'";
-    return d;
-  }
-  NodeDescription d;
-  d.name = n.name;
-  d.type = n.type->id;
-  d.interface = n.iface;
-  for (std::size_t i = 0; i < n.params.size(); ++i) {
-    d.parameters.emplace_back(n.manifest().params[i].name, toText(n.params[i].requested));
-    if (n.params[i].interactive) d.interactive.push_back(n.manifest().params[i].name);
-  }
-  d.enabled = n.enabled;
-  d.thread_group = n.group->name();
-  d.ui = n.ui;
-  return d;
-}
-
 std::string targetName(const detail::Edge& e) {
   const Manifest& m = e.to->manifest();
   return e.to_param ? m.params[e.to_index].name : m.inputs[e.to_index].name;
@@ -53,16 +28,45 @@ std::string targetName(const detail::Edge& e) {
 
 void describeConnections(const NodeState& n, std::vector<ConnectionDescription>& out) {
   const Manifest& m = n.manifest();
-  for (std::size_t i = 0; i < n.outputs.size(); ++i)
-    for (auto& e : n.outputs[i].edges) out.push_back({n.name, m.outputs[i].name, e->to->name, targetName(*e), 0});
-  for (std::size_t i = 0; i < n.params.size(); ++i)
-    for (auto& e : n.params[i].out_edges) out.push_back({n.name, m.params[i].name, e->to->name, targetName(*e), 0});
-  for (std::size_t i = 0; i < n.trigger_edges.size(); ++i)
-    for (auto& e : n.trigger_edges[i])
-      out.push_back({n.name, m.triggers[i].name, e->to->name, e->to->manifest().slots[e->slot].name, 0});
+  for (std::size_t i = 0; i < m.outputs.size(); ++i)
+    for (auto& e : n.outputEdges(static_cast<int>(i))) out.push_back({n.name(), m.outputs[i].name, e->to->name(), targetName(*e), 0});
+  for (std::size_t i = 0; i < m.params.size(); ++i)
+    for (auto& e : n.paramOutEdges(static_cast<int>(i))) out.push_back({n.name(), m.params[i].name, e->to->name(), targetName(*e), 0});
+  for (std::size_t i = 0; i < m.triggers.size(); ++i)
+    for (auto& e : n.triggerEdges(static_cast<int>(i)))
+      out.push_back({n.name(), m.triggers[i].name, e->to->name(), e->to->manifest().slots[e->slot].name, 0});
 }
 
 }  // namespace
+
+namespace detail {
+
+NodeDescription NodeState::describe() const {
+  std::lock_guard<std::mutex> lock(state_mutex);
+  if (!type) {
+    NodeDescription d = placeholder;
+    d.name = name_;
+    d.placeholder = true;
+    d.thread_group = group_->name();
+    d.ui = ui;
+    d.error = "unknown node type '" + d.type + "'";
+    return d;
+  }
+  NodeDescription d;
+  d.name = name_;
+  d.type = type->id;
+  d.interface = iface;
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    d.parameters.emplace_back(manifest().params[i].name, toText(params[i].requested));
+    if (params[i].interactive) d.interactive.push_back(manifest().params[i].name);
+  }
+  d.enabled = enabled;
+  d.thread_group = group_->name();
+  d.ui = ui;
+  return d;
+}
+
+}  // namespace detail
 
 GraphDescription Graph::describe() const {
   const Impl& impl = *impl_;
@@ -75,7 +79,7 @@ Result<NodeDescription> Graph::describeNode(const std::string& name) const {
   auto lock = impl.lockEdits();
   const Impl::NodePtr n = impl.find(name);
   if (!n) return Status::error("no node named '" + name + "'");
-  NodeDescription d = describeOne(*n);
+  NodeDescription d = n->describe();
   if (n->type) d.error = n->error();
   return d;
 }
@@ -107,7 +111,7 @@ GraphDescription Graph::Impl::describeLocked() const {
   // subgraph grouped inside another from its first node has the same place: outer first, by path
   std::map<std::tuple<std::uint64_t, int, std::string>, NodeDescription> nodes;
   for (auto& [seq, n] : order_) {
-    auto& d = nodes[{seq, 1, ""}] = describeOne(*n);
+    auto& d = nodes[{seq, 1, ""}] = n->describe();
     if (n->type) d.error = n->error();
   }
   for (auto& [path, sg] : subgraphs_.all()) {
@@ -147,10 +151,10 @@ Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   state->placeholder = d;
   state->ui = d.ui;
   state->enabled = d.enabled;
-  state->group = group(group_name);
+  state->group_ = group(group_name);
   detail::EditScope scope;
   scope.added(state.get());
-  order_[state->seq] = state.get();
+  order_[state->seq()] = state.get();
   nodes_[d.name] = std::move(state);
   return d.name;
 }
@@ -212,7 +216,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   // Groups neither listed nor used by a node go away with the old graph.
   std::set<std::string> keep(description.thread_groups.begin(), description.thread_groups.end());
   keep.insert(kDefaultGroup);
-  for (auto& [seq, n] : staged.order_) keep.insert(n->group->name());
+  for (auto& [seq, n] : staged.order_) keep.insert(n->group()->name());
   for (auto it = groups_.begin(); it != groups_.end();) {
     if (keep.count(it->first)) {
       ++it;
@@ -224,12 +228,11 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   }
   for (const auto& name : keep) group(name);
   for (auto& [seq, n] : staged.order_) {
-    n->queued = false;
-    n->queued_from_outside = false;  // the staged groups and their counts go away
+    (void)n->clearQueued();  // the staged groups and their counts go away
     n->revisions = revisions_;
     n->edits = edits_;
     std::lock_guard<std::mutex> g(n->group_mutex);
-    n->group = group(n->group->name());
+    n->group_ = group(n->group_->name());
   }
   nodes_ = std::move(staged.nodes_);
   order_ = std::move(staged.order_);
@@ -251,7 +254,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
         x.runSetup();  // applies the parameters first
       });
   for (auto& [seq, n] : order_)
-    if (n->readiness.ready()) n->group->push(n);
+    if (n->readiness.ready()) n->group()->push(n);
   bump();
   for (ThreadGroup* g : paused) g->resume();
 }

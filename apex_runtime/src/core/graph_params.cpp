@@ -29,13 +29,13 @@ Result<std::string> Graph::Impl::setParameter(const std::string& outer, const st
 Result<ParamValue> Graph::Impl::parseParam(const NodeState& s, const std::string& param, const std::string& text) const {
   const int i = s.findParam(param);
   if (i < 0)
-    return Status::error(nodeLabel(s.name, s.typeId()) + " has no parameter '" + param +
+    return Status::error(nodeLabel(s.name(), s.typeId()) + " has no parameter '" + param +
                          "' (parameters: " + s.manifest().listParams() + ")");
   if (text.size() > kMaxYamlString)  // a graph file could not hold it
-    return Status::error(nodeLabel(s.name) + ": parameter '" + param + "': a value of " + std::to_string(text.size()) +
+    return Status::error(nodeLabel(s.name()) + ": parameter '" + param + "': a value of " + std::to_string(text.size()) +
                          " characters, over the limit of " + std::to_string(kMaxYamlString));
   auto value = s.manifest().params[i].parse(text);
-  if (!value) return Status::error(nodeLabel(s.name) + ": " + value.message());
+  if (!value) return Status::error(nodeLabel(s.name()) + ": " + value.message());
   return value;
 }
 
@@ -73,7 +73,7 @@ Status Graph::Impl::setParameterLocked(NodeState& s, int index, const ParamValue
 
 void Graph::Impl::applyRequested(const NodePtr& node, const std::string& param, const ParamValue& value) {
   auto lock = lockEdits();
-  const auto it = nodes_.find(node->name);
+  const auto it = nodes_.find(node->name());
   if (it == nodes_.end() || it->second != node || !node->type) return;  // removed (or replaced) meanwhile
   const int i = node->findParam(param);
   Status st = i < 0 ? Status::error("has no parameter '" + param + "' (parameters: " + node->manifest().listParams() + ")")

@@ -171,7 +171,7 @@ void Graph::Impl::removeSubgraphLocked(const std::string& path) {
   for (const auto& name : nodesUnder(path)) {
     auto n = find(name);
     retire(n.get());
-    order_.erase(n->seq);
+    order_.erase(n->seq());
     nodes_.erase(name);
   }
   subgraphs_.erase(path);
@@ -268,19 +268,19 @@ Status Graph::group(const std::vector<std::string>& members, const std::string& 
     };
     if (!n->type) continue;
     for (std::size_t i = 0; i < n->outputs.size(); ++i)
-      for (auto& e : n->outputs[i].edges) cross(n->name, m.outputs[i].name, e->to->name, target(*e), false);
+      for (auto& e : n->outputs[i].edges) cross(n->name(), m.outputs[i].name, e->to->name(), target(*e), false);
     for (std::size_t i = 0; i < n->params.size(); ++i)
-      for (auto& e : n->params[i].out_edges) cross(n->name, m.params[i].name, e->to->name, target(*e), false);
+      for (auto& e : n->params[i].out_edges) cross(n->name(), m.params[i].name, e->to->name(), target(*e), false);
     for (std::size_t i = 0; i < n->trigger_edges.size(); ++i)
       for (auto& e : n->trigger_edges[i])
-        cross(n->name, m.triggers[i].name, e->to->name, e->to->manifest().slots[e->slot].name, true);
+        cross(n->name(), m.triggers[i].name, e->to->name(), e->to->manifest().slots[e->slot].name, true);
   }
   sg->path = path;
   sg->seq = ~0ull;  // before the first of its nodes, where it stands in the order
   for (const auto& m : members) {
-    if (auto n = impl.find(m)) sg->seq = std::min(sg->seq, n->seq);
+    if (auto n = impl.find(m)) sg->seq = std::min(sg->seq, n->seq());
     if (auto s = impl.subgraphs_.find(m)) sg->seq = std::min(sg->seq, s->seq);
-    for (const auto& under : impl.nodesUnder(m)) sg->seq = std::min(sg->seq, impl.find(under)->seq);
+    for (const auto& under : impl.nodesUnder(m)) sg->seq = std::min(sg->seq, impl.find(under)->seq());
   }
   if (auto first = impl.find(members.front())) {
     std::lock_guard<std::mutex> g(first->state_mutex);
@@ -351,8 +351,8 @@ void Graph::Impl::moveLocked(const std::string& from, const std::string& to) {
     detail::EditScope scope;  // node code and neighbours' messages read names on their groups
     scope.involveWithNeighbours(n.get());
     nodes_.erase(name);
-    n->name = renamed(name);
-    nodes_[n->name] = n;
+    n->name_ = renamed(name);
+    nodes_[n->name()] = n;
   }
   subgraphs_.move(from, to);
   for (auto& c : dormant_) {

@@ -11,7 +11,7 @@ namespace apex {
 namespace {
 
 [[noreturn]] void unknown(const detail::NodeState& s, const std::string& what, std::string_view name, const std::string& list) {
-  throw std::invalid_argument(nodeLabel(s.name, s.typeId()) + " has no " + what + " '" + std::string(name) + "' (" + what +
+  throw std::invalid_argument(nodeLabel(s.name(), s.typeId()) + " has no " + what + " '" + std::string(name) + "' (" + what +
                               "s: " + list + ")");
 }
 
@@ -25,7 +25,7 @@ detail::NodeState& stateOf(detail::NodeState* s) {
 const std::string& Node::name() const {
   static const std::string kNone;
   auto* s = state_.load(std::memory_order_acquire);
-  return s ? s->name : kNone;
+  return s ? s->name() : kNone;
 }
 
 void Node::notifyAfter(double seconds) {
@@ -37,12 +37,12 @@ void Node::notifyNewData() {
 }
 
 void Node::countDropped(std::uint64_t n) {
-  if (auto* s = state_.load(std::memory_order_acquire)) s->dropped_.fetch_add(n, std::memory_order_relaxed);
+  if (auto* s = state_.load(std::memory_order_acquire)) s->countDropped(n);
 }
 
 const Host* Node::host() const {
   auto* s = state_.load(std::memory_order_acquire);
-  return s ? s->host.get() : nullptr;
+  return s ? s->host() : nullptr;
 }
 
 const Manifest& Node::interface() const { return stateOf(state_.load(std::memory_order_acquire)).manifest(); }
@@ -51,11 +51,11 @@ const Message& Node::inputMessage(std::string_view input) const {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findInput(input);
   if (i < 0) unknown(s, "input", input, s.manifest().listInputs());
-  return s.inputs[i]->current;
+  return s.currentInput(i);
 }
 
-const Message& Node::inputAt(int index) const { return stateOf(state_.load(std::memory_order_acquire)).inputs[index]->current; }
-Message Node::takeInputAt(int index) { return std::move(stateOf(state_.load(std::memory_order_acquire)).inputs[index]->current); }
+const Message& Node::inputAt(int index) const { return stateOf(state_.load(std::memory_order_acquire)).currentInput(index); }
+Message Node::takeInputAt(int index) { return stateOf(state_.load(std::memory_order_acquire)).takeInput(index); }
 
 void Node::publishMessage(std::string_view output, Message message) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
@@ -69,7 +69,7 @@ void Node::publishAt(int index, Message&& message) {
   const TypeInfo* want = s.manifest().outputs[index].type;
   // the port's own type first: the common case, one comparison
   if (message.type() != want && !message.isNothing() && !message.isEndOfSequence() && !compatible(message.type(), want)) {
-    throw std::invalid_argument(nodeLabel(s.name) + " published a " + message.typeName() + " on output '" +
+    throw std::invalid_argument(nodeLabel(s.name()) + " published a " + message.typeName() + " on output '" +
                                 s.manifest().outputs[index].name + "', which carries " + want->name);
   }
   s.setOutput(index, std::move(message));
@@ -79,22 +79,22 @@ const ParamValue& Node::paramValue(std::string_view name) const {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findParam(name);
   if (i < 0) unknown(s, "parameter", name, s.manifest().listParams());
-  return s.params[i].active;
+  return s.activeParam(i);
 }
 
-const ParamValue& Node::paramAt(int index) const { return stateOf(state_.load(std::memory_order_acquire)).params[index].active; }
+const ParamValue& Node::paramAt(int index) const { return stateOf(state_.load(std::memory_order_acquire)).activeParam(index); }
 
 void Node::updateParam(std::string_view name, ParamValue value) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findParam(name);
   if (i < 0) unknown(s, "parameter", name, s.manifest().listParams());
-  if (auto st = s.manifest().params[i].validate(value); !st) throw std::invalid_argument(nodeLabel(s.name) + ": " + st.message());
+  if (auto st = s.manifest().params[i].validate(value); !st) throw std::invalid_argument(nodeLabel(s.name()) + ": " + st.message());
   s.updateParam(i, std::move(value));
 }
 
 void Node::requestEdit(std::string_view name, ParamValue value) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
-  if (s.edits) s.edits->push(s.weak_from_this(), std::string(name), std::move(value));
+  if (auto* edits = s.editRequests()) edits->push(s.weak_from_this(), std::string(name), std::move(value));
 }
 
 void Node::runLater(std::function<void()> fn) {
@@ -104,9 +104,10 @@ void Node::runLater(std::function<void()> fn) {
 
 void Node::describeGraph(std::function<void(const GraphSnapshot&)> done) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
-  if (!s.edits) return;
+  auto* edits = s.editRequests();
+  if (!edits) return;
   std::weak_ptr<detail::NodeState> weak = s.weak_from_this();
-  s.edits->describe([weak, done = std::move(done)](GraphSnapshot d) {
+  edits->describe([weak, done = std::move(done)](GraphSnapshot d) {
     auto n = weak.lock();
     if (!n) return;
     auto shared = std::make_shared<GraphSnapshot>(std::move(d));
@@ -124,7 +125,7 @@ void Node::trigger(std::string_view name) {
 
 void Node::endSequence() {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
-  for (std::size_t i = 0; i < s.outputs.size(); ++i) s.setOutput(static_cast<int>(i), Message::endOfSequence());
+  for (std::size_t i = 0; i < s.outputCount(); ++i) s.setOutput(static_cast<int>(i), Message::endOfSequence());
 }
 
 std::vector<ParamTarget> Node::parameterTargets(std::string_view output) const {

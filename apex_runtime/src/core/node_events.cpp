@@ -60,8 +60,8 @@ bool NodeState::sendFromSlot(const std::string& slot) {
     for (auto& e : out.edges)
       if (!e->to_param && e->unread.load(std::memory_order_acquire)) busy = e.get();
     if (busy) {
-      setError(nodeLabel(name, type->id) + " " + slot + " published on output '" + manifest().outputs[i].name + "' while '" +
-               busy->to->name + "' had not read its last message: not sent");
+      setError(nodeLabel(name_, type->id) + " " + slot + " published on output '" + manifest().outputs[i].name + "' while '" +
+               busy->to->name() + "' had not read its last message: not sent");
       all = false;
       continue;
     }
@@ -89,7 +89,7 @@ bool NodeState::sendFromSlot(const std::string& slot) {
 }
 
 void NodeState::reportError(const std::string& text) {
-  setError(nodeLabel(name, typeId()) + ": " + text);
+  setError(nodeLabel(name_, typeId()) + ": " + text);
   reported_ = in_handler_;  // outside a firing there is nothing to keep it from clearing
 }
 
@@ -106,7 +106,7 @@ std::vector<ParamTarget> NodeState::parameterTargets(int index) const {
     if (!e->to_param || e->dead) continue;
     NodeState& to = *e->to;
     std::lock_guard<std::mutex> lock(to.state_mutex);  // its interface and values change under it
-    out.push_back({to.name, to.manifest().params[e->to_index], to.params[e->to_index].requested});
+    out.push_back({to.name_, to.manifest().params[e->to_index], to.params[e->to_index].requested});
   }
   return out;
 }
@@ -122,8 +122,8 @@ void NodeState::fireTrigger(int trigger) {
     if (e->pending.fetch_add(1, std::memory_order_relaxed) >= kMaxPendingEvents && !sets_state) {  // the slot is far behind
       e->pending.fetch_sub(1, std::memory_order_relaxed);
       if (e->dropped.fetch_add(1, std::memory_order_relaxed) == 0)
-        log(LogLevel::Warn, e->to->name,
-            nodeLabel(e->to->name) + " slot '" + e->to->manifest().slots[e->slot].name + "' runs slower than " + nodeLabel(name) +
+        log(LogLevel::Warn, e->to->name(),
+            nodeLabel(e->to->name()) + " slot '" + e->to->manifest().slots[e->slot].name + "' runs slower than " + nodeLabel(name_) +
                 " fires '" + manifest().triggers[trigger].name + "': with " + std::to_string(kMaxPendingEvents) +
                 " events waiting, further ones are dropped until it catches up");
       return;

@@ -19,10 +19,10 @@ std::shared_ptr<const Manifest> manifestOf(const std::shared_ptr<const NodeType>
 }  // namespace
 
 NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint64_t s, std::shared_ptr<Revisions> r)
-    : name(std::move(n)),
+    : name_(std::move(n)),
       type(std::move(t)),
       iface(manifestOf(type)),
-      seq(s),
+      seq_(s),
       revisions(std::move(r)),
       driven_(iface->source_mode != SourceMode::FreeRunning) {
   const Manifest& m = manifest();
@@ -82,6 +82,17 @@ int NodeState::structuralBlockers() {
   return p;
 }
 
+void NodeState::updateLive() {
+  int live_inputs = 0;
+  for (auto& in : inputs) {
+    if (!in->edge) continue;
+    in->edge->live = in->edge->from->live;
+    live_inputs += in->edge->live ? 1 : 0;
+  }
+  readiness.setLiveInputs(live_inputs);
+  live = type && (isSource() || live_inputs > 0);
+}
+
 void NodeState::flushPorts() {
   for (auto& in : inputs) {
     // A value from a parameter output is a setting, not a frame: it stays until replaced.
@@ -107,11 +118,11 @@ std::string NodeState::waitingFor() const {
   for (std::size_t i = 0; i < outputs.size(); ++i)
     for (auto& e : outputs[i].edges)
       if (e->unread.load(std::memory_order_acquire))
-        return "waiting for '" + e->to->name + "' to read '" + manifest().outputs[i].name + "'";
+        return "waiting for '" + e->to->name() + "' to read '" + manifest().outputs[i].name + "'";
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const Edge* e = inputs[i]->edge.get();
     if (e && e->live && !inputs[i]->full.load(std::memory_order_acquire))
-      return "waiting for input '" + manifest().inputs[i].name + "' from '" + e->from->name + "'";
+      return "waiting for input '" + manifest().inputs[i].name + "' from '" + e->from->name() + "'";
   }
   if (driven() && !has_data.load(std::memory_order_acquire)) return "waiting for new data";
   return "";
@@ -135,7 +146,7 @@ void NodeState::adjust(int delta) {
       read_later = true;
     } else {
       e->unread.store(false, std::memory_order_release);  // a slot of the sender reads it (sendFromSlot)
-      e->from->unblock(1, group);  // the source may fire again while we work
+      e->from->unblock(1, group_);  // the source may fire again while we work
     }
   } else {
     std::lock_guard<std::mutex> lock(in.m);
@@ -153,7 +164,7 @@ void NodeState::adjust(int delta) {
   // release was the only thing missing).
   if (!driven()) return readiness.reserveAtZero();  // nothing else can release it now
   has_data.store(false, std::memory_order_release);
-  if (readiness.reserve(true)) group->runNext(this);  // new data came between the two lines
+  if (readiness.reserve(true)) group_->runNext(this);  // new data came between the two lines
 }
 
 [[gnu::always_inline]] inline NodeState::Firing NodeState::takeInputs() {
@@ -210,12 +221,12 @@ void NodeState::adjust(int delta) {
       out.pending = Message();
       continue;
     }
-    for (std::size_t k = 0; k + 1 < n; ++k) deliverTo(out.edges[k], Message(out.pending), group);
-    deliverTo(out.edges[n - 1], std::move(out.pending), group);  // leaves Nothing behind
+    for (std::size_t k = 0; k + 1 < n; ++k) deliverTo(out.edges[k], Message(out.pending), group_);
+    deliverTo(out.edges[n - 1], std::move(out.pending), group_);  // leaves Nothing behind
   }
   last_had_data_ = data;
   for (std::size_t i = 0; i < params.size(); ++i)
-    if (!params[i].out_edges.empty() || params[i].tap) publishParam(static_cast<int>(i), group);
+    if (!params[i].out_edges.empty() || params[i].tap) publishParam(static_cast<int>(i), group_);
 }
 
 // The steps of a firing are functions of their own for the reader, inlined into fireIfReady:
@@ -237,7 +248,7 @@ bool NodeState::fireIfReady() {
 void NodeState::readAfterFiring() {
   for (auto& in : inputs) {
     Edge* e = in->edge.get();
-    if (e && e->read_after_firing && e->unread.exchange(false, std::memory_order_acq_rel)) e->from->unblock(1, group);
+    if (e && e->read_after_firing && e->unread.exchange(false, std::memory_order_acq_rel)) e->from->unblock(1, group_);
   }
 }
 
@@ -303,7 +314,7 @@ void NodeState::setError(std::string text) {
     has_error_.store(true, std::memory_order_relaxed);
   }
   revisions->shown();
-  if (report) log(LogLevel::Error, name, text);
+  if (report) log(LogLevel::Error, name_, text);
 }
 
 void NodeState::clearError() {
@@ -314,28 +325,28 @@ void NodeState::clearError() {
   }
   slot_error_ = false;
   revisions->shown();
-  log(LogLevel::Info, name, "recovered");
+  log(LogLevel::Info, name_, "recovered");
 }
 
 // ---------------------------------------------------------------- mail
 
-void NodeState::post(std::function<void(NodeState&)> fn) { group->post(Mail{shared_from_this(), std::move(fn)}); }
+void NodeState::post(std::function<void(NodeState&)> fn) { group_->post(Mail{shared_from_this(), std::move(fn)}); }
 
 void NodeState::postFromAnywhere(std::function<void(NodeState&)> fn) {
   auto self = weak_from_this().lock();
   if (!self) return;  // being destroyed (the node's own members may call in while they stop)
   std::lock_guard<std::mutex> lock(group_mutex);  // against a move to another group
-  if (!group) return;
+  if (!group_) return;
   // Posted even if the node was removed meanwhile: its group skips the mail, and the reference
   // taken here goes on that thread. Dropped here, it could be the last one, destroying the node on
   // the caller's thread: an Optimizer's copy's, which its destructor would have to join.
-  group->post(Mail{std::move(self), std::move(fn)});
+  group_->post(Mail{std::move(self), std::move(fn)});
 }
 
 void NodeState::notifyNewData() {
   if (!driven()) return;  // only a driven source waits for data (reserveAtZero relies on it)
   std::lock_guard<std::mutex> lock(group_mutex);
-  if (removed || !group) return;
+  if (removed || !group_) return;
   if (!has_data.exchange(true, std::memory_order_acq_rel)) unblock(1);
 }
 
@@ -343,7 +354,7 @@ void NodeState::notifyAfter(double seconds) {
   const auto when = std::chrono::steady_clock::now() +
                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
   std::lock_guard<std::mutex> lock(group_mutex);
-  if (!removed && group) group->notifyAt(when, shared_from_this());
+  if (!removed && group_) group_->notifyAt(when, shared_from_this());
 }
 
 void NodeState::requestParam(int index, ParamValue v) {
@@ -376,7 +387,7 @@ void NodeState::applyParams() {
     try {
       node->parameterChanged(manifest().params[i].name);
     } catch (const std::exception& ex) {
-      setError(nodeLabel(name, type->id) + " failed to apply parameter '" + manifest().params[i].name + "': " + ex.what());
+      setError(nodeLabel(name_, type->id) + " failed to apply parameter '" + manifest().params[i].name + "': " + ex.what());
     }
     publishParam(i);  // a parameter output carries every change
   }
@@ -409,7 +420,7 @@ void NodeState::receiveParam(Edge& edge, const Message& m, bool counted) {
       requestParam(edge.to_index, value.value());
       applyParams();
     } else {
-      setError(nodeLabel(name) + ": parameter input refused a value: " + value.message());
+      setError(nodeLabel(name_) + ": parameter input refused a value: " + value.message());
     }
   }
   // A flush (an edit) may have cleared the mark already: release the sender once.
@@ -421,7 +432,7 @@ void NodeState::runSetup() {
   try {
     node->setup();
   } catch (const std::exception& ex) {
-    setError(nodeLabel(name, type->id) + " failed to set up: " + ex.what());
+    setError(nodeLabel(name_, type->id) + " failed to set up: " + ex.what());
   }
 }
 
@@ -449,7 +460,7 @@ void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) 
     return;
   }
   resend_due_ = true;
-  group->at(last_resend_ + interval, Mail{shared_from_this(), [](NodeState& n) {
+  group_->at(last_resend_ + interval, Mail{shared_from_this(), [](NodeState& n) {
                                             {
                                               std::lock_guard<std::mutex> l(n.state_mutex);
                                               n.resend_due_ = false;
@@ -464,7 +475,7 @@ void NodeState::runDownstreamChanged() {
   try {
     node->downstreamChanged();
   } catch (const std::exception& ex) {
-    setError(nodeLabel(name, type->id) + " failed to re-send after a change downstream: " + ex.what());
+    setError(nodeLabel(name_, type->id) + " failed to re-send after a change downstream: " + ex.what());
   }
 }
 

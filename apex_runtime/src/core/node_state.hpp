@@ -1,12 +1,16 @@
 // The runtime side of one node: its ports, connections, parameters and the
 // counter that decides when it may fire.
 //
-// Who owns what:
-//  - Structure (edges, counts, group, interactive flags) changes only in Graph
-//    edits, under Graph::edit_mutex_, while every thread group that could touch
-//    the node is paused.
+// Who owns what (every field is private; the owner of each is in its section below):
+//  - Structure (edges, counts, group, name, interface, live, removed, interactive flags)
+//    changes only in Graph edits, under Graph::edit_mutex_, while every thread group that
+//    could touch the node is paused. Only graph code writes it: Graph (and Graph::Impl) and
+//    Restructure are friends; other code reads it through the const operations below, and
+//    walks it with forEachNeighbour / forEachDataReceiver / forEachSender.
 //  - Firing state (current inputs, pending outputs, active parameters,
 //    active_enabled) belongs to the node's group thread.
+//  - QueueMark (queued, from outside, ready mark) belongs to its ThreadGroup, under the
+//    group's mutex: markQueued / clearQueued.
 //  - An input slot (msg, full) is the one handoff between threads. On a counted
 //    edge the firing rule itself makes it exclusive (the sender writes only once
 //    the receiver took the last message; the receiver takes only when full), so
@@ -19,6 +23,7 @@
 //    change it (graph_live.cpp), with the groups of every node it touches paused.
 //  - state_mutex guards what other threads read: requested parameter values,
 //    the error text, the enabled flag, UI metadata.
+//  - Atomics (has_data, counters, dropped) may be read and written anywhere.
 #pragma once
 
 #include <array>
@@ -39,9 +44,11 @@
 #include "ticks.hpp"
 
 namespace apex {
+class Graph;
 namespace detail {
 
 class NodeState;
+class Restructure;
 class EditRequests;
 
 /** Where the registry puts the built-in events (registry.cpp): first in every manifest(). */
@@ -163,44 +170,96 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 
   /** Its path in the graph. Changed only by group/ungroup (Graph::moveLocked), with its
    *  group and its neighbours' paused: node code reads it on its own thread group. */
-  std::string name;
-  const std::shared_ptr<const NodeType> type;  // nullptr: placeholder
-  /** The instance's interface: its type's manifest, or what Manifest::shape made of it.
-   *  Replaced by edits only (graph_interface.cpp), with the node's group paused. */
-  std::shared_ptr<const Manifest> iface;
+  const std::string& name() const { return name_; }
+  /** Its place in the graph's insertion order; names it in traces. */
+  std::uint64_t seq() const { return seq_; }
   const Manifest& manifest() const { return *iface; }
-  const std::uint64_t seq;
-  std::shared_ptr<Revisions> revisions;  // the graph's
-  std::unique_ptr<Node> node;
+  std::string typeId() const { return type ? type->id : placeholder.type; }
+  /** The graph's host when the node was made (Node::host); may be null. */
+  const Host* host() const { return host_.get(); }
+  /** Its thread group: set by edits (groups paused), read by its group thread and edits. */
+  ThreadGroup* group() const { return group_; }
+  /** Its group, read under group_mutex against a move, from any thread; nullptr once it is
+   *  removed (ThreadGroup::runMail: its mail follows it or is dropped). */
+  ThreadGroup* homeGroup() {
+    std::lock_guard<std::mutex> lock(group_mutex);
+    return removed ? nullptr : group_;
+  }
   void attach(std::unique_ptr<Node> object) {
     node = std::move(object);
     (void)resolveHandles(*node, manifest());  // checked at registration against the default interface
     node->state_.store(this, std::memory_order_release);
   }
-
-  std::vector<std::unique_ptr<InputState>> inputs;
-  std::vector<OutputState> outputs;
-  std::vector<ParamState> params;
-  std::vector<std::vector<std::shared_ptr<EventEdge>>> trigger_edges;  // per trigger
-  /** Can fire at all (edits only): a source, or fed by a live input. A node cut
-   *  off from every source never fires and holds no other path hostage. */
-  bool live = false;
   /** A source by structure: no data input connected, and none mandatory. */
   bool isSource() const;
 
-  // scheduling
-  Readiness readiness;  // the firing rule's counters (readiness.hpp)
-  bool queued = false;  // group mutex
-  bool queued_from_outside = false;  // group mutex: by push(), not by this group's own firing
-  std::uint64_t ready_mark = 0;  // group mutex: how much mail its group had been sent when it was queued
-  std::atomic<bool> has_data{false};
-  ThreadGroup* group = nullptr;
-  bool removed = false;
+  // --- structure walks (edits, or the node's group thread) ---
+  /** f(NodeState*) for each node at the other end of a data or parameter connection. */
+  template <class F>
+  void forEachDataOrParamNeighbour(F&& f) const;
+  /** ... and of an event connection too. */
+  template <class F>
+  void forEachNeighbour(F&& f) const;
+  /** f(Edge&) for each edge from an output or a parameter output into a data input. */
+  template <class F>
+  void forEachDataReceiver(F&& f) const;
+  /** f(const std::shared_ptr<Edge>&) for the edge into each data and parameter input (null if none). */
+  template <class F>
+  void forEachSender(F&& f) const;
+  std::size_t inputCount() const { return inputs.size(); }
+  std::size_t outputCount() const { return outputs.size(); }
+  /** A node of a type not loaded: it keeps its description and never fires. */
+  bool isPlaceholder() const { return !type; }
+  /** Whether parameter `p` has its input and output ports. */
+  bool interactive(int p) const { return params[p].interactive; }
+  /** The edge into data input `i` or parameter `p` (null if none), and those out of output `i`,
+   *  parameter output `p`, trigger `t`, and into slot `s`. */
+  const std::shared_ptr<Edge>& inputEdge(int i) const { return inputs[i]->edge; }
+  const std::shared_ptr<Edge>& paramInEdge(int p) const { return params[p].in_edge; }
+  const std::vector<std::shared_ptr<Edge>>& outputEdges(int i) const { return outputs[i].edges; }
+  const std::vector<std::shared_ptr<Edge>>& paramOutEdges(int p) const { return params[p].out_edges; }
+  const std::vector<std::shared_ptr<EventEdge>>& triggerEdges(int t) const { return trigger_edges[t]; }
+  const std::vector<std::shared_ptr<EventEdge>>& slotEdges(int s) const { return slot_edges[s]; }
+  /** Its description as a save keeps it (under state_mutex: requested values, enabled, ui). */
+  NodeDescription describe() const;
+  /** Recomputes `live` from its senders' (graph_live.cpp walks the region in topological order). */
+  void updateLive();
+  /** A new node with no connection yet: live if it is a source. */
+  void initLive() { live = type && isSource(); }
+  /** An edit changed its structural blockers by `delta` (EditScope); queues it if that left it
+   *  ready (push is idempotent: a ready node moved or taken off a queue is queued again). */
+  void correctBlockers(int delta) {
+    if (readiness.correct(delta)) group_->push(this);
+  }
 
-  // shared with other threads
-  bool enabled = true;  // requested
-  bool outer_enabled = true;  // every subgraph it lies in is enabled (edits only)
-  // host, edits, slot_edges, group_mutex, state_mutex, ui, placeholder: declared last (cache lines)
+  // --- its group's queue: ThreadGroup's, under the group's mutex ---
+  bool queued() const { return queue_.queued; }
+  /** Marks it queued behind `mail_sent` mails of its group; false if it already was. */
+  bool markQueued(std::uint64_t mail_sent) {
+    if (queue_.queued) return false;
+    queue_ = QueueMark{true, false, mail_sent};
+    return true;
+  }
+  /** ... by push(), from outside its group's own firing. */
+  void markFromOutside() { queue_.from_outside = true; }
+  /** Off the queue; true if it was queued from outside (the group counts those). */
+  bool clearQueued() {
+    const bool outside = queue_.from_outside;
+    queue_ = QueueMark{};
+    return outside;
+  }
+  /** How much mail its group had been sent when it was queued. */
+  std::uint64_t readyMark() const { return queue_.ready_mark; }
+
+  // --- what node code (apex::Node) reaches, on the group thread ---
+  const Message& currentInput(int index) const { return inputs[index]->current; }
+  Message takeInput(int index) { return std::move(inputs[index]->current); }
+  const ParamValue& activeParam(int index) const { return params[index].active; }
+  /** Node::countDropped, from any thread. */
+  void countDropped(std::uint64_t n) { dropped_.fetch_add(n, std::memory_order_relaxed); }
+  /** Where Node::requestEdit asks (the graph's); null outside a graph. */
+  EditRequests* editRequests() const { return edits.get(); }
+
   std::string error() const;
 
   // --- group thread ---
@@ -267,10 +326,10 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
    *  firing now (nullptr elsewhere); a node of that group then runs next on it. */
   void unblock(int k, ThreadGroup* here = nullptr) {  // inline: twice per hop
     if (!readiness.release(k)) return;
-    if (here != nullptr && here == group) {
+    if (here != nullptr && here == group_) {
       here->runNext(this);  // made ready by a firing on its own group's thread: runs next, no queue
     } else {
-      group->push(this);
+      group_->push(this);
     }
   }
   void post(std::function<void(NodeState&)> fn);
@@ -315,9 +374,53 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   int findOutput(std::string_view n) const;
   int findParam(std::string_view n) const;
   int findTrigger(std::string_view n) const;
-  std::string typeId() const { return type ? type->id : placeholder.type; }
 
  private:
+  // Graph code (graph*.cpp: Graph's calls and Graph::Impl's steps) edits the structure; the
+  // liveness walk (live.hpp) too. Everyone else goes through the operations above.
+  friend class apex::Graph;
+  friend class Restructure;
+
+  // Hot first: what a firing reads, in the order it reads it (see "Cold and large" below).
+  // --- structure (edits only, groups paused; its group thread reads) ---
+  std::string name_;
+  const std::shared_ptr<const NodeType> type;  // nullptr: placeholder
+  /** The instance's interface: its type's manifest, or what Manifest::shape made of it.
+   *  Replaced by edits only (graph_interface.cpp), with the node's group paused. */
+  std::shared_ptr<const Manifest> iface;
+  const std::uint64_t seq_;
+  std::shared_ptr<Revisions> revisions;  // the graph's
+  std::unique_ptr<Node> node;  // made once (attach), before it joins a group
+
+  // Ports: their edges are structure; a port's firing state (InputState::current,
+  // OutputState::pending, ParamState::active) is its group thread's; ParamState::requested is
+  // state_mutex's; InputState::msg/full is the one handoff (see the top of this file).
+  std::vector<std::unique_ptr<InputState>> inputs;
+  std::vector<OutputState> outputs;
+  std::vector<ParamState> params;
+  std::vector<std::vector<std::shared_ptr<EventEdge>>> trigger_edges;  // per trigger
+  /** Can fire at all (edits only): a source, or fed by a live input. A node cut
+   *  off from every source never fires and holds no other path hostage. */
+  bool live = false;
+
+  // --- scheduling ---
+  Readiness readiness;  // the firing rule's counters (readiness.hpp): atomic, named transitions
+  /** Its place in its group's ready queue: its group's mutex guards it (ThreadGroup). */
+  struct QueueMark {
+    bool queued = false;
+    bool from_outside = false;  // by push(), not by this group's own firing
+    std::uint64_t ready_mark = 0;  // how much mail its group had been sent when it was queued
+  };
+  QueueMark queue_;
+  std::atomic<bool> has_data{false};  // any thread: a driven source's new data (notifyNewData)
+  ThreadGroup* group_ = nullptr;  // structure; also read under group_mutex (homeGroup)
+  bool removed = false;  // structure; also read under group_mutex
+
+  // --- state_mutex (edits write, any thread reads under it) ---
+  bool enabled = true;  // requested
+  bool outer_enabled = true;  // every subgraph it lies in is enabled (edits only)
+  // host_, edits, slot_edges, group_mutex, state_mutex, ui, placeholder: declared last (cache lines)
+
   int gates() const;
   void adjust(int delta);
   void deliver(const std::shared_ptr<Edge>& edge, Message m, ThreadGroup* here = nullptr);
@@ -375,18 +478,16 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
    *  each message's frame (Message::frame) from its payload or from `f.frame`. */
   inline void deliverOutputs(const Firing& f);
 
- public:
   // Cold and large: after everything a firing reads, so that fits in fewer cache lines
   // (with these in the middle, a hop in a chain of 64 relays cost ~2 ns more, measured).
-  std::shared_ptr<const Host> host;  // the graph's, when the node was made
-  std::shared_ptr<EditRequests> edits;  // the graph's: where Node::requestEdit asks
-  std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;  // per slot, incoming
-  std::mutex group_mutex;  // for readers of `group` outside edits (notifyNewData)
+  std::shared_ptr<const Host> host_;  // structure: the graph's, when the node was made
+  std::shared_ptr<EditRequests> edits;  // structure: the graph's, where Node::requestEdit asks
+  std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;  // structure: per slot, incoming
+  mutable std::mutex group_mutex;  // for readers of `group_` outside edits (notifyNewData)
   mutable std::mutex state_mutex;
   std::string ui;  // state_mutex
-  NodeDescription placeholder;  // for placeholders: the description, kept verbatim
+  NodeDescription placeholder;  // structure: for placeholders, the description kept verbatim
 
- private:
   std::chrono::steady_clock::time_point last_resend_;  // state_mutex
   std::string error_;  // state_mutex
   std::chrono::steady_clock::time_point error_logged_;  // state_mutex
@@ -395,11 +496,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // is the counts since `window_[0]`, a reading 5 to 10 s old (state_mutex).
   Histogram time_hist_, latency_hist_;
   std::atomic<std::int64_t> latency_total_{0};
-
- public:
   std::atomic<std::uint64_t> dropped_{0};  // Node::countDropped, from any thread
-
- private:
   std::atomic<std::uint64_t> latency_count_{0};
   struct Reading {
     HistogramCounts time, latency;
@@ -416,8 +513,45 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 };
 
 template <class F>
+void NodeState::forEachDataOrParamNeighbour(F&& f) const {
+  for (auto& in : inputs)
+    if (in->edge) f(in->edge->from);
+  for (auto& o : outputs)
+    for (auto& e : o.edges) f(e->to);
+  for (auto& p : params) {
+    if (p.in_edge) f(p.in_edge->from);
+    for (auto& e : p.out_edges) f(e->to);
+  }
+}
+
+template <class F>
+void NodeState::forEachNeighbour(F&& f) const {
+  forEachDataOrParamNeighbour(f);
+  for (auto& t : trigger_edges)
+    for (auto& e : t) f(e->to);
+  for (auto& s : slot_edges)
+    for (auto& e : s) f(e->from);
+}
+
+template <class F>
+void NodeState::forEachDataReceiver(F&& f) const {
+  for (auto& o : outputs)
+    for (auto& e : o.edges)
+      if (!e->to_param) f(*e);
+  for (auto& p : params)
+    for (auto& e : p.out_edges)
+      if (!e->to_param) f(*e);
+}
+
+template <class F>
+void NodeState::forEachSender(F&& f) const {
+  for (auto& in : inputs) f(in->edge);
+  for (auto& p : params) f(p.in_edge);
+}
+
+template <class F>
 inline bool NodeState::guarded(const char* what, F&& fn) {
-  auto where = [&] { return nodeLabel(name, type->id) + (*what ? std::string(" ") + what : std::string()); };
+  auto where = [&] { return nodeLabel(name_, type->id) + (*what ? std::string(" ") + what : std::string()); };
   try {
     fn();
     return true;

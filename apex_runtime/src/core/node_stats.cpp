@@ -97,7 +97,7 @@ std::uint64_t NodeState::meanNs() const {
 
 NodeStats NodeState::stats() const {
   NodeStats s;
-  s.name = name;
+  s.name = name_;
   s.firings = firings_.load(std::memory_order_relaxed);
   s.nothing_firings = nothing_firings_.load(std::memory_order_relaxed);
   s.dropped = dropped_.load(std::memory_order_relaxed);
@@ -124,7 +124,7 @@ std::vector<HistogramBucket> bars(const HistogramCounts& h) {
 
 NodeProfile NodeState::profile() const {
   NodeProfile p;
-  p.name = name;
+  p.name = name_;
   const auto now = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(state_mutex);
   const bool windowed = window_[0].at != std::chrono::steady_clock::time_point{};

@@ -47,9 +47,7 @@ void ThreadGroup::stop() {
 }
 
 void ThreadGroup::queueLocked(NodeState* node) {
-  if (node->queued) return;
-  node->queued = true;
-  node->ready_mark = posted_;
+  if (!node->markQueued(posted_)) return;
   ready_.push_back(node);
   ++activity_;
 }
@@ -63,9 +61,9 @@ void ThreadGroup::queueInline(NodeState* node) {
 
 void ThreadGroup::push(NodeState* node) {
   std::lock_guard<std::mutex> lock(m_);
-  if (node->queued) return;
+  if (node->queued()) return;
   queueLocked(node);
-  node->queued_from_outside = true;
+  node->markFromOutside();
   ++queued_from_outside_;
   updateAttention();
   if (waiting_ && pause_requests_ == 0 && canFire()) {
@@ -77,11 +75,9 @@ void ThreadGroup::push(NodeState* node) {
 
 void ThreadGroup::unqueue(NodeState* node) {
   std::lock_guard<std::mutex> lock(m_);
-  if (!node->queued) return;
+  if (!node->queued()) return;
   ready_.erase(std::remove(ready_.begin(), ready_.end(), node), ready_.end());
-  node->queued = false;
-  if (node->queued_from_outside) {
-    node->queued_from_outside = false;
+  if (node->clearQueued()) {
     --queued_from_outside_;
     updateAttention();
   }
@@ -165,7 +161,7 @@ int ThreadGroup::firable() const {
 
 bool ThreadGroup::mailFirst() const {
   const int next = firable();
-  return next < 0 || ready_[next]->ready_mark > taken_;
+  return next < 0 || ready_[next]->readyMark() > taken_;
 }
 
 void ThreadGroup::waitStep() {
@@ -204,12 +200,8 @@ GroupStats ThreadGroup::stats() const {
 void ThreadGroup::runMail(std::vector<Mail>& batch) {
   for (auto& mail : batch) {
     NodeState& node = *mail.node;
-    ThreadGroup* home;
-    {
-      std::lock_guard<std::mutex> lock(node.group_mutex);  // an edit may move or remove it meanwhile
-      if (node.removed) continue;
-      home = node.group;
-    }
+    ThreadGroup* home = node.homeGroup();  // an edit may move or remove it meanwhile
+    if (!home) continue;
     if (home != this) {  // the node moved to another group: its work follows it
       home->post(std::move(mail));
       continue;
@@ -236,7 +228,7 @@ void ThreadGroup::runFirings(NodeState* node) {
     fresh = timed;
     if (ok) {
       node->recordFiring(timed, now - t0, now);
-      if (ring) ring->write({node->seq | (node->startsFrame() ? TraceRecord::kStartsFrame : 0), t0, now, node->frame()});
+      if (ring) ring->write({node->seq() | (node->startsFrame() ? TraceRecord::kStartsFrame : 0), t0, now, node->frame()});
       ++fired;
     }
     node = inline_next_;
@@ -291,11 +283,10 @@ void ThreadGroup::run() {
     if (next >= 0) {
       NodeState* node = ready_[next];
       ready_.erase(ready_.begin() + next);
-      node->queued = false;
+      const bool from_outside = node->clearQueued();
       if (hold_ && step_budget_ > 0) --step_budget_;
       if (hold_ && frame_step_ && node->isSource()) stepped_sources_.insert(node);
-      if (node->queued_from_outside) {
-        node->queued_from_outside = false;
+      if (from_outside) {
         --queued_from_outside_;
         updateAttention();
       }

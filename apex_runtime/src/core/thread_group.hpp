@@ -1,6 +1,6 @@
 // One scheduler thread with a ready queue and a mailbox.
 // Ownership: the group's mutex guards the queue, the mailbox, the pause and
-// hold state and every NodeState::queued flag of nodes in this group. A node's
+// hold state and every NodeState queue mark (markQueued) of nodes in this group. A node's
 // own state is only touched by this thread, or by an editor while this group
 // is paused (see graph.cpp). `inline_next_` and `inline_later_` belong to the thread
 // alone: a node that one of its firings made ready runs next without a trip through
