@@ -129,7 +129,7 @@ Result<std::string> Graph::Impl::addNodeWith(const std::string& type_id, const s
   state->attach(std::move(object));
   if (auto st = presetParams(*state, params); !st) return st;  // before setup(): it sees them
   state->group_ = group(gname);
-  if (!subgraphs_.enabledAround(name)) state->outer_enabled = false;
+  if (!subgraphs_.enabledAround(name)) state->setOuterEnabled(false);
   detail::initLiveness(state.get());
   EditScope scope;
   scope.added(state.get());
@@ -333,11 +333,7 @@ Status Graph::Impl::setEnabled(const std::string& node, bool enabled) {
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
-  {
-    std::lock_guard<std::mutex> g(s.state_mutex);
-    s.enabled = enabled;
-    s.placeholder.enabled = enabled;
-  }
+  s.setEnabled(enabled);
   if (s.type) s.post([](NodeState& x) { x.applyEnabled(); });
   changedDownstreamOf(&s);
   return Status::ok();
@@ -424,8 +420,7 @@ Status Graph::Impl::setUi(const std::string& node, const std::string& ui) {
   if (sg) {
     sg->ui = ui;
   } else {
-    std::lock_guard<std::mutex> g(n.value()->state_mutex);
-    n.value()->ui = ui;
+    n.value()->setUi(ui);
   }
   bump();
   return Status::ok();
@@ -535,8 +530,7 @@ Result<ParamValue> Graph::parameterValue(const std::string& outer, const std::st
   if (!n) return n.status();
   const int i = n.value()->findParam(param);
   if (i < 0) return Status::error(nodeLabel(node) + " has no parameter '" + param + "'");
-  std::lock_guard<std::mutex> g(n.value()->state_mutex);
-  return n.value()->params[i].requested;
+  return n.value()->requestedParam(i);
 }
 
 std::size_t Graph::size() const {

@@ -154,11 +154,7 @@ Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeStat
                                                                   const ParamValue* value) const {
   const Manifest& type = *n.type->manifest;
   if (!type.shape) return n.iface;
-  ParamValues values;
-  {
-    std::lock_guard<std::mutex> lock(n.state_mutex);
-    for (std::size_t i = 0; i < n.params.size(); ++i) values.set(n.manifest().params[i].name, n.params[i].requested);
-  }
+  ParamValues values = n.requestedParams();
   if (value) values.set(param, *value);
   auto next = std::make_shared<Manifest>(type);
   auto fail = [&](const std::string& why) {

@@ -48,7 +48,7 @@ NodeDescription NodeState::describe() const {
     d.name = name_;
     d.placeholder = true;
     d.thread_group = group_->name();
-    d.ui = ui;
+    d.ui = ui_;
     d.error = "unknown node type '" + d.type + "'";
     return d;
   }
@@ -62,7 +62,7 @@ NodeDescription NodeState::describe() const {
   }
   d.enabled = enabled;
   d.thread_group = group_->name();
-  d.ui = ui;
+  d.ui = ui_;
   return d;
 }
 
@@ -127,9 +127,8 @@ GraphDescription Graph::Impl::describeLocked() const {
       auto n = at ? find(at.value().first) : nullptr;
       const int i = n && n->type ? n->findParam(at.value().second) : -1;
       if (i < 0) continue;
-      std::lock_guard<std::mutex> g(n->state_mutex);
-      d.parameters.emplace_back(spec.name, toText(n->params[i].requested));
-      if (n->params[i].interactive) d.interactive.push_back(spec.name);
+      d.parameters.emplace_back(spec.name, toText(n->requestedParam(i)));
+      if (n->interactive(i)) d.interactive.push_back(spec.name);
     }
     auto inner = std::make_shared<GraphDescription>();
     inner->thread_groups = sg->thread_groups;
@@ -149,8 +148,8 @@ Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   if (auto room = roomFor(group_name, 1); !room) return Status::error(nodeLabel(d.name) + ": " + room.message());
   auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revisions_);
   state->placeholder = d;
-  state->ui = d.ui;
-  state->enabled = d.enabled;
+  state->setUi(d.ui);
+  state->setEnabled(d.enabled);
   state->group_ = group(group_name);
   detail::EditScope scope;
   scope.added(state.get());

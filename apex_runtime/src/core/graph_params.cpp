@@ -49,9 +49,7 @@ Status Graph::Impl::presetParams(NodeState& s, const std::vector<std::pair<std::
       if (!iface) return iface.status();
       s.setInterface(iface.value());
     }
-    const int i = s.findParam(param);
-    s.params[i].requested = value.value();
-    s.params[i].resend = s.manifest().params[i].every_set;  // as requestParam: a command, applied even if equal
+    s.presetParam(s.findParam(param), value.value());
   }
   return Status::ok();
 }

@@ -151,8 +151,7 @@ Result<std::string> Graph::Impl::addSubgraph(const NodeDescription& d) {
       auto n = real ? find(real.value().first) : nullptr;
       const int i = n && n->type ? n->findParam(real.value().second) : -1;
       if (i < 0) continue;
-      std::lock_guard<std::mutex> g(n->state_mutex);
-      sg->defaults[e.name] = toText(n->params[i].requested);
+      sg->defaults[e.name] = toText(n->requestedParam(i));
     }
     const GraphDescription now = describeLocked();
     if (const NodeDescription* self = findNode(now, d.name)) sg->baseline = maskedText(*self->subgraph, sg->exports);
@@ -188,10 +187,7 @@ void Graph::Impl::applyOuterEnabled(const std::string& path) {
   for (const auto& name : nodesUnder(path)) {
     const bool outer = subgraphs_.enabledAround(name);
     NodeState& n = *find(name);
-    {
-      std::lock_guard<std::mutex> g(n.state_mutex);
-      n.outer_enabled = outer;
-    }
+    n.setOuterEnabled(outer);
     if (n.type) n.post([](NodeState& x) { x.applyEnabled(); });
     changedDownstreamOf(&n);
   }
@@ -283,8 +279,7 @@ Status Graph::group(const std::vector<std::string>& members, const std::string& 
     for (const auto& under : impl.nodesUnder(m)) sg->seq = std::min(sg->seq, impl.find(under)->seq());
   }
   if (auto first = impl.find(members.front())) {
-    std::lock_guard<std::mutex> g(first->state_mutex);
-    sg->ui = first->ui;
+    sg->ui = first->ui();
   } else {
     sg->ui = impl.subgraphs_.find(members.front())->ui;
   }

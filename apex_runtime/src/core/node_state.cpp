@@ -56,6 +56,45 @@ std::string NodeState::error() const {
   return error_;
 }
 
+void NodeState::setEnabled(bool on) {
+  std::lock_guard<std::mutex> lock(state_mutex);
+  enabled = on;
+  placeholder.enabled = on;
+}
+
+void NodeState::setOuterEnabled(bool on) {
+  std::lock_guard<std::mutex> lock(state_mutex);
+  outer_enabled = on;
+}
+
+std::string NodeState::ui() const {
+  std::lock_guard<std::mutex> lock(state_mutex);
+  return ui_;
+}
+
+void NodeState::setUi(std::string text) {
+  std::lock_guard<std::mutex> lock(state_mutex);
+  ui_ = std::move(text);
+}
+
+ParamValue NodeState::requestedParam(int index) const {
+  std::lock_guard<std::mutex> lock(state_mutex);
+  return params[index].requested;
+}
+
+ParamValues NodeState::requestedParams() const {
+  ParamValues values;
+  std::lock_guard<std::mutex> lock(state_mutex);
+  for (std::size_t i = 0; i < params.size(); ++i) values.set(manifest().params[i].name, params[i].requested);
+  return values;
+}
+
+void NodeState::presetParam(int index, ParamValue v) {
+  std::lock_guard<std::mutex> lock(state_mutex);
+  params[index].requested = std::move(v);
+  params[index].resend = manifest().params[index].every_set;  // as requestParam: a command, applied even if equal
+}
+
 // ---------------------------------------------------------------- counting
 
 bool NodeState::isSource() const {

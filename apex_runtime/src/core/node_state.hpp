@@ -260,7 +260,22 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Where Node::requestEdit asks (the graph's); null outside a graph. */
   EditRequests* editRequests() const { return edits.get(); }
 
+  // --- behind state_mutex: any thread; each takes the lock ---
   std::string error() const;
+  /** The requested enabled flag (an edit; a placeholder keeps it in its description). Its group
+   *  thread applies it (applyEnabled). */
+  void setEnabled(bool on);
+  /** Whether every subgraph it lies in is enabled (an edit); applied as setEnabled is. */
+  void setOuterEnabled(bool on);
+  /** Its UI metadata (YAML text the graph keeps for a front end). */
+  std::string ui() const;
+  void setUi(std::string text);
+  /** The value last asked for parameter `index` (setParameter): what a reader and a save see. */
+  ParamValue requestedParam(int index) const;
+  /** Every parameter's requested value, by name (an interface function's input). */
+  ParamValues requestedParams() const;
+  /** A parameter of a node not yet in a graph (no thread reads it yet): applied at setup. */
+  void presetParam(int index, ParamValue v);
 
   // --- group thread ---
   /** Fires if nothing blocks it (an edit may have blocked it since it was queued). */
@@ -485,7 +500,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;  // structure: per slot, incoming
   mutable std::mutex group_mutex;  // for readers of `group_` outside edits (notifyNewData)
   mutable std::mutex state_mutex;
-  std::string ui;  // state_mutex
+  std::string ui_;  // state_mutex
   NodeDescription placeholder;  // structure: for placeholders, the description kept verbatim
 
   std::chrono::steady_clock::time_point last_resend_;  // state_mutex
