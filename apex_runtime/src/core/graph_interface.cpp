@@ -138,7 +138,7 @@ void NodeState::setInterface(std::shared_ptr<const Manifest> next_ptr) {
     for (auto& e : slots[k]) e->slot = static_cast<int>(k);
   }
 
-  std::lock_guard<std::mutex> lock(n.state_mutex);  // others read parameters under it
+  auto lock = n.shared_.lock();  // other nodes' threads read its ports and parameters under it
   n.inputs = std::move(inputs);
   n.outputs = std::move(outputs);
   n.params = std::move(params);

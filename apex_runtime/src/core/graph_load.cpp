@@ -42,13 +42,13 @@ void describeConnections(const NodeState& n, std::vector<ConnectionDescription>&
 namespace detail {
 
 NodeDescription NodeState::describe() const {
-  std::lock_guard<std::mutex> lock(state_mutex);
+  auto shared = shared_.lock();
   if (!type) {
     NodeDescription d = placeholder;
     d.name = name_;
     d.placeholder = true;
     d.thread_group = group_->name();
-    d.ui = ui_;
+    d.ui = shared->ui;
     d.error = "unknown node type '" + d.type + "'";
     return d;
   }
@@ -60,9 +60,9 @@ NodeDescription NodeState::describe() const {
     d.parameters.emplace_back(manifest().params[i].name, toText(params[i].requested));
     if (params[i].interactive) d.interactive.push_back(manifest().params[i].name);
   }
-  d.enabled = enabled;
+  d.enabled = shared->enabled;
   d.thread_group = group_->name();
-  d.ui = ui_;
+  d.ui = shared->ui;
   return d;
 }
 

@@ -10,10 +10,7 @@ namespace detail {
 
 void NodeState::runSlot(int slot) {
   if (slot == kEnableIndex || slot == kDisableIndex) {  // built-in
-    {
-      std::lock_guard<std::mutex> lock(state_mutex);
-      enabled = slot == kEnableIndex;
-    }
+    shared_.lock()->enabled = slot == kEnableIndex;
     applyEnabled();
     return;
   }
@@ -105,7 +102,7 @@ std::vector<ParamTarget> NodeState::parameterTargets(int index) const {
   for (const auto& e : outputs[index].edges) {
     if (!e->to_param || e->dead) continue;
     NodeState& to = *e->to;
-    std::lock_guard<std::mutex> lock(to.state_mutex);  // its interface and values change under it
+    auto lock = to.shared_.lock();  // its interface and values change under it
     out.push_back({to.name_, to.manifest().params[e->to_index], to.params[e->to_index].requested});
   }
   return out;

@@ -52,45 +52,41 @@ int NodeState::findParam(std::string_view n) const { return indexOf(manifest().p
 int NodeState::findTrigger(std::string_view n) const { return indexOf(manifest().triggers, n); }
 
 std::string NodeState::error() const {
-  std::lock_guard<std::mutex> lock(state_mutex);
-  return error_;
+  return shared_.lock()->error;
 }
 
 void NodeState::setEnabled(bool on) {
-  std::lock_guard<std::mutex> lock(state_mutex);
-  enabled = on;
+  auto shared = shared_.lock();
+  shared->enabled = on;
   placeholder.enabled = on;
 }
 
 void NodeState::setOuterEnabled(bool on) {
-  std::lock_guard<std::mutex> lock(state_mutex);
-  outer_enabled = on;
+  shared_.lock()->outer_enabled = on;
 }
 
 std::string NodeState::ui() const {
-  std::lock_guard<std::mutex> lock(state_mutex);
-  return ui_;
+  return shared_.lock()->ui;
 }
 
 void NodeState::setUi(std::string text) {
-  std::lock_guard<std::mutex> lock(state_mutex);
-  ui_ = std::move(text);
+  shared_.lock()->ui = std::move(text);
 }
 
 ParamValue NodeState::requestedParam(int index) const {
-  std::lock_guard<std::mutex> lock(state_mutex);
+  auto lock = shared_.lock();
   return params[index].requested;
 }
 
 ParamValues NodeState::requestedParams() const {
   ParamValues values;
-  std::lock_guard<std::mutex> lock(state_mutex);
+  auto lock = shared_.lock();
   for (std::size_t i = 0; i < params.size(); ++i) values.set(manifest().params[i].name, params[i].requested);
   return values;
 }
 
 void NodeState::presetParam(int index, ParamValue v) {
-  std::lock_guard<std::mutex> lock(state_mutex);
+  auto lock = shared_.lock();
   params[index].requested = std::move(v);
   params[index].resend = manifest().params[index].every_set;  // as requestParam: a command, applied even if equal
 }
@@ -341,15 +337,15 @@ void NodeState::deliverSlow(const std::shared_ptr<Edge>& edge, Message&& m, Thre
 void NodeState::setError(std::string text) {
   bool report = false;
   {
-    std::lock_guard<std::mutex> lock(state_mutex);
-    if (error_ == text) return;  // the same failure again: already reported
+    auto shared = shared_.lock();
+    if (shared->error == text) return;  // the same failure again: already reported
     // A failure that names its input (a stamp, a value) differs at every firing: the state always
     // shows the newest, the log takes the first and then one every kErrorLogInterval, so a node
     // failing at camera rate does not flood the console.
     const auto now = std::chrono::steady_clock::now();
-    report = !has_error_.load(std::memory_order_relaxed) || now - error_logged_ >= kErrorLogInterval;
-    if (report) error_logged_ = now;
-    error_ = text;
+    report = !has_error_.load(std::memory_order_relaxed) || now - shared->error_logged >= kErrorLogInterval;
+    if (report) shared->error_logged = now;
+    shared->error = text;
     has_error_.store(true, std::memory_order_relaxed);
   }
   revisions->shown();
@@ -358,8 +354,8 @@ void NodeState::setError(std::string text) {
 
 void NodeState::clearError() {
   {
-    std::lock_guard<std::mutex> lock(state_mutex);
-    error_.clear();
+    auto shared = shared_.lock();
+    shared->error.clear();
     has_error_.store(false, std::memory_order_relaxed);
   }
   slot_error_ = false;
@@ -399,12 +395,12 @@ void NodeState::notifyAfter(double seconds) {
 void NodeState::requestParam(int index, ParamValue v) {
   bool post_now = false;
   {
-    std::lock_guard<std::mutex> lock(state_mutex);
+    auto shared = shared_.lock();
     params[index].requested = std::move(v);
     params[index].resend = manifest().params[index].every_set;
     params_dirty_.store(true, std::memory_order_release);
-    post_now = !apply_posted_;
-    apply_posted_ = true;
+    post_now = !shared->apply_posted;
+    shared->apply_posted = true;
   }
   if (post_now) post([](NodeState& n) { n.applyParams(); });
 }
@@ -412,8 +408,8 @@ void NodeState::requestParam(int index, ParamValue v) {
 void NodeState::applyParams() {
   std::vector<int> changed;
   {
-    std::lock_guard<std::mutex> lock(state_mutex);
-    apply_posted_ = false;
+    auto shared = shared_.lock();
+    shared->apply_posted = false;
     params_dirty_.store(false, std::memory_order_relaxed);
     for (std::size_t i = 0; i < params.size(); ++i) {
       if (params[i].requested == params[i].active && !params[i].resend) continue;
@@ -435,7 +431,7 @@ void NodeState::applyParams() {
 
 void NodeState::updateParam(int index, ParamValue v) {
   {
-    std::lock_guard<std::mutex> lock(state_mutex);
+    auto lock = shared_.lock();
     ParamState& p = params[index];
     if (p.active == v) return;
     if (p.requested == p.active) p.requested = v;  // else an edit asked for another value: it applies next
@@ -478,8 +474,8 @@ void NodeState::runSetup() {
 void NodeState::applyEnabled() {
   bool want;
   {
-    std::lock_guard<std::mutex> lock(state_mutex);
-    want = enabled && outer_enabled;
+    auto shared = shared_.lock();
+    want = shared->enabled && shared->outer_enabled;
   }
   if (want == active_enabled_) return;
   const int before = gates();
@@ -491,19 +487,19 @@ void NodeState::applyEnabled() {
 void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) {
   auto run = [](NodeState& n) { n.runDownstreamChanged(); };
   const auto now = std::chrono::steady_clock::now();
-  std::lock_guard<std::mutex> lock(state_mutex);
-  if (resend_due_) return;  // the one set for later sees this change too
-  if (now >= last_resend_ + interval) {
-    last_resend_ = now;
+  auto shared = shared_.lock();
+  if (shared->resend_due) return;  // the one set for later sees this change too
+  if (now >= shared->last_resend + interval) {
+    shared->last_resend = now;
     post(run);
     return;
   }
-  resend_due_ = true;
-  group_->at(last_resend_ + interval, Mail{shared_from_this(), [](NodeState& n) {
+  shared->resend_due = true;
+  group_->at(shared->last_resend + interval, Mail{shared_from_this(), [](NodeState& n) {
                                             {
-                                              std::lock_guard<std::mutex> l(n.state_mutex);
-                                              n.resend_due_ = false;
-                                              n.last_resend_ = std::chrono::steady_clock::now();
+                                              auto s = n.shared_.lock();
+                                              s->resend_due = false;
+                                              s->last_resend = std::chrono::steady_clock::now();
                                             }
                                             n.runDownstreamChanged();  // timers run on the node's group
                                           }});

@@ -21,8 +21,10 @@
 //    it to zero pushes the node onto its group's ready queue: exactly once.
 //  - Liveness (`live`, `Edge::live`, Readiness::liveInputs) is structure: only edits
 //    change it (graph_live.cpp), with the groups of every node it touches paused.
-//  - state_mutex guards what other threads read: requested parameter values,
-//    the error text, the enabled flag, UI metadata.
+//  - Shared (the enabled flags, UI metadata, the error text, the stats window) is behind
+//    a Guarded: reached only through the handle shared_.lock() returns, which holds its
+//    mutex. That lock also covers requested parameter values (ParamState::requested) and a
+//    swap of the ports on an interface change, which other nodes' threads read under it.
 //  - Atomics (has_data, counters, dropped) may be read and written anywhere.
 #pragma once
 
@@ -121,10 +123,10 @@ struct RelaxedCount {
 };
 
 /** An output's latency: that of the firings which sent on it (an output that sends on some
- *  frames only has its own), and the readings its window is over (state_mutex). */
+ *  frames only has its own), and the readings its window is over (NodeState::shared_'s lock). */
 struct OutputLatency {
   Histogram hist;  // group thread adds, any thread reads
-  HistogramCounts base, newer;  // state_mutex: as NodeState::window_
+  HistogramCounts base, newer;  // NodeState::shared_'s lock: as Shared::window
 };
 
 struct OutputState {
@@ -133,16 +135,16 @@ struct OutputState {
   Tap tap;
   RelaxedCount sent;  // messages sent (not Nothing, not an end of sequence): the rate on its links
   std::uint64_t latency_seen = 0;  // group thread: `sent` when a latency was last counted
-  /** Made by the group thread (under state_mutex) at its first live latency: 6 KiB that an output
+  /** Made by the group thread (under NodeState::shared_'s lock) at its first live latency: 6 KiB that an output
    *  without live frames does without. Shared: it moves with its output through an interface change. */
   std::shared_ptr<OutputLatency> latency;
 };
 
 struct ParamState {
-  ParamValue requested;  // state_mutex
+  ParamValue requested;  // NodeState::shared_'s lock
   ParamValue active;  // group thread
   bool interactive = false;
-  bool resend = false;  // state_mutex: set again (ParamSpec::every_set), apply even if unchanged
+  bool resend = false;  // NodeState::shared_'s lock: set again (ParamSpec::every_set), apply even if unchanged
   std::shared_ptr<Edge> in_edge;
   std::vector<std::shared_ptr<Edge>> out_edges;
   Tap tap;
@@ -161,6 +163,31 @@ struct Revisions {
     edited.fetch_add(1, std::memory_order_relaxed);
     shown();
   }
+};
+
+/** A value reached only with its mutex held: lock() returns a handle that holds the lock for as
+ *  long as it lives (`auto s = shared_.lock(); s->error = ...`). */
+template <class T>
+class Guarded {
+ public:
+  template <class V>
+  class Handle {
+   public:
+    V* operator->() const { return &v_; }
+    V& operator*() const { return v_; }
+
+   private:
+    friend class Guarded;
+    Handle(std::mutex& m, V& v) : lock_(m), v_(v) {}
+    std::lock_guard<std::mutex> lock_;
+    V& v_;
+  };
+  Handle<T> lock() { return {m_, v_}; }
+  Handle<const T> lock() const { return {m_, v_}; }
+
+ private:
+  mutable std::mutex m_;
+  T v_;
 };
 
 class NodeState : public std::enable_shared_from_this<NodeState> {
@@ -220,7 +247,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   const std::vector<std::shared_ptr<Edge>>& paramOutEdges(int p) const { return params[p].out_edges; }
   const std::vector<std::shared_ptr<EventEdge>>& triggerEdges(int t) const { return trigger_edges[t]; }
   const std::vector<std::shared_ptr<EventEdge>>& slotEdges(int s) const { return slot_edges[s]; }
-  /** Its description as a save keeps it (under state_mutex: requested values, enabled, ui). */
+  /** Its description as a save keeps it (under shared_'s lock: requested values, enabled, ui). */
   NodeDescription describe() const;
   /** Recomputes `live` from its senders' (graph_live.cpp walks the region in topological order). */
   void updateLive();
@@ -260,7 +287,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Where Node::requestEdit asks (the graph's); null outside a graph. */
   EditRequests* editRequests() const { return edits.get(); }
 
-  // --- behind state_mutex: any thread; each takes the lock ---
+  // --- Shared, and requested parameter values: any thread; each takes shared_'s lock ---
   std::string error() const;
   /** The requested enabled flag (an edit; a placeholder keeps it in its description). Its group
    *  thread applies it (applyEnabled). */
@@ -409,7 +436,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 
   // Ports: their edges are structure; a port's firing state (InputState::current,
   // OutputState::pending, ParamState::active) is its group thread's; ParamState::requested is
-  // state_mutex's; InputState::msg/full is the one handoff (see the top of this file).
+  // under shared_'s lock; InputState::msg/full is the one handoff (see the top of this file).
   std::vector<std::unique_ptr<InputState>> inputs;
   std::vector<OutputState> outputs;
   std::vector<ParamState> params;
@@ -431,10 +458,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   ThreadGroup* group_ = nullptr;  // structure; also read under group_mutex (homeGroup)
   bool removed = false;  // structure; also read under group_mutex
 
-  // --- state_mutex (edits write, any thread reads under it) ---
-  bool enabled = true;  // requested
-  bool outer_enabled = true;  // every subgraph it lies in is enabled (edits only)
-  // host_, edits, slot_edges, group_mutex, state_mutex, ui, placeholder: declared last (cache lines)
+  // host_, edits, slot_edges, group_mutex, shared_, placeholder: declared last (cache lines)
 
   int gates() const;
   void adjust(int delta);
@@ -461,8 +485,6 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   const bool driven_;  // the type's source mode: an interface keeps it
   bool active_enabled_ = true;
   std::atomic<bool> params_dirty_{false};
-  bool apply_posted_ = false;  // state_mutex
-  bool resend_due_ = false;  // state_mutex: a downstreamChanged() is set on a timer
   std::atomic<bool> has_error_{false};
   static constexpr std::chrono::seconds kErrorLogInterval{5};
   // written by the group thread only (load + store, no read-modify-write), read by anyone
@@ -499,30 +521,38 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::shared_ptr<EditRequests> edits;  // structure: the graph's, where Node::requestEdit asks
   std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;  // structure: per slot, incoming
   mutable std::mutex group_mutex;  // for readers of `group_` outside edits (notifyNewData)
-  mutable std::mutex state_mutex;
-  std::string ui_;  // state_mutex
-  NodeDescription placeholder;  // structure: for placeholders, the description kept verbatim
-
-  std::chrono::steady_clock::time_point last_resend_;  // state_mutex
-  std::string error_;  // state_mutex
-  std::chrono::steady_clock::time_point error_logged_;  // state_mutex
-  const std::chrono::steady_clock::time_point added_at_ = std::chrono::steady_clock::now();  // what profile() is over at first
-  // The distributions: written by the group thread (timed firings), read by stats(). The window
-  // is the counts since `window_[0]`, a reading 5 to 10 s old (state_mutex).
-  Histogram time_hist_, latency_hist_;
-  std::atomic<std::int64_t> latency_total_{0};
-  std::atomic<std::uint64_t> dropped_{0};  // Node::countDropped, from any thread
-  std::atomic<std::uint64_t> latency_count_{0};
   struct Reading {
     HistogramCounts time, latency;
     std::int64_t latency_total = 0;
     std::uint64_t latency_count = 0;
     std::chrono::steady_clock::time_point at{};
   };
-  mutable std::array<Reading, 2> window_;  // state_mutex: the older and the newer reading
+  /** What other threads read and edits set: reached only with its lock held (Guarded). */
+  struct Shared {
+    bool enabled = true;  // requested
+    bool outer_enabled = true;  // every subgraph it lies in is enabled (edits only)
+    bool apply_posted = false;  // applyParams() is in its group's mail
+    bool resend_due = false;  // a downstreamChanged() is set on a timer
+    std::string ui;  // UI metadata
+    std::string error;
+    std::chrono::steady_clock::time_point error_logged, last_resend;
+    /** The older and the newer reading the stats window is over (stats() moves it). */
+    mutable std::array<Reading, 2> window;
+  };
+  Guarded<Shared> shared_;
+  NodeDescription placeholder;  // structure: for placeholders, the description kept verbatim
+
+  const std::chrono::steady_clock::time_point added_at_ = std::chrono::steady_clock::now();  // what profile() is over at first
+  // The distributions: written by the group thread (timed firings), read by stats(). The window
+  // is the counts since `Shared::window[0]`, a reading 5 to 10 s old.
+  Histogram time_hist_, latency_hist_;
+  std::atomic<std::int64_t> latency_total_{0};
+  std::atomic<std::uint64_t> dropped_{0};  // Node::countDropped, from any thread
+  std::atomic<std::uint64_t> latency_count_{0};
   /** A firing with a frame from now: its latency (Message::frame to `wall_ns`) counted. */
   void recordLatency(std::int64_t wall_ns);
-  void fillDistributions(NodeStats& s) const;  // under state_mutex
+  /** Fills the percentiles over `window` (Shared's, with its lock held), moving it on. */
+  void fillDistributions(NodeStats& s, std::array<Reading, 2>& window) const;
   static constexpr std::chrono::seconds kWindowStep{5};
   static constexpr std::int64_t kLiveFrameNs = 3600LL * 1000000000LL;  // a frame an hour old is no live one
 };

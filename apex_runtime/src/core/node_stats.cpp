@@ -42,7 +42,7 @@ void NodeState::recordLatency(std::int64_t wall_ns) {
     out.latency_seen = sent;
     if (!out.latency) {
       auto made = std::make_shared<OutputLatency>();
-      std::lock_guard<std::mutex> lock(state_mutex);
+      auto lock = shared_.lock();  // stats() reads it from another thread
       out.latency = std::move(made);
     }
     out.latency->hist.add(latency);
@@ -62,13 +62,13 @@ void fillLatency(const HistogramCounts& window, Stats& s) {
 }
 }  // namespace
 
-void NodeState::fillDistributions(NodeStats& s) const {
+void NodeState::fillDistributions(NodeStats& s, std::array<Reading, 2>& window) const {
   const auto now = std::chrono::steady_clock::now();
   Reading r{time_hist_.read(), latency_hist_.read(), latency_total_.load(std::memory_order_relaxed),
             latency_count_.load(std::memory_order_relaxed), now};
-  if (window_[1].at == std::chrono::steady_clock::time_point{}) window_[0] = window_[1] = Reading{{}, {}, 0, 0, now};
-  const bool step = now - window_[1].at >= kWindowStep;
-  if (step) window_ = {window_[1], r};  // the window: 5 to 10 s
+  if (window[1].at == std::chrono::steady_clock::time_point{}) window[0] = window[1] = Reading{{}, {}, 0, 0, now};
+  const bool step = now - window[1].at >= kWindowStep;
+  if (step) window = {window[1], r};  // the window: 5 to 10 s
   s.outputs.reserve(outputs.size());
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     s.outputs.push_back({manifest().outputs[i].name, outputs[i].sent.get()});
@@ -78,7 +78,7 @@ void NodeState::fillDistributions(NodeStats& s) const {
     if (step) l.base = l.newer, l.newer = counts;
     fillLatency(counts.since(l.base), s.outputs.back());
   }
-  const Reading& base = window_[0];
+  const Reading& base = window[0];
   const HistogramCounts time = r.time.since(base.time), latency = r.latency.since(base.latency);
   // (a bucket's middle may lie above the largest time measured: never shown above it)
   s.p50_ns = std::min(static_cast<std::uint64_t>(time.quantileNs(0.5)), s.max_ns);
@@ -106,10 +106,10 @@ NodeStats NodeState::stats() const {
   s.mean_ns = meanNs();
   s.timed_firings = timed_firings_.load(std::memory_order_relaxed);
   s.timed_ns = ticksToNs(total_t_.load(std::memory_order_relaxed));
-  std::lock_guard<std::mutex> lock(state_mutex);
-  s.error = error_;
-  s.enabled = enabled && outer_enabled;
-  fillDistributions(s);
+  auto shared = shared_.lock();
+  s.error = shared->error;
+  s.enabled = shared->enabled && shared->outer_enabled;
+  fillDistributions(s, shared->window);
   return s;
 }
 
@@ -126,10 +126,10 @@ NodeProfile NodeState::profile() const {
   NodeProfile p;
   p.name = name_;
   const auto now = std::chrono::steady_clock::now();
-  std::lock_guard<std::mutex> lock(state_mutex);
-  const bool windowed = window_[0].at != std::chrono::steady_clock::time_point{};
+  auto shared = shared_.lock();
+  const bool windowed = shared->window[0].at != std::chrono::steady_clock::time_point{};
   const Reading none{};
-  const Reading& base = windowed ? window_[0] : none;
+  const Reading& base = windowed ? shared->window[0] : none;
   p.window_s = std::chrono::duration<double>(now - (windowed ? base.at : added_at_)).count();
   p.time = bars(time_hist_.read().since(base.time));
   p.latency = bars(latency_hist_.read().since(base.latency));
