@@ -9,8 +9,8 @@
 //    walks it with forEachNeighbour / forEachDataReceiver / forEachSender.
 //  - Firing state (current inputs, pending outputs, active parameters,
 //    active_enabled) belongs to the node's group thread.
-//  - QueueMark (queued, from outside, ready mark) belongs to its ThreadGroup, under the
-//    group's mutex: markQueued / clearQueued.
+//  - Its queue mark (queued, from outside, ready mark) belongs to its ThreadGroup, under
+//    the group's mutex: markQueued / clearQueued.
 //  - An input slot (msg, full) is the one handoff between threads. On a counted
 //    edge the firing rule itself makes it exclusive (the sender writes only once
 //    the receiver took the last message; the receiver takes only when full), so
@@ -260,23 +260,24 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   }
 
   // --- its group's queue: ThreadGroup's, under the group's mutex ---
-  bool queued() const { return queue_.queued; }
+  bool queued() const { return queued_; }
   /** Marks it queued behind `mail_sent` mails of its group; false if it already was. */
   bool markQueued(std::uint64_t mail_sent) {
-    if (queue_.queued) return false;
-    queue_ = QueueMark{true, false, mail_sent};
+    if (queued_) return false;
+    queued_ = true;
+    ready_mark_ = mail_sent;
     return true;
   }
   /** ... by push(), from outside its group's own firing. */
-  void markFromOutside() { queue_.from_outside = true; }
+  void markFromOutside() { queued_from_outside_ = true; }
   /** Off the queue; true if it was queued from outside (the group counts those). */
   bool clearQueued() {
-    const bool outside = queue_.from_outside;
-    queue_ = QueueMark{};
+    const bool outside = queued_from_outside_;
+    queued_ = queued_from_outside_ = false;
     return outside;
   }
   /** How much mail its group had been sent when it was queued. */
-  std::uint64_t readyMark() const { return queue_.ready_mark; }
+  std::uint64_t readyMark() const { return ready_mark_; }
 
   // --- what node code (apex::Node) reaches, on the group thread ---
   const Message& currentInput(int index) const { return inputs[index]->current; }
@@ -447,13 +448,12 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 
   // --- scheduling ---
   Readiness readiness;  // the firing rule's counters (readiness.hpp): atomic, named transitions
-  /** Its place in its group's ready queue: its group's mutex guards it (ThreadGroup). */
-  struct QueueMark {
-    bool queued = false;
-    bool from_outside = false;  // by push(), not by this group's own firing
-    std::uint64_t ready_mark = 0;  // how much mail its group had been sent when it was queued
-  };
-  QueueMark queue_;
+  // Its place in its group's ready queue: ThreadGroup's, under the group's mutex, through
+  // markQueued/clearQueued only. (Three fields, not a struct: one would be 8-aligned and move
+  // everything after it by 8 bytes.)
+  bool queued_ = false;
+  bool queued_from_outside_ = false;  // by push(), not by this group's own firing
+  std::uint64_t ready_mark_ = 0;  // how much mail its group had been sent when it was queued
   std::atomic<bool> has_data{false};  // any thread: a driven source's new data (notifyNewData)
   ThreadGroup* group_ = nullptr;  // structure; also read under group_mutex (homeGroup)
   bool removed = false;  // structure; also read under group_mutex
