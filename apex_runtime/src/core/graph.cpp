@@ -120,7 +120,7 @@ Result<std::string> Graph::Impl::addNodeWith(const std::string& type_id, const s
   }
   auto state = std::make_shared<NodeState>(name, type, next_seq_++, revisions_);
   state->host_ = host_;
-  state->edits = edits_;
+  state->edits_ = edits_;
   if (type->manifest->shape) {  // its ports for its default parameters
     auto iface = interfaceFor(*state, "", nullptr);
     if (!iface) return iface.status();
@@ -165,26 +165,26 @@ Result<std::string> Graph::Impl::addNode(const NodeDescription& d) {
 }
 
 void Graph::Impl::detachAll(NodeState* n) {
-  for (std::size_t i = 0; i < n->inputs.size(); ++i)
-    if (n->inputs[i]->edge) removeEdge(n->inputs[i]->edge);
-  for (auto& o : n->outputs)
+  for (std::size_t i = 0; i < n->inputs_.size(); ++i)
+    if (n->inputs_[i]->edge) removeEdge(n->inputs_[i]->edge);
+  for (auto& o : n->outputs_)
     while (!o.edges.empty()) removeEdge(o.edges.back());
-  for (auto& p : n->params) {
+  for (auto& p : n->params_) {
     if (p.in_edge) removeEdge(p.in_edge);
     while (!p.out_edges.empty()) removeEdge(p.out_edges.back());
   }
-  for (auto& t : n->trigger_edges)
+  for (auto& t : n->trigger_edges_)
     while (!t.empty()) removeEvent(t.back());
-  for (auto& s : n->slot_edges)
+  for (auto& s : n->slot_edges_)
     while (!s.empty()) removeEvent(s.back());
 }
 
 std::vector<NodeState*> Graph::Impl::dataReceivers(NodeState* n) {
   std::vector<NodeState*> out;
-  for (auto& o : n->outputs)
+  for (auto& o : n->outputs_)
     for (auto& e : o.edges)
       if (!e->to_param) out.push_back(e->to);
-  for (auto& p : n->params)
+  for (auto& p : n->params_)
     for (auto& e : p.out_edges)
       if (!e->to_param) out.push_back(e->to);
   return out;
@@ -197,8 +197,8 @@ void Graph::Impl::retire(NodeState* n, bool restructure) {
   detachAll(n);
   change.scope().forget(n);
   {  // removed first: a notifyNewData() from now on cannot queue it again
-    std::lock_guard<std::mutex> g(n->group_mutex);
-    n->removed = true;
+    std::lock_guard<std::mutex> g(n->group_mutex_);
+    n->removed_ = true;
   }
   n->group()->unqueue(n);
 }
@@ -263,15 +263,15 @@ void Graph::Impl::tellSourcesDownstreamChanged() {
   std::int64_t newest = 0;
   for (const Impl::ChangedAt& c : changed) {
     newest = std::max(newest, c.tick);
-    if (Impl::NodePtr n = c.node.lock(); n && !n->removed) at.push_back(n.get()), alive.push_back(std::move(n));
+    if (Impl::NodePtr n = c.node.lock(); n && !n->removed_) at.push_back(n.get()), alive.push_back(std::move(n));
   }
   std::vector<NodeState*> ups = detail::upstreamOf(at);
   for (const Impl::ChangedAt& c : changed)
-    if (Impl::NodePtr n = c.node.lock(); c.itself && n && !n->removed) ups.push_back(n.get());
+    if (Impl::NodePtr n = c.node.lock(); c.itself && n && !n->removed_) ups.push_back(n.get());
   std::sort(ups.begin(), ups.end());
   ups.erase(std::unique(ups.begin(), ups.end()), ups.end());
   for (NodeState* up : ups) {
-    if (!up->type || !up->isSource()) continue;  // a held frame starts at a source
+    if (!up->type_ || !up->isSource()) continue;  // a held frame starts at a source
     // None sent yet: it holds none. One it began to send after the last change went through the
     // graph as changed (a node connected before then got it, one tuned before then fires on it).
     if (up->lastSent() == 0 || up->lastSent() > newest) continue;
@@ -306,7 +306,7 @@ Status Graph::Impl::setInteractive(const std::string& outer, const std::string& 
   if (on && s->manifest().params[i].shapes_interface)
     return Status::error(portLabel("parameter", param, node) +
                          " decides the node's ports: it is set by edits only and cannot have ports");
-  auto& p = s->params[i];
+  auto& p = s->params_[i];
   if (!on && (p.in_edge || !p.out_edges.empty())) {
     std::vector<NodeState*> receivers;
     for (auto& e : p.out_edges)
@@ -334,7 +334,7 @@ Status Graph::Impl::setEnabled(const std::string& node, bool enabled) {
   if (!n) return n.status();
   NodeState& s = *n.value();
   s.setEnabled(enabled);
-  if (s.type) s.post([](NodeState& x) { x.applyEnabled(); });
+  if (s.type_) s.post([](NodeState& x) { x.applyEnabled(); });
   changedDownstreamOf(&s);
   return Status::ok();
 }
@@ -356,10 +356,10 @@ Status Graph::setThreadGroup(const std::string& node, const std::string& group_n
     scope.pause(target);
     // Held across the switch: a notifyNewData() sees the old group with the node
     // unqueued from it, or the new one; never queues it on the old one afterwards.
-    std::lock_guard<std::mutex> g(s->group_mutex);
+    std::lock_guard<std::mutex> g(s->group_mutex_);
     s->group()->unqueue(s);
     s->group_ = target;
-    s->placeholder.thread_group = group_name;
+    s->placeholder_.thread_group = group_name;
   }
   impl.bump();
   return Status::ok();
@@ -439,12 +439,12 @@ Status Graph::setTap(const std::string& outer, const std::string& outer_port, Po
   scope.involve(s);
   const bool watching = static_cast<bool>(tap);
   if (const int i = s->findOutput(port); i >= 0) {
-    s->outputs[i].tap = std::move(tap);
+    s->outputs_[i].tap = std::move(tap);
     if (watching) impl.changedDownstreamOf(s, true);  // a held frame: through the new tap at once
     return Status::ok();
   }
-  if (const int i = s->findParam(port); i >= 0 && s->params[i].interactive) {
-    s->params[i].tap = std::move(tap);
+  if (const int i = s->findParam(port); i >= 0 && s->params_[i].interactive) {
+    s->params_[i].tap = std::move(tap);
     if (watching) impl.changedDownstreamOf(s, true);
     return Status::ok();
   }
@@ -463,7 +463,7 @@ std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const {
   std::map<const NodeState*, std::int64_t> upstream;
   for (NodeState* n : detail::topological(all)) {
     std::int64_t newest = 0;
-    for (auto& in : n->inputs)
+    for (auto& in : n->inputs_)
       if (in->edge) newest = std::max({newest, in->edge->from->lastFired(), upstream[in->edge->from]});
     upstream[n] = newest;
   }
@@ -473,10 +473,10 @@ std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const {
   for (NodeState* n : all) {
     out.push_back(n->stats());
     NodeStats& s = out.back();
-    if (!n->type) s.error = "unknown node type '" + n->typeId() + "'";
+    if (!n->type_) s.error = "unknown node type '" + n->typeId() + "'";
     const std::int64_t last = n->lastFired();
     s.idle_s = double(now - last) * ns_per_tick * 1e-9;
-    const bool stalled = s.idle_s > stall_after_s && (upstream[n] > last || !n->live);
+    const bool stalled = s.idle_s > stall_after_s && (upstream[n] > last || !n->live_);
     if ((stalled && !impl.paused_) || stall_after_s == 0) s.waiting_for = n->waitingFor();
   }
   return out;
@@ -494,7 +494,7 @@ std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const {
   const Impl& impl = *impl_;
   auto lock = impl.lockEdits();
   auto n = impl.find(node);
-  return n ? n->type : nullptr;
+  return n ? n->type_ : nullptr;
 }
 
 std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const {
@@ -502,14 +502,14 @@ std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) co
   auto lock = impl.lockEdits();
   if (auto sg = impl.subgraphs_.find(node)) return impl.facade(*sg);
   auto n = impl.find(node);
-  return n && n->type ? n->iface : nullptr;
+  return n && n->type_ ? n->iface_ : nullptr;
 }
 
 Node* Graph::nodeObject(const std::string& node) const {
   const Impl& impl = *impl_;
   auto lock = impl.lockEdits();
   auto n = impl.find(node);
-  return n ? n->node.get() : nullptr;
+  return n ? n->node_.get() : nullptr;
 }
 
 Result<NodeProfile> Graph::nodeProfile(const std::string& node) const {

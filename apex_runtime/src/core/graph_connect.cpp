@@ -182,8 +182,8 @@ Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
     auto e = std::make_shared<EventEdge>();
     e->from = from.get(), e->trigger = s.index, e->to = to.get(), e->slot = d.index;
     e->to_source = to->manifest().inputs.empty();
-    from->trigger_edges[s.index].push_back(e);
-    to->slot_edges[d.index].push_back(e);
+    from->trigger_edges_[s.index].push_back(e);
+    to->slot_edges_[d.index].push_back(e);
     ++links_;
     return Status::ok();
   }
@@ -197,16 +197,16 @@ Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
   e->to_index = d.index;
   e->read_after_firing = !e->from_param && !e->to_param && from->sendsNewest();
   if (e->from_param) {
-    from->params[s.index].out_edges.push_back(e);
+    from->params_[s.index].out_edges.push_back(e);
   } else {
-    from->outputs[s.index].edges.push_back(e);
-    from->readiness.receiverConnected();
+    from->outputs_[s.index].edges.push_back(e);
+    from->readiness_.receiverConnected();
   }
   if (e->to_param) {
-    to->params[d.index].in_edge = e;
+    to->params_[d.index].in_edge = e;
   } else {
-    to->inputs[d.index]->edge = e;
-    to->readiness.inputConnected();
+    to->inputs_[d.index]->edge = e;
+    to->readiness_.inputConnected();
   }
   ++links_;
   return Status::ok();
@@ -251,7 +251,7 @@ Status Graph::Impl::disconnectDirect(const ConnectionDescription& c) {
   if (!dst_port) return fail(dst_port.message());
   const Endpoint src = locate(*from, src_port.value()), dst = locate(*to, dst_port.value());
   if (src.kind == PortKind::Trigger && dst.kind == PortKind::Slot) {
-    for (auto& e : from->trigger_edges[src.index]) {
+    for (auto& e : from->trigger_edges_[src.index]) {
       if (e->to != to.get() || e->slot != dst.index) continue;
       EditScope scope;
       scope.involve(from.get());
@@ -287,20 +287,20 @@ void Graph::Impl::removeEdge(std::shared_ptr<Edge> e) {
   NodeState* to = e->to;
   auto erase = [&](std::vector<std::shared_ptr<Edge>>& v) { v.erase(std::remove(v.begin(), v.end(), e), v.end()); };
   if (e->from_param) {
-    erase(from->params[e->from_index].out_edges);
+    erase(from->params_[e->from_index].out_edges);
   } else {
-    erase(from->outputs[e->from_index].edges);
-    from->readiness.receiverDisconnected();
+    erase(from->outputs_[e->from_index].edges);
+    from->readiness_.receiverDisconnected();
   }
   if (e->to_param) {
-    to->params[e->to_index].in_edge.reset();
+    to->params_[e->to_index].in_edge.reset();
   } else {
-    auto& in = *to->inputs[e->to_index];
+    auto& in = *to->inputs_[e->to_index];
     std::lock_guard<std::mutex> lock(in.m);
     in.msg = Message();  // a pending message is dropped with its connection
     in.full.store(false, std::memory_order_relaxed);
     in.edge.reset();
-    to->readiness.inputDisconnected();
+    to->readiness_.inputDisconnected();
   }
   e->unread.store(false, std::memory_order_release);
 }
@@ -311,8 +311,8 @@ void Graph::Impl::removeEvent(std::shared_ptr<EventEdge> e) {
     v.erase(std::remove(v.begin(), v.end(), e), v.end());
     return size != v.size();
   };
-  erase(e->from->trigger_edges[e->trigger]);
-  if (erase(e->to->slot_edges[e->slot])) --links_;  // removed once
+  erase(e->from->trigger_edges_[e->trigger]);
+  if (erase(e->to->slot_edges_[e->slot])) --links_;  // removed once
 }
 
 }  // namespace apex

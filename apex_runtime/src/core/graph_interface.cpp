@@ -84,7 +84,9 @@ Dropped dropped(NodeState& n, const Manifest& next) {
     for (const auto& e : n.paramOutEdges(p))
       if (!kept) d.edges.push_back(e);
   }
-  auto add = [&](const std::vector<std::shared_ptr<EventEdge>>& events) { d.events.insert(d.events.end(), events.begin(), events.end()); };
+  auto add = [&](const std::vector<std::shared_ptr<EventEdge>>& events) {
+    d.events.insert(d.events.end(), events.begin(), events.end());
+  };
   for (std::size_t i = 0; i < m.triggers.size(); ++i)
     if (indexOf(next.triggers, m.triggers[i].name) < 0) add(n.triggerEdges(static_cast<int>(i)));
   for (std::size_t i = 0; i < m.slots.size(); ++i)
@@ -102,14 +104,14 @@ void NodeState::setInterface(std::shared_ptr<const Manifest> next_ptr) {
   std::vector<std::unique_ptr<detail::InputState>> inputs;
   for (std::size_t k = 0; k < next.inputs.size(); ++k) {
     const int i = indexOf(m.inputs, next.inputs[k].name);
-    inputs.push_back(i >= 0 ? std::move(n.inputs[i]) : std::make_unique<detail::InputState>());
+    inputs.push_back(i >= 0 ? std::move(n.inputs_[i]) : std::make_unique<detail::InputState>());
     if (inputs.back()->edge) inputs.back()->edge->to_index = static_cast<int>(k);
   }
   std::vector<detail::OutputState> outputs(next.outputs.size());
   for (std::size_t k = 0; k < next.outputs.size(); ++k) {
     const int i = indexOf(m.outputs, next.outputs[k].name);
     if (i < 0) continue;
-    outputs[k] = std::move(n.outputs[i]);
+    outputs[k] = std::move(n.outputs_[i]);
     for (auto& e : outputs[k].edges) e->from_index = static_cast<int>(k);
   }
   std::vector<detail::ParamState> params(next.params.size());
@@ -117,7 +119,7 @@ void NodeState::setInterface(std::shared_ptr<const Manifest> next_ptr) {
     const ParamSpec& spec = next.params[k];
     const int i = indexOf(m.params, spec.name);
     if (i >= 0 && m.params[i].kind == spec.kind) {
-      params[k] = std::move(n.params[i]);
+      params[k] = std::move(n.params_[i]);
       if (!spec.validate(params[k].requested)) params[k].requested = spec.default_value;  // a narrower range
       if (params[k].in_edge) params[k].in_edge->to_index = static_cast<int>(k);
       for (auto& e : params[k].out_edges) e->from_index = static_cast<int>(k);
@@ -129,36 +131,36 @@ void NodeState::setInterface(std::shared_ptr<const Manifest> next_ptr) {
   std::vector<std::vector<std::shared_ptr<EventEdge>>> triggers(next.triggers.size()), slots(next.slots.size());
   for (std::size_t k = 0; k < next.triggers.size(); ++k) {
     const int i = indexOf(m.triggers, next.triggers[k].name);
-    if (i >= 0) triggers[k] = std::move(n.trigger_edges[i]);
+    if (i >= 0) triggers[k] = std::move(n.trigger_edges_[i]);
     for (auto& e : triggers[k]) e->trigger = static_cast<int>(k);
   }
   for (std::size_t k = 0; k < next.slots.size(); ++k) {
     const int i = indexOf(m.slots, next.slots[k].name);
-    if (i >= 0) slots[k] = std::move(n.slot_edges[i]);
+    if (i >= 0) slots[k] = std::move(n.slot_edges_[i]);
     for (auto& e : slots[k]) e->slot = static_cast<int>(k);
   }
 
   auto lock = n.shared_.lock();  // other nodes' threads read its ports and parameters under it
-  n.inputs = std::move(inputs);
-  n.outputs = std::move(outputs);
-  n.params = std::move(params);
-  n.trigger_edges = std::move(triggers);
-  n.slot_edges = std::move(slots);
-  n.iface = std::move(next_ptr);
-  if (n.node) (void)resolveHandles(*n.node, n.manifest());  // a handle whose port went throws when used
+  n.inputs_ = std::move(inputs);
+  n.outputs_ = std::move(outputs);
+  n.params_ = std::move(params);
+  n.trigger_edges_ = std::move(triggers);
+  n.slot_edges_ = std::move(slots);
+  n.iface_ = std::move(next_ptr);
+  if (n.node_) (void)resolveHandles(*n.node_, n.manifest());  // a handle whose port went throws when used
 }
 
 }  // namespace detail
 
 Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeState& n, const std::string& param,
                                                                   const ParamValue* value) const {
-  const Manifest& type = *n.type->manifest;
-  if (!type.shape) return n.iface;
+  const Manifest& type = *n.type_->manifest;
+  if (!type.shape) return n.iface_;
   ParamValues values = n.requestedParams();
   if (value) values.set(param, *value);
   auto next = std::make_shared<Manifest>(type);
   auto fail = [&](const std::string& why) {
-    return Status::error(nodeLabel(n.name(), n.type->id) + " cannot make its ports" +
+    return Status::error(nodeLabel(n.name(), n.type_->id) + " cannot make its ports" +
                          (value ? " for " + param + " = " + toText(*value) : std::string()) + ": " + why);
   };
   try {
@@ -172,7 +174,7 @@ Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeStat
 }
 
 void Graph::Impl::applyInterface(NodeState* n, std::shared_ptr<const Manifest> next, const std::function<void()>& also) {
-  if (next == n->iface) {
+  if (next == n->iface_) {
     if (also) also();
     return;
   }

@@ -29,9 +29,11 @@ std::string targetName(const detail::Edge& e) {
 void describeConnections(const NodeState& n, std::vector<ConnectionDescription>& out) {
   const Manifest& m = n.manifest();
   for (std::size_t i = 0; i < m.outputs.size(); ++i)
-    for (auto& e : n.outputEdges(static_cast<int>(i))) out.push_back({n.name(), m.outputs[i].name, e->to->name(), targetName(*e), 0});
+    for (auto& e : n.outputEdges(static_cast<int>(i)))
+      out.push_back({n.name(), m.outputs[i].name, e->to->name(), targetName(*e), 0});
   for (std::size_t i = 0; i < m.params.size(); ++i)
-    for (auto& e : n.paramOutEdges(static_cast<int>(i))) out.push_back({n.name(), m.params[i].name, e->to->name(), targetName(*e), 0});
+    for (auto& e : n.paramOutEdges(static_cast<int>(i)))
+      out.push_back({n.name(), m.params[i].name, e->to->name(), targetName(*e), 0});
   for (std::size_t i = 0; i < m.triggers.size(); ++i)
     for (auto& e : n.triggerEdges(static_cast<int>(i)))
       out.push_back({n.name(), m.triggers[i].name, e->to->name(), e->to->manifest().slots[e->slot].name, 0});
@@ -43,8 +45,8 @@ namespace detail {
 
 NodeDescription NodeState::describe() const {
   auto shared = shared_.lock();
-  if (!type) {
-    NodeDescription d = placeholder;
+  if (!type_) {
+    NodeDescription d = placeholder_;
     d.name = name_;
     d.placeholder = true;
     d.thread_group = group_->name();
@@ -54,11 +56,11 @@ NodeDescription NodeState::describe() const {
   }
   NodeDescription d;
   d.name = name_;
-  d.type = type->id;
-  d.interface = iface;
-  for (std::size_t i = 0; i < params.size(); ++i) {
-    d.parameters.emplace_back(manifest().params[i].name, toText(params[i].requested));
-    if (params[i].interactive) d.interactive.push_back(manifest().params[i].name);
+  d.type = type_->id;
+  d.interface = iface_;
+  for (std::size_t i = 0; i < params_.size(); ++i) {
+    d.parameters.emplace_back(manifest().params[i].name, toText(params_[i].requested));
+    if (params_[i].interactive) d.interactive.push_back(manifest().params[i].name);
   }
   d.enabled = shared->enabled;
   d.thread_group = group_->name();
@@ -80,7 +82,7 @@ Result<NodeDescription> Graph::describeNode(const std::string& name) const {
   const Impl::NodePtr n = impl.find(name);
   if (!n) return Status::error("no node named '" + name + "'");
   NodeDescription d = n->describe();
-  if (n->type) d.error = n->error();
+  if (n->type_) d.error = n->error();
   return d;
 }
 
@@ -112,7 +114,7 @@ GraphDescription Graph::Impl::describeLocked() const {
   std::map<std::tuple<std::uint64_t, int, std::string>, NodeDescription> nodes;
   for (auto& [seq, n] : order_) {
     auto& d = nodes[{seq, 1, ""}] = n->describe();
-    if (n->type) d.error = n->error();
+    if (n->type_) d.error = n->error();
   }
   for (auto& [path, sg] : subgraphs_.all()) {
     NodeDescription d;
@@ -125,7 +127,7 @@ GraphDescription Graph::Impl::describeLocked() const {
     for (const auto& spec : d.interface->params) {
       auto at = subgraphs_.exportedParam(path, spec.name);
       auto n = at ? find(at.value().first) : nullptr;
-      const int i = n && n->type ? n->findParam(at.value().second) : -1;
+      const int i = n && n->type_ ? n->findParam(at.value().second) : -1;
       if (i < 0) continue;
       d.parameters.emplace_back(spec.name, toText(n->requestedParam(i)));
       if (n->interactive(i)) d.interactive.push_back(spec.name);
@@ -147,7 +149,7 @@ Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   const std::string group_name = d.thread_group.empty() ? kDefaultGroup : d.thread_group;
   if (auto room = roomFor(group_name, 1); !room) return Status::error(nodeLabel(d.name) + ": " + room.message());
   auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revisions_);
-  state->placeholder = d;
+  state->placeholder_ = d;
   state->setUi(d.ui);
   state->setEnabled(d.enabled);
   state->group_ = group(group_name);
@@ -228,9 +230,9 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   for (const auto& name : keep) group(name);
   for (auto& [seq, n] : staged.order_) {
     (void)n->clearQueued();  // the staged groups and their counts go away
-    n->revisions = revisions_;
-    n->edits = edits_;
-    std::lock_guard<std::mutex> g(n->group_mutex);
+    n->revisions_ = revisions_;
+    n->edits_ = edits_;
+    std::lock_guard<std::mutex> g(n->group_mutex_);
     n->group_ = group(n->group_->name());
   }
   nodes_ = std::move(staged.nodes_);
@@ -247,13 +249,13 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   // node before any node may fire (a group runs mail before firing), so a node
   // disabled in the file never fires enabled.
   for (auto& [seq, n] : order_)
-    if (n->type)
+    if (n->type_)
       n->post([](NodeState& x) {
         x.applyEnabled();
         x.runSetup();  // applies the parameters first
       });
   for (auto& [seq, n] : order_)
-    if (n->readiness.ready()) n->group()->push(n);
+    if (n->readiness_.ready()) n->group()->push(n);
   bump();
   for (ThreadGroup* g : paused) g->resume();
 }

@@ -88,7 +88,8 @@ void Node::updateParam(std::string_view name, ParamValue value) {
   auto& s = stateOf(state_.load(std::memory_order_acquire));
   const int i = s.findParam(name);
   if (i < 0) unknown(s, "parameter", name, s.manifest().listParams());
-  if (auto st = s.manifest().params[i].validate(value); !st) throw std::invalid_argument(nodeLabel(s.name()) + ": " + st.message());
+  if (auto st = s.manifest().params[i].validate(value); !st)
+    throw std::invalid_argument(nodeLabel(s.name()) + ": " + st.message());
   s.updateParam(i, std::move(value));
 }
 

@@ -16,13 +16,13 @@ void NodeState::runSlot(int slot) {
   }
   if (slot >= static_cast<int>(manifest().slots.size())) return;  // posted before an interface change
   const auto& handler = manifest().slots[slot].handler;
-  const bool ok = runHandler("slot '" + manifest().slots[slot].name + "'", [&] { handler(*node); });
+  const bool ok = runHandler("slot '" + manifest().slots[slot].name + "'", [&] { handler(*node_); });
   if (!ok) slot_error_ = true;
   else if (slot_error_ && has_error_.load(std::memory_order_relaxed)) clearError();
 }
 
 bool NodeState::runHandler(const std::string& what, const std::function<void()>& fn) {
-  if (!node) return false;  // a placeholder
+  if (!node_) return false;  // a placeholder
   in_handler_ = true;
   const bool ok = guarded(what.c_str(), fn);
   const bool failed = !ok || reported_;
@@ -30,7 +30,7 @@ bool NodeState::runHandler(const std::string& what, const std::function<void()>&
   reported_ = false;
   if (ok && !sendFromSlot(what)) held_triggers_.clear();  // its events would act on values that did not go out
   if (!ok) {
-    for (auto& out : outputs) out.pending = Message();
+    for (auto& out : outputs_) out.pending = Message();
     held_triggers_.clear();
   }
   releaseTriggers();
@@ -40,8 +40,8 @@ bool NodeState::runHandler(const std::string& what, const std::function<void()>&
 bool NodeState::sendFromSlot(const std::string& slot) {
   bool all = true;
   nameFrames(0);
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    OutputState& out = outputs[i];
+  for (std::size_t i = 0; i < outputs_.size(); ++i) {
+    OutputState& out = outputs_[i];
     if (out.pending.isNothing()) continue;
     Message m = std::move(out.pending);
     out.pending = Message();
@@ -57,7 +57,7 @@ bool NodeState::sendFromSlot(const std::string& slot) {
     for (auto& e : out.edges)
       if (!e->to_param && e->unread.load(std::memory_order_acquire)) busy = e.get();
     if (busy) {
-      setError(nodeLabel(name_, type->id) + " " + slot + " published on output '" + manifest().outputs[i].name + "' while '" +
+      setError(nodeLabel(name_, type_->id) + " " + slot + " published on output '" + manifest().outputs[i].name + "' while '" +
                busy->to->name() + "' had not read its last message: not sent");
       all = false;
       continue;
@@ -74,7 +74,7 @@ bool NodeState::sendFromSlot(const std::string& slot) {
     }
     if (out.tap) out.tap(m);
     if (!m.isEndOfSequence()) out.sent.add();
-    readiness.block(counted);  // released as the receivers read, as after a firing
+    readiness_.block(counted);  // released as the receivers read, as after a firing
     for (std::size_t k = 0; k < out.edges.size(); ++k) {
       const auto& e = out.edges[k];
       if (!reaches(*e)) continue;
@@ -99,11 +99,11 @@ void NodeState::releaseTriggers() {
 
 std::vector<ParamTarget> NodeState::parameterTargets(int index) const {
   std::vector<ParamTarget> out;
-  for (const auto& e : outputs[index].edges) {
+  for (const auto& e : outputs_[index].edges) {
     if (!e->to_param || e->dead) continue;
     NodeState& to = *e->to;
     auto lock = to.shared_.lock();  // its interface and values change under it
-    out.push_back({to.name_, to.manifest().params[e->to_index], to.params[e->to_index].requested});
+    out.push_back({to.name_, to.manifest().params[e->to_index], to.params_[e->to_index].requested});
   }
   return out;
 }
@@ -120,9 +120,9 @@ void NodeState::fireTrigger(int trigger) {
       e->pending.fetch_sub(1, std::memory_order_relaxed);
       if (e->dropped.fetch_add(1, std::memory_order_relaxed) == 0)
         log(LogLevel::Warn, e->to->name(),
-            nodeLabel(e->to->name()) + " slot '" + e->to->manifest().slots[e->slot].name + "' runs slower than " + nodeLabel(name_) +
-                " fires '" + manifest().triggers[trigger].name + "': with " + std::to_string(kMaxPendingEvents) +
-                " events waiting, further ones are dropped until it catches up");
+            nodeLabel(e->to->name()) + " slot '" + e->to->manifest().slots[e->slot].name + "' runs slower than " +
+                nodeLabel(name_) + " fires '" + manifest().triggers[trigger].name + "': with " +
+                std::to_string(kMaxPendingEvents) + " events waiting, further ones are dropped until it catches up");
       return;
     }
     e->to->post([e](NodeState& n) {
@@ -132,9 +132,9 @@ void NodeState::fireTrigger(int trigger) {
   };
   // Sources last: what a source sends after its event (a player's restart) finds every node
   // downstream already told (a mean's reset), since their mail is posted before its first frame is.
-  for (const auto& e : trigger_edges[trigger])
+  for (const auto& e : trigger_edges_[trigger])
     if (!e->to_source) send(e);
-  for (const auto& e : trigger_edges[trigger])
+  for (const auto& e : trigger_edges_[trigger])
     if (e->to_source) send(e);
 }
 

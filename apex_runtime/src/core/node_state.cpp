@@ -20,30 +20,30 @@ std::shared_ptr<const Manifest> manifestOf(const std::shared_ptr<const NodeType>
 
 NodeState::NodeState(std::string n, std::shared_ptr<const NodeType> t, std::uint64_t s, std::shared_ptr<Revisions> r)
     : name_(std::move(n)),
-      type(std::move(t)),
-      iface(manifestOf(type)),
+      type_(std::move(t)),
+      iface_(manifestOf(type_)),
       seq_(s),
-      revisions(std::move(r)),
-      driven_(iface->source_mode != SourceMode::FreeRunning) {
+      revisions_(std::move(r)),
+      driven_(iface_->source_mode != SourceMode::FreeRunning) {
   const Manifest& m = manifest();
-  for (std::size_t i = 0; i < m.inputs.size(); ++i) inputs.push_back(std::make_unique<InputState>());
-  outputs.resize(m.outputs.size());
-  params.resize(m.params.size());
-  for (std::size_t i = 0; i < params.size(); ++i) {
-    params[i].requested = params[i].active = m.params[i].default_value;
-    params[i].interactive = m.params[i].interactive;
+  for (std::size_t i = 0; i < m.inputs.size(); ++i) inputs_.push_back(std::make_unique<InputState>());
+  outputs_.resize(m.outputs.size());
+  params_.resize(m.params.size());
+  for (std::size_t i = 0; i < params_.size(); ++i) {
+    params_[i].requested = params_[i].active = m.params[i].default_value;
+    params_[i].interactive = m.params[i].interactive;
   }
-  trigger_edges.resize(m.triggers.size());
-  slot_edges.resize(m.slots.size());
-  readiness.start(driven());
+  trigger_edges_.resize(m.triggers.size());
+  slot_edges_.resize(m.slots.size());
+  readiness_.start(driven());
   last_fired_.store(ticks());  // idle since added
 }
 
 NodeState::~NodeState() {
   // The node first, while every member is alive: its destructor may stop a thread of its own
-  // that calls notifyNewData() until then (members go in reverse order: group_mutex, declared
+  // that calls notifyNewData() until then (members go in reverse order: group_mutex_, declared
   // after `node`, would be gone; the test Races.RemovingADrivenNodeLeavesNothingQueued hung).
-  node.reset();
+  node_.reset();
 }
 
 int NodeState::findInput(std::string_view n) const { return indexOf(manifest().inputs, n); }
@@ -51,85 +51,77 @@ int NodeState::findOutput(std::string_view n) const { return indexOf(manifest().
 int NodeState::findParam(std::string_view n) const { return indexOf(manifest().params, n); }
 int NodeState::findTrigger(std::string_view n) const { return indexOf(manifest().triggers, n); }
 
-std::string NodeState::error() const {
-  return shared_.lock()->error;
-}
+std::string NodeState::error() const { return shared_.lock()->error; }
 
 void NodeState::setEnabled(bool on) {
   auto shared = shared_.lock();
   shared->enabled = on;
-  placeholder.enabled = on;
+  placeholder_.enabled = on;
 }
 
-void NodeState::setOuterEnabled(bool on) {
-  shared_.lock()->outer_enabled = on;
-}
+void NodeState::setOuterEnabled(bool on) { shared_.lock()->outer_enabled = on; }
 
-std::string NodeState::ui() const {
-  return shared_.lock()->ui;
-}
+std::string NodeState::ui() const { return shared_.lock()->ui; }
 
-void NodeState::setUi(std::string text) {
-  shared_.lock()->ui = std::move(text);
-}
+void NodeState::setUi(std::string text) { shared_.lock()->ui = std::move(text); }
 
 ParamValue NodeState::requestedParam(int index) const {
   auto lock = shared_.lock();
-  return params[index].requested;
+  return params_[index].requested;
 }
 
 ParamValues NodeState::requestedParams() const {
   ParamValues values;
   auto lock = shared_.lock();
-  for (std::size_t i = 0; i < params.size(); ++i) values.set(manifest().params[i].name, params[i].requested);
+  for (std::size_t i = 0; i < params_.size(); ++i) values.set(manifest().params[i].name, params_[i].requested);
   return values;
 }
 
 void NodeState::presetParam(int index, ParamValue v) {
   auto lock = shared_.lock();
-  params[index].requested = std::move(v);
-  params[index].resend = manifest().params[index].every_set;  // as requestParam: a command, applied even if equal
+  params_[index].requested = std::move(v);
+  params_[index].resend = manifest().params[index].every_set;  // as requestParam: a command, applied even if equal
 }
 
 // ---------------------------------------------------------------- counting
 
 bool NodeState::isSource() const {
-  if (readiness.connectedInputs() > 0) return false;
+  if (readiness_.connectedInputs() > 0) return false;
   for (const auto& in : manifest().inputs)
     if (!in.optional) return false;
   return true;
 }
 
 int NodeState::gates() const {
-  if (!type || !live) return 1;  // a placeholder, or a node cut off from every source, never fires
-  if (readiness.liveInputs() > 0) return 0;
+  if (!type_ || !live_) return 1;  // a placeholder, or a node cut off from every source, never fires
+  if (readiness_.liveInputs() > 0) return 0;
   if (!active_enabled_) return 1;  // a disabled source stays quiet
-  if (!driven() && readiness.countedReceivers() == 0) return 1;  // a free-running source with no receiver
+  if (!driven() && readiness_.countedReceivers() == 0) return 1;  // a free-running source with no receiver
   return 0;
 }
 
 int NodeState::structuralBlockers() {
   int p = gates();
-  for (auto& in : inputs)
+  for (auto& in : inputs_)
     if (in->edge && in->edge->live && !in->full.load(std::memory_order_acquire)) ++p;
-  for (auto& out : outputs)
+  for (auto& out : outputs_)
     for (auto& e : out.edges) p += e->unread.load(std::memory_order_acquire) ? 1 : 0;
   return p;
 }
 
 void NodeState::updateLive() {
   int live_inputs = 0;
-  for (auto& in : inputs) {
+  for (auto& in : inputs_) {
     if (!in->edge) continue;
-    in->edge->live = in->edge->from->live;
+    in->edge->live = in->edge->from->live_;
     live_inputs += in->edge->live ? 1 : 0;
   }
-  readiness.setLiveInputs(live_inputs);
-  live = type && (isSource() || live_inputs > 0);
+  readiness_.setLiveInputs(live_inputs);
+  live_ = type_ && (isSource() || live_inputs > 0);
 }
 
 void NodeState::flushPorts() {
-  for (auto& in : inputs) {
+  for (auto& in : inputs_) {
     // A value from a parameter output is a setting, not a frame: it stays until replaced.
     if (in->edge && !in->edge->counted()) continue;
     std::lock_guard<std::mutex> lock(in->m);
@@ -137,34 +129,34 @@ void NodeState::flushPorts() {
     in->full.store(false, std::memory_order_release);
     if (in->edge) in->edge->unread.store(false, std::memory_order_release);
   }
-  for (auto& out : outputs)
+  for (auto& out : outputs_)
     for (auto& e : out.edges) e->unread.store(false, std::memory_order_release);
 }
 
 std::string NodeState::waitingFor() const {
-  if (!type) return "";
-  if (!live) {
-    for (std::size_t i = 0; i < inputs.size(); ++i)
-      if (!manifest().inputs[i].optional && !inputs[i]->edge)
+  if (!type_) return "";
+  if (!live_) {
+    for (std::size_t i = 0; i < inputs_.size(); ++i)
+      if (!manifest().inputs[i].optional && !inputs_[i]->edge)
         return "cut off: input '" + manifest().inputs[i].name + "' is not connected";
     return "cut off: no source reaches its inputs";
   }
   // An unread output blocks whatever the inputs hold: say it first.
-  for (std::size_t i = 0; i < outputs.size(); ++i)
-    for (auto& e : outputs[i].edges)
+  for (std::size_t i = 0; i < outputs_.size(); ++i)
+    for (auto& e : outputs_[i].edges)
       if (e->unread.load(std::memory_order_acquire))
         return "waiting for '" + e->to->name() + "' to read '" + manifest().outputs[i].name + "'";
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    const Edge* e = inputs[i]->edge.get();
-    if (e && e->live && !inputs[i]->full.load(std::memory_order_acquire))
+  for (std::size_t i = 0; i < inputs_.size(); ++i) {
+    const Edge* e = inputs_[i]->edge.get();
+    if (e && e->live && !inputs_[i]->full.load(std::memory_order_acquire))
       return "waiting for input '" + manifest().inputs[i].name + "' from '" + e->from->name() + "'";
   }
-  if (driven() && !has_data.load(std::memory_order_acquire)) return "waiting for new data";
+  if (driven() && !has_data_.load(std::memory_order_acquire)) return "waiting for new data";
   return "";
 }
 
 void NodeState::adjust(int delta) {
-  if (delta > 0) readiness.block(delta);
+  if (delta > 0) readiness_.block(delta);
   if (delta < 0) unblock(-delta);
 }
 
@@ -193,21 +185,21 @@ void NodeState::adjust(int delta) {
 
 [[gnu::always_inline]] inline void NodeState::reserve() {
   // Every condition this firing consumes: inputs become empty, receivers get an unread
-  // message, a driven source uses up its data. has_data is cleared first: a notifyNewData()
+  // message, a driven source uses up its data. has_data_ is cleared first: a notifyNewData()
   // arriving meanwhile then counts for the next firing (its release finds nothing to release
   // yet and drives the count below zero; the reservation then lands on zero exactly when that
   // release was the only thing missing).
-  if (!driven()) return readiness.reserveAtZero();  // nothing else can release it now
-  has_data.store(false, std::memory_order_release);
-  if (readiness.reserve(true)) group_->runNext(this);  // new data came between the two lines
+  if (!driven()) return readiness_.reserveAtZero();  // nothing else can release it now
+  has_data_.store(false, std::memory_order_release);
+  if (readiness_.reserve(true)) group_->runNext(this);  // new data came between the two lines
 }
 
 [[gnu::always_inline]] inline NodeState::Firing NodeState::takeInputs() {
   Firing f;
   f.skip = !active_enabled_;
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    take(*inputs[i], manifest().inputs[i].optional, f.skip, f.read_later);
-    const Message& m = inputs[i]->current;
+  for (std::size_t i = 0; i < inputs_.size(); ++i) {
+    take(*inputs_[i], manifest().inputs[i].optional, f.skip, f.read_later);
+    const Message& m = inputs_[i]->current;
     f.end = f.end || m.isEndOfSequence();
     f.data = f.data || (!m.isNothing() && !m.isEndOfSequence());
     if (m.frame() > f.frame) f.frame = m.frame();
@@ -219,18 +211,18 @@ void NodeState::adjust(int delta) {
   bool ok = true;
   in_handler_ = true;
   if (f.end && active_enabled_) {
-    ok = guarded("at the end of a sequence", [this] { node->endOfSequence(); });
+    ok = guarded("at the end of a sequence", [this] { node_->endOfSequence(); });
   } else if (f.end) {
-    for (auto& out : outputs) out.pending = Message::endOfSequence();  // a disabled node passes the end on
+    for (auto& out : outputs_) out.pending = Message::endOfSequence();  // a disabled node passes the end on
   } else if (!f.skip) {
-    ok = guarded("", [this] { node->process(); });
+    ok = guarded("", [this] { node_->process(); });
     if (!ok || reported_) slot_error_ = false;  // the error shown is this firing's own
     else if (!slot_error_ && has_error_.load(std::memory_order_relaxed)) clearError();
   }
   in_handler_ = false;
   reported_ = false;
   if (!ok)  // a failed firing sends Nothing; a failed end of a sequence still ends it downstream
-    for (auto& out : outputs) out.pending = f.end ? Message::endOfSequence() : Message();
+    for (auto& out : outputs_) out.pending = f.end ? Message::endOfSequence() : Message();
 }
 
 [[gnu::always_inline]] inline void NodeState::deliverTo(const std::shared_ptr<Edge>& edge, Message&& m, ThreadGroup* here) {
@@ -238,7 +230,7 @@ void NodeState::adjust(int delta) {
   if (e.to_param || !e.counted()) return deliverSlow(edge, std::move(m), here);
   // A counted data edge (the common case, inlined): the receiver took the last one, the slot is ours.
   NodeState* to = e.to;
-  InputState& in = *to->inputs[e.to_index];
+  InputState& in = *to->inputs_[e.to_index];
   in.msg = std::move(m);
   in.full.store(true, std::memory_order_relaxed);
   e.unread.store(true, std::memory_order_relaxed);
@@ -248,7 +240,7 @@ void NodeState::adjust(int delta) {
 [[gnu::always_inline]] inline void NodeState::deliverOutputs(const Firing& f) {
   bool data = f.data;
   nameFrames(f.frame);
-  for (auto& out : outputs) {
+  for (auto& out : outputs_) {
     if (!out.pending.isNothing() && !out.pending.isEndOfSequence()) data = true, out.sent.add();
     if (out.tap) out.tap(out.pending);
     const std::size_t n = out.edges.size();
@@ -260,28 +252,28 @@ void NodeState::adjust(int delta) {
     deliverTo(out.edges[n - 1], std::move(out.pending), group_);  // leaves Nothing behind
   }
   last_had_data_ = data;
-  for (std::size_t i = 0; i < params.size(); ++i)
-    if (!params[i].out_edges.empty() || params[i].tap) publishParam(static_cast<int>(i), group_);
+  for (std::size_t i = 0; i < params_.size(); ++i)
+    if (!params_[i].out_edges.empty() || params_[i].tap) publishParam(static_cast<int>(i), group_);
 }
 
 // The steps of a firing are functions of their own for the reader, inlined into fireIfReady:
 // as calls they cost ~5-10% per hop (bench/core_bench.cpp, old and new interleaved).
 bool NodeState::fireIfReady() {
-  if (!readiness.ready() || removed || !live) return false;
+  if (!readiness_.ready() || removed_ || !live_) return false;
   if (params_dirty_.load(std::memory_order_acquire)) applyParams();
   reserve();
   Firing f = takeInputs();
   run(f);
   deliverOutputs(f);
-  for (auto& in : inputs) in->current = Message();
+  for (auto& in : inputs_) in->current = Message();
   if (f.read_later) readAfterFiring();
   if (!held_triggers_.empty()) releaseTriggers();  // checked here: most firings need neither call
-  if (!f.skip && !f.end && !trigger_edges[kProcessedIndex].empty()) fireTrigger(kProcessedIndex);
+  if (!f.skip && !f.end && !trigger_edges_[kProcessedIndex].empty()) fireTrigger(kProcessedIndex);
   return true;
 }
 
 void NodeState::readAfterFiring() {
-  for (auto& in : inputs) {
+  for (auto& in : inputs_) {
     Edge* e = in->edge.get();
     if (e && e->read_after_firing && e->unread.exchange(false, std::memory_order_acq_rel)) e->from->unblock(1, group_);
   }
@@ -321,7 +313,7 @@ void NodeState::deliverSlow(const std::shared_ptr<Edge>& edge, Message&& m, Thre
     });
     return;
   }
-  InputState& in = *to->inputs[e.to_index];
+  InputState& in = *to->inputs_[e.to_index];
   bool was_full;
   {
     std::lock_guard<std::mutex> lock(in.m);
@@ -348,7 +340,7 @@ void NodeState::setError(std::string text) {
     shared->error = text;
     has_error_.store(true, std::memory_order_relaxed);
   }
-  revisions->shown();
+  revisions_->shown();
   if (report) log(LogLevel::Error, name_, text);
 }
 
@@ -359,7 +351,7 @@ void NodeState::clearError() {
     has_error_.store(false, std::memory_order_relaxed);
   }
   slot_error_ = false;
-  revisions->shown();
+  revisions_->shown();
   log(LogLevel::Info, name_, "recovered");
 }
 
@@ -370,7 +362,7 @@ void NodeState::post(std::function<void(NodeState&)> fn) { group_->post(Mail{sha
 void NodeState::postFromAnywhere(std::function<void(NodeState&)> fn) {
   auto self = weak_from_this().lock();
   if (!self) return;  // being destroyed (the node's own members may call in while they stop)
-  std::lock_guard<std::mutex> lock(group_mutex);  // against a move to another group
+  std::lock_guard<std::mutex> lock(group_mutex_);  // against a move to another group
   if (!group_) return;
   // Posted even if the node was removed meanwhile: its group skips the mail, and the reference
   // taken here goes on that thread. Dropped here, it could be the last one, destroying the node on
@@ -380,24 +372,24 @@ void NodeState::postFromAnywhere(std::function<void(NodeState&)> fn) {
 
 void NodeState::notifyNewData() {
   if (!driven()) return;  // only a driven source waits for data (reserveAtZero relies on it)
-  std::lock_guard<std::mutex> lock(group_mutex);
-  if (removed || !group_) return;
-  if (!has_data.exchange(true, std::memory_order_acq_rel)) unblock(1);
+  std::lock_guard<std::mutex> lock(group_mutex_);
+  if (removed_ || !group_) return;
+  if (!has_data_.exchange(true, std::memory_order_acq_rel)) unblock(1);
 }
 
 void NodeState::notifyAfter(double seconds) {
   const auto when = std::chrono::steady_clock::now() +
                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
-  std::lock_guard<std::mutex> lock(group_mutex);
-  if (!removed && group_) group_->notifyAt(when, shared_from_this());
+  std::lock_guard<std::mutex> lock(group_mutex_);
+  if (!removed_ && group_) group_->notifyAt(when, shared_from_this());
 }
 
 void NodeState::requestParam(int index, ParamValue v) {
   bool post_now = false;
   {
     auto shared = shared_.lock();
-    params[index].requested = std::move(v);
-    params[index].resend = manifest().params[index].every_set;
+    params_[index].requested = std::move(v);
+    params_[index].resend = manifest().params[index].every_set;
     params_dirty_.store(true, std::memory_order_release);
     post_now = !shared->apply_posted;
     shared->apply_posted = true;
@@ -411,40 +403,40 @@ void NodeState::applyParams() {
     auto shared = shared_.lock();
     shared->apply_posted = false;
     params_dirty_.store(false, std::memory_order_relaxed);
-    for (std::size_t i = 0; i < params.size(); ++i) {
-      if (params[i].requested == params[i].active && !params[i].resend) continue;
-      params[i].resend = false;
-      params[i].active = params[i].requested;
+    for (std::size_t i = 0; i < params_.size(); ++i) {
+      if (params_[i].requested == params_[i].active && !params_[i].resend) continue;
+      params_[i].resend = false;
+      params_[i].active = params_[i].requested;
       changed.push_back(static_cast<int>(i));
     }
   }
   for (int i : changed) {
     try {
-      node->parameterChanged(manifest().params[i].name);
+      node_->parameterChanged(manifest().params[i].name);
     } catch (const std::exception& ex) {
-      setError(nodeLabel(name_, type->id) + " failed to apply parameter '" + manifest().params[i].name + "': " + ex.what());
+      setError(nodeLabel(name_, type_->id) + " failed to apply parameter '" + manifest().params[i].name + "': " + ex.what());
     }
     publishParam(i);  // a parameter output carries every change
   }
-  if (!changed.empty()) revisions->edit();
+  if (!changed.empty()) revisions_->edit();
 }
 
 void NodeState::updateParam(int index, ParamValue v) {
   {
     auto lock = shared_.lock();
-    ParamState& p = params[index];
+    ParamState& p = params_[index];
     if (p.active == v) return;
     if (p.requested == p.active) p.requested = v;  // else an edit asked for another value: it applies next
     p.active = std::move(v);
   }
-  revisions->shown();  // its output sends it with the firing's outputs
+  revisions_->shown();  // its output sends it with the firing's outputs
 }
 
 void NodeState::publishParam(int index, ThreadGroup* here) {
-  if (params[index].out_edges.empty() && !params[index].tap) return;
-  Message m = toMessage(params[index].active);
-  for (auto& e : params[index].out_edges) deliver(e, m, here);
-  if (params[index].tap) params[index].tap(m);
+  if (params_[index].out_edges.empty() && !params_[index].tap) return;
+  Message m = toMessage(params_[index].active);
+  for (auto& e : params_[index].out_edges) deliver(e, m, here);
+  if (params_[index].tap) params_[index].tap(m);
 }
 
 void NodeState::receiveParam(Edge& edge, const Message& m, bool counted) {
@@ -465,9 +457,9 @@ void NodeState::receiveParam(Edge& edge, const Message& m, bool counted) {
 void NodeState::runSetup() {
   applyParams();  // setup() sees the values the node was added with
   try {
-    node->setup();
+    node_->setup();
   } catch (const std::exception& ex) {
-    setError(nodeLabel(name_, type->id) + " failed to set up: " + ex.what());
+    setError(nodeLabel(name_, type_->id) + " failed to set up: " + ex.what());
   }
 }
 
@@ -481,7 +473,7 @@ void NodeState::applyEnabled() {
   const int before = gates();
   active_enabled_ = want;
   adjust(gates() - before);
-  revisions->shown();
+  revisions_->shown();
 }
 
 void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) {
@@ -496,21 +488,21 @@ void NodeState::downstreamChanged(std::chrono::steady_clock::duration interval) 
   }
   shared->resend_due = true;
   group_->at(shared->last_resend + interval, Mail{shared_from_this(), [](NodeState& n) {
-                                            {
-                                              auto s = n.shared_.lock();
-                                              s->resend_due = false;
-                                              s->last_resend = std::chrono::steady_clock::now();
-                                            }
-                                            n.runDownstreamChanged();  // timers run on the node's group
-                                          }});
+                                                    {
+                                                      auto s = n.shared_.lock();
+                                                      s->resend_due = false;
+                                                      s->last_resend = std::chrono::steady_clock::now();
+                                                    }
+                                                    n.runDownstreamChanged();  // timers run on the node's group
+                                                  }});
 }
 
 void NodeState::runDownstreamChanged() {
-  if (removed) return;
+  if (removed_) return;
   try {
-    node->downstreamChanged();
+    node_->downstreamChanged();
   } catch (const std::exception& ex) {
-    setError(nodeLabel(name_, type->id) + " failed to re-send after a change downstream: " + ex.what());
+    setError(nodeLabel(name_, type_->id) + " failed to re-send after a change downstream: " + ex.what());
   }
 }
 

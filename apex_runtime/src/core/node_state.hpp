@@ -19,13 +19,13 @@
 //  - the blockers (readiness.hpp) count what keeps the node from firing: empty live inputs,
 //    receivers that have not read its last message, and gates. Whoever brings
 //    it to zero pushes the node onto its group's ready queue: exactly once.
-//  - Liveness (`live`, `Edge::live`, Readiness::liveInputs) is structure: only edits
+//  - Liveness (`live_`, `Edge::live`, Readiness::liveInputs) is structure: only edits
 //    change it (graph_live.cpp), with the groups of every node it touches paused.
 //  - Shared (the enabled flags, UI metadata, the error text, the stats window) is behind
 //    a Guarded: reached only through the handle shared_.lock() returns, which holds its
 //    mutex. That lock also covers requested parameter values (ParamState::requested) and a
 //    swap of the ports on an interface change, which other nodes' threads read under it.
-//  - Atomics (has_data, counters, dropped) may be read and written anywhere.
+//  - Atomics (has_data_, counters, dropped_) may be read and written anywhere.
 #pragma once
 
 #include <array>
@@ -200,22 +200,22 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   const std::string& name() const { return name_; }
   /** Its place in the graph's insertion order; names it in traces. */
   std::uint64_t seq() const { return seq_; }
-  const Manifest& manifest() const { return *iface; }
-  std::string typeId() const { return type ? type->id : placeholder.type; }
+  const Manifest& manifest() const { return *iface_; }
+  std::string typeId() const { return type_ ? type_->id : placeholder_.type; }
   /** The graph's host when the node was made (Node::host); may be null. */
   const Host* host() const { return host_.get(); }
   /** Its thread group: set by edits (groups paused), read by its group thread and edits. */
   ThreadGroup* group() const { return group_; }
-  /** Its group, read under group_mutex against a move, from any thread; nullptr once it is
+  /** Its group, read under group_mutex_ against a move, from any thread; nullptr once it is
    *  removed (ThreadGroup::runMail: its mail follows it or is dropped). */
   ThreadGroup* homeGroup() {
-    std::lock_guard<std::mutex> lock(group_mutex);
-    return removed ? nullptr : group_;
+    std::lock_guard<std::mutex> lock(group_mutex_);
+    return removed_ ? nullptr : group_;
   }
   void attach(std::unique_ptr<Node> object) {
-    node = std::move(object);
-    (void)resolveHandles(*node, manifest());  // checked at registration against the default interface
-    node->state_.store(this, std::memory_order_release);
+    node_ = std::move(object);
+    (void)resolveHandles(*node_, manifest());  // checked at registration against the default interface
+    node_->state_.store(this, std::memory_order_release);
   }
   /** A source by structure: no data input connected, and none mandatory. */
   bool isSource() const;
@@ -233,30 +233,30 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** f(const std::shared_ptr<Edge>&) for the edge into each data and parameter input (null if none). */
   template <class F>
   void forEachSender(F&& f) const;
-  std::size_t inputCount() const { return inputs.size(); }
-  std::size_t outputCount() const { return outputs.size(); }
+  std::size_t inputCount() const { return inputs_.size(); }
+  std::size_t outputCount() const { return outputs_.size(); }
   /** A node of a type not loaded: it keeps its description and never fires. */
-  bool isPlaceholder() const { return !type; }
+  bool isPlaceholder() const { return !type_; }
   /** Whether parameter `p` has its input and output ports. */
-  bool interactive(int p) const { return params[p].interactive; }
+  bool interactive(int p) const { return params_[p].interactive; }
   /** The edge into data input `i` or parameter `p` (null if none), and those out of output `i`,
    *  parameter output `p`, trigger `t`, and into slot `s`. */
-  const std::shared_ptr<Edge>& inputEdge(int i) const { return inputs[i]->edge; }
-  const std::shared_ptr<Edge>& paramInEdge(int p) const { return params[p].in_edge; }
-  const std::vector<std::shared_ptr<Edge>>& outputEdges(int i) const { return outputs[i].edges; }
-  const std::vector<std::shared_ptr<Edge>>& paramOutEdges(int p) const { return params[p].out_edges; }
-  const std::vector<std::shared_ptr<EventEdge>>& triggerEdges(int t) const { return trigger_edges[t]; }
-  const std::vector<std::shared_ptr<EventEdge>>& slotEdges(int s) const { return slot_edges[s]; }
+  const std::shared_ptr<Edge>& inputEdge(int i) const { return inputs_[i]->edge; }
+  const std::shared_ptr<Edge>& paramInEdge(int p) const { return params_[p].in_edge; }
+  const std::vector<std::shared_ptr<Edge>>& outputEdges(int i) const { return outputs_[i].edges; }
+  const std::vector<std::shared_ptr<Edge>>& paramOutEdges(int p) const { return params_[p].out_edges; }
+  const std::vector<std::shared_ptr<EventEdge>>& triggerEdges(int t) const { return trigger_edges_[t]; }
+  const std::vector<std::shared_ptr<EventEdge>>& slotEdges(int s) const { return slot_edges_[s]; }
   /** Its description as a save keeps it (under shared_'s lock: requested values, enabled, ui). */
   NodeDescription describe() const;
-  /** Recomputes `live` from its senders' (graph_live.cpp walks the region in topological order). */
+  /** Recomputes `live_` from its senders' (graph_live.cpp walks the region in topological order). */
   void updateLive();
   /** A new node with no connection yet: live if it is a source. */
-  void initLive() { live = type && isSource(); }
+  void initLive() { live_ = type_ && isSource(); }
   /** An edit changed its structural blockers by `delta` (EditScope); queues it if that left it
    *  ready (push is idempotent: a ready node moved or taken off a queue is queued again). */
   void correctBlockers(int delta) {
-    if (readiness.correct(delta)) group_->push(this);
+    if (readiness_.correct(delta)) group_->push(this);
   }
 
   // --- its group's queue: ThreadGroup's, under the group's mutex ---
@@ -280,13 +280,13 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::uint64_t readyMark() const { return ready_mark_; }
 
   // --- what node code (apex::Node) reaches, on the group thread ---
-  const Message& currentInput(int index) const { return inputs[index]->current; }
-  Message takeInput(int index) { return std::move(inputs[index]->current); }
-  const ParamValue& activeParam(int index) const { return params[index].active; }
+  const Message& currentInput(int index) const { return inputs_[index]->current; }
+  Message takeInput(int index) { return std::move(inputs_[index]->current); }
+  const ParamValue& activeParam(int index) const { return params_[index].active; }
   /** Node::countDropped, from any thread. */
   void countDropped(std::uint64_t n) { dropped_.fetch_add(n, std::memory_order_relaxed); }
   /** Where Node::requestEdit asks (the graph's); null outside a graph. */
-  EditRequests* editRequests() const { return edits.get(); }
+  EditRequests* editRequests() const { return edits_.get(); }
 
   // --- Shared, and requested parameter values: any thread; each takes shared_'s lock ---
   std::string error() const;
@@ -321,12 +321,12 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
     frame_ = taken;
     starts_frame_ = false;
     if (frame_ == 0)
-      for (auto& out : outputs)
+      for (auto& out : outputs_)
         if ((frame_ = out.pending.payloadStamp()) != 0) {
           starts_frame_ = true;
           break;
         }
-    for (auto& out : outputs) out.pending.setFrame(frame_);
+    for (auto& out : outputs_) out.pending.setFrame(frame_);
   }
   /** A firing took `t` ticks (if `timed`) and ended at tick `end` (if untimed: the group's
    *  newest clock read, a little earlier); one that only passed Nothing is counted apart. */
@@ -358,7 +358,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Sends an event; from process() or a slot handler it waits until the messages published
    *  there have left (releaseTriggers), so a receiver of both sees the data first. */
   void fireTrigger(int trigger);
-  void setOutput(int index, Message m) { outputs[index].pending = std::move(m); }
+  void setOutput(int index, Message m) { outputs_[index].pending = std::move(m); }
   /** Node::reportError: the node's error, kept past the end of this firing. */
   void reportError(const std::string& text);
   /** The parameter inputs output `index` feeds (Node::parameterTargets). */
@@ -368,7 +368,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Releases k blockers; at zero the node is queued. `here`: the group whose thread is
    *  firing now (nullptr elsewhere); a node of that group then runs next on it. */
   void unblock(int k, ThreadGroup* here = nullptr) {  // inline: twice per hop
-    if (!readiness.release(k)) return;
+    if (!readiness_.release(k)) return;
     if (here != nullptr && here == group_) {
       here->runNext(this);  // made ready by a firing on its own group's thread: runs next, no queue
     } else {
@@ -389,11 +389,11 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void requestParam(int index, ParamValue v);
 
   // --- edits (groups paused) ---
-  /** The part of the blockers that only edits and firings change (not has_data). */
+  /** The part of the blockers that only edits and firings change (not has_data_). */
   int structuralBlockers();
   bool driven() const { return driven_; }
   /** Its receivers read its messages when their firing ends (SourceMode::Newest). */
-  bool sendsNewest() const { return iface->source_mode == SourceMode::Newest; }
+  bool sendsNewest() const { return iface_->source_mode == SourceMode::Newest; }
   NodeStats stats() const;
   /** Its mean firing time, ns (0 before a timed firing): cheap, any thread, moves no window. */
   std::uint64_t meanNs() const;
@@ -427,38 +427,38 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // Hot first: what a firing reads, in the order it reads it (see "Cold and large" below).
   // --- structure (edits only, groups paused; its group thread reads) ---
   std::string name_;
-  const std::shared_ptr<const NodeType> type;  // nullptr: placeholder
+  const std::shared_ptr<const NodeType> type_;  // nullptr: placeholder
   /** The instance's interface: its type's manifest, or what Manifest::shape made of it.
    *  Replaced by edits only (graph_interface.cpp), with the node's group paused. */
-  std::shared_ptr<const Manifest> iface;
+  std::shared_ptr<const Manifest> iface_;
   const std::uint64_t seq_;
-  std::shared_ptr<Revisions> revisions;  // the graph's
-  std::unique_ptr<Node> node;  // made once (attach), before it joins a group
+  std::shared_ptr<Revisions> revisions_;  // the graph's
+  std::unique_ptr<Node> node_;  // made once (attach), before it joins a group
 
   // Ports: their edges are structure; a port's firing state (InputState::current,
   // OutputState::pending, ParamState::active) is its group thread's; ParamState::requested is
   // under shared_'s lock; InputState::msg/full is the one handoff (see the top of this file).
-  std::vector<std::unique_ptr<InputState>> inputs;
-  std::vector<OutputState> outputs;
-  std::vector<ParamState> params;
-  std::vector<std::vector<std::shared_ptr<EventEdge>>> trigger_edges;  // per trigger
+  std::vector<std::unique_ptr<InputState>> inputs_;
+  std::vector<OutputState> outputs_;
+  std::vector<ParamState> params_;
+  std::vector<std::vector<std::shared_ptr<EventEdge>>> trigger_edges_;  // per trigger
   /** Can fire at all (edits only): a source, or fed by a live input. A node cut
    *  off from every source never fires and holds no other path hostage. */
-  bool live = false;
+  bool live_ = false;
 
   // --- scheduling ---
-  Readiness readiness;  // the firing rule's counters (readiness.hpp): atomic, named transitions
+  Readiness readiness_;  // the firing rule's counters (readiness.hpp): atomic, named transitions
   // Its place in its group's ready queue: ThreadGroup's, under the group's mutex, through
   // markQueued/clearQueued only. (Three fields, not a struct: one would be 8-aligned and move
   // everything after it by 8 bytes.)
   bool queued_ = false;
   bool queued_from_outside_ = false;  // by push(), not by this group's own firing
   std::uint64_t ready_mark_ = 0;  // how much mail its group had been sent when it was queued
-  std::atomic<bool> has_data{false};  // any thread: a driven source's new data (notifyNewData)
-  ThreadGroup* group_ = nullptr;  // structure; also read under group_mutex (homeGroup)
-  bool removed = false;  // structure; also read under group_mutex
+  std::atomic<bool> has_data_{false};  // any thread: a driven source's new data (notifyNewData)
+  ThreadGroup* group_ = nullptr;  // structure; also read under group_mutex_ (homeGroup)
+  bool removed_ = false;  // structure; also read under group_mutex_
 
-  // host_, edits, slot_edges, group_mutex, shared_, placeholder: declared last (cache lines)
+  // host_, edits_, slot_edges_, group_mutex_, shared_, placeholder_: declared last (cache lines)
 
   int gates() const;
   void adjust(int delta);
@@ -518,9 +518,9 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   // Cold and large: after everything a firing reads, so that fits in fewer cache lines
   // (with these in the middle, a hop in a chain of 64 relays cost ~2 ns more, measured).
   std::shared_ptr<const Host> host_;  // structure: the graph's, when the node was made
-  std::shared_ptr<EditRequests> edits;  // structure: the graph's, where Node::requestEdit asks
-  std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges;  // structure: per slot, incoming
-  mutable std::mutex group_mutex;  // for readers of `group_` outside edits (notifyNewData)
+  std::shared_ptr<EditRequests> edits_;  // structure: the graph's, where Node::requestEdit asks
+  std::vector<std::vector<std::shared_ptr<EventEdge>>> slot_edges_;  // structure: per slot, incoming
+  mutable std::mutex group_mutex_;  // for readers of `group_` outside edits (notifyNewData)
   struct Reading {
     HistogramCounts time, latency;
     std::int64_t latency_total = 0;
@@ -540,7 +540,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
     mutable std::array<Reading, 2> window;
   };
   Guarded<Shared> shared_;
-  NodeDescription placeholder;  // structure: for placeholders, the description kept verbatim
+  NodeDescription placeholder_;  // structure: for placeholders, the description kept verbatim
 
   const std::chrono::steady_clock::time_point added_at_ = std::chrono::steady_clock::now();  // what profile() is over at first
   // The distributions: written by the group thread (timed firings), read by stats(). The window
@@ -559,11 +559,11 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
 
 template <class F>
 void NodeState::forEachDataOrParamNeighbour(F&& f) const {
-  for (auto& in : inputs)
+  for (auto& in : inputs_)
     if (in->edge) f(in->edge->from);
-  for (auto& o : outputs)
+  for (auto& o : outputs_)
     for (auto& e : o.edges) f(e->to);
-  for (auto& p : params) {
+  for (auto& p : params_) {
     if (p.in_edge) f(p.in_edge->from);
     for (auto& e : p.out_edges) f(e->to);
   }
@@ -572,31 +572,31 @@ void NodeState::forEachDataOrParamNeighbour(F&& f) const {
 template <class F>
 void NodeState::forEachNeighbour(F&& f) const {
   forEachDataOrParamNeighbour(f);
-  for (auto& t : trigger_edges)
+  for (auto& t : trigger_edges_)
     for (auto& e : t) f(e->to);
-  for (auto& s : slot_edges)
+  for (auto& s : slot_edges_)
     for (auto& e : s) f(e->from);
 }
 
 template <class F>
 void NodeState::forEachDataReceiver(F&& f) const {
-  for (auto& o : outputs)
+  for (auto& o : outputs_)
     for (auto& e : o.edges)
       if (!e->to_param) f(*e);
-  for (auto& p : params)
+  for (auto& p : params_)
     for (auto& e : p.out_edges)
       if (!e->to_param) f(*e);
 }
 
 template <class F>
 void NodeState::forEachSender(F&& f) const {
-  for (auto& in : inputs) f(in->edge);
-  for (auto& p : params) f(p.in_edge);
+  for (auto& in : inputs_) f(in->edge);
+  for (auto& p : params_) f(p.in_edge);
 }
 
 template <class F>
 inline bool NodeState::guarded(const char* what, F&& fn) {
-  auto where = [&] { return nodeLabel(name_, type->id) + (*what ? std::string(" ") + what : std::string()); };
+  auto where = [&] { return nodeLabel(name_, type_->id) + (*what ? std::string(" ") + what : std::string()); };
   try {
     fn();
     return true;

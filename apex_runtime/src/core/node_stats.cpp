@@ -36,7 +36,7 @@ void NodeState::recordLatency(std::int64_t wall_ns) {
   latency_hist_.add(latency);
   latency_total_.store(latency_total_.load(relaxed) + latency, relaxed);
   latency_count_.store(latency_count_.load(relaxed) + 1, relaxed);
-  for (auto& out : outputs) {  // the outputs this firing sent on
+  for (auto& out : outputs_) {  // the outputs this firing sent on
     const std::uint64_t sent = out.sent.get();
     if (sent == out.latency_seen) continue;
     out.latency_seen = sent;
@@ -69,11 +69,11 @@ void NodeState::fillDistributions(NodeStats& s, std::array<Reading, 2>& window) 
   if (window[1].at == std::chrono::steady_clock::time_point{}) window[0] = window[1] = Reading{{}, {}, 0, 0, now};
   const bool step = now - window[1].at >= kWindowStep;
   if (step) window = {window[1], r};  // the window: 5 to 10 s
-  s.outputs.reserve(outputs.size());
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    s.outputs.push_back({manifest().outputs[i].name, outputs[i].sent.get()});
-    if (!outputs[i].latency) continue;  // no live frame sent on it yet
-    OutputLatency& l = *outputs[i].latency;
+  s.outputs.reserve(outputs_.size());
+  for (std::size_t i = 0; i < outputs_.size(); ++i) {
+    s.outputs.push_back({manifest().outputs[i].name, outputs_[i].sent.get()});
+    if (!outputs_[i].latency) continue;  // no live frame sent on it yet
+    OutputLatency& l = *outputs_[i].latency;
     const HistogramCounts counts = l.hist.read();
     if (step) l.base = l.newer, l.newer = counts;
     fillLatency(counts.since(l.base), s.outputs.back());
