@@ -165,28 +165,13 @@ Result<std::string> Graph::Impl::addNode(const NodeDescription& d) {
 }
 
 void Graph::Impl::detachAll(NodeState* n) {
-  for (std::size_t i = 0; i < n->inputs_.size(); ++i)
-    if (n->inputs_[i]->edge) removeEdge(n->inputs_[i]->edge);
-  for (auto& o : n->outputs_)
-    while (!o.edges.empty()) removeEdge(o.edges.back());
-  for (auto& p : n->params_) {
-    if (p.in_edge) removeEdge(p.in_edge);
-    while (!p.out_edges.empty()) removeEdge(p.out_edges.back());
-  }
-  for (auto& t : n->trigger_edges_)
-    while (!t.empty()) removeEvent(t.back());
-  for (auto& s : n->slot_edges_)
-    while (!s.empty()) removeEvent(s.back());
+  for (auto& e : n->edges()) removeEdge(e);  // each once: a second call finds it dead
+  for (auto& e : n->events()) removeEvent(e);  // one to itself is listed twice, unlinked once
 }
 
 std::vector<NodeState*> Graph::Impl::dataReceivers(NodeState* n) {
   std::vector<NodeState*> out;
-  for (auto& o : n->outputs_)
-    for (auto& e : o.edges)
-      if (!e->to_param) out.push_back(e->to);
-  for (auto& p : n->params_)
-    for (auto& e : p.out_edges)
-      if (!e->to_param) out.push_back(e->to);
+  n->forEachDataReceiver([&](const detail::Edge& e) { out.push_back(e.to); });
   return out;
 }
 

@@ -182,8 +182,7 @@ Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
     auto e = std::make_shared<EventEdge>();
     e->from = from.get(), e->trigger = s.index, e->to = to.get(), e->slot = d.index;
     e->to_source = to->manifest().inputs.empty();
-    from->trigger_edges_[s.index].push_back(e);
-    to->slot_edges_[d.index].push_back(e);
+    NodeState::link(e);
     ++links_;
     return Status::ok();
   }
@@ -196,18 +195,7 @@ Status Graph::Impl::connectDirect(const ConnectionDescription& c) {
   e->to_param = d.kind == PortKind::ParamIn;
   e->to_index = d.index;
   e->read_after_firing = !e->from_param && !e->to_param && from->sendsNewest();
-  if (e->from_param) {
-    from->params_[s.index].out_edges.push_back(e);
-  } else {
-    from->outputs_[s.index].edges.push_back(e);
-    from->readiness_.receiverConnected();
-  }
-  if (e->to_param) {
-    to->params_[d.index].in_edge = e;
-  } else {
-    to->inputs_[d.index]->edge = e;
-    to->readiness_.inputConnected();
-  }
+  NodeState::link(e);
   ++links_;
   return Status::ok();
 }
@@ -251,7 +239,7 @@ Status Graph::Impl::disconnectDirect(const ConnectionDescription& c) {
   if (!dst_port) return fail(dst_port.message());
   const Endpoint src = locate(*from, src_port.value()), dst = locate(*to, dst_port.value());
   if (src.kind == PortKind::Trigger && dst.kind == PortKind::Slot) {
-    for (auto& e : from->trigger_edges_[src.index]) {
+    for (auto& e : from->triggerEdges(src.index)) {
       if (e->to != to.get() || e->slot != dst.index) continue;
       EditScope scope;
       scope.involve(from.get());
@@ -283,36 +271,92 @@ void Graph::Impl::removeEdge(std::shared_ptr<Edge> e) {
   if (e->dead) return;  // removed already
   e->dead = true;
   --links_;
-  NodeState* from = e->from;
-  NodeState* to = e->to;
-  auto erase = [&](std::vector<std::shared_ptr<Edge>>& v) { v.erase(std::remove(v.begin(), v.end(), e), v.end()); };
+  NodeState::unlink(e);
+}
+
+void Graph::Impl::removeEvent(std::shared_ptr<EventEdge> e) {
+  if (NodeState::unlink(e)) --links_;  // removed once
+}
+
+namespace detail {
+
+// NodeState's side of a connection: here, beside the only edits that make and remove one.
+
+namespace {
+template <class E>
+bool erase(std::vector<std::shared_ptr<E>>& v, const std::shared_ptr<E>& e) {
+  const auto size = v.size();
+  v.erase(std::remove(v.begin(), v.end(), e), v.end());
+  return size != v.size();
+}
+}  // namespace
+
+void NodeState::link(const std::shared_ptr<Edge>& e) {
+  NodeState& from = *e->from;
+  NodeState& to = *e->to;
   if (e->from_param) {
-    erase(from->params_[e->from_index].out_edges);
+    from.params_[e->from_index].out_edges.push_back(e);
   } else {
-    erase(from->outputs_[e->from_index].edges);
-    from->readiness_.receiverDisconnected();
+    from.outputs_[e->from_index].edges.push_back(e);
+    from.readiness_.receiverConnected();
   }
   if (e->to_param) {
-    to->params_[e->to_index].in_edge.reset();
+    to.params_[e->to_index].in_edge = e;
   } else {
-    auto& in = *to->inputs_[e->to_index];
+    to.inputs_[e->to_index]->edge = e;
+    to.readiness_.inputConnected();
+  }
+}
+
+void NodeState::unlink(const std::shared_ptr<Edge>& e) {
+  NodeState& from = *e->from;
+  NodeState& to = *e->to;
+  if (e->from_param) {
+    erase(from.params_[e->from_index].out_edges, e);
+  } else {
+    erase(from.outputs_[e->from_index].edges, e);
+    from.readiness_.receiverDisconnected();
+  }
+  if (e->to_param) {
+    to.params_[e->to_index].in_edge.reset();
+  } else {
+    auto& in = *to.inputs_[e->to_index];
     std::lock_guard<std::mutex> lock(in.m);
     in.msg = Message();  // a pending message is dropped with its connection
     in.full.store(false, std::memory_order_relaxed);
     in.edge.reset();
-    to->readiness_.inputDisconnected();
+    to.readiness_.inputDisconnected();
   }
   e->unread.store(false, std::memory_order_release);
 }
 
-void Graph::Impl::removeEvent(std::shared_ptr<EventEdge> e) {
-  auto erase = [&](std::vector<std::shared_ptr<EventEdge>>& v) {
-    const auto size = v.size();
-    v.erase(std::remove(v.begin(), v.end(), e), v.end());
-    return size != v.size();
-  };
-  erase(e->from->trigger_edges_[e->trigger]);
-  if (erase(e->to->slot_edges_[e->slot])) --links_;  // removed once
+void NodeState::link(const std::shared_ptr<EventEdge>& e) {
+  e->from->trigger_edges_[e->trigger].push_back(e);
+  e->to->slot_edges_[e->slot].push_back(e);
 }
+
+bool NodeState::unlink(const std::shared_ptr<EventEdge>& e) {
+  erase(e->from->trigger_edges_[e->trigger], e);
+  return erase(e->to->slot_edges_[e->slot], e);
+}
+
+std::vector<std::shared_ptr<Edge>> NodeState::edges() const {
+  std::vector<std::shared_ptr<Edge>> out;
+  forEachSender([&](const std::shared_ptr<Edge>& e) {
+    if (e) out.push_back(e);
+  });
+  for (const auto& o : outputs_) out.insert(out.end(), o.edges.begin(), o.edges.end());
+  for (const auto& p : params_) out.insert(out.end(), p.out_edges.begin(), p.out_edges.end());
+  return out;
+}
+
+std::vector<std::shared_ptr<EventEdge>> NodeState::events() const {
+  std::vector<std::shared_ptr<EventEdge>> out;
+  for (const auto& t : trigger_edges_) out.insert(out.end(), t.begin(), t.end());
+  for (const auto& s : slot_edges_) out.insert(out.end(), s.begin(), s.end());
+  return out;
+}
+
+}  // namespace detail
 
 }  // namespace apex

@@ -249,6 +249,18 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   const std::vector<std::shared_ptr<EventEdge>>& slotEdges(int s) const { return slot_edges_[s]; }
   /** Its description as a save keeps it (under shared_'s lock: requested values, enabled, ui). */
   NodeDescription describe() const;
+  // --- connections (edits, the groups of both ends paused; graph_connect.cpp) ---
+  /** Puts `e` at both its ends (Edge::from's output or parameter output, Edge::to's input or
+   *  parameter) and counts it in their readiness. */
+  static void link(const std::shared_ptr<Edge>& e);
+  /** Takes `e` off both its ends; a message waiting at a data input is dropped with it. */
+  static void unlink(const std::shared_ptr<Edge>& e);
+  static void link(const std::shared_ptr<EventEdge>& e);
+  /** False if it was not linked (taken off already). */
+  static bool unlink(const std::shared_ptr<EventEdge>& e);
+  /** Every data or parameter connection at any of its ports, and every event connection. */
+  std::vector<std::shared_ptr<Edge>> edges() const;
+  std::vector<std::shared_ptr<EventEdge>> events() const;
   /** Recomputes `live_` from its senders' (graph_live.cpp walks the region in topological order). */
   void updateLive();
   /** A new node with no connection yet: live if it is a source. */
