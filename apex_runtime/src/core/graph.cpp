@@ -128,7 +128,7 @@ Result<std::string> Graph::Impl::addNodeWith(const std::string& type_id, const s
   }
   state->attach(std::move(object));
   if (auto st = presetParams(*state, params); !st) return st;  // before setup(): it sees them
-  state->group_ = group(gname);
+  state->moveTo(group(gname));
   if (!subgraphs_.enabledAround(name)) state->setOuterEnabled(false);
   detail::initLiveness(state.get());
   EditScope scope;
@@ -181,10 +181,7 @@ void Graph::Impl::retire(NodeState* n, bool restructure) {
   Restructure change(restructure ? dataReceivers(n) : std::vector<NodeState*>{}, others, restructure && ran_);
   detachAll(n);
   change.scope().forget(n);
-  {  // removed first: a notifyNewData() from now on cannot queue it again
-    std::lock_guard<std::mutex> g(n->group_mutex_);
-    n->removed_ = true;
-  }
+  n->markRemoved();  // first: a notifyNewData() from now on cannot queue it again
   n->group()->unqueue(n);
 }
 
@@ -248,15 +245,15 @@ void Graph::Impl::tellSourcesDownstreamChanged() {
   std::int64_t newest = 0;
   for (const Impl::ChangedAt& c : changed) {
     newest = std::max(newest, c.tick);
-    if (Impl::NodePtr n = c.node.lock(); n && !n->removed_) at.push_back(n.get()), alive.push_back(std::move(n));
+    if (Impl::NodePtr n = c.node.lock(); n && !n->removed()) at.push_back(n.get()), alive.push_back(std::move(n));
   }
   std::vector<NodeState*> ups = detail::upstreamOf(at);
   for (const Impl::ChangedAt& c : changed)
-    if (Impl::NodePtr n = c.node.lock(); c.itself && n && !n->removed_) ups.push_back(n.get());
+    if (Impl::NodePtr n = c.node.lock(); c.itself && n && !n->removed()) ups.push_back(n.get());
   std::sort(ups.begin(), ups.end());
   ups.erase(std::unique(ups.begin(), ups.end()), ups.end());
   for (NodeState* up : ups) {
-    if (!up->type_ || !up->isSource()) continue;  // a held frame starts at a source
+    if (up->isPlaceholder() || !up->isSource()) continue;  // a held frame starts at a source
     // None sent yet: it holds none. One it began to send after the last change went through the
     // graph as changed (a node connected before then got it, one tuned before then fires on it).
     if (up->lastSent() == 0 || up->lastSent() > newest) continue;
@@ -319,7 +316,7 @@ Status Graph::Impl::setEnabled(const std::string& node, bool enabled) {
   if (!n) return n.status();
   NodeState& s = *n.value();
   s.setEnabled(enabled);
-  if (s.type_) s.post([](NodeState& x) { x.applyEnabled(); });
+  if (s.type()) s.post([](NodeState& x) { x.applyEnabled(); });
   changedDownstreamOf(&s);
   return Status::ok();
 }
@@ -339,11 +336,7 @@ Status Graph::setThreadGroup(const std::string& node, const std::string& group_n
     EditScope scope;
     scope.involve(s);
     scope.pause(target);
-    // Held across the switch: a notifyNewData() sees the old group with the node
-    // unqueued from it, or the new one; never queues it on the old one afterwards.
-    std::lock_guard<std::mutex> g(s->group_mutex_);
-    s->group()->unqueue(s);
-    s->group_ = target;
+    s->moveTo(target);
     s->placeholder_.thread_group = group_name;
   }
   impl.bump();
@@ -458,10 +451,10 @@ std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const {
   for (NodeState* n : all) {
     out.push_back(n->stats());
     NodeStats& s = out.back();
-    if (!n->type_) s.error = "unknown node type '" + n->typeId() + "'";
+    if (n->isPlaceholder()) s.error = "unknown node type '" + n->typeId() + "'";
     const std::int64_t last = n->lastFired();
     s.idle_s = double(now - last) * ns_per_tick * 1e-9;
-    const bool stalled = s.idle_s > stall_after_s && (upstream[n] > last || !n->live_);
+    const bool stalled = s.idle_s > stall_after_s && (upstream[n] > last || !n->live());
     if ((stalled && !impl.paused_) || stall_after_s == 0) s.waiting_for = n->waitingFor();
   }
   return out;
@@ -479,7 +472,7 @@ std::shared_ptr<const NodeType> Graph::nodeType(const std::string& node) const {
   const Impl& impl = *impl_;
   auto lock = impl.lockEdits();
   auto n = impl.find(node);
-  return n ? n->type_ : nullptr;
+  return n ? n->type() : nullptr;
 }
 
 std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) const {
@@ -487,14 +480,14 @@ std::shared_ptr<const Manifest> Graph::nodeInterface(const std::string& node) co
   auto lock = impl.lockEdits();
   if (auto sg = impl.subgraphs_.find(node)) return impl.facade(*sg);
   auto n = impl.find(node);
-  return n && n->type_ ? n->iface_ : nullptr;
+  return n && n->type() ? n->iface() : nullptr;
 }
 
 Node* Graph::nodeObject(const std::string& node) const {
   const Impl& impl = *impl_;
   auto lock = impl.lockEdits();
   auto n = impl.find(node);
-  return n ? n->node_.get() : nullptr;
+  return n ? n->object() : nullptr;
 }
 
 Result<NodeProfile> Graph::nodeProfile(const std::string& node) const {

@@ -154,13 +154,13 @@ void NodeState::setInterface(std::shared_ptr<const Manifest> next_ptr) {
 
 Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeState& n, const std::string& param,
                                                                   const ParamValue* value) const {
-  const Manifest& type = *n.type_->manifest;
-  if (!type.shape) return n.iface_;
+  const Manifest& type = *n.type()->manifest;
+  if (!type.shape) return n.iface();
   ParamValues values = n.requestedParams();
   if (value) values.set(param, *value);
   auto next = std::make_shared<Manifest>(type);
   auto fail = [&](const std::string& why) {
-    return Status::error(nodeLabel(n.name(), n.type_->id) + " cannot make its ports" +
+    return Status::error(nodeLabel(n.name(), n.type()->id) + " cannot make its ports" +
                          (value ? " for " + param + " = " + toText(*value) : std::string()) + ": " + why);
   };
   try {
@@ -174,7 +174,7 @@ Result<std::shared_ptr<const Manifest>> Graph::Impl::interfaceFor(const NodeStat
 }
 
 void Graph::Impl::applyInterface(NodeState* n, std::shared_ptr<const Manifest> next, const std::function<void()>& also) {
-  if (next == n->iface_) {
+  if (next == n->iface()) {
     if (also) also();
     return;
   }

@@ -82,7 +82,7 @@ Result<NodeDescription> Graph::describeNode(const std::string& name) const {
   const Impl::NodePtr n = impl.find(name);
   if (!n) return Status::error("no node named '" + name + "'");
   NodeDescription d = n->describe();
-  if (n->type_) d.error = n->error();
+  if (n->type()) d.error = n->error();
   return d;
 }
 
@@ -114,7 +114,7 @@ GraphDescription Graph::Impl::describeLocked() const {
   std::map<std::tuple<std::uint64_t, int, std::string>, NodeDescription> nodes;
   for (auto& [seq, n] : order_) {
     auto& d = nodes[{seq, 1, ""}] = n->describe();
-    if (n->type_) d.error = n->error();
+    if (n->type()) d.error = n->error();
   }
   for (auto& [path, sg] : subgraphs_.all()) {
     NodeDescription d;
@@ -127,7 +127,7 @@ GraphDescription Graph::Impl::describeLocked() const {
     for (const auto& spec : d.interface->params) {
       auto at = subgraphs_.exportedParam(path, spec.name);
       auto n = at ? find(at.value().first) : nullptr;
-      const int i = n && n->type_ ? n->findParam(at.value().second) : -1;
+      const int i = n && n->type() ? n->findParam(at.value().second) : -1;
       if (i < 0) continue;
       d.parameters.emplace_back(spec.name, toText(n->requestedParam(i)));
       if (n->interactive(i)) d.interactive.push_back(spec.name);
@@ -152,7 +152,7 @@ Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   state->placeholder_ = d;
   state->setUi(d.ui);
   state->setEnabled(d.enabled);
-  state->group_ = group(group_name);
+  state->moveTo(group(group_name));
   detail::EditScope scope;
   scope.added(state.get());
   order_[state->seq()] = state.get();
@@ -232,8 +232,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
     (void)n->clearQueued();  // the staged groups and their counts go away
     n->revisions_ = revisions_;
     n->edits_ = edits_;
-    std::lock_guard<std::mutex> g(n->group_mutex_);
-    n->group_ = group(n->group_->name());
+    n->moveTo(group(n->group()->name()));  // off the staged group, which goes
   }
   nodes_ = std::move(staged.nodes_);
   order_ = std::move(staged.order_);
@@ -249,7 +248,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   // node before any node may fire (a group runs mail before firing), so a node
   // disabled in the file never fires enabled.
   for (auto& [seq, n] : order_)
-    if (n->type_)
+    if (n->type())
       n->post([](NodeState& x) {
         x.applyEnabled();
         x.runSetup();  // applies the parameters first

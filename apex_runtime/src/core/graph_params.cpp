@@ -18,7 +18,7 @@ Result<std::string> Graph::Impl::setParameter(const std::string& outer, const st
   auto n = require(node);
   if (!n) return n.status();
   NodeState& s = *n.value();
-  if (!s.type_)
+  if (s.isPlaceholder())
     return Status::error(nodeLabel(node) + " has the unknown type '" + s.typeId() + "': its parameters are kept unchanged");
   auto value = parseParam(s, param, text);
   if (!value) return value.status();
@@ -72,7 +72,7 @@ Status Graph::Impl::setParameterLocked(NodeState& s, int index, const ParamValue
 void Graph::Impl::applyRequested(const NodePtr& node, const std::string& param, const ParamValue& value) {
   auto lock = lockEdits();
   const auto it = nodes_.find(node->name());
-  if (it == nodes_.end() || it->second != node || !node->type_) return;  // removed (or replaced) meanwhile
+  if (it == nodes_.end() || it->second != node || node->isPlaceholder()) return;  // removed (or replaced) meanwhile
   const int i = node->findParam(param);
   Status st = i < 0 ? Status::error("has no parameter '" + param + "' (parameters: " + node->manifest().listParams() + ")")
                     : node->manifest().params[i].validate(value);

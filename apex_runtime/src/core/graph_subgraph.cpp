@@ -71,7 +71,7 @@ Status Graph::Impl::checkExports(const Subgraph& sg) const {
       }
       auto n = find(path);
       if (!n) return Status::error(says + "there is no " + nodeLabel(rel) + " in it");
-      if (!n->type_) continue;  // a placeholder: its ports are unknown
+      if (n->isPlaceholder()) continue;  // a placeholder: its ports are unknown
       const Manifest& m = n->manifest();
       const bool has = [&] {
         switch (e.kind) {
@@ -149,7 +149,7 @@ Result<std::string> Graph::Impl::addSubgraph(const NodeDescription& d) {
       if (e.kind != Kind::Parameter) continue;
       auto real = subgraphs_.exportedParam(d.name, e.name);
       auto n = real ? find(real.value().first) : nullptr;
-      const int i = n && n->type_ ? n->findParam(real.value().second) : -1;
+      const int i = n && n->type() ? n->findParam(real.value().second) : -1;
       if (i < 0) continue;
       sg->defaults[e.name] = toText(n->requestedParam(i));
     }
@@ -188,7 +188,7 @@ void Graph::Impl::applyOuterEnabled(const std::string& path) {
     const bool outer = subgraphs_.enabledAround(name);
     NodeState& n = *find(name);
     n.setOuterEnabled(outer);
-    if (n.type_) n.post([](NodeState& x) { x.applyEnabled(); });
+    if (n.type()) n.post([](NodeState& x) { x.applyEnabled(); });
     changedDownstreamOf(&n);
   }
 }
@@ -262,7 +262,7 @@ Status Graph::group(const std::vector<std::string>& members, const std::string& 
     auto target = [](const detail::Edge& e) {
       return e.to_param ? e.to->manifest().params[e.to_index].name : e.to->manifest().inputs[e.to_index].name;
     };
-    if (!n->type_) continue;
+    if (n->isPlaceholder()) continue;
     for (std::size_t i = 0; i < n->outputs_.size(); ++i)
       for (auto& e : n->outputs_[i].edges) cross(n->name(), m.outputs[i].name, e->to->name(), target(*e), false);
     for (std::size_t i = 0; i < n->params_.size(); ++i)
@@ -362,7 +362,7 @@ std::shared_ptr<const Manifest> Graph::Impl::facade(const Subgraph& sg) const {
   auto m = std::make_shared<Manifest>("subgraph" + (sg.source.empty() ? std::string() : " '" + sg.source + "'"));
   auto real = [&](const std::string& node) {
     auto n = find(node);
-    return n && n->type_ ? n : nullptr;
+    return n && n->type() ? n : nullptr;
   };
   for (const auto& e : sg.exports) {
     if (e.kind == Kind::Slot || e.kind == Kind::Trigger) {

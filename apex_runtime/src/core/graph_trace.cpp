@@ -46,7 +46,7 @@ Trace Graph::trace(double seconds) const {
     for (const auto& r : records) {
       auto it = impl.order_.find(r.node & ~detail::TraceRecord::kStartsFrame);
       const bool here = it != impl.order_.end();
-      g.firings.push_back({here ? it->second->name() : "(removed)", here && it->second->type_ ? it->second->type_->id : "",
+      g.firings.push_back({here ? it->second->name() : "(removed)", here && it->second->type() ? it->second->type()->id : "",
                            detail::ticksToNs(r.start - zero), detail::ticksToNs(r.end - zero), r.frame,
                            (r.node & detail::TraceRecord::kStartsFrame) != 0});
     }

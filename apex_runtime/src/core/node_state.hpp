@@ -237,6 +237,27 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   std::size_t outputCount() const { return outputs_.size(); }
   /** A node of a type not loaded: it keeps its description and never fires. */
   bool isPlaceholder() const { return !type_; }
+  /** Its type (null for a placeholder), its interface, its node object (null for a placeholder). */
+  const std::shared_ptr<const NodeType>& type() const { return type_; }
+  const std::shared_ptr<const Manifest>& iface() const { return iface_; }
+  Node* object() const { return node_.get(); }
+  /** Whether a source reaches it (structure: edits, or its group thread). */
+  bool live() const { return live_; }
+  /** Taken out of the graph (Graph::retire): it never fires again, its mail is dropped. */
+  bool removed() const { return removed_; }
+  /** Marks it removed, under group_mutex_ against a thread that posts to it (homeGroup). */
+  void markRemoved() {
+    std::lock_guard<std::mutex> lock(group_mutex_);
+    removed_ = true;
+  }
+  /** Puts it in group `g` (an edit, both groups paused), off its old group's queue. Under
+   *  group_mutex_ throughout: a notifyNewData() sees the old group with the node unqueued from
+   *  it, or the new one; it never queues it on the old one afterwards. */
+  void moveTo(ThreadGroup* g) {
+    std::lock_guard<std::mutex> lock(group_mutex_);
+    if (group_) group_->unqueue(this);
+    group_ = g;
+  }
   /** Whether parameter `p` has its input and output ports. */
   bool interactive(int p) const { return params_[p].interactive; }
   /** The edge into data input `i` or parameter `p` (null if none), and those out of output `i`,
