@@ -288,18 +288,19 @@ Status Graph::Impl::setInteractive(const std::string& outer, const std::string& 
   if (on && s->manifest().params[i].shapes_interface)
     return Status::error(portLabel("parameter", param, node) +
                          " decides the node's ports: it is set by edits only and cannot have ports");
-  auto& p = s->params_[i];
-  if (!on && (p.in_edge || !p.out_edges.empty())) {
+  const auto& in = s->paramInEdge(i);
+  const auto& outs = s->paramOutEdges(i);  // removeEdge takes each off this vector
+  if (!on && (in || !outs.empty())) {
     std::vector<NodeState*> receivers;
-    for (auto& e : p.out_edges)
+    for (auto& e : outs)
       if (!e->to_param) receivers.push_back(e->to);
     std::vector<NodeState*> others = EditScope::neighbours(s);
     others.push_back(s);
     detail::Restructure change(receivers, others, ran_);
-    if (p.in_edge) removeEdge(p.in_edge);
-    while (!p.out_edges.empty()) removeEdge(p.out_edges.back());
+    if (in) removeEdge(in);
+    while (!outs.empty()) removeEdge(outs.back());
   }
-  p.interactive = on;
+  s->setInteractive(i, on);
   bump();
   return Status::ok();
 }
@@ -417,12 +418,12 @@ Status Graph::setTap(const std::string& outer, const std::string& outer_port, Po
   scope.involve(s);
   const bool watching = static_cast<bool>(tap);
   if (const int i = s->findOutput(port); i >= 0) {
-    s->outputs_[i].tap = std::move(tap);
+    s->setOutputTap(i, std::move(tap));
     if (watching) impl.changedDownstreamOf(s, true);  // a held frame: through the new tap at once
     return Status::ok();
   }
-  if (const int i = s->findParam(port); i >= 0 && s->params_[i].interactive) {
-    s->params_[i].tap = std::move(tap);
+  if (const int i = s->findParam(port); i >= 0 && s->interactive(i)) {
+    s->setParamTap(i, std::move(tap));
     if (watching) impl.changedDownstreamOf(s, true);
     return Status::ok();
   }
@@ -441,8 +442,9 @@ std::vector<NodeStats> Graph::nodeStats(double stall_after_s) const {
   std::map<const NodeState*, std::int64_t> upstream;
   for (NodeState* n : detail::topological(all)) {
     std::int64_t newest = 0;
-    for (auto& in : n->inputs_)
-      if (in->edge) newest = std::max({newest, in->edge->from->lastFired(), upstream[in->edge->from]});
+    n->forEachSender([&](const std::shared_ptr<detail::Edge>& e) {
+      if (e && !e->to_param) newest = std::max({newest, e->from->lastFired(), upstream[e->from]});
+    });
     upstream[n] = newest;
   }
   const std::int64_t now = detail::ticks();

@@ -263,12 +263,12 @@ Status Graph::group(const std::vector<std::string>& members, const std::string& 
       return e.to_param ? e.to->manifest().params[e.to_index].name : e.to->manifest().inputs[e.to_index].name;
     };
     if (n->isPlaceholder()) continue;
-    for (std::size_t i = 0; i < n->outputs_.size(); ++i)
-      for (auto& e : n->outputs_[i].edges) cross(n->name(), m.outputs[i].name, e->to->name(), target(*e), false);
-    for (std::size_t i = 0; i < n->params_.size(); ++i)
-      for (auto& e : n->params_[i].out_edges) cross(n->name(), m.params[i].name, e->to->name(), target(*e), false);
-    for (std::size_t i = 0; i < n->trigger_edges_.size(); ++i)
-      for (auto& e : n->trigger_edges_[i])
+    for (std::size_t i = 0; i < m.outputs.size(); ++i)
+      for (auto& e : n->outputEdges(int(i))) cross(n->name(), m.outputs[i].name, e->to->name(), target(*e), false);
+    for (std::size_t i = 0; i < m.params.size(); ++i)
+      for (auto& e : n->paramOutEdges(int(i))) cross(n->name(), m.params[i].name, e->to->name(), target(*e), false);
+    for (std::size_t i = 0; i < m.triggers.size(); ++i)
+      for (auto& e : n->triggerEdges(int(i)))
         cross(n->name(), m.triggers[i].name, e->to->name(), e->to->manifest().slots[e->slot].name, true);
   }
   sg->path = path;
@@ -346,7 +346,7 @@ void Graph::Impl::moveLocked(const std::string& from, const std::string& to) {
     detail::EditScope scope;  // node code and neighbours' messages read names on their groups
     scope.involveWithNeighbours(n.get());
     nodes_.erase(name);
-    n->name_ = renamed(name);
+    n->rename(renamed(name));
     nodes_[n->name()] = n;
   }
   subgraphs_.move(from, to);

@@ -274,6 +274,13 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Puts `e` at both its ends (Edge::from's output or parameter output, Edge::to's input or
    *  parameter) and counts it in their readiness. */
   static void link(const std::shared_ptr<Edge>& e);
+  /** Sees every message of output `i`, or every value of parameter `p` (its group paused). */
+  void setOutputTap(int i, Tap tap) { outputs_[i].tap = std::move(tap); }
+  void setParamTap(int p, Tap tap) { params_[p].tap = std::move(tap); }
+  /** Whether parameter `p` has ports (an edit: the caller has removed its connections first). */
+  void setInteractive(int p, bool on) { params_[p].interactive = on; }
+  /** Its new path (group/ungroup: Graph::moveLocked, with its group and neighbours' paused). */
+  void rename(std::string path) { name_ = std::move(path); }
   /** Takes `e` off both its ends; a message waiting at a data input is dropped with it. */
   static void unlink(const std::shared_ptr<Edge>& e);
   static void link(const std::shared_ptr<EventEdge>& e);
