@@ -119,8 +119,8 @@ Result<std::string> Graph::Impl::addNodeWith(const std::string& type_id, const s
     return Status::error("node type '" + type->id + "' failed to construct: " + ex.what());
   }
   auto state = std::make_shared<NodeState>(name, type, next_seq_++, revisions_);
-  state->host_ = host_;
-  state->edits_ = edits_;
+  state->setHost(host_);
+  state->joinGraph(revisions_, edits_);
   if (type->manifest->shape) {  // its ports for its default parameters
     auto iface = interfaceFor(*state, "", nullptr);
     if (!iface) return iface.status();
@@ -337,8 +337,7 @@ Status Graph::setThreadGroup(const std::string& node, const std::string& group_n
     EditScope scope;
     scope.involve(s);
     scope.pause(target);
-    s->moveTo(target);
-    s->placeholder_.thread_group = group_name;
+    s->moveTo(target);  // a placeholder keeps its group's name for a save
   }
   impl.bump();
   return Status::ok();

@@ -149,7 +149,7 @@ Result<std::string> Graph::Impl::addPlaceholder(const NodeDescription& d) {
   const std::string group_name = d.thread_group.empty() ? kDefaultGroup : d.thread_group;
   if (auto room = roomFor(group_name, 1); !room) return Status::error(nodeLabel(d.name) + ": " + room.message());
   auto state = std::make_shared<NodeState>(d.name, nullptr, next_seq_++, revisions_);
-  state->placeholder_ = d;
+  state->setPlaceholder(d);
   state->setUi(d.ui);
   state->setEnabled(d.enabled);
   state->moveTo(group(group_name));
@@ -230,8 +230,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
   for (const auto& name : keep) group(name);
   for (auto& [seq, n] : staged.order_) {
     (void)n->clearQueued();  // the staged groups and their counts go away
-    n->revisions_ = revisions_;
-    n->edits_ = edits_;
+    n->joinGraph(revisions_, edits_);
     n->moveTo(group(n->group()->name()));  // off the staged group, which goes
   }
   nodes_ = std::move(staged.nodes_);
@@ -254,7 +253,7 @@ void Graph::Impl::adoptLocked(Impl& staged, const GraphDescription& description)
         x.runSetup();  // applies the parameters first
       });
   for (auto& [seq, n] : order_)
-    if (n->readiness_.ready()) n->group()->push(n);
+    if (n->ready()) n->group()->push(n);
   bump();
   for (ThreadGroup* g : paused) g->resume();
 }

@@ -1,12 +1,14 @@
 // The runtime side of one node: its ports, connections, parameters and the
 // counter that decides when it may fire.
 //
-// Who owns what (every field is private; the owner of each is in its section below):
+// Who owns what (every field is private, and NodeState has no friends: everyone, graph code
+// too, goes through the operations below; the owner of each field is in its section):
 //  - Structure (edges, counts, group, name, interface, live, removed, interactive flags)
 //    changes only in Graph edits, under Graph::edit_mutex_, while every thread group that
-//    could touch the node is paused. Only graph code writes it: Graph (and Graph::Impl) and
-//    Restructure are friends; other code reads it through the const operations below, and
-//    walks it with forEachNeighbour / forEachDataReceiver / forEachSender.
+//    could touch the node is paused: link/unlink, moveTo, markRemoved, setInterface,
+//    updateLive, rename... Edits and the group thread read it through the const calls
+//    (inputEdge, outputEdges, ...) and walk it with forEachNeighbour / forEachDataReceiver /
+//    forEachSender.
 //  - Firing state (current inputs, pending outputs, active parameters,
 //    active_enabled) belongs to the node's group thread.
 //  - Its queue mark (queued, from outside, ready mark) belongs to its ThreadGroup, under
@@ -46,11 +48,9 @@
 #include "ticks.hpp"
 
 namespace apex {
-class Graph;
 namespace detail {
 
 class NodeState;
-class Restructure;
 class EditRequests;
 
 /** Where the registry puts the built-in events (registry.cpp): first in every manifest(). */
@@ -257,7 +257,19 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
     std::lock_guard<std::mutex> lock(group_mutex_);
     if (group_) group_->unqueue(this);
     group_ = g;
+    if (!type_) placeholder_.thread_group = g->name();  // what it keeps for a save
   }
+  /** Joins a graph: where Node::requestEdit asks, the change counters, the host (new or adopted
+   *  nodes, before any thread reaches them). */
+  void joinGraph(std::shared_ptr<Revisions> revisions, std::shared_ptr<EditRequests> edits) {
+    revisions_ = std::move(revisions);
+    edits_ = std::move(edits);
+  }
+  void setHost(std::shared_ptr<const Host> host) { host_ = std::move(host); }
+  /** A placeholder's description, kept verbatim (a new placeholder, before it joins a group). */
+  void setPlaceholder(NodeDescription d) { placeholder_ = std::move(d); }
+  /** Nothing keeps it from firing now (readiness.hpp). */
+  bool ready() const { return readiness_.ready(); }
   /** Whether parameter `p` has its input and output ports. */
   bool interactive(int p) const { return params_[p].interactive; }
   /** The edge into data input `i` or parameter `p` (null if none), and those out of output `i`,
@@ -459,10 +471,9 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   int findTrigger(std::string_view n) const;
 
  private:
-  // Graph code (graph*.cpp: Graph's calls and Graph::Impl's steps) edits the structure; the
-  // liveness walk (live.hpp) too. Everyone else goes through the operations above.
-  friend class apex::Graph;
-  friend class Restructure;
+  // No friends: graph code, too, goes through the operations above. NodeState's own members
+  // that belong to an edit are defined beside it: link/unlink in graph_connect.cpp,
+  // setInterface in graph_interface.cpp, describe in graph_load.cpp.
 
   // Hot first: what a firing reads, in the order it reads it (see "Cold and large" below).
   // --- structure (edits only, groups paused; its group thread reads) ---
