@@ -43,6 +43,7 @@
 #include "apex/core/histogram.hpp"
 #include "apex/core/node_names.hpp"
 #include "apex/core/registry.hpp"
+#include "guarded.hpp"
 #include "readiness.hpp"
 #include "thread_group.hpp"
 #include "ticks.hpp"
@@ -163,31 +164,6 @@ struct Revisions {
     edited.fetch_add(1, std::memory_order_relaxed);
     shown();
   }
-};
-
-/** A value reached only with its mutex held: lock() returns a handle that holds the lock for as
- *  long as it lives (`auto s = shared_.lock(); s->error = ...`). */
-template <class T>
-class Guarded {
- public:
-  template <class V>
-  class Handle {
-   public:
-    V* operator->() const { return &v_; }
-    V& operator*() const { return v_; }
-
-   private:
-    friend class Guarded;
-    Handle(std::mutex& m, V& v) : lock_(m), v_(v) {}
-    std::lock_guard<std::mutex> lock_;
-    V& v_;
-  };
-  Handle<T> lock() { return {m_, v_}; }
-  Handle<const T> lock() const { return {m_, v_}; }
-
- private:
-  mutable std::mutex m_;
-  T v_;
 };
 
 class NodeState : public std::enable_shared_from_this<NodeState> {
