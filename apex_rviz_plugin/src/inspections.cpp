@@ -19,7 +19,8 @@ void Inspections::inspect(const QString& node, const QString& port) {
               true, "",
               node + "/" + port + " is published on " + t + " from its first message on; inspect it again then to see it here");
         else ctx_.link.watchScalar(node.toStdString(), port.toStdString(), topic, type);
-        ctx_.report(true, "", "inspecting " + name + " on " + t + (type.empty() ? "" : " (" + QString::fromStdString(type) + ")"));
+        ctx_.report(true, "",
+                    "inspecting " + name + " on " + t + (type.empty() ? "" : " (" + QString::fromStdString(type) + ")"));
       });
 }
 

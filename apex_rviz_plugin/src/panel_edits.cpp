@@ -83,7 +83,8 @@ void PanelWidget::onAddRequested(const QString& type_name, QPointF at) {
 void PanelWidget::onAddLinkedRequested(const QString& type_name, QPointF at, const apex::Connection& link) {
   const std::string type = type_name.toStdString();
   const bool feeds = link.from_node.empty();  // the new node is the link's source: left of where it was let go
-  const auto [path, free] = placement_.placeNew(type, typeBox(type), at - QPointF(0, 40), feeds);  // its first ports about level with `at`
+  const auto [path, free] =
+      placement_.placeNew(type, typeBox(type), at - QPointF(0, 40), feeds);  // its first ports about level with `at`
   apex::Connection c = link;
   (feeds ? c.from_node : c.to_node) = path;
   perform(model_.addLinked(type, path, free.x, free.y, c));
@@ -93,7 +94,8 @@ void PanelWidget::onInsertNewRequested(const QString& type_name, QPointF at, con
                                        const QString& out) {
   const std::string type = type_name.toStdString();
   const Box size = typeBox(type);
-  const auto [path, free] = placement_.placeNew(type, size, at - QPointF(size.width / 2, size.height / 2));  // centred between the two
+  const auto [path, free] =
+      placement_.placeNew(type, size, at - QPointF(size.width / 2, size.height / 2));  // centred between the two
   editor_->reveal(QRectF(free.x, free.y, free.width, free.height));  // a free place may be below the view
   perform(model_.addInserted(type, path, free.x, free.y, link, in.toStdString(), out.toStdString()));
 }

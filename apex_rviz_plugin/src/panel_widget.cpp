@@ -223,11 +223,11 @@ void PanelWidget::historyStep(bool undo) {
   if (step.calls.empty()) return;
   announceMoves(step.calls);
   const bool regroups = GraphModel::regroups(step.calls);
-  link_.runThenRead(std::move(step.calls), [this, undo, label = step.label, regroups](bool ok, const std::string& m,
-                                                                                      const apex::GraphState& after) {
-    if (ok && regroups) inspectAgain();
-    history_.stepDone(undo, label, ok, m, after);
-  });
+  link_.runThenRead(std::move(step.calls),
+                    [this, undo, label = step.label, regroups](bool ok, const std::string& m, const apex::GraphState& after) {
+                      if (ok && regroups) inspectAgain();
+                      history_.stepDone(undo, label, ok, m, after);
+                    });
 }
 
 void PanelWidget::announceMoves(const std::vector<Call>& calls) {

@@ -50,15 +50,16 @@ void TrackerStarter::start(const QString& tracker) {
   connect(view, &TrackerStartView::boxChosen, this, &TrackerStarter::startOn);
   ctx_.editor.showMessage("fetching the frame " + tracker + " last saw, from " + from + "/" + port, false);
   const QPointer<TrackerStartView> alive(view);
-  ctx_.link.inspect(source->first, source->second,
-                    [this, alive, tracker, from, port](bool ok, const std::string& m, const std::string& topic, const std::string&) {
-                      if (!alive || alive.data() != view_.data()) return;  // another window asked for since
-                      if (!ok) {
-                        alive->close();
-                        return ctx_.report(false, m, "show the frame of " + from + "/" + port);
-                      }
-                      watchSource(alive, tracker, from, port, topic);
-                    });
+  ctx_.link.inspect(
+      source->first, source->second,
+      [this, alive, tracker, from, port](bool ok, const std::string& m, const std::string& topic, const std::string&) {
+        if (!alive || alive.data() != view_.data()) return;  // another window asked for since
+        if (!ok) {
+          alive->close();
+          return ctx_.report(false, m, "show the frame of " + from + "/" + port);
+        }
+        watchSource(alive, tracker, from, port, topic);
+      });
 }
 
 TrackerStartView* TrackerStarter::view() const { return view_.data(); }
