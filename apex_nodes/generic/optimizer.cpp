@@ -11,6 +11,7 @@
 // (candidate_server.hpp).
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <utility>
 
@@ -81,6 +82,8 @@ class Optimizer : public apex::Node, private OptimizerPorts {
         .param(kWorkers)
         .param(kRemoteWorkers)
         .param(kRacing)
+        .param(kRacingRule)
+        .param(kRacingConfidence)
         .param(kFrameBound)
         .param(kObjectives)
         .param(kFront)
@@ -175,7 +178,8 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     local_ = workers_.get();
     out_.assign(local_ + remotes_.size(), -1);
     remote_done_.assign(remotes_.size(), 0);
-    racing_.start(racing_param_.get(), frame_bound_param_.get(), minimize_, out_.size());
+    racing_.start(racing_param_.get(), racing_rule_.get(), racing_confidence_.get(), frame_bound_param_.get(), minimize_,
+                  out_.size());
     points_.clear(), scores_.clear();
     if (!resumed.empty())
       log(apex::LogLevel::Info,
@@ -282,7 +286,7 @@ class Optimizer : public apex::Node, private OptimizerPorts {
   /** Racing: one more frame of worker `w`'s pass scored, its mean so far `mean`; cut it once it
    *  cannot reach what the search needs of it. */
   void frameScored(std::size_t w, double mean) {
-    const bool cut = racing_.frame(w, mean, search_->threshold(out_[w]));
+    const bool cut = racing_.frame(w, mean, search_->threshold(out_[w]), search_->rival(out_[w]));
     sayIfRacingOff();
     if (!cut) return;
     if (!copies_) return cut_.fire();
@@ -297,9 +301,15 @@ class Optimizer : public apex::Node, private OptimizerPorts {
   void scored(std::size_t w, double f) {
     const int id = std::exchange(out_[w], -1);
     if (two_ && copies_ && w < local_) costs_[id] = copies_->msPerFrame(static_cast<int>(w));
-    const double counted = w < local_ ? racing_.ended(w, f) : f;  // a remote pass is never cut
+    const double counted = w < local_ ? racing_.ended(w, id, f) : f;  // a remote pass is never cut
     sayIfRacingOff();
     told(id, counted);
+  }
+
+  /** Racing: the share of the frames scored here, e.g. "38% of the frames scored". */
+  std::string racingShare() const {
+    const int local = search_->evaluations() - std::accumulate(remote_done_.begin(), remote_done_.end(), 0);
+    return std::to_string(static_cast<int>(std::lround(100 * racing_.framesShare(local)))) + "% of the frames scored";
   }
 
   /** Racing turned itself off for the rest of the run: why, logged once. */
@@ -386,7 +396,7 @@ class Optimizer : public apex::Node, private OptimizerPorts {
         if (!targetsOf(d.port).empty()) publishMessage(d.port, apex::toMessage(d.before));
     const int n = search_->evaluations();
     setState(how + " after " + std::to_string(n) + " evaluation" + (n == 1 ? "" : "s") +
-             (racing_.asked() ? " (" + std::to_string(racing_.cuts()) + " cut short)" : "") +
+             (racing_.asked() ? " (" + std::to_string(racing_.cuts()) + " cut short, " + racingShare() + ")" : "") +
              (search_->best().empty() ? ""
                                       : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
                                             " at " + bestText()) +
@@ -486,6 +496,8 @@ class Optimizer : public apex::Node, private OptimizerPorts {
   apex::Input<double> running_in_{this, kRunning};
   apex::Trigger cut_{this, kCut};
   apex::Param<bool> racing_param_{this, kRacing};
+  apex::Choice<tuning::RacingRule> racing_rule_{this, kRacingRule};
+  apex::Param<double> racing_confidence_{this, kRacingConfidence};
   apex::Param<double> frame_bound_param_{this, kFrameBound};
   apex::Output<double> best_fitness_{this, kBestFitness};
   apex::Output<int> evaluations_{this, kEvaluations};

@@ -8,6 +8,7 @@
 #include "apex/core/declare.hpp"
 #include "apex/core/ports.hpp"
 #include "apex_nodes/search.hpp"
+#include "racing.hpp"
 
 namespace apex_nodes {
 
@@ -74,8 +75,23 @@ struct OptimizerPorts {
       "from, made when a run starts, on threads of its own, while the graph rests; differential evolution then "
       "replaces members once a generation is scored (scipy's deferred updating)");
   static inline const apex::ParamDecl<bool> kRacing = apex::param::flag("racing").describe(
-      "stop scoring a candidate once even the best frame scores for the rest of its pass could not make it count (cut "
-      "fires): the run takes the same course on fewer frames; needs running and cut connected");
+      "stop scoring a candidate once it cannot count, by racing_rule (cut fires): the same course (bound) or nearly "
+      "(paired) on fewer frames; needs running and cut connected");
+  static inline const apex::ChoiceDecl<tuning::RacingRule> kRacingRule =
+      apex::param::choice<tuning::RacingRule>(
+          "racing_rule", {{"paired", tuning::RacingRule::kPaired,
+                           "also once it is clearly worse, frame by frame, than the evaluation it must beat (a paired t-test at "
+                           "racing_confidence, after 5 frames): far fewer frames, nearly the same course"},
+                          {"bound", tuning::RacingRule::kBound,
+                           "only once even the best frame scores for the rest of its pass could not make it count: exactly the "
+                           "course of whole passes"}})
+          .describe("racing: when a candidate's pass is cut");
+  static inline const apex::ParamDecl<double> kRacingConfidence =
+      apex::param::number("racing_confidence")
+          .range(0.5, 0.999)
+          .step(0.01)
+          .init(0.95)
+          .describe("racing_rule paired: how sure it must be that a candidate loses before its pass is cut");
   static inline const apex::ParamDecl<std::vector<std::string>> kRemoteWorkers =
       apex::param::textList("remote_workers")
           .describe(

@@ -14,6 +14,8 @@ bool Search::canAsk() const { return asked_count_ < budget_ && evaluations_ >= w
 
 double Search::threshold(int) const { return best_.empty() ? -HUGE_VAL : best_fitness_; }
 
+int Search::rival(int) const { return best_id_; }
+
 std::vector<double> Search::ask() {
   if (!canAsk())
     throw std::logic_error(asked_count_ >= budget_ ? "ask() with the whole budget asked for"
@@ -36,7 +38,7 @@ void Search::tell(int id, double fitness) {
     const std::vector<double> x = std::move(out_.at(it->first));
     out_.erase(it->first);
     ++evaluations_;
-    if (best_.empty() || it->second > best_fitness_) best_ = x, best_fitness_ = it->second;
+    if (best_.empty() || it->second > best_fitness_) best_ = x, best_fitness_ = it->second, best_id_ = it->first;
     result(x, it->second);
   }
 }
@@ -106,6 +108,7 @@ class DifferentialEvolution : public Search {
     const int n = s.population > 0 ? s.population : std::max(5, 15 * static_cast<int>(dims_.size()));
     population_.resize(n, std::vector<double>(dims_.size()));
     fitness_.assign(n, -HUGE_VAL);
+    member_id_.assign(n, -1);
     for (std::size_t j = 0; j < dims_.size(); ++j) {  // Latin hypercube: one sample per stratum
       std::vector<int> strata(n);
       std::iota(strata.begin(), strata.end(), 0);
@@ -125,6 +128,10 @@ class DifferentialEvolution : public Search {
   double threshold(int id) const override {
     const int n = static_cast<int>(population_.size());
     return id < n ? -HUGE_VAL : fitness_[(id - n) % n];
+  }
+  int rival(int id) const override {
+    const int n = static_cast<int>(population_.size());
+    return id < n ? -1 : member_id_[(id - n) % n];
   }
   std::vector<double> next(int index) override {
     const int n = static_cast<int>(population_.size());
@@ -151,15 +158,18 @@ class DifferentialEvolution : public Search {
   }
   void result(const std::vector<double>& candidate, double fitness) override {
     const int n = static_cast<int>(population_.size());
+    const int id = evaluations() - 1;  // results come in the order asked
     if (initialised_ < n) {
       population_[initialised_] = candidate;
+      member_id_[initialised_] = id;
       fitness_[initialised_++] = fitness;
       return;
     }
-    trials_.push_back({candidate, fitness});
+    trials_.push_back({id, candidate, fitness});
     if (deferred_ && static_cast<int>(trials_.size()) < n) return;
-    for (auto& [trial, f] : trials_) {
-      if (f >= fitness_[target_]) population_[target_] = std::move(trial), fitness_[target_] = f;
+    for (auto& t : trials_) {
+      if (t.fitness >= fitness_[target_])
+        population_[target_] = std::move(t.values), fitness_[target_] = t.fitness, member_id_[target_] = t.id;
       target_ = (target_ + 1) % n;
     }
     trials_.clear();
@@ -168,7 +178,13 @@ class DifferentialEvolution : public Search {
   bool deferred_;
   std::vector<std::vector<double>> population_;
   std::vector<double> fitness_;
-  std::vector<std::pair<std::vector<double>, double>> trials_;  // scored, not yet selected (deferred)
+  std::vector<int> member_id_;  // per member: the evaluation it came from
+  struct Trial {
+    int id;
+    std::vector<double> values;
+    double fitness;
+  };
+  std::vector<Trial> trials_;  // scored, not yet selected (deferred)
   int initialised_ = 0, target_ = 0;  // members scored; the member the next selection is for
 };
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "apex_nodes/search.hpp"
@@ -141,6 +142,43 @@ TEST(Search, ManyCandidatesOutAtOnceToldInAnyOrderGiveTheSameRun) {
   auto search = make("random", {{"x", 0, 1}});
   search->ask();
   EXPECT_THROW(search->tell(3, 1.0), std::logic_error) << "a candidate not out";
+}
+
+TEST(Search, ThresholdsNameTheirRivalForRacing) {
+  Settings s;
+  s.budget = 60, s.seed = 3, s.population = 5;
+  for (bool deferred : {false, true}) {
+    SCOPED_TRACE(deferred ? "deferred" : "immediate");
+    s.deferred = deferred;
+    auto de = make("differential_evolution", {{"a", -1, 1}, {"b", -1, 1}}, s);
+    std::map<int, double> told;  // evaluation -> fitness
+    while (!de->done()) {
+      std::vector<std::pair<int, std::vector<double>>> out;
+      while (de->canAsk()) {
+        const int id = de->asked();
+        out.emplace_back(id, de->ask());
+      }
+      for (const auto& [id, x] : out) {
+        const int rival = de->rival(id);
+        if (id < 5) {
+          EXPECT_EQ(rival, -1) << "a first population's member has nothing to beat";
+        } else {
+          ASSERT_TRUE(told.count(rival)) << id << " competes with " << rival << ", not yet scored";
+          EXPECT_EQ(de->threshold(id), told.at(rival)) << id;
+          EXPECT_EQ((rival < 5 ? rival : rival - 5) % 5, (id - 5) % 5) << "the member its trial is for";
+        }
+      }
+      for (const auto& [id, x] : out) de->tell(id, told[id] = minusSphere(x));
+    }
+  }
+  auto random = make("random", {{"a", -1, 1}}, s);
+  EXPECT_EQ(random->rival(random->asked()), -1);
+  std::map<int, double> told;
+  for (int id = 0; id < 10; ++id) {
+    const auto x = random->ask();
+    if (id > 0) EXPECT_EQ(random->threshold(id), told.at(random->rival(id))) << "the best so far";
+    random->tell(told[id] = minusSphere(x));
+  }
 }
 
 TEST(Search, BadSettingsAreRefusedWithTheReason) {

@@ -59,6 +59,7 @@ TEST(Optimizer, RacingCutsPoorCandidatesShortAndTakesTheSameCourse) {
     link(raced.g, "mean", "running", "opt", "running");
     link(raced.g, "opt", "cut", "seq", "end_pass");
     ASSERT_TRUE(raced.g.setParameter("opt", "racing", "true"));
+    ASSERT_TRUE(raced.g.setParameter("opt", "racing_rule", "bound"));
     const auto expected = studyOfRun("differential_evolution", workers, whole);
     const auto rows = studyOfRun("differential_evolution", workers, raced);
     ASSERT_EQ(rows.size(), 40u);
@@ -70,8 +71,42 @@ TEST(Optimizer, RacingCutsPoorCandidatesShortAndTakesTheSameCourse) {
       EXPECT_GT(fitnessOf(rows[k]), fitnessOf(expected[k])) << "a cut candidate counts as the most it could have scored";
     }
     EXPECT_GT(cut, 5);
-    EXPECT_THAT(paramText(raced.g, "opt", "state"), HasSubstr("(" + std::to_string(cut) + " cut short)"));
+    EXPECT_THAT(paramText(raced.g, "opt", "state"), HasSubstr("(" + std::to_string(cut) + " cut short, "));
     if (workers == 1) EXPECT_LT(raced.seen()->size(), whole.seen()->size() * 0.9) << "fewer frames scored";
+  }
+}
+
+TEST(Optimizer, PairedRacingCutsEarlierThanTheBoundAndHereTakesTheSameCourse) {
+  // Each frame scores the candidate's gain: the differences to its rival are the same on every
+  // frame, so a candidate below its rival is clearly worse after 5 frames, and its estimate is exact.
+  for (int workers : {1, 2}) {
+    SCOPED_TRACE("workers " + std::to_string(workers));
+    Loop whole(20), bound(20), paired(20);
+    for (Loop* l : {&whole, &bound, &paired}) ASSERT_TRUE(l->g.setParameter("opt", "frame_score_bound", "100"));
+    for (Loop* l : {&bound, &paired}) {
+      link(l->g, "mean", "running", "opt", "running");
+      link(l->g, "opt", "cut", "seq", "end_pass");
+      ASSERT_TRUE(l->g.setParameter("opt", "racing", "true"));
+    }
+    ASSERT_TRUE(bound.g.setParameter("opt", "racing_rule", "bound"));
+    const auto expected = studyOfRun("differential_evolution", workers, whole);
+    (void)studyOfRun("differential_evolution", workers, bound);
+    const auto rows = studyOfRun("differential_evolution", workers, paired);
+    ASSERT_EQ(rows.size(), expected.size());
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      EXPECT_EQ(rows[k].substr(rows[k].rfind(',')), expected[k].substr(expected[k].rfind(','))) << "the same candidates";
+      // cut by the paired rule: its estimate, exact here; by the bound first: the bound, above
+      EXPECT_GE(fitnessOf(rows[k]), fitnessOf(expected[k]) - 1e-9) << rows[k];
+    }
+    EXPECT_EQ(paramText(paired.g, "opt", "best_values"), paramText(whole.g, "opt", "best_values"));
+    const auto share = [](Loop& l) {
+      const std::string st = paramText(l.g, "opt", "state");
+      const auto at = st.find(" cut short, ");
+      return at == std::string::npos ? 100 : std::stoi(st.substr(at + 12));
+    };
+    EXPECT_LT(share(paired), share(bound)) << paramText(paired.g, "opt", "state") << " against "
+                                           << paramText(bound.g, "opt", "state");
+    if (workers == 1) EXPECT_LT(paired.seen()->size(), bound.seen()->size()) << "fewer frames through the graph";
   }
 }
 
@@ -82,7 +117,7 @@ TEST(Optimizer, RacingWithABoundScoresBeatTurnsItselfOffAndTheRunIsTheSame) {
   ASSERT_TRUE(raced.g.setParameter("opt", "racing", "true"));  // frame_score_bound 1: the gains reach 100
   const auto expected = studyOfRun("random", 1, whole);
   EXPECT_EQ(studyOfRun("random", 1, raced), expected);
-  EXPECT_THAT(paramText(raced.g, "opt", "state"), HasSubstr("(0 cut short)"));
+  EXPECT_THAT(paramText(raced.g, "opt", "state"), HasSubstr("(0 cut short, "));
 }
 
 TEST(Optimizer, RemovingItMidRunWithWorkersLeavesTheGraphRunning) {

@@ -57,6 +57,10 @@ class Search {
    *  -infinity when its exact value matters (e.g. a first population's member). By default the
    *  best so far. */
   virtual double threshold(int id) const;
+  /** @brief For racing: the evaluation whose fitness threshold(id) is (the best so far, or the
+   *  member a trial competes with), so that a pass can be compared with it frame by frame; -1
+   *  when there is none. */
+  virtual int rival(int id) const;
   /** @brief The budget is spent. */
   bool done() const { return evaluations_ >= budget_; }
   int evaluations() const { return evaluations_; }
@@ -86,6 +90,7 @@ class Search {
   std::map<int, double> told_;  // told out of order, waiting for those before them
   std::vector<double> best_;
   double best_fitness_ = 0;
+  int best_id_ = -1;
 };
 
 /** @brief How a search picks its candidates; by name: algorithms(). */
