@@ -4,7 +4,8 @@
 # tuned parameters beat the shipped ones on the held-out bag) and the tuned graph it wrote holds
 # the applied best values; and if the same run with a study file, its runtime killed (SIGKILL)
 # half-way and launched again, ends with the same best as the unbroken one; and if two workers with
-# racing end as two workers without, with candidates cut short; and if two workers judging by two
+# racing by the bound end as two workers without, and by the paired test at the same held-out F1
+# (within 0.02), with candidates cut short; and if two workers judging by two
 # objectives (fitness and cost) end with that best too, and print a Pareto front. Writes a JUnit result.
 #   tune_check.sh RESULT_XML WORK_DIR [FRAMES] [BUDGET]   (with this package's devel space sourced)
 set -u
@@ -64,16 +65,23 @@ if [ -z "$failure" ]; then
 
   # Two workers (copies of the evaluated part), without and with racing: the same best, some cut short
   # and with a second objective, the cost: the search follows the fitness, so the same best, and a front
-  for v in "false fitness workers2" "true fitness raced" "false fitness_and_cost costed"; do
-    read -r racing objectives name <<<"$v"
+  # (racing by the bound: exactly the same best; by the paired test: the same held-out F1, within 0.02)
+  for v in "false bound fitness workers2" "true bound fitness raced" "true paired fitness paired" \
+    "false bound fitness_and_cost costed"; do
+    read -r racing rule objectives name <<<"$v"
     timeout 600 roslaunch -p "$port" apex tune.launch data:="$work" budget:="$budget" workers:=2 racing:="$racing" \
-      objectives:="$objectives" tuned:="tuned_$name.yaml" >"$work/$name.log" 2>&1
+      racing_rule:="$rule" objectives:="$objectives" tuned:="tuned_$name.yaml" >"$work/$name.log" 2>&1
     grep -q '^tune: OK' "$work/$name.log" || fail "with 2 workers ($name) the demo did not end with 'tune: OK'"
   done
   two=$(grep '^best on the training bag' "$work/workers2.log") raced=$(grep '^best on the training bag' "$work/raced.log")
   [ -n "$two" ] && [ "$two" = "$raced" ] || fail "2 workers with racing ended with '$raced', not as without: '$two'"
-  grep -qE '^optimiser: finished after [0-9]+ evaluations \([1-9][0-9]* cut short\)' "$work/raced.log" ||
-    fail "racing cut no candidate short: $(grep '^optimiser' "$work/raced.log")"
+  for name in raced paired; do
+    grep -qE '^optimiser: finished after [0-9]+ evaluations \([1-9][0-9]* cut short, ' "$work/$name.log" ||
+      fail "racing ($name) cut no candidate short: $(grep '^optimiser' "$work/$name.log")"
+  done
+  held() { sed -n 's/.*->  tuned F1 \([0-9.]*\).*/\1/p' "$work/$1.log"; }
+  python3 -c "import sys; sys.exit(abs(float('$(held paired)') - float('$(held workers2)')) > 0.02)" 2>/dev/null ||
+    fail "racing by the paired test ended at held-out F1 '$(held paired)', not within 0.02 of '$(held workers2)'"
   costed=$(grep '^best on the training bag' "$work/costed.log")
   [ -n "$costed" ] && [ "$costed" = "$two" ] || fail "2 workers on two objectives ended with '$costed', not as on one: '$two'"
   grep -qE '^optimiser: .*; a front of [1-9][0-9]* points?$' "$work/costed.log" && grep -q '^  front: F1 ' "$work/costed.log" ||
@@ -83,7 +91,7 @@ fi
 junit_result "$out" tune Tuning "TheOptimizerTunesThePipelineOnHardDataAndTheHeldOutScoreImprovesAndAKilledRunResumes" "$failure"
 grep -E '^(training|best|held-out|tune)' "$work/tune.log" 2>/dev/null
 [ -z "${killed_at:-}" ] || echo "killed after $killed_at of $budget evaluations, launched again: $(grep '^best on' "$work/resumed.log")"
-for name in workers2 raced costed; do
+for name in workers2 raced paired costed; do
   [ -f "$work/$name.log" ] && echo "$name: $(grep -E '^(the run took|optimiser)' "$work/$name.log" | tr '\n' ' ')"
 done
 [ -z "$failure" ] && echo "tuning: OK" || { echo "tuning: $failure"; exit 1; }
