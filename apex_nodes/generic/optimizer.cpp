@@ -11,7 +11,6 @@
 // (candidate_server.hpp).
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <sstream>
 #include <utility>
 
@@ -306,12 +305,6 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     told(id, counted);
   }
 
-  /** Racing: the share of the frames scored here, e.g. "38% of the frames scored". */
-  std::string racingShare() const {
-    const int local = search_->evaluations() - std::accumulate(remote_done_.begin(), remote_done_.end(), 0);
-    return std::to_string(static_cast<int>(std::lround(100 * racing_.framesShare(local)))) + "% of the frames scored";
-  }
-
   /** Racing turned itself off for the rest of the run: why, logged once. */
   void sayIfRacingOff() {
     if (const std::string why = racing_.takeWhyOff(); !why.empty())
@@ -396,7 +389,7 @@ class Optimizer : public apex::Node, private OptimizerPorts {
         if (!targetsOf(d.port).empty()) publishMessage(d.port, apex::toMessage(d.before));
     const int n = search_->evaluations();
     setState(how + " after " + std::to_string(n) + " evaluation" + (n == 1 ? "" : "s") +
-             (racing_.asked() ? " (" + std::to_string(racing_.cuts()) + " cut short, " + racingShare() + ")" : "") +
+             (racing_.asked() ? " (" + racing_.summary() + ")" : "") +
              (search_->best().empty() ? ""
                                       : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
                                             " at " + bestText()) +

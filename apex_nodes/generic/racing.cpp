@@ -28,6 +28,7 @@ void Racing::start(bool on, RacingRule rule, double confidence, double frame_bou
   minimize_ = minimize;
   full_frames_ = cuts_ = 0;
   frames_ = 0;
+  passes_ended_ = 0;
   kept_.clear();
   reset(workers);
 }
@@ -63,6 +64,7 @@ bool Racing::frame(std::size_t w, double mean, double needed, int rival) {
 double Racing::ended(std::size_t w, int id, double f) {
   Pass p = std::exchange(passes_.at(w), Pass{});
   frames_ += static_cast<long long>(p.scores.size());
+  ++passes_ended_;
   if (p.cut) return minimize_ ? -p.counted : p.counted;
   const int frames = static_cast<int>(p.scores.size());
   if (on_ && frames == 0) off("no frame's mean so far arrived: connect the mean's running to running");
@@ -72,6 +74,11 @@ double Racing::ended(std::size_t w, int id, double f) {
         " frames: the bound needs the same number each time");
   if (on_ && rule_ == RacingRule::kPaired) kept_[id] = std::move(p.scores);
   return f;
+}
+
+std::string Racing::summary() const {
+  return std::to_string(cuts_) + " cut short, " + std::to_string(static_cast<int>(std::lround(100 * framesShare()))) +
+         "% of the frames scored";
 }
 
 std::string Racing::takeWhyOff() { return std::exchange(why_off_, std::string()); }

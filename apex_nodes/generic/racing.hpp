@@ -54,11 +54,15 @@ class Racing {
   bool asked() const { return asked_; }
   /** @brief Passes cut in this run. */
   int cuts() const { return cuts_; }
-  /** @brief The share of the frames the run's passes scored, of what they would have whole
+  /** @brief The share of the frames the run's passes here scored, of what they would have whole
    *  (1 before any whole pass). */
-  double framesShare(int passes) const {
-    return full_frames_ > 0 && passes > 0 ? static_cast<double>(frames_) / (static_cast<double>(full_frames_) * passes) : 1;
+  double framesShare() const {
+    return full_frames_ > 0 && passes_ended_ > 0
+               ? static_cast<double>(frames_) / (static_cast<double>(full_frames_) * passes_ended_)
+               : 1;
   }
+  /** @brief For the Optimizer's state: e.g. "118 cut short, 56% of the frames scored". */
+  std::string summary() const;
 
  private:
   struct Pass {
@@ -84,6 +88,7 @@ class Racing {
   int full_frames_ = 0;  // frames of a whole pass (0: none seen yet; racing waits for one)
   int cuts_ = 0;
   long long frames_ = 0;  // scored in the run's passes, here
+  int passes_ended_ = 0;  // the run's passes here
   std::string why_off_;
 };
 
