@@ -192,35 +192,46 @@ std_msgs::ColorRGBA trackColor(int id) {
   return c;
 }
 
+/** What TrackMarkers draws of a track: a path's line, or its "#id". */
+enum class TrackPart { kLine, kText };
+
+/** Part `part` of track `id` as drawTrack adds it or eraseTrack deletes it, in its namespace
+ *  ("<ns>/tracks" or "<ns>/tracks/ids"); an ADD also has the part's type and the id's colour. */
+visualization_msgs::Marker trackMarker(const std_msgs::Header& header, const MarkerOptions& options, int id, TrackPart part,
+                                       int action) {
+  using visualization_msgs::Marker;
+  const bool text = part == TrackPart::kText;
+  Marker m = marker(header, options, options.ns + (text ? "/tracks/ids" : "/tracks"), id, action);
+  if (action == Marker::ADD) {
+    m.type = text ? Marker::TEXT_VIEW_FACING : Marker::LINE_STRIP;
+    m.color = trackColor(id);
+  }
+  return m;
+}
+
 /** Track `id`'s path through `points` (oldest first; rviz refuses a strip of one point) and
  *  "#id" at the newest, in the id's colour. */
 void drawTrack(const std_msgs::Header& header, const MarkerOptions& options, int id,
                const std::deque<geometry_msgs::Point>& points, visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
-  const std_msgs::ColorRGBA colour = trackColor(id);
   if (points.size() >= 2) {
-    Marker line = marker(header, options, options.ns + "/tracks", id, Marker::ADD);
-    line.type = Marker::LINE_STRIP;
+    Marker line = trackMarker(header, options, id, TrackPart::kLine, Marker::ADD);
     line.scale.x = kTrackWidth;
-    line.color = colour;
     line.points.assign(points.begin(), points.end());
     out.markers.push_back(std::move(line));
   }
-  Marker text = marker(header, options, options.ns + "/tracks/ids", id, Marker::ADD);
-  text.type = Marker::TEXT_VIEW_FACING;
+  Marker text = trackMarker(header, options, id, TrackPart::kText, Marker::ADD);
   text.text = "#" + std::to_string(id);
   text.pose.position = points.back();
   text.scale.x = text.scale.y = text.scale.z = std::max(options.text_height, kMinScale);  // rviz reads z
-  text.color = colour;
   out.markers.push_back(std::move(text));
 }
 
 /** DELETEs for what drawTrack drew of track `id`: both, as its line may have been drawn (rviz
  *  ignores a DELETE of a marker it does not have). */
 void eraseTrack(const std_msgs::Header& header, const MarkerOptions& options, int id, visualization_msgs::MarkerArray& out) {
-  using visualization_msgs::Marker;
-  out.markers.push_back(marker(header, options, options.ns + "/tracks", id, Marker::DELETE));
-  out.markers.push_back(marker(header, options, options.ns + "/tracks/ids", id, Marker::DELETE));
+  for (TrackPart part : {TrackPart::kLine, TrackPart::kText})
+    out.markers.push_back(trackMarker(header, options, id, part, visualization_msgs::Marker::DELETE));
 }
 
 }  // namespace
