@@ -1,14 +1,11 @@
 // MergeClouds: clouds from several sensors as one cloud in one frame, each moved by tf2 at its own
-// stamp (as TfLookup looks up); the merging itself is mergeClouds (cloud_transform.hpp).
-#include <ros/init.h>
-#include <tf2_ros/buffer.h>
-#include <tf2_ros/transform_listener.h>
-
+// stamp from the node's own buffer (TfListener, tf_listener.hpp, as TfLookup's); the merging itself
+// is mergeClouds (cloud_transform.hpp).
 #include <memory>
 
 #include "apex/core/registry.hpp"
-#include "apex/ros/node_handles.hpp"
 #include "apex_nodes/cloud_transform.hpp"
+#include "tf_listener.hpp"
 
 namespace apex_nodes {
 namespace param = apex::param;
@@ -22,8 +19,7 @@ class MergeClouds : public apex::Node {
       param::integer("inputs").range(2, 8).step(1).init(2).describe("how many clouds: cloud_0, cloud_1, ...").shapesInterface();
   static inline const apex::ParamDecl<std::string> kFrame =
       param::text("frame").describe("the merged cloud's frame; empty: the inputs' own, which must be one");
-  static inline const apex::ParamDecl<double> kTimeout =
-      param::number("timeout").range(0.0, 10.0).step(0.01).init(0.1).describe("seconds to wait for each transform");
+  static inline const apex::ParamDecl<double> kTimeout = tfTimeoutParam("seconds to wait for each transform");
   static apex::Manifest manifest() {
     return apex::Manifest(
                "Merges clouds into one in `frame`, each moved by tf2 at its own stamp. Fields: all, if every input has "
@@ -43,10 +39,8 @@ class MergeClouds : public apex::Node {
         });
   }
   void setup() override {
-    if (!ros::isInitialized()) return;  // a test without ROS: clouds in one frame only
-    buffer_ = std::make_unique<tf2_ros::Buffer>();
-    listener_ = std::make_unique<tf2_ros::TransformListener>(*buffer_, apex::nodeHandle(*this));
-  }
+    tf_ = std::make_unique<TfListener>(*this);
+  }  // without ROS no transform arrives: clouds in `frame` only
   void process() override {
     std::vector<std::shared_ptr<const Cloud>> clouds;
     for (const auto& port : interface().inputs) clouds.push_back(input<Cloud>(port.name));
@@ -54,8 +48,8 @@ class MergeClouds : public apex::Node {
     cloud_.publish(mergeClouds(
         clouds, frame_.get(),
         [&](const std::string& target, const std::string& source, const ros::Time& stamp) -> Eigen::Affine3f {
-          if (!buffer_) throw std::runtime_error("no tf2 listener: ROS is not initialised");
-          return toEigen(buffer_->lookupTransform(target, source, stamp, ros::Duration(timeout)).transform);
+          tf_->waitFor(target, source, stamp, timeout);
+          return toEigen(tf_->buffer().lookupTransform(target, source, stamp).transform);
         },
         points_.next()));
   }
@@ -64,8 +58,7 @@ class MergeClouds : public apex::Node {
   apex::Output<Cloud> cloud_{this, kCloud};
   apex::Param<std::string> frame_{this, kFrame};
   apex::Param<double> timeout_{this, kTimeout};
-  std::unique_ptr<tf2_ros::Buffer> buffer_;
-  std::unique_ptr<tf2_ros::TransformListener> listener_;
+  std::unique_ptr<TfListener> tf_;  // from setup(): on the runtime's node handle
   Reused<Blob> points_;  // the merged points, refilled once nobody holds the last ones
 };
 

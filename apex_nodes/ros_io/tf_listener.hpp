@@ -1,7 +1,7 @@
 // How a node reads tf2: its own buffer, filled from /tf and /tf_static by tf2_ros's listener on the
-// runtime's node handle (its namespace and remappings, apex/ros/node_handles.hpp). TfLookup and
-// LaserProjector each own a TfListener; the listener's thread writes the buffer (tf2 locks it), the
-// node's thread group reads it.
+// runtime's node handle (its namespace and remappings, apex/ros/node_handles.hpp). TfLookup,
+// LaserProjector and MergeClouds each own a TfListener; the listener's thread writes the buffer (tf2
+// locks it), the node's thread group reads it.
 #pragma once
 
 #include <ros/init.h>
