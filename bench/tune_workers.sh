@@ -21,7 +21,7 @@ for round in $(seq "$rounds"); do
     took=$(sed -n 's/^the run took \([0-9.]*\) s.*/\1/p' <<<"$out")
     best=$(sed -n 's/^best on the training bag: F1 \([0-9.]*\).*/\1/p' <<<"$out")
     held=$(sed -n 's/.*->  tuned F1 \([0-9.]*\).*/\1/p' <<<"$out")
-    cut=$(sed -n 's/^optimiser: .*(\([0-9]*\) cut short.*/\1/p' <<<"$out")
+    cut=$(sed -n 's/^optimiser: .* \([0-9]*\) cut short.*/\1/p' <<<"$out")
     share=$(sed -n 's/^optimiser: .* cut short, \([0-9]*\)% of the frames scored.*/\1/p' <<<"$out")
     [ -n "$took" ] || { echo "tune_workers: '$v' failed:" >&2; tail -5 <<<"$out" >&2; continue; }
     echo "$round|$v|$took|$best|$held|${cut:-0}|${share:-100}" >>"$results"

@@ -61,7 +61,8 @@ class Racing {
                ? static_cast<double>(frames_) / (static_cast<double>(full_frames_) * passes_ended_)
                : 1;
   }
-  /** @brief For the Optimizer's state: e.g. "118 cut short, 56% of the frames scored". */
+  /** @brief For the Optimizer's state: e.g. "racing paired: 118 cut short, 56% of the frames
+   *  scored". */
   std::string summary() const;
 
  private:

@@ -71,7 +71,7 @@ TEST(Optimizer, RacingCutsPoorCandidatesShortAndTakesTheSameCourse) {
       EXPECT_GT(fitnessOf(rows[k]), fitnessOf(expected[k])) << "a cut candidate counts as the most it could have scored";
     }
     EXPECT_GT(cut, 5);
-    EXPECT_THAT(paramText(raced.g, "opt", "state"), HasSubstr("(" + std::to_string(cut) + " cut short, "));
+    EXPECT_THAT(paramText(raced.g, "opt", "state"), HasSubstr("(racing bound: " + std::to_string(cut) + " cut short, "));
     if (workers == 1) EXPECT_LT(raced.seen()->size(), whole.seen()->size() * 0.9) << "fewer frames scored";
   }
 }
@@ -117,7 +117,7 @@ TEST(Optimizer, RacingWithABoundScoresBeatTurnsItselfOffAndTheRunIsTheSame) {
   ASSERT_TRUE(raced.g.setParameter("opt", "racing", "true"));  // frame_score_bound 1: the gains reach 100
   const auto expected = studyOfRun("random", 1, whole);
   EXPECT_EQ(studyOfRun("random", 1, raced), expected);
-  EXPECT_THAT(paramText(raced.g, "opt", "state"), HasSubstr("(0 cut short, "));
+  EXPECT_THAT(paramText(raced.g, "opt", "state"), HasSubstr("(racing paired: 0 cut short, "));
 }
 
 TEST(Optimizer, RemovingItMidRunWithWorkersLeavesTheGraphRunning) {

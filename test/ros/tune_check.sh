@@ -76,7 +76,7 @@ if [ -z "$failure" ]; then
   two=$(grep '^best on the training bag' "$work/workers2.log") raced=$(grep '^best on the training bag' "$work/raced.log")
   [ -n "$two" ] && [ "$two" = "$raced" ] || fail "2 workers with racing ended with '$raced', not as without: '$two'"
   for name in raced paired; do
-    grep -qE '^optimiser: finished after [0-9]+ evaluations \([1-9][0-9]* cut short, ' "$work/$name.log" ||
+    grep -qE '^optimiser: finished after [0-9]+ evaluations \(racing (paired|bound): [1-9][0-9]* cut short, ' "$work/$name.log" ||
       fail "racing ($name) cut no candidate short: $(grep '^optimiser' "$work/$name.log")"
   done
   held() { sed -n 's/.*->  tuned F1 \([0-9.]*\).*/\1/p' "$work/$1.log"; }
