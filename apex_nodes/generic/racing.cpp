@@ -78,8 +78,7 @@ double Racing::ended(std::size_t w, int id, double f) {
 
 std::string Racing::summary() const {
   return std::string("racing ") + (rule_ == RacingRule::kPaired ? "paired" : "bound") + ": " + std::to_string(cuts_) +
-         " cut short, " + std::to_string(static_cast<int>(std::lround(100 * framesShare()))) +
-         "% of the frames scored";
+         " cut short, " + std::to_string(static_cast<int>(std::lround(100 * framesShare()))) + "% of the frames scored";
 }
 
 std::string Racing::takeWhyOff() { return std::exchange(why_off_, std::string()); }

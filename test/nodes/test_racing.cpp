@@ -55,7 +55,8 @@ TEST(Racing, PairedCutsAClearlyWorsePassEarlyAndCountsItsEstimate) {
   EXPECT_NEAR(counted, mean(worse), 0.01) << "counted as its estimate, not the bound";
   EXPECT_EQ(r.cuts(), 1);
   EXPECT_NEAR(r.framesShare(), (20.0 + at) / 40, 1e-9);
-  EXPECT_EQ(r.summary(), "racing paired: 1 cut short, " + std::to_string(std::lround(100 * (20.0 + at) / 40)) + "% of the frames scored");
+  EXPECT_EQ(r.summary(),
+            "racing paired: 1 cut short, " + std::to_string(std::lround(100 * (20.0 + at) / 40)) + "% of the frames scored");
 }
 
 TEST(Racing, PairedLetsAPassAsGoodAsItsRivalRunWhole) {
