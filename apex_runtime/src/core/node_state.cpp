@@ -46,6 +46,29 @@ NodeState::~NodeState() {
   node_.reset();
 }
 
+void NodeState::attach(std::unique_ptr<Node> object) {
+  node_ = std::move(object);
+  (void)resolveHandles(*node_, manifest());  // checked at registration against the default interface
+  node_->state_.store(this, std::memory_order_release);
+}
+
+void NodeState::joinGraph(std::shared_ptr<Revisions> revisions, std::shared_ptr<EditRequests> edits) {
+  revisions_ = std::move(revisions);
+  edits_ = std::move(edits);
+}
+
+void NodeState::moveTo(ThreadGroup* g) {
+  std::lock_guard<std::mutex> lock(group_mutex_);
+  if (group_) group_->unqueue(this);
+  group_ = g;
+  if (!type_) placeholder_.thread_group = g->name();  // what it keeps for a save
+}
+
+void NodeState::markRemoved() {
+  std::lock_guard<std::mutex> lock(group_mutex_);
+  removed_ = true;
+}
+
 int NodeState::findInput(std::string_view n) const { return indexOf(manifest().inputs, n); }
 int NodeState::findOutput(std::string_view n) const { return indexOf(manifest().outputs, n); }
 int NodeState::findParam(std::string_view n) const { return indexOf(manifest().params, n); }
@@ -64,24 +87,6 @@ void NodeState::setOuterEnabled(bool on) { shared_.lock()->outer_enabled = on; }
 std::string NodeState::ui() const { return shared_.lock()->ui; }
 
 void NodeState::setUi(std::string text) { shared_.lock()->ui = std::move(text); }
-
-ParamValue NodeState::requestedParam(int index) const {
-  auto lock = shared_.lock();
-  return params_[index].requested;
-}
-
-ParamValues NodeState::requestedParams() const {
-  ParamValues values;
-  auto lock = shared_.lock();
-  for (std::size_t i = 0; i < params_.size(); ++i) values.set(manifest().params[i].name, params_[i].requested);
-  return values;
-}
-
-void NodeState::presetParam(int index, ParamValue v) {
-  auto lock = shared_.lock();
-  params_[index].requested = std::move(v);
-  params_[index].resend = manifest().params[index].every_set;  // as requestParam: a command, applied even if equal
-}
 
 // ---------------------------------------------------------------- counting
 
@@ -153,6 +158,10 @@ std::string NodeState::waitingFor() const {
   }
   if (driven() && !has_data_.load(std::memory_order_acquire)) return "waiting for new data";
   return "";
+}
+
+void NodeState::correctBlockers(int delta) {
+  if (readiness_.correct(delta)) group_->push(this);
 }
 
 void NodeState::adjust(int delta) {
@@ -384,74 +393,11 @@ void NodeState::notifyAfter(double seconds) {
   if (!removed_ && group_) group_->notifyAt(when, shared_from_this());
 }
 
-void NodeState::requestParam(int index, ParamValue v) {
-  bool post_now = false;
-  {
-    auto shared = shared_.lock();
-    params_[index].requested = std::move(v);
-    params_[index].resend = manifest().params[index].every_set;
-    params_dirty_.store(true, std::memory_order_release);
-    post_now = !shared->apply_posted;
-    shared->apply_posted = true;
-  }
-  if (post_now) post([](NodeState& n) { n.applyParams(); });
-}
-
-void NodeState::applyParams() {
-  std::vector<int> changed;
-  {
-    auto shared = shared_.lock();
-    shared->apply_posted = false;
-    params_dirty_.store(false, std::memory_order_relaxed);
-    for (std::size_t i = 0; i < params_.size(); ++i) {
-      if (params_[i].requested == params_[i].active && !params_[i].resend) continue;
-      params_[i].resend = false;
-      params_[i].active = params_[i].requested;
-      changed.push_back(static_cast<int>(i));
-    }
-  }
-  for (int i : changed) {
-    try {
-      node_->parameterChanged(manifest().params[i].name);
-    } catch (const std::exception& ex) {
-      setError(nodeLabel(name_, type_->id) + " failed to apply parameter '" + manifest().params[i].name + "': " + ex.what());
-    }
-    publishParam(i);  // a parameter output carries every change
-  }
-  if (!changed.empty()) revisions_->edit();
-}
-
-void NodeState::updateParam(int index, ParamValue v) {
-  {
-    auto lock = shared_.lock();
-    ParamState& p = params_[index];
-    if (p.active == v) return;
-    if (p.requested == p.active) p.requested = v;  // else an edit asked for another value: it applies next
-    p.active = std::move(v);
-  }
-  revisions_->shown();  // its output sends it with the firing's outputs
-}
-
 void NodeState::publishParam(int index, ThreadGroup* here) {
   if (params_[index].out_edges.empty() && !params_[index].tap) return;
   Message m = toMessage(params_[index].active);
   for (auto& e : params_[index].out_edges) deliver(e, m, here);
   if (params_[index].tap) params_[index].tap(m);
-}
-
-void NodeState::receiveParam(Edge& edge, const Message& m, bool counted) {
-  if (edge.dead) return;
-  if (!m.isNothing()) {
-    auto value = fromMessage(manifest().params[edge.to_index], m);
-    if (value) {
-      requestParam(edge.to_index, value.value());
-      applyParams();
-    } else {
-      setError(nodeLabel(name_) + ": parameter input refused a value: " + value.message());
-    }
-  }
-  // A flush (an edit) may have cleared the mark already: release the sender once.
-  if (counted && edge.counted() && edge.unread.exchange(false, std::memory_order_acq_rel)) edge.from->unblock(1);
 }
 
 void NodeState::runSetup() {

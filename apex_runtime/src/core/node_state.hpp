@@ -44,6 +44,7 @@
 #include "apex/core/node_names.hpp"
 #include "apex/core/registry.hpp"
 #include "guarded.hpp"
+#include "node_ports.hpp"
 #include "readiness.hpp"
 #include "thread_group.hpp"
 #include "ticks.hpp"
@@ -51,120 +52,7 @@
 namespace apex {
 namespace detail {
 
-class NodeState;
 class EditRequests;
-
-/** Where the registry puts the built-in events (registry.cpp): first in every manifest(). */
-constexpr int kEnableIndex = 0, kDisableIndex = 1;  // slots
-constexpr int kProcessedIndex = 0;  // trigger
-
-/** A data or parameter connection. `from_param`: from a parameter output;
- *  `to_param`: into a parameter input. */
-struct Edge {
-  NodeState* from = nullptr;
-  bool from_param = false;
-  int from_index = 0;
-  NodeState* to = nullptr;
-  bool to_param = false;
-  int to_index = 0;
-  std::atomic<bool> unread{false};  // counted edges: the receiver has not taken the last message
-  /** From a source that keeps the newest (SourceMode::Newest): read once the receiver's firing
-   *  ends, not when it takes the message (set when connected). */
-  bool read_after_firing = false;
-  bool dead = false;  // removed; pending mail on it is ignored
-  bool live = false;  // its sender can fire (edits only): a dead input is treated as Nothing
-  /** Data outputs wait for their receivers; parameter outputs never hold a node back. */
-  bool counted() const { return !from_param; }
-  /** From a parameter output into a parameter: the newest value not yet applied (Nothing when
-   *  none). One mail carries it, whatever number of values came meanwhile (NodeState::deliverSlow). */
-  Message newest;
-  std::mutex newest_m;
-};
-
-struct EventEdge {
-  NodeState* from = nullptr;
-  int trigger = 0;
-  NodeState* to = nullptr;
-  int slot = 0;
-  bool to_source = false;  ///< the receiver has no inputs (when connected): its events go last
-  /** Events posted to the receiver and not yet run; beyond kMaxPendingEvents one is dropped
-   *  (NodeState::fireTrigger). `dropped` counts them for the warning. */
-  std::atomic<int> pending{0};
-  std::atomic<long> dropped{0};
-};
-
-/** Events one connection may have waiting for a slot that runs slower than its trigger fires
- *  (enable/disable excepted: they set a state): without a bound a fast sender fills the
- *  receiver group's mailbox faster than it empties. */
-constexpr int kMaxPendingEvents = 64;
-
-struct InputState {
-  Message msg;  // delivered, not yet taken
-  std::atomic<bool> full{false};
-  std::shared_ptr<Edge> edge;
-  Message current;  // taken for this firing
-  std::mutex m;  // on the data path only for edges that are not counted; edits take it too (last: cache lines)
-};
-
-/** Sees every message of a port (inspection); runs on the node's group thread. */
-using Tap = std::function<void(const Message&)>;
-
-/** A count its group thread adds to and any thread reads; copied and moved as a number (an
- *  interface change moves the outputs while their group is paused). */
-struct RelaxedCount {
-  std::atomic<std::uint64_t> n{0};
-  RelaxedCount() = default;
-  RelaxedCount(const RelaxedCount& o) : n(o.get()) {}
-  RelaxedCount& operator=(const RelaxedCount& o) {
-    n.store(o.get(), std::memory_order_relaxed);
-    return *this;
-  }
-  void add() { n.store(n.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed); }  // one writer
-  std::uint64_t get() const { return n.load(std::memory_order_relaxed); }
-};
-
-/** An output's latency: that of the firings which sent on it (an output that sends on some
- *  frames only has its own), and the readings its window is over (NodeState::shared_'s lock). */
-struct OutputLatency {
-  Histogram hist;  // group thread adds, any thread reads
-  HistogramCounts base, newer;  // NodeState::shared_'s lock: as Shared::window
-};
-
-struct OutputState {
-  std::vector<std::shared_ptr<Edge>> edges;
-  Message pending;
-  Tap tap;
-  RelaxedCount sent;  // messages sent (not Nothing, not an end of sequence): the rate on its links
-  std::uint64_t latency_seen = 0;  // group thread: `sent` when a latency was last counted
-  /** Made by the group thread (under NodeState::shared_'s lock) at its first live latency: 6 KiB that an output
-   *  without live frames does without. Shared: it moves with its output through an interface change. */
-  std::shared_ptr<OutputLatency> latency;
-};
-
-struct ParamState {
-  ParamValue requested;  // NodeState::shared_'s lock
-  ParamValue active;  // group thread
-  bool interactive = false;
-  bool resend = false;  // NodeState::shared_'s lock: set again (ParamSpec::every_set), apply even if unchanged
-  std::shared_ptr<Edge> in_edge;
-  std::vector<std::shared_ptr<Edge>> out_edges;
-  Tap tap;
-};
-
-/** The graph's change counters, shared with its nodes. */
-struct Revisions {
-  /** Every change a client shows: edits, and a node's own reports (a player's frame), errors,
-   *  enabling, pausing. */
-  std::atomic<std::uint64_t> visible{0};
-  /** What a save keeps, changed from outside the node: edits, and values arriving through
-   *  parameter inputs. Not a node's own reports: a playing bag is not an unsaved change. */
-  std::atomic<std::uint64_t> edited{0};
-  void shown() { visible.fetch_add(1, std::memory_order_relaxed); }
-  void edit() {
-    edited.fetch_add(1, std::memory_order_relaxed);
-    shown();
-  }
-};
 
 class NodeState : public std::enable_shared_from_this<NodeState> {
  public:
@@ -188,11 +76,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
     std::lock_guard<std::mutex> lock(group_mutex_);
     return removed_ ? nullptr : group_;
   }
-  void attach(std::unique_ptr<Node> object) {
-    node_ = std::move(object);
-    (void)resolveHandles(*node_, manifest());  // checked at registration against the default interface
-    node_->state_.store(this, std::memory_order_release);
-  }
+  void attach(std::unique_ptr<Node> object);
   /** A source by structure: no data input connected, and none mandatory. */
   bool isSource() const;
 
@@ -222,25 +106,14 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   /** Taken out of the graph (Graph::retire): it never fires again, its mail is dropped. */
   bool removed() const { return removed_; }
   /** Marks it removed, under group_mutex_ against a thread that posts to it (homeGroup). */
-  void markRemoved() {
-    std::lock_guard<std::mutex> lock(group_mutex_);
-    removed_ = true;
-  }
+  void markRemoved();
   /** Puts it in group `g` (an edit, both groups paused), off its old group's queue. Under
    *  group_mutex_ throughout: a notifyNewData() sees the old group with the node unqueued from
    *  it, or the new one; it never queues it on the old one afterwards. */
-  void moveTo(ThreadGroup* g) {
-    std::lock_guard<std::mutex> lock(group_mutex_);
-    if (group_) group_->unqueue(this);
-    group_ = g;
-    if (!type_) placeholder_.thread_group = g->name();  // what it keeps for a save
-  }
+  void moveTo(ThreadGroup* g);
   /** Joins a graph: where Node::requestEdit asks, the change counters, the host (new or adopted
    *  nodes, before any thread reaches them). */
-  void joinGraph(std::shared_ptr<Revisions> revisions, std::shared_ptr<EditRequests> edits) {
-    revisions_ = std::move(revisions);
-    edits_ = std::move(edits);
-  }
+  void joinGraph(std::shared_ptr<Revisions> revisions, std::shared_ptr<EditRequests> edits);
   void setHost(std::shared_ptr<const Host> host) { host_ = std::move(host); }
   /** A placeholder's description, kept verbatim (a new placeholder, before it joins a group). */
   void setPlaceholder(NodeDescription d) { placeholder_ = std::move(d); }
@@ -283,9 +156,7 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   void initLive() { live_ = type_ && isSource(); }
   /** An edit changed its structural blockers by `delta` (EditScope); queues it if that left it
    *  ready (push is idempotent: a ready node moved or taken off a queue is queued again). */
-  void correctBlockers(int delta) {
-    if (readiness_.correct(delta)) group_->push(this);
-  }
+  void correctBlockers(int delta);
 
   // --- its group's queue: ThreadGroup's, under the group's mutex ---
   bool queued() const { return queued_; }
@@ -345,27 +216,10 @@ class NodeState : public std::enable_shared_from_this<NodeState> {
   bool startsFrame() const { return starts_frame_; }
   /** Names the frame of each message about to leave (Message::frame): `taken`, the newest frame the
    *  firing took in, or if none (a source) the stamp of its first message that has one. */
-  void nameFrames(std::int64_t taken) {
-    frame_ = taken;
-    starts_frame_ = false;
-    if (frame_ == 0)
-      for (auto& out : outputs_)
-        if ((frame_ = out.pending.payloadStamp()) != 0) {
-          starts_frame_ = true;
-          break;
-        }
-    for (auto& out : outputs_) out.pending.setFrame(frame_);
-  }
+  inline void nameFrames(std::int64_t taken);  // node_state_inline.hpp: every firing
   /** A firing took `t` ticks (if `timed`) and ended at tick `end` (if untimed: the group's
    *  newest clock read, a little earlier); one that only passed Nothing is counted apart. */
-  void recordFiring(bool timed, std::int64_t t, std::int64_t end) {  // inline: every firing
-    const auto relaxed = std::memory_order_relaxed;  // one writer: no locked instructions
-    last_fired_.store(end, relaxed);
-    if (last_had_data_) last_sent_.store(end - t, relaxed);  // its start (untimed: a read before it)
-    if (timed || !last_had_data_ || frame_ > 0) return recordTimedOrNothing(timed, t);
-    --untimed_left_;
-    firings_.store(firings_.load(relaxed) + 1, relaxed);
-  }
+  inline void recordFiring(bool timed, std::int64_t t, std::int64_t end);  // node_state_inline.hpp: every firing
   void applyParams();
   /** Node::setup(), once; a throw is the node's error. */
   void runSetup();
@@ -637,3 +491,5 @@ inline bool NodeState::guarded(const char* what, F&& fn) {
 
 }  // namespace detail
 }  // namespace apex
+
+#include "node_state_inline.hpp"  // the firing path's inline members that are not in the class
