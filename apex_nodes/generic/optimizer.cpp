@@ -8,7 +8,7 @@
 // beside the graph (evaluation_copies.hpp) on threads of its own; the graph itself then rests.
 // With `remote_workers`, other runtimes evaluate candidates too, each in its Optimizer of the same
 // name (remote_workers.hpp); every Optimizer serves such requests while it runs no search itself
-// (candidate_server.hpp).
+// (candidate_server.hpp). What it writes (values, front, state, study header): optimizer_texts.hpp.
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -20,6 +20,7 @@
 #include "apex_nodes/search.hpp"
 #include "evaluation_copies.hpp"
 #include "optimizer_ports.hpp"
+#include "optimizer_texts.hpp"
 #include "candidate_server.hpp"
 #include "racing.hpp"
 #include "reach.hpp"
@@ -30,20 +31,7 @@ namespace apex_nodes {
 namespace param = apex::param;
 
 namespace {
-
-/** One output per dimension, of the type of the parameter it tunes. */
-apex::Status shapeDimensions(const apex::ParamValues& p, apex::Manifest& m) {
-  for (const auto& text : p.get<std::vector<std::string>>("dimensions")) {
-    auto d = tuning::parseDimension(text);
-    if (!d) return d.status();
-    m.outputs.push_back({d->name, tuning::outputType(d->kind), false,
-                         "the candidate's value of '" + d->name + "': connect it to the parameter it tunes"});
-  }
-  return apex::Status::ok();
-}
-
 using Done = tuning::RemoteWorkers::Done;
-
 }  // namespace
 
 class Optimizer : public apex::Node, private OptimizerPorts {
@@ -86,7 +74,9 @@ class Optimizer : public apex::Node, private OptimizerPorts {
         .param(kFrameBound)
         .param(kObjectives)
         .param(kFront)
-        .shapedBy(shapeDimensions);
+        .shapedBy([](const apex::ParamValues& p, apex::Manifest& m) {
+          return tuning::addOutputs(p.get<std::vector<std::string>>(kDimensions.name()), m);  // one per dimension
+        });
   }
 
   ~Optimizer() override {
@@ -106,10 +96,7 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     const std::string saved = state_.get();
     if (saved.rfind("running", 0) != 0 && saved.rfind("starting", 0) != 0) return;
     updateParam(kState.name(), "interrupted (" + saved + ")");
-    fail("this graph was saved while a run was in progress (" + saved +
-         "): the tuned parameters hold that candidate's values, not tuned ones; " +
-         (study_path_.get().empty() ? std::string("start a new run")
-                                    : "start it again: it continues from its study '" + study_path_.get() + "'"));
+    fail(tuning::interruptedText(saved, study_path_.get()));
   }
 
   /** The end of a sequence stops here: the outputs are values, not frames. */
@@ -132,10 +119,8 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     }
     if (const std::string lost = lostTarget(); !lost.empty()) {
       out_[0] = -1;
-      end("stopped");
-      fail(lost + ": the run stopped after " + std::to_string(search_->evaluations()) +
-           " evaluations (the other tuned parameters got their values back)");
-      return;
+      return stopFailing(lost + ": the run stopped after " + std::to_string(search_->evaluations()) +
+                         " evaluations (the other tuned parameters got their values back)");
     }
     scored(0, *fitness_.get());
   }
@@ -161,17 +146,20 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     auto made = search::makeSearch(algorithm_.get(), ranges, s);
     if (!made) throw std::invalid_argument(made.message());
     auto search = std::move(made).value();
-    auto study = openStudy(ranges);
+    const bool two = objectives_.get() == Objectives::kFitnessAndCost;
+    auto study = tuning::openStudy(study_path_.get(),
+                                   tuning::studySettingsText(algorithm_.get(), s, minimize_param_.get(), dimensions_.get(), two),
+                                   ranges, two);
     const auto resumed = study ? tuning::replay(*study, *search, minimize_param_.get()) : std::vector<tuning::Scored>{};
     search_ = std::move(search);
     study_ = std::move(study);
     dims_ = std::move(dims);
     minimize_ = minimize_param_.get();
-    two_ = objectives_.get() == Objectives::kFitnessAndCost;
+    two_ = two;
     front_.clear(), costs_.clear();
     if (two_) {
       for (const auto& e : resumed) tuning::addToFront(front_, e, minimize_);
-      updateParam(kFront.name(), frontText());
+      updateParam(kFront.name(), tuning::frontText(dims_, front_));
     }
     running_ = true;
     local_ = workers_.get();
@@ -194,11 +182,7 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     if (running_) end("stopped");
   }
 
-  void describeSpace() {
-    std::string text;
-    for (const auto& d : resolveDimensions()) text += (text.empty() ? "" : ", ") + d.spaceText();
-    updateParam(kSpace.name(), "[" + text + "]");
-  }
+  void describeSpace() { updateParam(kSpace.name(), tuning::spaceText(resolveDimensions())); }
 
   void applyBest() {
     if (running_) throw std::invalid_argument("a run is in progress (" + state_.get() + "): stop it first, or wait for it");
@@ -210,56 +194,12 @@ class Optimizer : public apex::Node, private OptimizerPorts {
  private:
   /** Every dimension resolved against the parameter it tunes (the first, if it tunes several). */
   std::vector<tuning::TunedDimension> resolveDimensions() const {
-    std::vector<tuning::TunedDimension> out;
-    for (const auto& text : dimensions_.get()) {
-      const tuning::DimensionText d = tuning::parseDimension(text).value();  // the interface function read it already
-      const auto targets = parameterTargets(d.name);
-      if (targets.empty())
-        throw std::invalid_argument("dimension '" + d.name +
-                                    "': its output feeds no parameter; connect it to the "
-                                    "parameter it tunes");
-      const apex::ParamSpec& spec = targets.front().spec;
-      out.push_back(tuning::resolve(d, text, spec, targets.front().node + "/" + spec.name, targets.front().value));
-    }
-    if (out.empty()) throw std::invalid_argument("no dimensions: add one per parameter to tune, e.g. 'c 0 60'");
-    return out;
-  }
-
-  /** The values at the search's point `x`, one per dimension. */
-  std::vector<apex::ParamValue> valuesAt(const std::vector<double>& x) const {
-    std::vector<apex::ParamValue> out;
-    std::size_t at = 0;
-    for (const auto& d : dims_) {
-      out.push_back(d.value(x.data() + at));
-      at += d.coordinates.size();
-    }
-    return out;
+    return tuning::resolveAll(dimensions_.get(), [this](const std::string& output) { return parameterTargets(output); });
   }
 
   void sendAll(const std::vector<double>& x) {
-    const auto values = valuesAt(x);
+    const auto values = tuning::valuesAt(dims_, x);
     for (std::size_t i = 0; i < dims_.size(); ++i) publishMessage(dims_[i].port, apex::toMessage(values[i]));
-  }
-
-  /** The run's settings as the study file's header states them. */
-  std::string settingsText() const {
-    std::string dims;
-    for (const auto& d : dimensions_.get()) dims += (dims.empty() ? "" : ", ") + d;
-    return "algorithm " + algorithm_.text() + ", budget " + std::to_string(budget_.get()) + ", seed " +
-           std::to_string(seed_.get()) + ", population " + std::to_string(population_.get()) + ", F " + apex::toText(f_.get()) +
-           ", CR " + apex::toText(cr_.get()) + ", minimize " + (minimize_param_.get() ? "true" : "false") + ", dimensions [" +
-           dims + "]" +
-           (workersInAll() > 1 && algorithm_.get() == search::Algorithm::kDifferentialEvolution ? ", updating deferred" : "") +
-           (objectives_.get() == Objectives::kFitnessAndCost ? ", objectives fitness_and_cost" : "");
-  }
-
-  /** The study of this run, if `study` names one. */
-  std::unique_ptr<tuning::StudyFile> openStudy(const std::vector<search::Dimension>& coordinates) const {
-    if (study_path_.get().empty()) return nullptr;
-    std::vector<std::string> columns;
-    for (const auto& c : coordinates) columns.push_back(c.name);
-    return std::make_unique<tuning::StudyFile>(study_path_.get(), settingsText(), columns,
-                                               objectives_.get() == Objectives::kFitnessAndCost);
   }
 
   /** The copies for workers beyond the graph, then the first candidates out. */
@@ -274,10 +214,7 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     };
     auto copies = part ? tuning::EvaluationCopies::make(part.value(), graph.makeGraph, static_cast<int>(local_), sent)
                        : apex::Result<std::unique_ptr<tuning::EvaluationCopies>>(part.status());
-    if (!copies) {
-      end("stopped");
-      return fail("workers " + std::to_string(local_) + ": " + copies.message());
-    }
+    if (!copies) return stopFailing("workers " + std::to_string(local_) + ": " + copies.message());
     copies_ = std::move(copies).value();
     propose();
   }
@@ -289,10 +226,8 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     sayIfRacingOff();
     if (!cut) return;
     if (!copies_) return cut_.fire();
-    if (auto st = copies_->fire(static_cast<int>(w), kCut.name); !st) {
-      end("stopped");
-      fail("worker " + std::to_string(w + 1) + ": " + st.message());
-    }
+    if (auto st = copies_->fire(static_cast<int>(w), kCut.name); !st)
+      stopFailing("worker " + std::to_string(w + 1) + ": " + st.message());
   }
 
   /** Worker `w`'s pass ended with `f`: a whole pass's mean, or a cut one's, which counts as the
@@ -320,15 +255,14 @@ class Optimizer : public apex::Node, private OptimizerPorts {
       const tuning::Evaluation e{points_.at(k), scores_.at(k), costs_[k]};
       points_.erase(k), scores_.erase(k), costs_.erase(k);
       if (two_ && tuning::addToFront(front_, {k + 1, e.fitness, e.cost_ms, e.point}, minimize_))
-        updateParam(kFront.name(), frontText());
+        updateParam(kFront.name(), tuning::frontText(dims_, front_));
       if (study_) try {
           study_->append(e);
         } catch (const std::runtime_error& err) {
-          end("stopped");
-          return fail(std::string(err.what()) + ": the run stopped after " + std::to_string(k) + " evaluations");
+          return stopFailing(std::string(err.what()) + ": the run stopped after " + std::to_string(k) + " evaluations");
         }
     }
-    best_fitness_.publish(minimize_ ? -search_->bestFitness() : search_->bestFitness());
+    best_fitness_.publish(bestFitness());
     evaluations_.publish(search_->evaluations());
     best_.publish(bestText());
     updateParam(kBestValues.name(), bestText());
@@ -350,25 +284,11 @@ class Optimizer : public apex::Node, private OptimizerPorts {
       } else if (!copies_) {
         sendAll(x);
         evaluate_.fire();
-      } else if (auto st = copies_->evaluate(static_cast<int>(w), texts(x)); !st) {
-        end("stopped");
-        return fail("worker " + std::to_string(w + 1) + ": " + st.message());
+      } else if (auto st = copies_->evaluate(static_cast<int>(w), tuning::valueTexts(dims_, x)); !st) {
+        return stopFailing("worker " + std::to_string(w + 1) + ": " + st.message());
       }
     }
-    const std::string at_once = out_.size() > 1
-                                    ? ", " + std::to_string(out_.size()) + " workers" +
-                                          (remotes_.empty() ? "" : " (" + std::to_string(remotes_.size()) + " remote)")
-                                    : "";
-    setState("running: evaluation " + std::to_string(search_->evaluations() + 1) + " of " + std::to_string(search_->budget()) +
-             at_once);
-  }
-
-  /** The values at `x` as YAML text, by output. */
-  std::vector<std::pair<std::string, std::string>> texts(const std::vector<double>& x) const {
-    const auto values = valuesAt(x);
-    std::vector<std::pair<std::string, std::string>> out;
-    for (std::size_t i = 0; i < dims_.size(); ++i) out.emplace_back(dims_[i].port, apex::toText(values[i]));
-    return out;
+    setState(tuning::runningText(search_->evaluations() + 1, search_->budget(), out_.size(), remotes_.size()));
   }
 
   /** The run is over: nothing out counts any more, the copies go. */
@@ -387,14 +307,10 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     if (!in_copies)  // with copies the graph rested: nothing to give back
       for (const auto& d : dims_)
         if (!targetsOf(d.port).empty()) publishMessage(d.port, apex::toMessage(d.before));
-    const int n = search_->evaluations();
-    setState(how + " after " + std::to_string(n) + " evaluation" + (n == 1 ? "" : "s") +
-             (racing_.asked() ? " (" + racing_.summary() + ")" : "") +
-             (search_->best().empty() ? ""
-                                      : "; best " + apex::toText(minimize_ ? -search_->bestFitness() : search_->bestFitness()) +
-                                            " at " + bestText()) +
-             (two_ ? "; a front of " + std::to_string(front_.size()) + " point" + (front_.size() == 1 ? "" : "s") : "") +
-             remoteText());
+    setState(tuning::endText({how, search_->evaluations(), racing_.asked() ? racing_.summary() : "",
+                              search_->best().empty() ? "" : bestText(), bestFitness(),
+                              two_ ? std::optional<std::size_t>(front_.size()) : std::nullopt,
+                              tuning::remoteText(remotes_, remote_done_)}));
     finished_.fire();
   }
 
@@ -412,25 +328,10 @@ class Optimizer : public apex::Node, private OptimizerPorts {
     return parameterTargets(port);
   }
 
-  std::string bestText() const { return search_->best().empty() ? "{}" : valuesText(search_->best()); }
-
-  /** The values at `x` as a YAML map, {dimension: value}. */
-  std::string valuesText(const std::vector<double>& x) const {
-    const auto values = valuesAt(x);
-    std::string out = "{";
-    for (std::size_t i = 0; i < dims_.size(); ++i) out += (i ? ", " : "") + dims_[i].port + ": " + apex::toText(values[i]);
-    return out + "}";
-  }
-
-  /** The front as YAML, cheapest first. */
-  std::string frontText() const {
-    std::string out;
-    for (const auto& p : front_)
-      out += (out.empty() ? "" : ", ") + std::string("{evaluation: ") + std::to_string(p.evaluation) +
-             ", fitness: " + apex::toText(p.fitness) + ", ms_per_frame: " + apex::toText(p.cost_ms) +
-             ", values: " + valuesText(p.point) + "}";
-    return "[" + out + "]";
-  }
+  /** The best values so far as a YAML map; "{}" before the first evaluation. */
+  std::string bestText() const { return search_->best().empty() ? "{}" : tuning::valuesText(dims_, search_->best()); }
+  /** The best fitness so far, as the graph scored it. */
+  double bestFitness() const { return minimize_ ? -search_->bestFitness() : search_->bestFitness(); }
 
   /** Candidates are evaluated in copies of the evaluated part, not in the graph (with remote
    *  workers too: an answer comes between firings, when the graph's receivers may not have read
@@ -442,31 +343,21 @@ class Optimizer : public apex::Node, private OptimizerPorts {
   /** Worker `w`, in another runtime, evaluates `x`; its answer comes to answered(). */
   void askRemote(std::size_t w, const std::vector<double>& x) {
     const std::string runtime = remotes_[w - local_];
-    remote_->evaluate(runtime, name(), texts(x), two_, [this, reach = reach_, run = run_, w, runtime](tuning::RemoteOutcome o) {
-      reach->later([this, run, w, runtime, o] { answered(run, w, runtime, o); });
-    });
+    remote_->evaluate(runtime, name(), tuning::valueTexts(dims_, x), two_,
+                      [this, reach = reach_, run = run_, w, runtime](tuning::RemoteOutcome o) {
+                        reach->later([this, run, w, runtime, o] { answered(run, w, runtime, o); });
+                      });
   }
 
   void answered(int run, std::size_t w, const std::string& runtime, const tuning::RemoteOutcome& o) {
     if (!running_ || run != run_ || out_[w] < 0) return;  // a run that ended meanwhile
-    if (!o.error.empty()) {
-      end("stopped");
-      return fail("remote worker " + runtime + ": " + o.error + ": the run stopped after " +
-                  std::to_string(search_->evaluations()) + " evaluations" +
-                  (study_path_.get().empty() ? "" : " (start it again: it continues from its study)"));
-    }
+    if (!o.error.empty())
+      return stopFailing("remote worker " + runtime + ": " + o.error + ": the run stopped after " +
+                         std::to_string(search_->evaluations()) + " evaluations" +
+                         (study_path_.get().empty() ? "" : " (start it again: it continues from its study)"));
     if (two_) costs_[out_[w]] = o.ms_per_frame;
     ++remote_done_[w - local_];
     scored(w, o.fitness);
-  }
-
-  /** How many candidates each other runtime evaluated, for the state. */
-  std::string remoteText() const {
-    std::map<std::string, int> by;
-    for (std::size_t i = 0; i < remotes_.size(); ++i) by[remotes_[i]] += remote_done_[i];
-    std::string out;
-    for (const auto& [runtime, n] : by) out += "; " + std::to_string(n) + " evaluated by " + runtime;
-    return out;
   }
 
   /** A request from another runtime's Optimizer: evaluated here unless a run of its own goes on. */
@@ -480,6 +371,11 @@ class Optimizer : public apex::Node, private OptimizerPorts {
   void fail(const std::string& text) {
     error_ = text;
     reportError(text);
+  }
+  /** The run stops, `why` its error (worded before it stops: stopping changes nothing it names). */
+  void stopFailing(const std::string& why) {
+    end("stopped");
+    fail(why);
   }
   void again() {
     if (!error_.empty()) reportError(error_);

@@ -80,6 +80,14 @@ void StudyFile::append(const Evaluation& e) {
   if (!st) throw std::runtime_error("cannot write the study: " + st.message());
 }
 
+std::unique_ptr<StudyFile> openStudy(const std::string& path, const std::string& settings,
+                                     const std::vector<search::Dimension>& coordinates, bool with_cost) {
+  if (path.empty()) return nullptr;
+  std::vector<std::string> columns;
+  for (const auto& c : coordinates) columns.push_back(c.name);
+  return std::make_unique<StudyFile>(path, settings, columns, with_cost);
+}
+
 bool samePoint(const std::vector<double>& a, const std::vector<double>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i)

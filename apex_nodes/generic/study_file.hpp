@@ -8,6 +8,7 @@
 // ROS-free.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,12 @@ class StudyFile {
   bool with_cost_;
   std::string lines_;  // the evaluations' lines, as written
 };
+
+/** @brief The study at `path` of a run whose settings read `settings` and whose search has the
+ *  `coordinates` (their names are its columns); `with_cost` as for StudyFile. nullptr if `path`
+ *  is "": the run keeps no study. */
+std::unique_ptr<StudyFile> openStudy(const std::string& path, const std::string& settings,
+                                     const std::vector<search::Dimension>& coordinates, bool with_cost);
 
 /** @brief Whether two points are the same candidate (as printed and read back: exactly). */
 bool samePoint(const std::vector<double>& a, const std::vector<double>& b);

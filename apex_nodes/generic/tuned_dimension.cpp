@@ -126,6 +126,16 @@ const apex::TypeInfo* outputType(Kind kind) {
   }
 }
 
+apex::Status addOutputs(const std::vector<std::string>& dimensions, apex::Manifest& m) {
+  for (const auto& text : dimensions) {
+    auto d = parseDimension(text);
+    if (!d) return d.status();
+    m.outputs.push_back({d->name, outputType(d->kind), false,
+                         "the candidate's value of '" + d->name + "': connect it to the parameter it tunes"});
+  }
+  return apex::Status::ok();
+}
+
 TunedDimension resolve(const DimensionText& d, const std::string& text, const apex::ParamSpec& spec, const std::string& where,
                        const apex::ParamValue& before) {
   TunedDimension t;
@@ -192,6 +202,32 @@ apex::ParamValue TunedDimension::value(const double* x) const {
     default:
       return snap(x[0], coordinates[0]);
   }
+}
+
+std::vector<TunedDimension> resolveAll(const std::vector<std::string>& dimensions, const TargetsOf& targets) {
+  std::vector<TunedDimension> out;
+  for (const auto& text : dimensions) {
+    const DimensionText d = parseDimension(text).value();
+    const auto fed = targets(d.name);
+    if (fed.empty())
+      throw std::invalid_argument("dimension '" + d.name +
+                                  "': its output feeds no parameter; connect it to the "
+                                  "parameter it tunes");
+    const apex::ParamSpec& spec = fed.front().spec;
+    out.push_back(resolve(d, text, spec, fed.front().node + "/" + spec.name, fed.front().value));
+  }
+  if (out.empty()) throw std::invalid_argument("no dimensions: add one per parameter to tune, e.g. 'c 0 60'");
+  return out;
+}
+
+std::vector<apex::ParamValue> valuesAt(const std::vector<TunedDimension>& dims, const std::vector<double>& x) {
+  std::vector<apex::ParamValue> out;
+  std::size_t at = 0;
+  for (const auto& d : dims) {
+    out.push_back(d.value(x.data() + at));
+    at += d.coordinates.size();
+  }
+  return out;
 }
 
 namespace {

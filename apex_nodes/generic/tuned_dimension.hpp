@@ -1,12 +1,15 @@
-// The Optimizer's dimensions: what each entry of its `dimensions` tunes, and how a point of the
-// search becomes the value sent to the tuned parameter. A number is one coordinate of the
-// search; an interval two (its ends, sorted into low and high); a choice one, over the indices of
-// its options; a flag one, 0 or 1. ROS-free.
+// The Optimizer's dimensions: the output each entry of its `dimensions` gives it, the parameter
+// it tunes, and how a point of the search becomes the value sent to the tuned parameter. A number
+// is one coordinate of the search; an interval two (its ends, sorted into low and high); a choice
+// one, over the indices of its options; a flag one, 0 or 1. ROS-free.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "apex/core/manifest.hpp"
+#include "apex/core/node.hpp"
 #include "apex/core/param.hpp"
 #include "apex_nodes/search.hpp"
 
@@ -31,6 +34,11 @@ apex::Result<DimensionText> parseDimension(const std::string& text);
 /** @brief The type of a dimension's output: that of the parameter ports it feeds. */
 const apex::TypeInfo* outputType(Kind kind);
 
+/** @brief The Optimizer's interface as its `dimensions` shape it: one output per entry, named as
+ *  the entry, of the type of the parameter it tunes, added to `m`; refused, with its message, at
+ *  the first entry that does not read. */
+apex::Status addOutputs(const std::vector<std::string>& dimensions, apex::Manifest& m);
+
 /** @brief A dimension resolved against the parameter it tunes. */
 struct TunedDimension {
   std::string port;
@@ -49,6 +57,18 @@ struct TunedDimension {
    *  options for a choice. Every value sampled from it is one value() gives. */
   std::string spaceText() const;
 };
+
+/** @brief The parameters an output feeds now (apex::Node::parameterTargets). */
+using TargetsOf = std::function<std::vector<apex::ParamTarget>(const std::string& output)>;
+
+/** @brief Every entry of `dimensions` (each of which reads: addOutputs() refused the others)
+ *  resolved against the parameter its output feeds, the first if it feeds several. Throws
+ *  std::invalid_argument for an output that feeds no parameter, and for no dimensions at all. */
+std::vector<TunedDimension> resolveAll(const std::vector<std::string>& dimensions, const TargetsOf& targets);
+
+/** @brief The values at the search's point `x`, one per dimension of `dims`, each from its own
+ *  coordinates (they follow one another in `x`, in the order of `dims`). */
+std::vector<apex::ParamValue> valuesAt(const std::vector<TunedDimension>& dims, const std::vector<double>& x);
 
 /** @brief `d` (written as `text`) against the parameter `spec` at `where` (node/parameter) that
  *  now holds `before`. Throws std::invalid_argument naming the dimension and the parameter. */
