@@ -82,8 +82,19 @@ class StateView : public apex::ConnectionView {
 bool GraphModel::update(const apex::GraphState& graph) {
   if (has_graph_ && graph.revision <= graph_.revision) return false;
   graph_ = graph;
+  taken_ui_.clear();  // what the runtime took shows in its graph from now on
   has_graph_ = true;
   return true;
+}
+
+void GraphModel::took(const std::vector<Call>& calls) {
+  for (const Call& c : calls)
+    if (const auto* r = std::get_if<apex::SetUi::Request>(&c.request)) taken_ui_[r->node] = r->ui;
+}
+
+const std::string& GraphModel::uiOf(const apex::NodeInfo& n) const {
+  const auto it = taken_ui_.find(n.name);
+  return it == taken_ui_.end() ? n.ui : it->second;
 }
 
 const apex::NodeInfo* GraphModel::node(const std::string& name) const {
@@ -175,7 +186,7 @@ std::optional<Edit> GraphModel::removeNode(const std::string& name) const {
     en.node = name, en.enabled = false;
     e.revert.push_back({"set_enabled", en});
   }
-  if (!n->ui.empty()) e.revert.push_back(setUi(name, n->ui));
+  if (!uiOf(*n).empty()) e.revert.push_back(setUi(name, uiOf(*n)));
   for (const auto& c : graph_.connections)
     if (c.from_node == name || c.to_node == name) e.revert.push_back(calls::connect("connect", c));
   return e;
@@ -210,10 +221,10 @@ std::optional<Edit> GraphModel::insert(const std::string& name, const apex::Conn
   }
   if (in.to_port.empty() || out.from_port.empty()) return std::nullopt;
   Edit e("Insert " + name + " into " + c.from_node + "/" + c.from_port + " -> " + c.to_node + "/" + c.to_port, {}, {});
-  e.apply = {setUi(name, withPosition(n->ui, x, y)), calls::connect("disconnect", c), calls::connect("connect", in),
+  e.apply = {setUi(name, withPosition(uiOf(*n), x, y)), calls::connect("disconnect", c), calls::connect("connect", in),
              calls::connect("connect", out)};
   e.revert = {calls::connect("disconnect", out), calls::connect("disconnect", in), calls::connect("connect", c),
-              setUi(name, n->ui.empty() ? ui(0, 0) : n->ui)};
+              setUi(name, uiOf(*n).empty() ? ui(0, 0) : uiOf(*n))};
   return e;
 }
 
@@ -300,10 +311,10 @@ std::optional<Edit> GraphModel::arrange(const std::map<std::string, std::pair<do
   for (const auto& [name, at] : positions) {
     const apex::NodeInfo* n = node(name);
     if (!n) continue;
-    e.apply.push_back(setUi(name, withPosition(n->ui, at.first, at.second)));
+    e.apply.push_back(setUi(name, withPosition(uiOf(*n), at.first, at.second)));
     const auto was = shown.find(name);
-    if (was != shown.end()) e.revert.push_back(setUi(name, withPosition(n->ui, was->second.first, was->second.second)));
-    else e.revert.push_back(setUi(name, n->ui.empty() ? ui(0, 0) : n->ui));
+    if (was != shown.end()) e.revert.push_back(setUi(name, withPosition(uiOf(*n), was->second.first, was->second.second)));
+    else e.revert.push_back(setUi(name, uiOf(*n).empty() ? ui(0, 0) : uiOf(*n)));
   }
   if (e.apply.empty()) return std::nullopt;
   return e;
@@ -312,29 +323,30 @@ std::optional<Edit> GraphModel::arrange(const std::map<std::string, std::pair<do
 std::optional<Edit> GraphModel::move(const std::string& node_name, double x, double y) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return std::nullopt;
-  return Edit{
-      "Move " + node_name, {setUi(node_name, withPosition(n->ui, x, y))}, {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+  return Edit{"Move " + node_name,
+              {setUi(node_name, withPosition(uiOf(*n), x, y))},
+              {setUi(node_name, uiOf(*n).empty() ? ui(0, 0) : uiOf(*n))}};
 }
 
 std::optional<Edit> GraphModel::setExpanded(const std::string& node_name, bool expanded) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n) return std::nullopt;
   return Edit{(expanded ? "Expand " : "Collapse ") + node_name,
-              {setUi(node_name, withUiKey(n->ui, "expanded", expanded ? "true" : "false"))},
-              {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+              {setUi(node_name, withUiKey(uiOf(*n), "expanded", expanded ? "true" : "false"))},
+              {setUi(node_name, uiOf(*n).empty() ? ui(0, 0) : uiOf(*n))}};
 }
 
 std::optional<Edit> GraphModel::setPinned(const std::string& node_name, const std::string& param, bool pinned) const {
   const apex::NodeInfo* n = node(node_name);
   if (!n || !parameter(node_name, param)) return std::nullopt;
-  std::vector<std::string> now = BoxView::of(n->ui).pinned;
+  std::vector<std::string> now = BoxView::of(uiOf(*n)).pinned;
   now.erase(std::remove(now.begin(), now.end(), param), now.end());
   if (pinned) now.push_back(param);
   std::string list = "[";
   for (const auto& p : now) list += (list.size() > 1 ? ", " : "") + p;
   return Edit{(pinned ? "Pin " : "Unpin ") + node_name + "/" + param,
-              {setUi(node_name, withUiKey(n->ui, "pinned", list + "]"))},
-              {setUi(node_name, n->ui.empty() ? ui(0, 0) : n->ui)}};
+              {setUi(node_name, withUiKey(uiOf(*n), "pinned", list + "]"))},
+              {setUi(node_name, uiOf(*n).empty() ? ui(0, 0) : uiOf(*n))}};
 }
 
 std::string GraphModel::freshName(const std::string& type, const std::string& parent,

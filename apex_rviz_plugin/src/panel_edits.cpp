@@ -56,6 +56,7 @@ void PanelWidget::perform(const std::optional<Edit>& edit) {
   history_.sent();
   link_.run(edit->apply, [this, edit = *edit, epoch = history_.epoch()](bool ok, const std::string& message) {
     history_.answered(edit, ok, epoch);
+    if (ok) model_.took(edit.apply);  // a ui edit right after builds on this one
     if (ok && GraphModel::regroups(edit.apply)) inspectAgain();  // the runtime ended every inspection
     if (!ok) placement_.release(edit.apply);  // its places are free again
     report(ok, message, QString::fromStdString(edit.label));

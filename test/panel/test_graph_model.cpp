@@ -52,6 +52,25 @@ TEST(GraphModel, PositionsComeFromUiMetadata) {
   EXPECT_EQ(std::get<apex::SetUi::Request>(move->revert[0].request).ui, "{x: 10, y: 20}");
 }
 
+TEST(GraphModel, AUiEditTheRuntimeTookIsTheBaseOfTheNextBeforeTheGraphShowsIt) {
+  // A pin, then a collapse before the ~graph that shows the pin came: the collapse must keep the
+  // pin (CI: the panel's compact box test lost it; the collapse wrote the ui the ~graph had).
+  GraphModel m;
+  m.update(graph(1));
+  const auto pin = m.setPinned("clock", "rate", true);
+  ASSERT_TRUE(pin);
+  m.took(pin->apply);  // the runtime answered: done
+  const auto collapse = m.setExpanded("clock", false);
+  ASSERT_TRUE(collapse);
+  const std::string ui = std::get<apex::SetUi::Request>(collapse->apply[0].request).ui;
+  EXPECT_THAT(ui, HasSubstr("pinned: [rate]"));
+  EXPECT_THAT(ui, HasSubstr("expanded: false"));
+  EXPECT_THAT(std::get<apex::SetUi::Request>(collapse->revert[0].request).ui, HasSubstr("pinned: [rate]"))
+      << "undoing the collapse keeps the pin too";
+  EXPECT_FALSE(m.update(graph(1))) << "the graph's revision is unchanged: the ~graph after the edit is still taken";
+  EXPECT_TRUE(m.update(graph(2)));
+}
+
 TEST(GraphModel, ArrangingIsUndoneToWhereThePanelShowedTheBoxes) {
   // Tidy right after a drag: the runtime's graph may not show the drag yet; Undo puts the box
   // back where the user dropped it, not where it was before (CI: the panel's Tidy test).

@@ -121,9 +121,14 @@ class GraphModel {
   void reset() {
     has_graph_ = false;
     graph_ = apex::GraphState();
+    taken_ui_.clear();
   }
   bool hasGraph() const { return has_graph_; }
   const apex::GraphState& graph() const { return graph_; }
+  /** @brief The runtime took `calls` (an edit it answered with success): the next edit of a
+   *  node's ui (a collapse right after a pin) builds on the ui they set, until a newer ~graph
+   *  comes, rather than on what the ~graph last said. What is shown does not change. */
+  void took(const std::vector<Call>& calls);
 
   const apex::NodeInfo* node(const std::string& name) const;
   /** @brief The nodes `calls` give another path, as (from, to), read before they are sent: a
@@ -279,8 +284,12 @@ class GraphModel {
    *  (last of its nodes), for linkable and insertable to try the types in. */
   GraphModel probe(const std::string& level, const std::optional<apex::Connection>& gone) const;
 
+  /** A node's ui metadata as the edits build on it: the runtime's last taken, else the graph's. */
+  const std::string& uiOf(const apex::NodeInfo& n) const;
+
   apex::GraphState graph_;
   bool has_graph_ = false;
+  std::map<std::string, std::string> taken_ui_;  // node -> the ui an answered edit set, until a newer ~graph
 };
 
 /** @brief Undo and redo of done edits. A new edit clears what could be redone. */
